@@ -1,0 +1,36 @@
+# clutchfem: two commands on a fresh Debian machine.
+#   make demo   set up, then build every concept and run the main job on the default design
+#   make test   set up, then run the test suite
+PYTHON ?= python3.11
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+OUT ?= out/demo
+# Shared libraries that the gmsh wheel loads (X/GL), OSMesa for off-screen pyvista renders.
+APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 libgl1 libosmesa6
+
+.PHONY: setup sysdeps demo test bench clean
+
+sysdeps:
+	@bash scripts/sysdeps.sh $(APT_PKGS)
+
+$(STAMP): pyproject.toml
+	$(MAKE) sysdeps
+	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[test]'
+	@touch $(STAMP)
+
+setup: $(STAMP)
+
+demo: setup
+	$(VENV)/bin/clutchfem demo --out $(OUT)
+
+test: setup
+	$(PY) -m pytest -n 2 -q
+
+bench: setup
+	$(PY) benchmarks/run_all.py
+
+clean:
+	rm -rf out .pytest_cache

@@ -1,0 +1,54 @@
+"""Exception hierarchy of clutchfem.
+
+Every error a user can provoke with bad input is a :class:`ClutchfemError`; the CLI prints
+its message (never a traceback).  Messages name the offending input, its value and the
+allowed range or form.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class ClutchfemError(Exception):
+    """Base class of all errors that clutchfem raises on purpose."""
+
+
+class ParameterError(ClutchfemError, ValueError):
+    """A parameter is outside its declared range or inconsistent with others.
+
+    ``name`` is the parameter, ``value`` its value, ``allowed`` a human-readable statement of
+    what is allowed (range with units, or the relation it must satisfy).
+    """
+
+    def __init__(self, name: str, value: Any, allowed: str, context: str | None = None):
+        self.name = name
+        self.value = value
+        self.allowed = allowed
+        self.context = context
+        msg = f"parameter '{name}' = {value!r} is not allowed: {allowed}"
+        if context:
+            msg = f"{context}: {msg}"
+        super().__init__(msg)
+
+
+class InputError(ClutchfemError, ValueError):
+    """Bad user input that is not a single named parameter (files, specs, tables)."""
+
+
+class GeometryError(ClutchfemError):
+    """gmsh could not build or mesh a geometry; carries the parameter set."""
+
+    def __init__(self, message: str, params: Any = None):
+        self.params = params
+        if params is not None:
+            message = f"{message}\nparameter set: {params}"
+        super().__init__(message)
+
+
+class MeshError(ClutchfemError):
+    """A mesh (generated or user supplied) is unusable: missing groups, not planar, inverted."""
+
+
+class SolverError(ClutchfemError):
+    """A numerical solve failed (singular system, contact iteration without convergence)."""
