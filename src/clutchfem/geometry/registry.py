@@ -1,0 +1,60 @@
+"""Discovery of concept geometries: one Python file per concept in ``geometries/``.
+
+A file ``geometries/<stem>.py`` defines ``CONCEPT``, an instance of a
+:class:`~clutchfem.geometry.base.Concept` subclass.  Search path, first hit wins:
+``$CLUTCHFEM_GEOMETRIES`` (os.pathsep-separated folders), the repository's ``geometries/``
+(editable install) and the copy packaged in the wheel (``clutchfem/_geometries``).
+Dropping a new file into one of these folders adds a concept; nothing else to register.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+from functools import lru_cache
+from pathlib import Path
+
+from ..errors import ParameterError
+from .base import Concept
+
+_PKG = Path(__file__).resolve().parent.parent
+
+
+def search_path() -> list[Path]:
+    dirs = [Path(p) for p in os.environ.get("CLUTCHFEM_GEOMETRIES", "").split(os.pathsep) if p]
+    dirs += [_PKG.parent.parent / "geometries", _PKG / "_geometries"]
+    return [d for d in dirs if d.is_dir()]
+
+
+@lru_cache(maxsize=None)
+def _load_file(path: str) -> Concept:
+    spec = importlib.util.spec_from_file_location(f"clutchfem_geometries.{Path(path).stem}", path)
+    mod = importlib.util.module_from_spec(spec)
+    assert spec.loader is not None
+    spec.loader.exec_module(mod)
+    concept = getattr(mod, "CONCEPT", None)
+    if not isinstance(concept, Concept):
+        raise TypeError(f"{path} does not define CONCEPT = <Concept subclass instance>")
+    return concept
+
+
+def concepts() -> dict[str, Concept]:
+    """All concepts found, by name, in name order."""
+    found: dict[str, Concept] = {}
+    for d in search_path():
+        for f in sorted(d.glob("*.py")):
+            if f.name.startswith("_"):
+                continue
+            c = _load_file(str(f))
+            found.setdefault(c.name, c)
+    return dict(sorted(found.items()))
+
+
+def get_concept(name: str) -> Concept:
+    """Concept by name (``concept4``, ``4``, ``concept3.1``, ``3.1`` all work)."""
+    allc = concepts()
+    key = name.strip().lower()
+    for cand in (key, f"concept{key}", key.replace("_", ".")):
+        if cand in allc:
+            return allc[cand]
+    raise ParameterError("concept", name, "one of " + ", ".join(allc))

@@ -1,0 +1,325 @@
+"""Mesh pipeline: gmsh -> .msh -> meshio -> scikit-fem ``MeshTri2`` with named groups.
+
+* :func:`mesh_concept` builds a concept with gmsh (see :mod:`clutchfem.geometry.base`),
+  meshes it with second-order curved triangles and caches the ``.msh`` plus a JSON side-car
+  on disk under a content hash of (concept source, parameters, mesh settings, gmsh version).
+* :func:`load_msh` reads any ``.msh`` with meshio and returns a :class:`ClutchMesh`: the
+  skfem mesh with boundary facets and element subdomains by name.  scikit-fem's meshio
+  reader does not turn order-2 ``line3`` boundary cells into boundary tags, so the facets
+  are matched here from the two end vertices of every boundary cell.
+* :func:`load_user_geometry` imports a user's ``.msh`` or STEP file (metres, x-y plane,
+  axis at the origin, physical curve groups ``bore`` and optionally ``contact``).
+
+gmsh is a process-global C++ library and not thread-safe: one model at a time per process,
+guarded by :func:`gmsh_session`; parallel sweeps use processes.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import inspect
+import json
+import math
+import os
+import tempfile
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import gmsh
+import meshio
+import numpy as np
+from scipy.spatial import cKDTree
+from skfem import MeshTri1, MeshTri2
+
+from . import __version__
+from .errors import GeometryError, MeshError
+from .geometry.base import BuiltModel, Concept, ConceptParams, MeshSettings, build_model
+
+_GMSH_LOCK = threading.Lock()
+
+
+@contextlib.contextmanager
+def gmsh_session(name: str = "clutchfem"):
+    """Initialise gmsh quietly for one model; always finalise."""
+    with _GMSH_LOCK:
+        gmsh.initialize(interruptible=False)
+        try:
+            gmsh.option.setNumber("General.Terminal", 0)
+            gmsh.option.setNumber("General.Verbosity", 1)
+            gmsh.model.add(name)
+            yield
+        finally:
+            gmsh.finalize()
+
+
+@dataclass
+class ClutchMesh:
+    """A meshed clutch (or any 2-D part) ready for the FE model.
+
+    ``mesh`` carries boundaries ``bore``, ``contact``, ``contact_<i>`` and, for a sector,
+    ``cut_a``/``cut_b``; subdomains ``solid``, ``shoe_<i>``, ``flexure_<i>``, ``hub``
+    where known.  ``sector_angle`` (rad) is set for a one-sector model of ``n_shoes_total``
+    identical shoes (cut_b is cut_a rotated by +sector_angle).
+    """
+
+    mesh: MeshTri2
+    source: str
+    n_shoes_total: int = 1
+    n_shoes_model: int = 1
+    sector_angle: float | None = None
+    drum_radius: float | None = None
+    thickness: float | None = None
+    params: dict = field(default_factory=dict)
+    mesh_settings: dict = field(default_factory=dict)
+    mass: dict = field(default_factory=dict)
+    pivots: list = field(default_factory=list)
+    contact_arcs: list = field(default_factory=list)
+    mirrored: bool = False
+    msh_path: Path | None = None
+    mesh_time_s: float = 0.0
+    cached: bool = False
+
+    @property
+    def n_elements(self) -> int:
+        return int(self.mesh.t.shape[1])
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.mesh.doflocs.shape[1])
+
+    def boundary(self, name: str) -> np.ndarray:
+        b = self.mesh.boundaries or {}
+        if name not in b:
+            raise MeshError(f"mesh from {self.source} has no boundary group '{name}'; "
+                            f"available: {sorted(b)}")
+        return np.asarray(b[name])
+
+
+# ---------------------------------------------------------------------------------------
+# meshio -> skfem
+# ---------------------------------------------------------------------------------------
+def _facet_lookup(mesh) -> dict[tuple[int, int], int]:
+    f = np.sort(mesh.facets, axis=0)
+    return {(int(a), int(b)): k for k, (a, b) in enumerate(f.T)}
+
+
+def meshio_to_skfem(m: meshio.Mesh, curve_groups: dict[str, set[int]],
+                    surface_groups: dict[str, set[int]], key: str, source: str) -> MeshTri2:
+    """Convert a meshio mesh of triangles (order 1 or 2) into a ``MeshTri2`` with named
+    boundaries and subdomains.
+
+    ``key`` is the meshio cell-data key that labels cells (``gmsh:physical`` for user
+    files, ``gmsh:geometrical`` for our own cached models); ``curve_groups`` and
+    ``surface_groups`` map a group name to the set of labels it contains (a label may sit
+    in several groups, e.g. ``contact`` and ``contact_0``).
+    """
+    pts = np.asarray(m.points, dtype=float)
+    if pts.shape[1] == 3:
+        scale = max(float(np.ptp(pts[:, :2], axis=0).max()), 1e-300)
+        if np.abs(pts[:, 2]).max() > 1e-9 * scale:
+            raise MeshError(f"{source}: the mesh is not planar (z varies up to "
+                            f"{np.abs(pts[:, 2]).max():.3g} m); expected a 2-D part in the x-y plane")
+        pts = pts[:, :2]
+    tri_type = "triangle6" if "triangle6" in m.cells_dict else ("triangle" if "triangle" in m.cells_dict else None)
+    if tri_type is None:
+        raise MeshError(f"{source}: no triangle elements found (cell types: {sorted(m.cells_dict)}); "
+                        "expected a 2-D triangle mesh")
+    t_all = np.vstack([c.data for c in m.cells if c.type == tri_type])
+    if tri_type == "triangle6":
+        uniq = np.unique(t_all[:, :3])
+        mesh = MeshTri2(np.ascontiguousarray(pts.T), np.ascontiguousarray(t_all.T))
+    else:
+        uniq = np.unique(t_all)
+        t = np.searchsorted(uniq, t_all).T
+        mesh = MeshTri2.from_mesh(MeshTri1(np.ascontiguousarray(pts[uniq].T), np.ascontiguousarray(t)))
+    labels = m.cell_data.get(key)
+    sub: dict[str, np.ndarray] = {}
+    bnd: dict[str, np.ndarray] = {}
+    if labels is not None:
+        tri_lab = np.concatenate([np.asarray(labels[i]) for i, c in enumerate(m.cells) if c.type == tri_type])
+        for name, labs in surface_groups.items():
+            sub[name] = np.nonzero(np.isin(tri_lab, list(labs)))[0].astype(np.int64)
+        # boundaries: match every labelled line/line3 cell to a facet by its end vertices
+        line_blocks = [(c.data, np.asarray(labels[i])) for i, c in enumerate(m.cells)
+                       if c.type in ("line", "line3")]
+        if line_blocks:
+            ends = np.vstack([np.searchsorted(uniq, d[:, :2]) for d, _ in line_blocks])
+            lab = np.concatenate([lv for _, lv in line_blocks])
+            lookup = _facet_lookup(mesh)
+            facet = np.array([lookup.get((min(a, b), max(a, b)), -1) for a, b in ends], dtype=np.int64)
+            for name, labs in curve_groups.items():
+                sel = np.isin(lab, list(labs))
+                if np.any(facet[sel] < 0):
+                    raise MeshError(f"{source}: {int(np.sum(facet[sel] < 0))} cells of boundary group "
+                                    f"'{name}' do not match any triangle edge")
+                bnd[name] = np.unique(facet[sel])
+    if bnd:
+        mesh = mesh.with_boundaries(bnd)
+    if sub:
+        mesh = mesh.with_subdomains(sub)
+    _check_orientation(mesh, source)
+    return mesh
+
+
+def _check_orientation(mesh: MeshTri2, source: str) -> None:
+    """Refuse degenerate, inverted or folded elements.
+
+    Two checks: (1) inside every element the Jacobian determinant keeps one sign and does not
+    vanish (a curved P2 element whose mid-edge node is too far out fails this); (2) the two
+    elements that share an interior edge lie on opposite sides of it (a flipped element in a
+    fold fails this).  Elements may be oriented either way (gmsh keeps the orientation of
+    mirrored surfaces), so the global sign is not checked.
+    """
+    from skfem import Basis, ElementTriP0
+
+    basis = Basis(mesh, ElementTriP0(), intorder=4)
+    detJ = basis.mapping.detDF(basis.X)
+    scale = np.median(np.abs(detJ))
+    pos = (detJ > 1e-10 * scale).all(axis=1)
+    neg = (detJ < -1e-10 * scale).all(axis=1)
+    bad = ~(pos | neg)
+    p, t, f2t, facets = mesh.p, mesh.t, mesh.f2t, mesh.facets
+    inner = np.nonzero(f2t[1] >= 0)[0]
+    a, b = p[:, facets[0, inner]], p[:, facets[1, inner]]
+
+    def side(elems):
+        c = p[:, t[:, elems]].mean(axis=1)
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+    folded = side(f2t[0, inner]) * side(f2t[1, inner]) >= 0
+    nbad = int(bad.sum()) + int(folded.sum())
+    if nbad:
+        raise MeshError(f"{source}: {nbad} inverted, folded or degenerate element(s) (Jacobian "
+                        "changes sign or vanishes, or neighbours overlap); fix or regenerate the mesh")
+
+
+# ---------------------------------------------------------------------------------------
+# concepts: build + mesh + cache
+# ---------------------------------------------------------------------------------------
+def cache_dir() -> Path:
+    d = Path(os.environ.get("CLUTCHFEM_CACHE", Path.home() / ".cache" / "clutchfem")) / "meshes"
+    d.mkdir(parents=True, exist_ok=True)
+    return d
+
+
+def _source_hash(concept: Concept) -> str:
+    from .geometry import base, occ as occmod
+
+    h = hashlib.sha256()
+    for obj in (type(concept), base, occmod):
+        try:
+            h.update(inspect.getsource(obj).encode())
+        except (OSError, TypeError):
+            h.update(repr(obj).encode())
+    return h.hexdigest()[:16]
+
+
+def cache_key(concept: Concept, p: ConceptParams, ms: MeshSettings) -> str:
+    payload = json.dumps({"concept": concept.name, "params": p.model_dump(), "mesh": ms.model_dump(),
+                          "gmsh": gmsh.__version__, "clutchfem": __version__,
+                          "source": _source_hash(concept)}, sort_keys=True, default=str)
+    return hashlib.sha256(payload.encode()).hexdigest()[:24]
+
+
+def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = None, *,
+                 use_cache: bool = True) -> ClutchMesh:
+    """Build and mesh ``concept`` with parameters ``p`` (cached on disk)."""
+    ms = ms or MeshSettings()
+    key = cache_key(concept, p, ms)
+    d = cache_dir()
+    msh, side = d / f"{concept.name}-{key}.msh", d / f"{concept.name}-{key}.json"
+    cached = use_cache and msh.exists() and side.exists()
+    t0 = time.perf_counter()
+    if not cached:
+        built = _generate(concept, p, ms, msh)
+        meta = {"entity_groups": built.entity_groups, "group_dims": built.group_dims,
+                "mass": built.mass, "pivots": built.pivots, "contact_arcs": built.contact_arcs,
+                "n_shoes_total": built.n_shoes_total, "n_shoes_model": built.n_shoes_model,
+                "sector_angle": built.sector_angle, "mirrored": built.mirrored,
+                "mesh_time_s": time.perf_counter() - t0}
+        tmp = side.with_suffix(".json.tmp")
+        tmp.write_text(json.dumps(meta))
+        tmp.replace(side)
+    meta = json.loads(side.read_text())
+    cm = _load_generated(msh, meta, concept.name)
+    cm.params = p.model_dump()
+    cm.mesh_settings = ms.model_dump()
+    cm.drum_radius = p.drum_radius
+    cm.thickness = p.thickness
+    cm.cached = cached
+    cm.mesh_time_s = meta["mesh_time_s"]
+    return cm
+
+
+def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path) -> BuiltModel:
+    with gmsh_session(concept.name):
+        gmsh.option.setNumber("Geometry.Tolerance", 1e-10)
+        gmsh.option.setNumber("Geometry.ToleranceBoolean", 1e-10)
+        try:
+            built = build_model(concept, p, ms)
+            gmsh.option.setNumber("Mesh.Algorithm", 6)
+            gmsh.option.setNumber("Mesh.ElementOrder", ms.order)
+            gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+            gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
+            gmsh.model.mesh.generate(2)
+            if ms.order == 2:
+                _fix_invalid_high_order()
+            if built.mirrored:  # minus arrangement: reflect the canonical mesh, y -> -y
+                gmsh.model.mesh.affineTransform([1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0])
+        except GeometryError:
+            raise
+        except Exception as exc:  # gmsh raises bare Exceptions with its log message
+            raise GeometryError(f"gmsh failed to build/mesh concept '{concept.name}': {exc}",
+                                p.model_dump()) from None
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        # the user-facing file keeps the named physical groups ...
+        gmsh.option.setNumber("Mesh.SaveAll", 0)
+        _atomic_write(groups_msh_path(msh))
+        # ... the cache file is read back by meshio, whose msh4 reader wants all or no
+        # physical tags: save every element with its entity tag and no groups; the JSON
+        # side-car maps entity tags to group names
+        gmsh.model.removePhysicalGroups()
+        gmsh.option.setNumber("Mesh.SaveAll", 1)
+        _atomic_write(msh)
+    return built
+
+
+def groups_msh_path(msh: Path) -> Path:
+    """The ``.msh`` with named physical groups that sits beside a cached mesh."""
+    return msh.with_name(msh.stem + ".groups.msh")
+
+
+def _atomic_write(path: Path) -> None:
+    fd, tmp = tempfile.mkstemp(suffix=".msh", dir=path.parent)
+    os.close(fd)
+    gmsh.write(tmp)
+    os.replace(tmp, path)
+
+
+def _fix_invalid_high_order() -> None:
+    """Run gmsh's high-order optimiser only if some curved element is invalid."""
+    types, tags, _ = gmsh.model.mesh.getElements(2)
+    worst = 1.0
+    for t in tags:
+        q = gmsh.model.mesh.getElementQualities(t, "minDetJac")
+        if len(q):
+            worst = min(worst, float(np.min(q)))
+    if worst <= 0:
+        gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
+        gmsh.model.mesh.optimize("HighOrder")
+
+
+def _load_generated(msh: Path, meta: dict, source: str) -> ClutchMesh:
+    m = meshio.read(msh)
+    groups, dims = meta["entity_groups"], meta["group_dims"]
+    curves = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 1}
+    surfaces = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 2}
+    mesh = meshio_to_skfem(m, curves, surfaces, "gmsh:geometrical", source)
+    return ClutchMesh(mesh=mesh, source=source, n_shoes_total=meta["n_shoes_total"],
+                      n_shoes_model=meta["n_shoes_model"], sector_angle=meta["sector_angle"],
+                      mass=meta["mass"], pivots=[tuple(p) for p in meta["pivots"]],
+                      contact_arcs=[tuple(a) for a in meta["contact_arcs"]], mirrored=meta["mirrored"],
+                      msh_path=msh)

@@ -1,0 +1,166 @@
+"""Typed parameter sets with units and declared valid ranges.
+
+Every design input is a field of a frozen pydantic model declared with :func:`param`: a
+default, a unit, a closed range and a one-line meaning.  Construction validates the ranges
+and then the cross-parameter consistency rules of the subclass (:meth:`ParamSet.check`);
+both raise :class:`~clutchfem.errors.ParameterError`, which names the parameter, its value
+and what is allowed, before any geometry kernel runs.
+
+Units: lengths in metres, angles in degrees (the unit designers read on drawings; converted
+to radians where used), counts dimensionless.  ``--set`` strings accept a unit suffix
+(``1.8mm``, ``300um``, ``0.0018m``, ``80deg``).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any, ClassVar, Literal, get_args, get_origin
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from .errors import ParameterError
+
+_SUFFIX = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "cm": 1e-2, "deg": 1.0, "Pa": 1.0,
+           "MPa": 1e6, "GPa": 1e9, "rpm": 1.0}
+
+
+def param(default: Any, unit: str, lo: float | None = None, hi: float | None = None,
+          doc: str = "", symbol: str = "") -> Any:
+    """Declare a parameter: default, unit, closed range [lo, hi], meaning, drawing symbol."""
+    extra = {"unit": unit, "symbol": symbol or ""}
+    return Field(default, ge=lo, le=hi, description=doc, json_schema_extra=extra)
+
+
+def choice(default: str, doc: str = "", symbol: str = "") -> Any:
+    """Declare an option parameter (its Literal type lists the allowed values)."""
+    return Field(default, description=doc, json_schema_extra={"unit": "-", "symbol": symbol})
+
+
+def _fmt(x: float, unit: str) -> str:
+    if unit == "m":
+        return f"{x * 1e3:g} mm"
+    return f"{x:g} {unit}" if unit not in ("-", "") else f"{x:g}"
+
+
+class ParamSet(BaseModel):
+    """Base class of every parameter set (concept geometry, material, drum, analysis)."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid", validate_default=True)
+    #: a label used in error messages (e.g. the concept name)
+    context: ClassVar[str] = ""
+
+    def __init__(self, **values: Any):
+        try:
+            super().__init__(**values)
+        except ValidationError as exc:
+            raise self._translate(exc, values) from None
+        self.check()
+
+    # -- validation ---------------------------------------------------------------------
+    @classmethod
+    def _translate(cls, exc: ValidationError, values: dict) -> ParameterError:
+        err = exc.errors()[0]
+        name = str(err["loc"][0]) if err["loc"] else "?"
+        if err["type"] == "extra_forbidden":
+            return ParameterError(name, values.get(name), "unknown parameter; known: "
+                                  + ", ".join(cls.model_fields), cls.context or cls.__name__)
+        value = values.get(name, err.get("input"))
+        return ParameterError(name, value, cls.allowed(name), cls.context or cls.__name__)
+
+    @classmethod
+    def allowed(cls, name: str) -> str:
+        """Human-readable statement of what parameter ``name`` accepts."""
+        f = cls.model_fields[name]
+        ann = f.annotation
+        if get_origin(ann) is Literal:
+            return "one of " + ", ".join(repr(a) for a in get_args(ann))
+        lo = hi = None
+        for m in f.metadata:
+            lo = getattr(m, "ge", lo) if getattr(m, "ge", None) is not None else lo
+            hi = getattr(m, "le", hi) if getattr(m, "le", None) is not None else hi
+        unit = cls.unit(name)
+        kind = "an integer" if ann is int else "a number"
+        if lo is not None and hi is not None:
+            return f"{kind} in [{_fmt(lo, unit)}, {_fmt(hi, unit)}]"
+        if lo is not None:
+            return f"{kind} >= {_fmt(lo, unit)}"
+        if hi is not None:
+            return f"{kind} <= {_fmt(hi, unit)}"
+        return kind
+
+    def check(self) -> None:
+        """Cross-parameter consistency rules; subclasses raise :meth:`fail`."""
+
+    def fail(self, name: str, allowed: str) -> None:
+        raise ParameterError(name, getattr(self, name), allowed, self.context or type(self).__name__)
+
+    # -- introspection ------------------------------------------------------------------
+    @classmethod
+    def unit(cls, name: str) -> str:
+        extra = cls.model_fields[name].json_schema_extra or {}
+        return extra.get("unit", "-")
+
+    @classmethod
+    def symbol(cls, name: str) -> str:
+        extra = cls.model_fields[name].json_schema_extra or {}
+        return extra.get("symbol") or name
+
+    @classmethod
+    def describe(cls) -> list[dict]:
+        """One row per parameter: name, unit, default, allowed, description."""
+        rows = []
+        for name, f in cls.model_fields.items():
+            rows.append({"name": name, "unit": cls.unit(name), "default": f.default,
+                         "allowed": cls.allowed(name), "description": f.description or ""})
+        return rows
+
+    def replace(self, **changes: Any):
+        """A copy with some parameters changed (validated again)."""
+        return type(self)(**{**self.model_dump(), **changes})
+
+    # -- parsing ------------------------------------------------------------------------
+    @classmethod
+    def parse_assignments(cls, assignments: list[str] | tuple[str, ...]) -> dict[str, Any]:
+        """Parse ``name=value`` strings (with optional unit suffix) into typed values."""
+        out: dict[str, Any] = {}
+        for item in assignments:
+            if "=" not in item:
+                raise ParameterError(item, None, "expected the form name=value", cls.context)
+            name, raw = (s.strip() for s in item.split("=", 1))
+            if name not in cls.model_fields:
+                raise ParameterError(name, raw, "unknown parameter; known: "
+                                     + ", ".join(cls.model_fields), cls.context or cls.__name__)
+            out[name] = cls._parse_value(name, raw)
+        return out
+
+    @classmethod
+    def _parse_value(cls, name: str, raw: str) -> Any:
+        ann = cls.model_fields[name].annotation
+        if get_origin(ann) is Literal:
+            return raw
+        m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Zµ]*)\s*", raw)
+        if not m:
+            raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__)
+        number, suffix = m.groups()
+        try:
+            value = float(number)
+        except ValueError:
+            raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__) from None
+        unit = cls.unit(name)
+        if suffix:
+            if suffix not in _SUFFIX or (unit == "m") != (suffix in ("m", "mm", "um", "µm", "cm")):
+                raise ParameterError(name, raw, f"a value in {unit} (suffix must match the unit)",
+                                     cls.context or cls.__name__)
+            value *= _SUFFIX[suffix]
+        if ann is int:
+            if not math.isfinite(value) or value != int(value):
+                raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__)
+            return int(value)
+        if not math.isfinite(value):
+            raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__)
+        return value
+
+    @classmethod
+    def from_assignments(cls, assignments: list[str] | tuple[str, ...] = ()):
+        return cls(**cls.parse_assignments(assignments))
