@@ -1,0 +1,217 @@
+"""Engine torque curve (full throttle) and the slip-speed crossing with a clutch curve.
+
+A curve is a table of crank speed [rpm] vs engine torque [N m], interpolated with a
+monotone, shape-preserving cubic (``scipy.interpolate.PchipInterpolator``: no overshoot, so
+the maximum of the interpolant is the largest table value).  Queries outside the table are
+errors: extrapolating an engine curve silently is how wrong slip speeds are born.
+
+The built-in default (:meth:`EngineCurve.default`) is for the 56.5 cc Husqvarna 357 XP of
+seed ``000`` (fig. 2): the paper gives only the maximum, 3.40 N m at ~8000 rpm (838 rad/s),
+the mean cutting torque 3.20 N m at 950 rad/s (~9070 rpm), and the range "up to ~15 000
+rpm"; idle 2700 rpm and max 14 000 rpm are typical saw data.  **The shape between these
+points is an ASSUMPTION** (a smooth hump typical of 2-stroke saw engines); it is flagged in
+``EngineCurve.assumed`` and must be replaced by a measured curve (CSV) for design work.
+"""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.interpolate import PchipInterpolator
+
+from clutchfem.errors import InputError, ParameterError
+
+__all__ = ["EngineCurve", "DEFAULT_CURVE_RPM", "DEFAULT_CURVE_TORQUE", "slip_rpm"]
+
+#: ASSUMED default full-throttle curve, 56.5 cc saw (see module docstring).  Anchors from
+#: seed 000: max 3.40 N m at 8000 rpm, 3.20 N m at 950 rad/s (9072 rpm).
+DEFAULT_CURVE_RPM = (2500.0, 3000.0, 4000.0, 5000.0, 6000.0, 7000.0, 8000.0, 9000.0,
+                     10000.0, 11000.0, 12000.0, 13000.0, 14000.0)
+DEFAULT_CURVE_TORQUE = (1.90, 2.10, 2.50, 2.85, 3.12, 3.32, 3.40, 3.22,
+                        2.95, 2.60, 2.20, 1.75, 1.30)
+
+
+@dataclass(frozen=True)
+class EngineCurve:
+    """Full-throttle engine torque vs crank speed.
+
+    rpm: strictly increasing speeds [rpm] (>= 2 points, > 0); torque: [N m], >= 0.
+    ``assumed`` is True when the curve is not measured data (the built-in default);
+    ``source`` says where it came from; ``idle_rpm`` is optional metadata [rpm].
+    """
+
+    rpm: tuple[float, ...]
+    torque: tuple[float, ...]
+    source: str = "user"
+    assumed: bool = False
+    idle_rpm: float | None = None
+    _interp: PchipInterpolator = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        rpm = np.asarray(self.rpm, dtype=float).ravel()
+        tq = np.asarray(self.torque, dtype=float).ravel()
+        where = f"engine curve ({self.source})"
+        if rpm.size != tq.size:
+            raise InputError(f"{where}: {rpm.size} rpm values but {tq.size} torque values")
+        if rpm.size < 2:
+            raise InputError(f"{where}: needs at least 2 points (rpm, torque), got {rpm.size}")
+        if not np.all(np.isfinite(rpm)) or not np.all(np.isfinite(tq)):
+            raise InputError(f"{where}: rpm and torque must be finite numbers (no NaN/inf)")
+        if np.any(rpm <= 0.0):
+            raise InputError(f"{where}: rpm must be > 0, got min {rpm.min():g}")
+        d = np.diff(rpm)
+        if np.any(d == 0.0):
+            dup = rpm[1:][d == 0.0]
+            raise InputError(f"{where}: duplicate rpm value(s) {dup.tolist()}; rpm must be unique")
+        if np.any(d < 0.0):
+            i = int(np.argmax(d < 0.0))
+            raise InputError(
+                f"{where}: rpm must be sorted increasing; {rpm[i + 1]:g} follows {rpm[i]:g}"
+            )
+        if np.any(tq < 0.0):
+            i = int(np.argmax(tq < 0.0))
+            raise InputError(
+                f"{where}: torque must be >= 0 N m; got {tq[i]:g} at {rpm[i]:g} rpm"
+            )
+        if self.idle_rpm is not None and not (float(self.idle_rpm) > 0.0):
+            raise ParameterError("idle_rpm", self.idle_rpm, "> 0 rpm")
+        object.__setattr__(self, "rpm", tuple(rpm.tolist()))
+        object.__setattr__(self, "torque", tuple(tq.tolist()))
+        object.__setattr__(self, "_interp", PchipInterpolator(rpm, tq, extrapolate=False))
+
+    # ---- constructors ---------------------------------------------------------------
+    @classmethod
+    def default(cls) -> "EngineCurve":
+        """ASSUMED curve of the 56.5 cc Husqvarna 357 XP (3.40 N m max at 8000 rpm)."""
+        return cls(
+            DEFAULT_CURVE_RPM,
+            DEFAULT_CURVE_TORQUE,
+            source="built-in 56.5 cc saw (ASSUMED shape; anchors: 3.40 N m @ 8000 rpm, "
+            "3.20 N m @ 9072 rpm, seed 000)",
+            assumed=True,
+            idle_rpm=2700.0,
+        )
+
+    @classmethod
+    def from_csv(cls, path: str | Path, idle_rpm: float | None = None) -> "EngineCurve":
+        """Read a CSV with a header row and columns ``rpm`` and ``torque`` (N m).
+
+        The torque column may be named ``torque``, ``torque_nm``, ``torque_Nm`` or
+        ``torque [N m]`` (any name starting with 'torque').  Rows must be sorted by rpm.
+        """
+        path = Path(path)
+        if not path.is_file():
+            raise InputError(f"engine curve file not found: {path}")
+        with path.open(newline="", encoding="utf-8") as fh:
+            reader = csv.reader(fh)
+            rows = [r for r in reader if r and any(c.strip() for c in r)]
+        if not rows:
+            raise InputError(f"engine curve file {path} is empty")
+        header = [c.strip().lower() for c in rows[0]]
+        try:
+            i_rpm = header.index("rpm")
+            i_tq = next(i for i, h in enumerate(header) if h.startswith("torque"))
+        except (ValueError, StopIteration):
+            raise InputError(
+                f"engine curve file {path}: header must have columns 'rpm' and 'torque' "
+                f"(N m); got {rows[0]}"
+            ) from None
+        rpm, tq = [], []
+        for lineno, r in enumerate(rows[1:], start=2):
+            try:
+                rpm.append(float(r[i_rpm]))
+                tq.append(float(r[i_tq]))
+            except (ValueError, IndexError):
+                raise InputError(
+                    f"engine curve file {path}, row {lineno}: expected numbers in columns "
+                    f"'rpm' and 'torque', got {r}"
+                ) from None
+        return cls(tuple(rpm), tuple(tq), source=str(path), assumed=False, idle_rpm=idle_rpm)
+
+    # ---- queries --------------------------------------------------------------------
+    @property
+    def rpm_range(self) -> tuple[float, float]:
+        """(min, max) rpm of the table."""
+        return self.rpm[0], self.rpm[-1]
+
+    @property
+    def max_torque(self) -> float:
+        """Largest torque [N m] (a table value: PCHIP does not overshoot)."""
+        return max(self.torque)
+
+    @property
+    def rpm_max_torque(self) -> float:
+        """Crank speed [rpm] of the maximum torque (first one if several)."""
+        return self.rpm[int(np.argmax(self.torque))]
+
+    def torque_at(self, rpm) -> np.ndarray | float:
+        """Engine torque [N m] at speed(s) ``rpm`` (scalar in -> float out).
+
+        Raises InputError naming the offending rpm and the curve's range when any query lies
+        outside the table.
+        """
+        q = np.asarray(rpm, dtype=float)
+        lo, hi = self.rpm_range
+        bad = ~np.isfinite(q) | (q < lo) | (q > hi)
+        if np.any(bad):
+            first = q[bad].ravel()[0] if q.ndim else float(q)
+            raise InputError(
+                f"rpm = {first:g} is outside the engine curve's range [{lo:g}, {hi:g}] rpm "
+                f"({self.source}); extend the curve or restrict the query"
+            )
+        out = self._interp(q)
+        return float(out) if q.ndim == 0 else out
+
+    __call__ = torque_at
+
+
+def slip_rpm(
+    curve: EngineCurve,
+    clutch_torque_at_rpm: Callable[[np.ndarray], np.ndarray],
+    rpm_min: float | None = None,
+    rpm_max: float | None = None,
+    n_grid: int = 2001,
+) -> float | None:
+    """Slip speed [rpm]: first speed where the clutch torque reaches the engine torque.
+
+    With the drum locked (chain brake) and full throttle the engine runs up its curve until
+    the clutch's slip torque equals the engine torque (thesis 2.1).  The crossing is bracketed
+    on an ``n_grid`` grid over [rpm_min, rpm_max] (default: the curve's range) and refined by
+    bisection (robust to an ``inf`` clutch torque of a self-locking shoe).  Returns ``None``
+    when the clutch torque stays below the engine curve over the whole range (the engine
+    would run to its governed maximum); returns ``rpm_min`` when the clutch already holds at
+    ``rpm_min``.
+    """
+    lo, hi = curve.rpm_range
+    a = lo if rpm_min is None else float(rpm_min)
+    b = hi if rpm_max is None else float(rpm_max)
+    if not (lo <= a < b <= hi):
+        raise ParameterError("rpm_min, rpm_max", (a, b), f"lo < hi inside the curve [{lo:g}, {hi:g}] rpm")
+    grid = np.linspace(a, b, int(n_grid))
+
+    def excess(x):
+        return np.asarray(clutch_torque_at_rpm(x), dtype=float) - curve.torque_at(x)
+
+    e = excess(grid)
+    if np.any(np.isnan(e)):
+        raise InputError("clutch torque function returned NaN")
+    hit = np.nonzero(e >= 0.0)[0]
+    if hit.size == 0:
+        return None
+    i = int(hit[0])
+    if i == 0:
+        return float(a)
+    x0, x1 = float(grid[i - 1]), float(grid[i])
+    for _ in range(60):
+        xm = 0.5 * (x0 + x1)
+        if float(excess(np.array([xm]))[0]) >= 0.0:
+            x1 = xm
+        else:
+            x0 = xm
+        if x1 - x0 < 1e-9 * max(1.0, x1):
+            break
+    return 0.5 * (x0 + x1)
