@@ -323,3 +323,93 @@ def _load_generated(msh: Path, meta: dict, source: str) -> ClutchMesh:
                       mass=meta["mass"], pivots=[tuple(p) for p in meta["pivots"]],
                       contact_arcs=[tuple(a) for a in meta["contact_arcs"]], mirrored=meta["mirrored"],
                       msh_path=msh)
+
+
+# ---------------------------------------------------------------------------------------
+# user geometry: .msh or STEP
+# ---------------------------------------------------------------------------------------
+def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
+                       thickness: float | None = None, drum_radius: float | None = None) -> ClutchMesh:
+    """Import a user's part: a gmsh ``.msh`` (any order; P1 is lifted to straight P2) with
+    physical curve groups ``bore`` (clamped) and optionally ``contact``; or a STEP file
+    (meshed here with second-order triangles; the bore is the boundary loop around the
+    origin and, if ``drum_radius`` is given, the contact group is the set of boundary
+    curves facing outward within 25 % of the largest radius).  Metres, x-y plane, rotation
+    axis through the origin."""
+    path = Path(path)
+    if not path.exists():
+        raise MeshError(f"mesh file {path} does not exist")
+    suffix = path.suffix.lower()
+    if suffix in (".step", ".stp"):
+        return _load_step(path, mesh_size, thickness, drum_radius)
+    if suffix != ".msh":
+        raise MeshError(f"{path}: unsupported file type '{suffix}' (use a gmsh .msh or a STEP file)")
+    try:
+        m = meshio.read(path)
+    except Exception as exc:
+        raise MeshError(f"{path}: meshio cannot read it ({exc})") from None
+    names: dict[str, tuple[int, int]] = {k: (int(v[0]), int(v[1])) for k, v in (m.field_data or {}).items()}
+    curves = {k: {tag} for k, (tag, dim) in names.items() if dim == 1}
+    surfaces = {k: {tag} for k, (tag, dim) in names.items() if dim == 2}
+    if "bore" not in curves:
+        raise MeshError(f"{path}: no physical curve group named 'bore' (the clamped crankshaft bore); "
+                        f"groups found: {sorted(names) or 'none'}")
+    if "gmsh:physical" not in m.cell_data:
+        raise MeshError(f"{path}: the file carries no physical tags")
+    mesh = meshio_to_skfem(m, curves, surfaces, "gmsh:physical", str(path))
+    if len(mesh.boundaries.get("bore", [])) == 0:
+        raise MeshError(f"{path}: the 'bore' group has no edges on the triangle mesh")
+    if "contact" in curves and len(mesh.boundaries.get("contact", [])) == 0:
+        raise MeshError(f"{path}: the 'contact' group has no edges on the triangle mesh")
+    if "contact" in mesh.boundaries and "contact_0" not in mesh.boundaries:
+        mesh = mesh.with_boundaries({"contact_0": mesh.boundaries["contact"]})
+    return ClutchMesh(mesh=mesh, source=str(path), thickness=thickness, drum_radius=drum_radius)
+
+
+def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
+    with gmsh_session("step"):
+        try:
+            ents = gmsh.model.occ.importShapes(str(path))
+            gmsh.model.occ.synchronize()
+        except Exception as exc:
+            raise MeshError(f"{path}: gmsh cannot import the STEP file ({exc})") from None
+        surfaces = [t for d, t in gmsh.model.getEntities(2)]
+        if not surfaces or gmsh.model.getEntities(3):
+            raise MeshError(f"{path}: expected a planar 2-D part (surfaces in the x-y plane, no solids)")
+        xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
+        if abs(zmax - zmin) > 1e-9 * max(xmax - xmin, ymax - ymin):
+            raise MeshError(f"{path}: the part is not planar (z extent {zmax - zmin:.3g} m)")
+        bnd = gmsh.model.getBoundary([(2, t) for t in surfaces], combined=True, oriented=False)
+        curves = sorted({abs(t) for d, t in bnd})
+        rmin, rmax, bore, contact = [], [], [], []
+        for c in curves:
+            lo, hi = gmsh.model.getParametrizationBounds(1, c)
+            xy = np.asarray(gmsh.model.getValue(1, c, np.linspace(lo[0], hi[0], 9))).reshape(-1, 3)
+            r = np.hypot(xy[:, 0], xy[:, 1])
+            rmin.append(r.min())
+            rmax.append(r.max())
+        r_in = min(rmin)
+        R_out = max(rmax)
+        for c, a, b in zip(curves, rmin, rmax):
+            if b < r_in + 0.25 * (R_out - r_in) and b < 0.5 * R_out:
+                bore.append(c)
+            elif drum_radius is not None and a > R_out - 0.25 * (R_out - r_in):
+                contact.append(c)
+        gmsh.model.addPhysicalGroup(2, surfaces, name="solid")
+        gmsh.model.addPhysicalGroup(1, bore, name="bore")
+        if contact:
+            gmsh.model.addPhysicalGroup(1, contact, name="contact")
+        h = mesh_size or (R_out / 40.0)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+        gmsh.option.setNumber("Mesh.ElementOrder", 2)
+        try:
+            gmsh.model.mesh.generate(2)
+        except Exception as exc:
+            raise MeshError(f"{path}: gmsh could not mesh the part ({exc})") from None
+        fd, tmp = tempfile.mkstemp(suffix=".msh")
+        os.close(fd)
+        gmsh.write(tmp)
+    try:
+        return load_user_geometry(tmp, thickness=thickness, drum_radius=drum_radius)
+    finally:
+        os.unlink(tmp)
