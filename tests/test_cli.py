@@ -1,0 +1,55 @@
+"""End-to-end tests of the command line."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+CLI = [sys.executable, "-m", "clutchfem.cli"]
+
+
+def run(*args, ok=True):
+    r = subprocess.run(CLI + list(args), capture_output=True, text=True, timeout=600)
+    if ok:
+        assert r.returncode == 0, r.stderr + r.stdout
+    return r
+
+
+def test_geometry_list_and_params():
+    names = run("geometry", "--list").stdout.split()
+    assert "concept1" in names
+    out = run("geometry", "concept1", "--list-params").stdout
+    assert "flexure_thickness" in out and "mm" in out
+
+
+def test_geometry_builds_files(tmp_path):
+    run("geometry", "concept1", "--set", "flexure_thickness=1.8mm", "--out", str(tmp_path), "--mesh-size", "0.002")
+    assert (tmp_path / "concept1.msh").stat().st_size > 1000
+    info = json.loads((tmp_path / "concept1.json").read_text())
+    assert info["params"]["flexure_thickness"] == pytest.approx(1.8e-3)
+
+
+def test_geometry_bad_parameter_is_clear(tmp_path):
+    r = run("geometry", "concept1", "--set", "clearance=-1mm", "--out", str(tmp_path), ok=False)
+    assert r.returncode == 2
+    assert "clearance" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_solve_json_contract(tmp_path):
+    r = run("solve", "--concept", "concept1", "--mesh-size", "0.002", "--rpm", "0:8000:2000", "--json")
+    d = json.loads(r.stdout)
+    assert d["engagement_rpm"] is not None and 1000 < d["engagement_rpm"] < 8000
+    recs = d["curve"]
+    assert [x["rpm"] for x in recs] == [0, 2000, 4000, 6000, 8000]
+    for k in ("rpm", "normal_force_N", "torque_Nm", "contact_arc_deg", "max_von_mises_Pa", "max_displacement_m"):
+        assert k in recs[0]
+    # torque grows with speed after engagement, zero before
+    assert recs[0]["torque_Nm"] == 0 and recs[-1]["torque_Nm"] > recs[-2]["torque_Nm"] > 0
+
+
+@pytest.mark.parametrize("args,word", [(["--rpm", "abc"], "rpm"), (["--rpm", "-5"], "rpm"),
+                                       (["--mu", "-0.1"], "mu"), (["--drum-radius", "0.02"], "drum radius")])
+def test_solve_bad_input(args, word):
+    r = run("solve", "--concept", "concept1", "--mesh-size", "0.002", *args, ok=False)
+    assert r.returncode == 2 and word in r.stderr and "Traceback" not in r.stderr
