@@ -1,0 +1,280 @@
+"""Run every validation module, write the figures and a Markdown report, show a table.
+
+Each module ``clutchfem.validation.<name>`` offers ``records() -> list[ValidationRecord]``
+and ``figures(out_dir) -> list[Path]``.  Modules are imported lazily: one that is not there
+yet (or whose own clutchfem dependencies are not there yet) is skipped with a recorded
+warning; one that fails is reported the same way (``strict=True`` re-raises instead), so a
+single broken module never hides the others.
+
+Usage::
+
+    from clutchfem.validation.runner import run_all, write_report, print_table
+    print_table(run_all())
+    write_report(Path("out/validation"), Path("docs/validation.md"))
+
+or ``python -m clutchfem.validation.runner OUT_DIR DOCS_MD``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import math
+import os
+import sys
+import time
+import warnings
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import ModuleType
+
+from clutchfem.validation.records import ValidationRecord
+
+#: Validation modules, in report order.
+MODULE_NAMES: tuple[str, ...] = ("wiesik", "thesis", "chain", "shaft")
+
+#: Source paper of each module (for the report headings).
+SOURCES: dict[str, str] = {
+    "wiesik": "seed 000: spring-and-shoe clutch and its instantaneous load (Husqvarna 357 XP)",
+    "thesis": "seed 003: Chalmers thesis, one-piece compliant clutch",
+    "chain": "seed 002: Rynik & Dolipski, impact tension of a round-link chain on a pocket wheel",
+    "shaft": "seed 004: circular-saw shaft with an overhung disc (transverse vibration)",
+}
+
+
+class ValidationModuleWarning(UserWarning):
+    """A validation module was skipped or failed; the run goes on without it."""
+
+
+@dataclass
+class ValidationRun:
+    """Outcome of :func:`collect`: all records, warnings, seconds per module."""
+
+    records: list[ValidationRecord] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    seconds: dict[str, float] = field(default_factory=dict)
+    modules: dict[str, ModuleType] = field(default_factory=dict)
+
+
+def load_module(name: str, *, strict: bool = False) -> tuple[ModuleType | None, str | None]:
+    """Import ``clutchfem.validation.<name>``; (module, None) or (None, warning text)."""
+    full = f"clutchfem.validation.{name}"
+    try:
+        return importlib.import_module(full), None
+    except ModuleNotFoundError as exc:
+        if strict or not (exc.name or "").startswith("clutchfem"):
+            raise
+        what = "not available yet" if exc.name == full else f"needs missing {exc.name}"
+        return None, f"module '{name}' skipped: {what}"
+    except Exception as exc:  # noqa: BLE001 - reported, not swallowed silently
+        if strict:
+            raise
+        return None, f"module '{name}' failed to import: {type(exc).__name__}: {exc}"
+
+
+def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False) -> ValidationRun:
+    """Import each module and call its ``records()``; problems become warnings."""
+    run = ValidationRun()
+    for name in modules:
+        t0 = time.perf_counter()
+        mod, warn = load_module(name, strict=strict)
+        if mod is None:
+            run.warnings.append(warn or f"module '{name}' skipped")
+            continue
+        try:
+            recs = list(mod.records())
+        except Exception as exc:  # noqa: BLE001
+            if strict:
+                raise
+            run.warnings.append(f"module '{name}' records() failed: {type(exc).__name__}: {exc}")
+            continue
+        bad = [r for r in recs if not isinstance(r, ValidationRecord)]
+        if bad:
+            run.warnings.append(f"module '{name}' returned {len(bad)} non-ValidationRecord items "
+                                "(ignored)")
+        recs = [r for r in recs if isinstance(r, ValidationRecord)]
+        for r in recs:
+            if r.status == "differs" and not r.note.strip():
+                run.warnings.append(f"record '{r.id}' differs without an explanation")
+        run.records += recs
+        run.modules[name] = mod
+        run.seconds[name] = time.perf_counter() - t0
+    dup = [i for i, n in Counter(r.id for r in run.records).items() if n > 1]
+    if dup:
+        run.warnings.append(f"duplicate record ids: {', '.join(sorted(dup))}")
+    return run
+
+
+def run_all(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False
+            ) -> list[ValidationRecord]:
+    """All records of all available modules; skipped modules raise a
+    :class:`ValidationModuleWarning` (see :func:`collect` for the details)."""
+    run = collect(modules, strict=strict)
+    for w in run.warnings:
+        warnings.warn(w, ValidationModuleWarning, stacklevel=2)
+    return run.records
+
+
+# --------------------------------------------------------------------------------------
+# Formatting
+# --------------------------------------------------------------------------------------
+
+
+def fmt_value(x: float | None) -> str:
+    """Compact number: 5 significant digits, '-' for None."""
+    if x is None:
+        return "-"
+    if isinstance(x, float) and not math.isfinite(x):
+        return str(x)
+    return f"{x:.5g}"
+
+
+def fmt_rel(r: ValidationRecord) -> str:
+    """Relative difference in percent, '-' without a paper value."""
+    return "-" if math.isnan(r.rel_diff) else f"{100 * r.rel_diff:+.2f} %"
+
+
+def _md(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def _status_counts(recs: Sequence[ValidationRecord]) -> Counter:
+    return Counter(r.status for r in recs)
+
+
+def render_markdown(run: ValidationRun, figures: dict[str, list[Path]], docs_md: Path) -> str:
+    """The report text; figure links are relative to ``docs_md``'s folder."""
+    lines = ["# Validation report", "",
+             "Generated by `clutchfem.validation.runner`. One row per number of a source paper "
+             "(`reproduced` within `tol`, `differs` with a reason, `computed` = no paper value). "
+             "`tol` is chosen from the precision the paper prints, never tuned.", ""]
+    lines += ["| module | records | reproduced | differs | computed | seconds |",
+              "| --- | ---: | ---: | ---: | ---: | ---: |"]
+    names = list(dict.fromkeys(r.module for r in run.records))
+    for name in names:
+        c = _status_counts([r for r in run.records if r.module == name])
+        secs = run.seconds.get(name, float("nan"))
+        lines.append(f"| {name} | {sum(c.values())} | {c['reproduced']} | {c['differs']} | "
+                     f"{c['computed']} | {secs:.1f} |")
+    c = _status_counts(run.records)
+    lines += [f"| **all** | {len(run.records)} | {c['reproduced']} | {c['differs']} | "
+              f"{c['computed']} | {sum(run.seconds.values()):.1f} |", ""]
+    if run.warnings:
+        lines += ["## Warnings", ""] + [f"- {_md(w)}" for w in run.warnings] + [""]
+    base = docs_md.parent
+    for name in names:
+        recs = [r for r in run.records if r.module == name]
+        lines += [f"## {name}", "", f"Source: {SOURCES.get(name, name)}.", "",
+                  "| module | quantity | paper | computed | unit | rel. diff | tol | status "
+                  "| note |",
+                  "| --- | --- | ---: | ---: | --- | ---: | ---: | --- | --- |"]
+        for r in recs:
+            status = f"**{r.status}**" if r.status == "differs" else r.status
+            tol = "-" if r.paper is None else f"{100 * r.tol:.2g} %"
+            lines.append(f"| {r.module} | {_md(r.quantity)} (`{r.id}`) | {fmt_value(r.paper)} | "
+                         f"{fmt_value(r.computed)} | {_md(r.unit)} | {fmt_rel(r)} | {tol} | "
+                         f"{status} | {_md(r.note)} |")
+        differs = [r for r in recs if r.status == "differs"]
+        if differs:
+            lines += ["", "### Differences explained", ""]
+            for r in differs:
+                reason = r.note.strip() or "NO EXPLANATION GIVEN (reviewer attention)"
+                lines.append(f"- `{r.id}`: paper {fmt_value(r.paper)}, computed "
+                             f"{fmt_value(r.computed)} {_md(r.unit)} ({fmt_rel(r)}). "
+                             f"{_md(reason)}.")
+        figs = figures.get(name, [])
+        if figs:
+            lines += ["", "### Figures", ""]
+            for p in figs:
+                rel = Path(os.path.relpath(Path(p).resolve(), base.resolve())).as_posix()
+                lines += [f"![{name}: {Path(p).stem}]({rel})", ""]
+        lines.append("")
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def write_report(out_dir: Path, docs_md: Path, modules: Sequence[str] = MODULE_NAMES, *,
+                 strict: bool = False) -> Path:
+    """Run everything, write figures under ``out_dir/figures/<module>/``, the records as
+    ``out_dir/validation.json`` and the Markdown report at ``docs_md``; returns ``docs_md``.
+    """
+    out_dir, docs_md = Path(out_dir), Path(docs_md)
+    run = collect(modules, strict=strict)
+    figs: dict[str, list[Path]] = {}
+    for name, mod in run.modules.items():
+        fdir = out_dir / "figures" / name
+        t0 = time.perf_counter()
+        try:
+            got = mod.figures(fdir)
+            paths = [Path(p) for p in got] if got else []
+        except Exception as exc:  # noqa: BLE001
+            if strict:
+                raise
+            run.warnings.append(f"module '{name}' figures() failed: {type(exc).__name__}: {exc}")
+            paths = []
+        if not paths and fdir.is_dir():
+            paths = sorted(p for p in fdir.iterdir() if p.suffix in (".png", ".svg"))
+        figs[name] = paths
+        run.seconds[name] = run.seconds.get(name, 0.0) + time.perf_counter() - t0
+    out_dir.mkdir(parents=True, exist_ok=True)
+    (out_dir / "validation.json").write_text(json.dumps(
+        {"records": [r.to_json() for r in run.records], "warnings": run.warnings,
+         "seconds": run.seconds}, indent=1))
+    docs_md.parent.mkdir(parents=True, exist_ok=True)
+    docs_md.write_text(render_markdown(run, figs, docs_md))
+    for w in run.warnings:
+        warnings.warn(w, ValidationModuleWarning, stacklevel=2)
+    return docs_md
+
+
+def render_table(records: Sequence[ValidationRecord], *, title: str = "clutchfem validation"):
+    """A :class:`rich.table.Table` of the records (status coloured)."""
+    from rich.table import Table
+
+    colour = {"reproduced": "green", "differs": "bold red", "computed": "cyan"}
+    table = Table(title=title, show_lines=False)
+    table.add_column("id", no_wrap=True)
+    for col in ("paper", "computed"):
+        table.add_column(col, justify="right", no_wrap=True)
+    table.add_column("unit", no_wrap=True)
+    table.add_column("rel. diff", justify="right", no_wrap=True)
+    table.add_column("status", no_wrap=True)
+    table.add_column("note (differs only)", overflow="fold", ratio=1)
+    for r in records:
+        table.add_row(r.id, fmt_value(r.paper), fmt_value(r.computed), r.unit, fmt_rel(r),
+                      f"[{colour[r.status]}]{r.status}[/]",
+                      r.note if r.status == "differs" else "")
+    c = _status_counts(records)
+    table.caption = (f"{len(records)} records: {c['reproduced']} reproduced, {c['differs']} "
+                     f"differs, {c['computed']} computed")
+    return table
+
+
+def print_table(records: Sequence[ValidationRecord], console=None) -> None:
+    """Print :func:`render_table` to ``console`` (a new rich Console by default)."""
+    from rich.console import Console
+
+    (console or Console()).print(render_table(records))
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m clutchfem.validation.runner [OUT_DIR [DOCS_MD]]``."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    out_dir = Path(args[0]) if args else Path("out/validation")
+    docs_md = Path(args[1]) if len(args) > 1 else out_dir / "validation.md"
+    t0 = time.perf_counter()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ValidationModuleWarning)
+        write_report(out_dir, docs_md)
+    recs = [ValidationRecord(**{k: v for k, v in d.items() if k not in ("status", "rel_diff")})
+            for d in json.loads((out_dir / "validation.json").read_text())["records"]]
+    print_table(recs)
+    for w in caught:
+        print(f"warning: {w.message}", file=sys.stderr)
+    print(f"report: {docs_md} ({time.perf_counter() - t0:.1f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
