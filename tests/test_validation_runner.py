@@ -101,6 +101,7 @@ def test_rich_table():
     out = console.export_text()
     assert "chain.Nu2_min" in out and "differs" in out
     assert f"{len(recs)} records" in out
+    assert runner.rich_table is runner.render_table  # the name cli.py uses
 
 
 def test_full_run_is_fast(tmp_path):

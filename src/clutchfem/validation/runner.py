@@ -251,6 +251,10 @@ def render_table(records: Sequence[ValidationRecord], *, title: str = "clutchfem
     return table
 
 
+#: Name used by ``clutchfem validate`` (cli.py).
+rich_table = render_table
+
+
 def print_table(records: Sequence[ValidationRecord], console=None) -> None:
     """Print :func:`render_table` to ``console`` (a new rich Console by default)."""
     from rich.console import Console
