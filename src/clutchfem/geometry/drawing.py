@@ -1,0 +1,286 @@
+"""Labelled drawings of concepts (PNG + SVG, matplotlib Agg) and quick mesh pictures.
+
+:func:`draw_concept` rebuilds the concept's OCC model (full 360 degrees) in a private gmsh
+session with :func:`~clutchfem.geometry.base.build_model`, samples every curve with
+``gmsh.model.getValue`` and draws, in the *final* frame (reflected y -> -y for the minus
+arrangement, like the mesh):
+
+* the part outline, the bore, the drum circle (dashed) and the contact surfaces (red);
+* the shoe and flexure zones hatched in colour, the hub in grey;
+* each shoe's centroid (R_Tp) and nominal pivot;
+* the concept's :meth:`~clutchfem.geometry.base.Concept.annotations` (canonical frame,
+  mirrored here for minus);
+* the direction of rotation (ccw) with the arrangement, and a parameter table.
+
+:func:`draw_mesh` plots a :class:`~clutchfem.mesh.ClutchMesh` with its named boundaries.
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..mesh import ClutchMesh
+    from .base import Concept, ConceptParams
+
+_ZONE_STYLE = {
+    "shoe": dict(facecolor="#f4a582", edgecolor="#b2182b", hatch="///"),
+    "flexure": dict(facecolor="#92c5de", edgecolor="#2166ac", hatch="xxx"),
+    "hub": dict(facecolor="#e0e0e0", edgecolor="#808080", hatch=""),
+}
+
+
+def _figure(figsize):
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt, *plt.subplots(figsize=figsize)
+
+
+def _chain(segments: list[np.ndarray], tol: float) -> list[np.ndarray]:
+    """Join sampled curves (k x 2 arrays) into closed loops by matching end points."""
+    segs = [s for s in segments if len(s) >= 2]
+    loops = []
+    while segs:
+        cur = segs.pop(0)
+        grown = True
+        while grown and np.linalg.norm(cur[0] - cur[-1]) > tol:
+            grown = False
+            for k, s in enumerate(segs):
+                if np.linalg.norm(s[0] - cur[-1]) <= tol:
+                    cur = np.vstack([cur, s[1:]])
+                elif np.linalg.norm(s[-1] - cur[-1]) <= tol:
+                    cur = np.vstack([cur, s[::-1][1:]])
+                else:
+                    continue
+                segs.pop(k)
+                grown = True
+                break
+        loops.append(cur)
+    return loops
+
+
+def sample_concept(concept: "Concept", p: "ConceptParams", n_per_curve: int = 64) -> dict:
+    """Sampled geometry of the full part in the final frame (metres).
+
+    Returns ``{"curves": {tag: xy}, "groups": {name: [curve tags]}, "zones": {name: [loops]},
+    "mass": ..., "pivots": ..., "contact_arcs": ...}`` where ``zones`` maps ``shoe_i``,
+    ``flexure_i`` and ``hub`` to closed polylines (list of k x 2 arrays)."""
+    import gmsh
+
+    from ..mesh import gmsh_session
+    from .base import MeshSettings, build_model
+
+    flip = np.array([1.0, -1.0]) if p.arrangement == "minus" else np.array([1.0, 1.0])
+    with gmsh_session(f"draw-{concept.name}"):
+        gmsh.option.setNumber("Geometry.Tolerance", 1e-10)
+        gmsh.option.setNumber("Geometry.ToleranceBoolean", 1e-10)
+        built = build_model(concept, p, MeshSettings(model="full"))
+        curves: dict[int, np.ndarray] = {}
+        for _, c in gmsh.model.getEntities(1):
+            lo, hi = gmsh.model.getParametrizationBounds(1, c)
+            xyz = np.asarray(gmsh.model.getValue(1, c, np.linspace(lo[0], hi[0], n_per_curve))).reshape(-1, 3)
+            curves[c] = xyz[:, :2] * flip
+        tol = 1e-7 * p.drum_radius
+        zones: dict[str, list[np.ndarray]] = {}
+        for name, tags in built.entity_groups.items():
+            if built.group_dims.get(name) != 2 or name == "solid":
+                continue
+            loops = []
+            for t in tags:
+                bnd = gmsh.model.getBoundary([(2, t)], combined=False, oriented=False)
+                loops += _chain([curves[abs(c)] for _, c in bnd], tol)
+            zones[name] = loops
+        solid_bnd = gmsh.model.getBoundary([(2, t) for t in built.entity_groups["solid"]],
+                                           combined=True, oriented=False)
+        groups = {name: list(tags) for name, tags in built.entity_groups.items() if built.group_dims.get(name) == 1}
+        groups["outline"] = sorted({abs(c) for _, c in solid_bnd})
+    return {"curves": curves, "groups": groups, "zones": zones, "mass": built.mass,
+            "pivots": built.pivots, "contact_arcs": built.contact_arcs}
+
+
+def _fmt_value(p, name: str) -> str:
+    v = getattr(p, name)
+    unit = type(p).unit(name)
+    if isinstance(v, str):
+        return v
+    if unit == "m":
+        return f"{v * 1e3:.4g} mm"
+    if unit in ("-", ""):
+        return f"{v:.4g}"
+    return f"{v:.4g} {unit}"
+
+
+def _param_lines(p) -> list[str]:
+    rows = []
+    for name in type(p).model_fields:
+        if name == "clearance_tip" and p.profile != "linear":
+            continue
+        if name in ("eccentricity", "eccentric_angle") and p.profile != "eccentric":
+            continue
+        rows.append(f"{name} = {_fmt_value(p, name)}")
+    return rows
+
+
+def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
+                 mesh: "ClutchMesh | None" = None, dpi: int = 110) -> list[Path]:
+    """Draw ``concept`` with ``params``; write ``<out_stem>.png`` and ``<out_stem>.svg``.
+
+    ``mesh`` (optional) is overlaid faintly and its size is quoted in the title."""
+    from matplotlib.patches import FancyArrowPatch, PathPatch
+    from matplotlib.path import Path as MPath
+
+    p = params
+    out_stem = Path(out_stem)
+    out_stem.parent.mkdir(parents=True, exist_ok=True)
+    geo = sample_concept(concept, p)
+    mm = 1e3
+    Rd = p.drum_radius
+    minus = p.arrangement == "minus"
+    flip = np.array([1.0, -1.0]) if minus else np.array([1.0, 1.0])
+
+    plt, fig, ax = _figure((12.0, 8.2))
+    fig.subplots_adjust(left=0.04, right=0.70, top=0.91, bottom=0.07)
+    # zones (hatched)
+    for name, loops in sorted(geo["zones"].items()):
+        kind = name.split("_")[0]
+        st = _ZONE_STYLE.get(kind)
+        if st is None or not loops:
+            continue
+        verts, codes = [], []
+        for lp in loops:
+            verts += list(lp * mm) + [lp[0] * mm]
+            codes += [MPath.MOVETO] + [MPath.LINETO] * (len(lp) - 1) + [MPath.CLOSEPOLY]
+        ax.add_patch(PathPatch(MPath(np.array(verts), codes), lw=0.0, alpha=0.55, **st))
+    # mesh overlay
+    if mesh is not None:
+        m = mesh.mesh
+        ax.triplot(m.p[0] * mm, m.p[1] * mm, m.t[:3].T, lw=0.2, color="0.25", alpha=0.6, zorder=3)
+    # outline, bore, contact
+    contact = set(geo["groups"].get("contact", []))
+    bore = set(geo["groups"].get("bore", []))
+    for c in geo["groups"]["outline"]:
+        xy = geo["curves"][c] * mm
+        if c in contact:
+            ax.plot(xy[:, 0], xy[:, 1], color="#d7191c", lw=2.2, zorder=4, solid_capstyle="butt")
+        elif c in bore:
+            ax.plot(xy[:, 0], xy[:, 1], color="k", lw=1.0, zorder=4)
+        else:
+            ax.plot(xy[:, 0], xy[:, 1], color="k", lw=1.1, zorder=4)
+    th = np.linspace(0, 2 * np.pi, 721)
+    ax.plot(Rd * mm * np.cos(th), Rd * mm * np.sin(th), "--", color="0.3", lw=0.9, zorder=3)
+    ax.plot([0], [0], "k+", ms=8)
+    # centroids and pivots
+    for i in range(len(geo["pivots"])):
+        sh = geo["mass"].get(f"shoe_{i}")
+        if sh:
+            cx, cy = np.array(sh["centroid"]) * mm
+            ax.plot(cx, cy, marker="o", ms=6, mfc="white", mec="k", zorder=6)
+            ax.plot(cx, cy, marker="+", ms=6, color="k", zorder=7)
+        px, py = np.array(geo["pivots"][i]) * mm
+        ax.plot(px, py, marker="^", ms=7, color="#1a9641", mec="k", zorder=6)
+    # annotations (canonical frame -> final frame)
+    lim = 1.5 * Rd * mm
+    for a in concept.annotations(p):
+        at = np.array(a.at) * flip * mm
+        to = np.array(a.to) * flip * mm if a.to is not None else at
+        text = textwrap.fill(a.text, 30)
+        # half the text box width in data units (8 pt text, ~0.6 em per character, the
+        # axes box is ~7.2 in tall for 2 lim of data)
+        half = 0.5 * max(len(s) for s in text.splitlines()) * 0.6 * 8 / 72 * (2 * lim / 7.2) + 1.0
+        to = np.array([float(np.clip(to[0], -lim + half, lim - half)), float(np.clip(to[1], -0.93 * lim, 0.93 * lim))])
+        ax.annotate(text, xy=at, xytext=to, fontsize=8, ha="center", va="center", zorder=8,
+                    bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", lw=0.6),
+                    arrowprops=dict(arrowstyle="->", lw=0.8, color="0.2") if a.to is not None else None)
+    # rotation arrow (always ccw in the final frame)
+    r_arr = Rd * mm * 1.16
+    a0, a1 = math.radians(100), math.radians(140)
+    ax.add_patch(FancyArrowPatch((r_arr * math.cos(a0), r_arr * math.sin(a0)),
+                                 (r_arr * math.cos(a1), r_arr * math.sin(a1)),
+                                 connectionstyle="arc3,rad=0.2", arrowstyle="-|>", mutation_scale=16,
+                                 lw=1.6, color="#5e3c99", zorder=8))
+    am = math.radians(120)
+    ax.text(1.28 * Rd * mm * math.cos(am), 1.28 * Rd * mm * math.sin(am),
+            f"rotation (ccw)\n{p.arrangement} arrangement", fontsize=9, color="#5e3c99",
+            ha="center", va="center", fontweight="bold")
+    # legend
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    handles = [Patch(alpha=0.55, **_ZONE_STYLE["shoe"], label="shoe zone"),
+               Patch(alpha=0.55, **_ZONE_STYLE["flexure"], label="flexure zone"),
+               Patch(alpha=0.55, **_ZONE_STYLE["hub"], label="hub"),
+               Line2D([], [], color="#d7191c", lw=2.2, label="contact surface"),
+               Line2D([], [], color="0.3", ls="--", lw=0.9, label=f"drum, R_d = {Rd * mm:g} mm"),
+               Line2D([], [], marker="o", mfc="white", mec="k", ls="", label="shoe centroid (R_Tp)"),
+               Line2D([], [], marker="^", color="#1a9641", mec="k", ls="", label="nominal pivot")]
+    ax.legend(handles=handles, loc="lower left", fontsize=7.5, framealpha=0.9, bbox_to_anchor=(0.0, 0.0))
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm]")
+    ax.tick_params(labelsize=7)
+    title = concept.title or concept.name
+    if mesh is not None:
+        title += f"\nmesh: {mesh.n_elements} P{mesh.mesh_settings.get('order', 2) if mesh.mesh_settings else 2} elements"
+    fig.suptitle(title, fontsize=12)
+    # parameter table
+    sh = geo["mass"].get("shoe_0", {})
+    rho = 7850.0
+    lines = _param_lines(p)
+    if sh:
+        lines += ["", "derived (steel, 7850 kg/m^3):",
+                  f"shoe mass = {sh['area'] * rho * p.thickness * 1e3:.2f} g",
+                  f"R_Tp = {sh['radius'] * mm:.2f} mm",
+                  f"part mass = {geo['mass']['solid']['area'] * rho * p.thickness * 1e3:.1f} g"]
+    fig.text(0.715, 0.90, f"{concept.name} parameters", fontsize=10, fontweight="bold", va="top")
+    fig.text(0.715, 0.87, "\n".join(lines), fontsize=8.2, family="monospace", va="top",
+             bbox=dict(boxstyle="round,pad=0.5", fc="#f7f7f7", ec="0.6"))
+    png, svg = out_stem.with_suffix(".png"), out_stem.with_suffix(".svg")
+    fig.savefig(png, dpi=dpi)
+    fig.savefig(svg)
+    plt.close(fig)
+    return [png, svg]
+
+
+def draw_mesh(cm: "ClutchMesh", path: Path, dpi: int = 120) -> Path:
+    """Quick picture of a mesh with its named boundary groups."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    m = cm.mesh
+    mm = 1e3
+    plt, fig, ax = _figure((8.0, 8.0))
+    ax.triplot(m.p[0] * mm, m.p[1] * mm, m.t[:3].T, lw=0.25, color="0.35")
+    colours = {"bore": "#2c7bb6", "cut_a": "#1a9641", "cut_b": "#a6611a"}
+    seen = set()
+    for name, fac in sorted((m.boundaries or {}).items()):
+        if name == "contact":
+            continue
+        col = colours.get(name, "#d7191c")
+        label = "contact_i" if name.startswith("contact_") else name
+        segs = m.p[:, m.facets[:, fac]] * mm  # 2 x 2 x k
+        for k in range(segs.shape[2]):
+            ax.plot(segs[0, :, k], segs[1, :, k], color=col, lw=1.8,
+                    label=label if label not in seen else None)
+            seen.add(label)
+    if cm.drum_radius:
+        th = np.linspace(0, 2 * np.pi, 721)
+        ax.plot(cm.drum_radius * mm * np.cos(th), cm.drum_radius * mm * np.sin(th), "--", color="0.4", lw=0.8,
+                label="drum")
+    ax.set_aspect("equal")
+    ax.legend(fontsize=8, loc="upper right")
+    ax.set_title(f"{cm.source}: {cm.n_elements} elements, {cm.n_nodes} nodes"
+                 + (f", sector of {cm.n_shoes_total}" if cm.sector_angle else ""), fontsize=10)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
