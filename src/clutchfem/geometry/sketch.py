@@ -268,8 +268,21 @@ class Outline:
         P = self.sample()
         return 0.5 * float(np.sum(P[:-1, 0] * P[1:, 1] - P[1:, 0] * P[:-1, 1]))
 
-    def surface(self) -> int:
-        """Create the OCC points, curves, loop and plane surface; returns the surface tag."""
+    def surface(self, holes: list["Outline"] = ()) -> int:
+        """Create the OCC points, curves, loop and plane surface; ``holes`` (closed outlines
+        strictly inside this one) are cut out with a boolean difference (OCC is picky about
+        the orientation of inner wires given to addPlaneSurface).  Returns the surface tag."""
+        face = G.occ.addPlaneSurface([self.curve_loop()])
+        if not holes:
+            return face
+        tools = [G.occ.addPlaneSurface([h.curve_loop()]) for h in holes]
+        out = G.cut([face], tools)
+        if len(out) != 1:
+            raise ValueError(f"cutting {len(holes)} holes left {len(out)} faces")
+        return out[0]
+
+    def curve_loop(self) -> int:
+        """Create the OCC points, curves and the curve loop; returns the loop tag."""
         occ = G.occ
         pts = self.points
         if float(np.linalg.norm(pts[0] - pts[-1])) > self.tol:
@@ -292,5 +305,9 @@ class Outline:
             else:
                 via = [occ.addPoint(float(v[0]), float(v[1]), 0.0) for v in data]
                 curves.append(occ.addSpline([t0] + via + [t1]))
-        loop = occ.addCurveLoop(curves)
-        return occ.addPlaneSurface([loop])
+        return occ.addCurveLoop(curves)
+
+
+def radial_line(t: float) -> Line:
+    """The line through the origin at polar angle t (direction outward)."""
+    return Line(np.zeros(2), polar(1.0, t))
