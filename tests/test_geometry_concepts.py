@@ -1,0 +1,308 @@
+"""Concept geometries: every concept builds (sector/full, minus/plus, all profiles), its
+parameter space fails only with clear errors, the mesh is exact (area, cyclic cut), and the
+drawings are written.  Coarse meshes keep the whole file well under a minute on 2 cores."""
+
+from __future__ import annotations
+
+import math
+from typing import Literal, get_args, get_origin
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from skfem import Basis, ElementTriP0, ElementTriP2, Functional
+
+from clutchfem.errors import GeometryError, ParameterError
+from clutchfem.geometry import MeshSettings, concepts, get_concept
+from clutchfem.geometry import sketch as K
+from clutchfem.mesh import mesh_concept
+
+NAMES = ["concept1", "concept2", "concept3", "concept3.1", "concept4", "concept5"]
+COARSE = 3.0e-3  # element size for "does it build" checks
+FINE = MeshSettings(size=1.5e-3, fillet_factor=0.3)  # for the area checks (P2 arcs to < 1e-6)
+
+
+@pytest.fixture(autouse=True)
+def _cache(monkeypatch, tmp_path_factory):
+    """One mesh cache per test worker, never the developer's (cached meshes are reused
+    between the tests of this file, which share parameter sets)."""
+    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path_factory.getbasetemp() / "geometry-concepts-cache"))
+
+
+def _mesh(name: str, ms: MeshSettings, **values):
+    c = get_concept(name)
+    return mesh_concept(c, c.params(**values), ms)
+
+
+@Functional
+def _one(w):
+    return 1.0 + 0.0 * w.x[0]
+
+
+def _area(cm) -> float:
+    return float(_one.assemble(Basis(cm.mesh, ElementTriP0(), intorder=6)))
+
+
+def test_all_concepts_registered():
+    assert set(NAMES) <= set(concepts())
+    for name in NAMES:
+        c = get_concept(name)
+        assert c.thesis and c.parametrisation and c.title
+        rows = c.Params.describe()
+        assert all(r["unit"] and r["allowed"] for r in rows)
+    assert get_concept("3.1").name == "concept3.1"
+
+
+# --------------------------------------------------------------------------------------
+# defaults: sector and full, minus and plus; groups; cyclic cut
+# --------------------------------------------------------------------------------------
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("arrangement", ["minus", "plus"])
+def test_defaults_build_sector_and_full(name, arrangement):
+    ms_s = MeshSettings(size=COARSE, model="sector")
+    ms_f = MeshSettings(size=COARSE, model="full")
+    sec = _mesh(name, ms_s, arrangement=arrangement)
+    full = _mesh(name, ms_f, arrangement=arrangement)
+    n = full.n_shoes_total
+    assert sec.n_shoes_model == 1 and full.n_shoes_model == n
+    # OCC-exact part area: one sector is exactly 1/n of the part
+    assert sec.mass["solid"]["area"] * n == pytest.approx(full.mass["solid"]["area"], rel=1e-9)
+    # a contact group per shoe, and each shoe zone carries real mass
+    for cm in (sec, full):
+        for i in range(cm.n_shoes_model):
+            assert len(cm.boundary(f"contact_{i}")) > 0
+            assert cm.mass[f"shoe_{i}"]["area"] > 0
+        assert len(cm.boundary("bore")) > 0
+    # shoes are identical copies: same mass and R_Tp
+    areas = [full.mass[f"shoe_{i}"]["area"] for i in range(n)]
+    radii = [full.mass[f"shoe_{i}"]["radius"] for i in range(n)]
+    assert np.ptp(areas) < 1e-9 * areas[0] and np.ptp(radii) < 1e-9 * radii[0]
+    # minus = mirror image of plus: shoe 0's centroid has the opposite polar angle sign
+    cy = full.mass["shoe_0"]["centroid"][1]
+    assert (cy < 0) == (arrangement == "minus") or abs(cy) < 1e-6
+    _check_cyclic(sec)
+
+
+def _check_cyclic(cm):
+    """Nodes of cut_a rotated by the sector angle land on nodes of cut_b (periodic mesh)."""
+    basis = Basis(cm.mesh, ElementTriP2())  # vertices and mid-edge nodes of the P2 mesh
+
+    def nodes(name):
+        return basis.doflocs[:, basis.get_dofs(cm.boundary(name)).all()]
+
+    a, b = nodes("cut_a"), nodes("cut_b")
+    assert a.shape == b.shape and a.shape[1] >= 3
+    th = cm.sector_angle
+    rot = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]]) @ a
+    d = np.min(np.linalg.norm(rot[:, :, None] - b[:, None, :], axis=0), axis=1)
+    assert d.max() < 1e-9
+    # the cut crosses hub material only: it starts on the bore
+    r_bore = cm.params["bore_radius"]
+    assert np.min(np.hypot(*a)) == pytest.approx(r_bore, abs=1e-9)
+
+
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("profile", ["eccentric", "linear"])
+def test_other_profiles_build(name, profile):
+    extra = {"eccentric": dict(eccentricity=0.8e-3, eccentric_angle=30.0),
+             "linear": dict(clearance=0.4e-3, clearance_tip=1.0e-3)}[profile]
+    cm = _mesh(name, MeshSettings(size=COARSE, model="sector"), profile=profile, **extra)
+    assert len(cm.boundary("contact_0")) > 0
+    _check_cyclic(cm)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_mesh_area_equals_occ_area(name):
+    for model in ("sector", "full"):
+        cm = _mesh(name, FINE.replace(model=model))
+        exact = cm.mass["solid"]["area"]
+        assert _area(cm) == pytest.approx(exact, rel=1e-6)
+
+
+def test_minus_mesh_is_mirror_of_plus():
+    ms = MeshSettings(size=COARSE, model="sector")
+    minus, plus = _mesh("concept4", ms), _mesh("concept4", ms, arrangement="plus")
+    assert _area(minus) == pytest.approx(_area(plus), rel=1e-12)
+    assert minus.mirrored and not plus.mirrored
+    xm, xp = minus.mass["shoe_0"]["centroid"], plus.mass["shoe_0"]["centroid"]
+    assert xm[0] == pytest.approx(xp[0]) and xm[1] == pytest.approx(-xp[1])
+
+
+# --------------------------------------------------------------------------------------
+# the declared parameter space: build or fail clearly
+# --------------------------------------------------------------------------------------
+def _bounds(field):
+    lo = hi = None
+    for m in field.metadata:
+        lo = m.ge if getattr(m, "ge", None) is not None else lo
+        hi = m.le if getattr(m, "le", None) is not None else hi
+    return lo, hi
+
+
+def _param_strategy(name: str):
+    P = get_concept(name).Params
+    parts = {}
+    for fname, f in P.model_fields.items():
+        if get_origin(f.annotation) is Literal:
+            s = st.sampled_from(get_args(f.annotation))
+        else:
+            lo, hi = _bounds(f)
+            if f.annotation is int:
+                s = st.integers(int(lo), int(hi))
+            else:  # corners of the range are drawn often
+                s = st.one_of(st.sampled_from([lo, hi]), st.floats(lo, hi, allow_nan=False))
+        # most parameters stay at their default so that many draws are consistent designs
+        parts[fname] = st.one_of(st.just(f.default), s, st.just(f.default))
+    return st.fixed_dictionaries(parts)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_parameter_space_builds_or_fails_clearly(name):
+    P = get_concept(name).Params
+
+    @settings(max_examples=8, deadline=None, derandomize=True, database=None,
+              suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+    @given(values=_param_strategy(name), model=st.sampled_from(["sector", "full"]))
+    def run(values, model):
+        try:
+            p = P(**values)
+        except ParameterError as exc:
+            assert exc.name in P.model_fields
+            assert exc.name in str(exc) and exc.allowed
+            return
+        try:
+            cm = mesh_concept(get_concept(name), p, MeshSettings(size=COARSE, model=model))
+        except GeometryError as exc:
+            assert str(exc)  # clear message, raised on purpose
+            return
+        assert cm.n_elements > 0
+        for i in range(cm.n_shoes_model):
+            assert len(cm.boundary(f"contact_{i}")) > 0
+
+    run()
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_range_corners_are_checked_before_gmsh(name):
+    """Every declared range is enforced with a ParameterError naming the parameter."""
+    P = get_concept(name).Params
+    for fname, f in P.model_fields.items():
+        if get_origin(f.annotation) is Literal:
+            with pytest.raises(ParameterError) as e:
+                P(**{fname: "nonsense"})
+            assert e.value.name == fname
+            continue
+        lo, hi = _bounds(f)
+        step = 1 if f.annotation is int else (abs(hi - lo) * 1e-3 or 1e-6)
+        for bad in (lo - step, hi + step):
+            with pytest.raises(ParameterError) as e:
+                P(**{fname: bad})
+            assert e.value.name == fname, str(e.value)
+
+
+INCONSISTENT = [
+    ("concept2", dict(flexure2_gap=0.6e-3), "flexure2_gap"),                 # 2 fillets do not fit
+    ("concept2", dict(flexure2_thickness=5e-3), "flexure2_thickness"),       # thicker than the shoe allows
+    ("concept2", dict(shoe_arc=30.0, flexure2_position=0.15, flexure2_gap=3e-3), "flexure2_position"),
+    ("concept2", dict(shoe_arc=100.0), "shoe_arc"),                          # shoes overlap the posts
+    ("concept3", dict(shoe_arc=125.0), "shoe_arc"),                          # arc > 360/n - gap
+    ("concept3", dict(spoke_width=14e-3), "spoke_width"),
+    ("concept3", dict(hub_radius=24e-3), "shoe_thickness"),
+    ("concept3.1", dict(flexure_thickness=4e-3), "flexure_thickness"),       # no relief left
+    ("concept3.1", dict(shoe_arc=35.0), "shoe_arc"),                         # halves vanish
+    ("concept3.1", dict(fillet_radius=2e-3), "flexure_thickness"),
+    ("concept4", dict(flexure_length=30e-3), "flexure_length"),              # beam would end in the shoe
+    ("concept4", dict(flexure_angle=5.0), "flexure_angle"),                  # beam misses the hub
+    ("concept4", dict(n_shoes=4), "shoe_arc"),                               # 90 deg shoes + gaps > 90 deg
+    ("concept4", dict(flexure_thickness=3.5e-3, flexure_taper=2.5), "flexure_taper"),
+    ("concept4", dict(bore_radius=10e-3), "hub_radius"),
+    ("concept5", dict(beam_offset=6e-3), "beam_offset"),                     # beam above the shoe
+    ("concept5", dict(arm_width=16e-3), "arm_width"),
+    ("concept5", dict(fillet_radius=1.5e-3), "flexure_length"),
+    ("concept5", dict(n_shoes=7), "n_shoes"),
+]
+
+
+@pytest.mark.parametrize("name,values,param", INCONSISTENT)
+def test_inconsistent_parameters_name_the_parameter(name, values, param):
+    with pytest.raises(ParameterError) as e:
+        get_concept(name).params(**values)
+    assert e.value.name == param
+    assert param in str(e.value) and e.value.allowed
+
+
+def test_unknown_parameter_is_refused():
+    with pytest.raises(ParameterError) as e:
+        get_concept("concept4").params(flexure_lenght=0.02)
+    assert e.value.name == "flexure_lenght"
+
+
+# --------------------------------------------------------------------------------------
+# concept 4: the defaults are a sensible 60 cc clutch; the beam stays off the drum
+# --------------------------------------------------------------------------------------
+def test_concept4_defaults_engage_in_window():
+    from clutchfem.materials import get_material
+    from clutchfem.solver import ClutchSolver
+
+    c = get_concept("concept4")
+    p = c.params()
+    cm = mesh_concept(c, p, MeshSettings(size=2e-3))  # engagement is mesh-converged to < 1 % here
+    solver = ClutchSolver(cm, get_material("steel"), drum_radius=p.drum_radius, spin_softening="off")
+    w, _ = solver.engagement()
+    rpm = w * 60 / (2 * math.pi)
+    assert 3500 < rpm < 5000, rpm
+    est = c.hand_estimate(p)
+    assert est["engage_rpm"] > 2700 and est["mass"] == pytest.approx(
+        cm.mass["shoe_0"]["area"] * 7850 * p.thickness, rel=1e-3)
+
+
+@pytest.mark.parametrize("name", ["concept3.1", "concept4", "concept5"])
+def test_only_shoes_reach_the_drum(name):
+    """Everything but the shoes' contact surfaces stays >= 0.3 mm inside the drum."""
+    c = get_concept(name)
+    p = c.params()
+    cm = _mesh(name, MeshSettings(size=COARSE, model="full"))
+    m = cm.mesh
+    r = np.hypot(*m.doflocs)
+    shoe_el = np.unique(np.concatenate([m.subdomains[f"shoe_{i}"] for i in range(cm.n_shoes_model)]))
+    other = np.setdiff1d(np.arange(m.t.shape[1]), shoe_el)
+    r_other = r[np.unique(m.t[:, other])].max()
+    margin = 0.5 * p.arm_recess if name == "concept5" else 0.3e-3  # concept 5: the hub arms' tips
+    assert r_other < p.drum_radius - p.clearance - margin
+
+
+# --------------------------------------------------------------------------------------
+# sketch helpers and drawings
+# --------------------------------------------------------------------------------------
+def test_fillet_line_circle_is_tangent():
+    line = K.Line(K.vec(0.0, 0.01), K.unit(K.vec(1.0, 0.3)))
+    for outside, R in ((True, 0.012), (False, 0.03)):
+        c, tl, tc = K.fillet_line_circle(line, -1.0 if outside else 1.0, R, outside, 1e-3,
+                                         line.at(line.circle_params(R)[1]))
+        assert np.linalg.norm(c - tl) == pytest.approx(1e-3)
+        assert np.linalg.norm(c - tc) == pytest.approx(1e-3)
+        assert np.linalg.norm(tc) == pytest.approx(R)
+        assert abs(K.cross(tl - line.p, line.d)) < 1e-15
+
+
+def test_outline_detects_self_intersection():
+    ok = K.Outline(K.vec(0, 0)).line_to(K.vec(1, 0)).line_to(K.vec(1, 1)).line_to(K.vec(0, 1)).close()
+    assert not ok.self_intersections() and ok.signed_area() == pytest.approx(1.0)
+    bow = K.Outline(K.vec(0, 0)).line_to(K.vec(1, 1)).line_to(K.vec(1, 0)).line_to(K.vec(0, 1)).close()
+    assert bow.self_intersections()
+    circ = K.Outline(K.vec(1.0, 0.0)).arc_to(K.vec(-1.0, 0.0)).arc_to(K.vec(1.0, 0.0)).close()
+    assert circ.signed_area() == pytest.approx(math.pi, rel=2e-3)
+
+
+def test_drawings_are_written(tmp_path):
+    from clutchfem.geometry.drawing import draw_concept, draw_mesh
+
+    c = get_concept("concept4")
+    p = c.params(arrangement="plus", profile="linear", clearance_tip=1.0e-3)
+    cm = mesh_concept(c, p, MeshSettings(size=COARSE, model="sector"))
+    files = draw_concept(c, p, tmp_path / "c4", cm)
+    assert [f.suffix for f in files] == [".png", ".svg"]
+    assert all(f.stat().st_size > 10_000 for f in files)
+    png = draw_mesh(cm, tmp_path / "mesh.png")
+    assert png.stat().st_size > 10_000
