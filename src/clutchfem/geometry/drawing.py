@@ -199,17 +199,15 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
         ax.annotate(text, xy=at, xytext=to, fontsize=8, ha="center", va="center", zorder=8,
                     bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", lw=0.6),
                     arrowprops=dict(arrowstyle="->", lw=0.8, color="0.2") if a.to is not None else None)
-    # rotation arrow (always ccw in the final frame)
-    r_arr = Rd * mm * 1.16
-    a0, a1 = math.radians(100), math.radians(140)
-    ax.add_patch(FancyArrowPatch((r_arr * math.cos(a0), r_arr * math.sin(a0)),
-                                 (r_arr * math.cos(a1), r_arr * math.sin(a1)),
-                                 connectionstyle="arc3,rad=0.2", arrowstyle="-|>", mutation_scale=16,
-                                 lw=1.6, color="#5e3c99", zorder=8))
-    am = math.radians(120)
-    ax.text(1.28 * Rd * mm * math.cos(am), 1.28 * Rd * mm * math.sin(am),
-            f"rotation (ccw)\n{p.arrangement} arrangement", fontsize=9, color="#5e3c99",
-            ha="center", va="center", fontweight="bold")
+    # rotation arrow (always ccw in the final frame): inside the bore, where nothing else is drawn
+    r_arr = 0.6 * p.bore_radius * mm
+    th_arr = np.radians(np.linspace(-110.0, 150.0, 60))
+    ax.plot(r_arr * np.cos(th_arr), r_arr * np.sin(th_arr), color="#5e3c99", lw=1.6, zorder=8)
+    ax.add_patch(FancyArrowPatch((r_arr * math.cos(th_arr[-3]), r_arr * math.sin(th_arr[-3])),
+                                 (r_arr * math.cos(th_arr[-1]), r_arr * math.sin(th_arr[-1])),
+                                 arrowstyle="-|>", mutation_scale=14, lw=1.6, color="#5e3c99", zorder=8))
+    ax.set_title(f"rotation counter-clockwise (arrow in the bore): {p.arrangement} arrangement",
+                 fontsize=10, color="#5e3c99")
     # legend
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
