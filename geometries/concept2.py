@@ -24,7 +24,6 @@ spin softening) ~3600 rpm, first contact at the shoe tip.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np

@@ -163,10 +163,6 @@ class Concept31(Concept):
             a = i * p.sector_angle
             R = lambda q, a=a: K.rotate(np.asarray(q, float), a)  # noqa: E731
 
-            def fil(key, first_on_circle):
-                c, tl, tcirc = f[key]
-                return c, tl, tcirc
-
             c, tl, tcirc = f[("cw", "hub")]
             if out is None:
                 out = K.Outline(R(tcirc))

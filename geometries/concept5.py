@@ -115,8 +115,6 @@ class Concept5Params(ConceptParams):
                                     "+ 0.2 mm above the beam)")
         if self.flexure_length < 2 * rho + 0.3e-3:
             self.fail("flexure_length", f">= {(2 * rho + 0.3e-3) * 1e3:.2f} mm (two fillets + 0.3 mm)")
-        if self.arm_width < 1e-3 + 0 * rho:
-            self.fail("arm_width", ">= 1 mm")
 
 
 def _corner(line, side: float, R: float, outside: bool, rho: float):
