@@ -306,3 +306,7 @@ def test_drawings_are_written(tmp_path):
     assert all(f.stat().st_size > 10_000 for f in files)
     png = draw_mesh(cm, tmp_path / "mesh.png")
     assert png.stat().st_size > 10_000
+    # a dotted concept name is a stem, not a suffix
+    c31 = get_concept("concept3.1")
+    files = draw_concept(c31, c31.params(), tmp_path / "concept3.1")
+    assert [f.name for f in files] == ["concept3.1.png", "concept3.1.svg"]

@@ -241,7 +241,8 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
     fig.text(0.715, 0.90, f"{concept.name} parameters", fontsize=10, fontweight="bold", va="top")
     fig.text(0.715, 0.87, "\n".join(lines), fontsize=8.2, family="monospace", va="top",
              bbox=dict(boxstyle="round,pad=0.5", fc="#f7f7f7", ec="0.6"))
-    png, svg = out_stem.with_suffix(".png"), out_stem.with_suffix(".svg")
+    # not with_suffix: a stem like "out/concept3.1" must give concept3.1.png, not concept3.png
+    png, svg = out_stem.parent / f"{out_stem.name}.png", out_stem.parent / f"{out_stem.name}.svg"
     fig.savefig(png, dpi=dpi)
     fig.savefig(svg)
     plt.close(fig)
