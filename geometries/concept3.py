@@ -13,7 +13,8 @@ The shoe is symmetric about its spoke, so plus and minus are mirror images of th
 part (A1+A2: one half of the shoe leads, the other trails); the "root" of the contact arc
 (angle 0) only matters for the linear profile (clearance c at angle 0, c_tip at beta).
 The nominal pivot returned is the spoke-shoe joint: the shoe translates (C2) rather than
-rotates.
+rotates.  Zones: ``shoe_<i>`` is the shoe arc, ``flexure_<i>`` the spoke (the intended
+spring, in tension) with its fillets.
 
 Why it was eliminated, in numbers (steel, defaults): spoke stiffness in tension
 E w_s h / L = 210e9 * 4e-3 * 11e-3 / 17.8e-3 ~ 5.2e8 N/m against a shoe of m = 18.9 g at
@@ -158,9 +159,19 @@ class Concept3(Concept):
         beta = math.radians(p.shoe_arc)
         r_si = p.r_si()
         R_ext = p.drum_radius + 2e-3
-        shoes = [G.annular_sector(r_si, R_ext, i * p.sector_angle, i * p.sector_angle + beta)
-                 for i in range(p.n_shoes)]
-        return Shapes(material=[part], shoe_zones=shoes, flexure_zones=[],
+        # the spring element is the spoke: its zone is the annulus between hub and shoe over
+        # the spoke and its fillets (radial sides in the empty windows)
+        tc = 0.5 * beta
+        f = p.fillets()
+        half = max(abs(K.angle_of(f[(side, where)][k]) - tc) for side in ("cw", "ccw")
+                   for where in ("hub", "shoe") for k in (1, 2)) + 0.5e-3 / p.hub_radius
+        half = min(half, 0.5 * (tc + 0.5 * (p.sector_angle - beta)))
+        shoes, flexures = [], []
+        for i in range(p.n_shoes):
+            a = i * p.sector_angle
+            shoes.append(G.annular_sector(r_si, R_ext, a, a + beta))
+            flexures.append(G.annular_sector(p.hub_radius, r_si, a + tc - half, a + tc + half))
+        return Shapes(material=[part], shoe_zones=shoes, flexure_zones=flexures,
                       sector_start=0.5 * (beta - p.sector_angle))
 
     def shoe_arc(self, p: Concept3Params) -> tuple[float, float]:
