@@ -84,8 +84,9 @@ def build_geometry(c, p, out: Path, mesh_size, model: str, drawing: bool) -> dic
     cm = mesh_concept(c, p, _mesh_settings(mesh_size, model))
     wall = time.perf_counter() - t0
     stem = out / c.name
-    shutil.copyfile(groups_msh_path(cm.msh_path), stem.with_suffix(".msh"))
-    files = [stem.with_suffix(".msh")]
+    msh = out / f"{c.name}.msh"  # not with_suffix: 'concept3.1' would lose its '.1'
+    shutil.copyfile(groups_msh_path(cm.msh_path), msh)
+    files = [msh]
     if drawing:
         try:
             from .geometry.drawing import draw_concept

@@ -206,14 +206,23 @@ def cache_dir() -> Path:
 
 
 def _source_hash(concept: Concept) -> str:
+    """Hash of every source that shapes the mesh: the concept's module file and those of its
+    base classes loaded from geometries/, plus the generic geometry code."""
     from .geometry import base, occ as occmod
 
     h = hashlib.sha256()
-    for obj in (type(concept), base, occmod):
-        try:
-            h.update(inspect.getsource(obj).encode())
-        except (OSError, TypeError):
-            h.update(repr(obj).encode())
+    files = {inspect.getfile(cls) for cls in type(concept).__mro__
+             if cls.__module__.startswith("clutchfem_geometries.")}
+    mods = [base, occmod]
+    try:
+        from .geometry import sketch
+
+        mods.append(sketch)
+    except ImportError:
+        pass
+    files |= {inspect.getfile(m) for m in mods}
+    for f in sorted(files):
+        h.update(Path(f).read_bytes())
     return h.hexdigest()[:16]
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib.util
 import os
+import sys
 from functools import lru_cache
 from pathlib import Path
 
@@ -31,7 +32,12 @@ def _load_file(path: str) -> Concept:
     spec = importlib.util.spec_from_file_location(f"clutchfem_geometries.{Path(path).stem}", path)
     mod = importlib.util.module_from_spec(spec)
     assert spec.loader is not None
-    spec.loader.exec_module(mod)
+    sys.modules[spec.name] = mod  # lets inspect/dataclasses find the module (cache hashing)
+    try:
+        spec.loader.exec_module(mod)
+    except BaseException:
+        sys.modules.pop(spec.name, None)
+        raise
     concept = getattr(mod, "CONCEPT", None)
     if not isinstance(concept, Concept):
         raise TypeError(f"{path} does not define CONCEPT = <Concept subclass instance>")
