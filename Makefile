@@ -30,7 +30,7 @@ test: setup
 	$(PY) -m pytest -n 2 -q
 
 bench: setup
-	$(PY) benchmarks/run_all.py
+	$(PY) benchmarks/bench_sweep.py && $(PY) benchmarks/bench_solvers.py
 
 clean:
 	rm -rf out .pytest_cache

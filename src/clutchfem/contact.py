@@ -22,10 +22,12 @@ A result that does not satisfy the conditions to tolerance raises :class:`Solver
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.spatial import cKDTree
 from skfem import Basis
 
 from .errors import MeshError, SolverError
@@ -78,6 +80,22 @@ def contact_nodes(cm: ClutchMesh, basis: Basis, drum_radius: float) -> ContactNo
     # the contact surface must face the drum: outward boundary normals point away from the axis
     _check_facing(cm, facets)
     w = contact_weights(cm, basis, facets)[dx]
+    # one-sector model: a contact node on cut_b is the rotated copy of a node on cut_a (the
+    # same node of the full part, u_b = R u_a).  Keep one of each pair, with both weights:
+    # two copies would make G singular and split their force arbitrarily.
+    if cm.sector_angle is not None and "cut_b" in b:
+        db = basis.get_dofs(cm.boundary("cut_b"))
+        copy = np.isin(dx, np.concatenate([db.nodal["u^1"], db.facet["u^1"]]))
+        if copy.any():
+            cs, sn = math.cos(cm.sector_angle), math.sin(cm.sector_angle)
+            back = np.array([[cs, sn], [-sn, cs]]) @ xy[:, copy]  # rotated by -sector_angle
+            keep = np.nonzero(~copy)[0]
+            dist, j = cKDTree(xy[:, keep].T).query(back.T)
+            if dist.max() > 1e-8 * drum_radius:
+                raise MeshError(f"{cm.source}: a contact node on cut_b has no partner on cut_a "
+                                f"(mismatch {dist.max():.3g} m)")
+            np.add.at(w, keep[j], w[copy])
+            dx, dy, xy, n, t, gap0, w = (a[..., keep] for a in (dx, dy, xy, n, t, gap0, w))
     shoe = -np.ones(len(dx), dtype=np.int64)
     for name, fac in b.items():
         if name.startswith("contact_"):

@@ -241,7 +241,12 @@ class ClutchSolver:
         c = self.coefficients(omega) if self.softening == "modal" else np.zeros(0)
         if self.nodes is None or not engaged:
             m = 0 if self.nodes is None else self.nodes.m
-            return SpeedState(omega, np.zeros(m), c), None
+            st = SpeedState(omega, np.zeros(m), c)
+            if self.softening == "exact" and omega > 0:  # free part, softened: (K - w^2 M) u = w^2 f1
+                fe = self.fe
+                f = self._exact_factor(omega)
+                st.u_exact = fe.T @ f.solve(fe.T.T @ (omega * omega * fe.f1))  # type: ignore[attr-defined]
+            return st, None
         if self.softening == "exact":
             return self._exact_state(omega, active0)
         q = self.nodes.gap0 - self._free_normal(omega, c)
