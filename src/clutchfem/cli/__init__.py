@@ -1,0 +1,26 @@
+"""Command line: a thin layer over the Python API (parse, call, print).
+
+One module per subcommand; :mod:`.common` holds the shared plumbing.
+"""
+
+from __future__ import annotations
+
+import typer
+
+from .analyze_cmd import analyze
+from .demo_cmd import demo
+from .geometry_cmd import geometry
+from .solve_cmd import solve
+from .validate_cmd import validate
+
+app = typer.Typer(add_completion=False, no_args_is_help=True,
+                  help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
+for _cmd in (geometry, solve, analyze, validate, demo):
+    app.command()(_cmd)
+
+
+def main() -> None:  # pragma: no cover
+    app()
+
+
+__all__ = ["app", "main"]
