@@ -33,7 +33,8 @@ def test_character_comes_out_of_the_model(analyses):
     assert analyses["plus"].torque_at_max_engine_torque_Nm > analyses["minus"].torque_at_max_engine_torque_Nm
     # the plus shoe is more sensitive to mu
     sm, sp = analyses["minus"].mu_sensitivity, analyses["plus"].mu_sensitivity
-    spread = lambda s: (max(s.values()) - min(s.values())) / sorted(s.values())[1]
+    assert sp["elasticity"] > 1.0 > sm["elasticity"]  # d ln M / d ln mu; 1 for a point load (eq 12)
+    spread = lambda s: (s["torque_Nm"]["x1.3"] - s["torque_Nm"]["x0.7"]) / s["torque_Nm"]["x1.0"]
     assert spread(sp) > spread(sm)
 
 

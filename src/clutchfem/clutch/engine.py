@@ -25,7 +25,7 @@ from scipy.interpolate import PchipInterpolator
 
 from clutchfem.errors import InputError, ParameterError
 
-__all__ = ["EngineCurve", "DEFAULT_CURVE_RPM", "DEFAULT_CURVE_TORQUE", "slip_rpm"]
+__all__ = ["EngineCurve", "DEFAULT_CURVE_RPM", "DEFAULT_CURVE_TORQUE", "slip_rpm", "torque_crossings"]
 
 #: ASSUMED default full-throttle curve, 56.5 cc saw (see module docstring).  Anchors from
 #: seed 000: max 3.40 N m at 8000 rpm, 3.20 N m at 950 rad/s (9072 rpm).
@@ -215,3 +215,51 @@ def slip_rpm(
         if x1 - x0 < 1e-9 * max(1.0, x1):
             break
     return 0.5 * (x0 + x1)
+
+
+def torque_crossings(
+    curve: EngineCurve,
+    clutch_torque_at_rpm: Callable[[np.ndarray], np.ndarray],
+    rpm_min: float | None = None,
+    rpm_max: float | None = None,
+    n_grid: int = 2001,
+) -> list[tuple[float, str]]:
+    """Every speed [rpm] where the clutch torque curve crosses the engine curve.
+
+    Returns ``(rpm, direction)`` pairs in increasing rpm; ``direction`` is ``'up'`` where the
+    clutch torque rises through the engine torque (a stable slip point: above it the clutch
+    holds more than the engine gives) and ``'down'`` where it falls below again (possible
+    with a drooping FE curve or a user engine curve with a late torque peak).  Sign changes
+    of ``clutch - engine`` are bracketed on an ``n_grid`` grid and refined by bisection (60
+    halvings or 1e-9 relative), which also works with an ``inf`` clutch torque.  A crossing
+    closer together than the grid spacing can be missed; :func:`slip_rpm` is the first
+    ``'up'`` crossing (or ``rpm_min`` when the clutch holds from the start).
+    """
+    lo, hi = curve.rpm_range
+    a = lo if rpm_min is None else float(rpm_min)
+    b = hi if rpm_max is None else float(rpm_max)
+    if not (lo <= a < b <= hi):
+        raise ParameterError("rpm_min, rpm_max", (a, b), f"lo < hi inside the curve [{lo:g}, {hi:g}] rpm")
+    grid = np.linspace(a, b, int(n_grid))
+
+    def holds(x) -> np.ndarray:
+        e = np.asarray(clutch_torque_at_rpm(x), dtype=float) - curve.torque_at(x)
+        if np.any(np.isnan(e)):
+            raise InputError("clutch torque function returned NaN")
+        return e >= 0.0
+
+    h = holds(grid)
+    out: list[tuple[float, str]] = []
+    for i in np.nonzero(h[1:] != h[:-1])[0]:
+        x0, x1 = float(grid[i]), float(grid[i + 1])
+        up = bool(h[i + 1])
+        for _ in range(60):
+            xm = 0.5 * (x0 + x1)
+            if bool(holds(np.array([xm]))[0]) == up:
+                x1 = xm
+            else:
+                x0 = xm
+            if x1 - x0 < 1e-9 * max(1.0, x1):
+                break
+        out.append((0.5 * (x0 + x1), "up" if up else "down"))
+    return out
