@@ -313,7 +313,7 @@ def analyze(cm, params, material, *, mu: float = 0.165, rotation: str = "ccw",
     models = {"rpm": float(engine.rpm_max_torque)}
     for col in ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm"):
         models[col] = float(np.interp(engine.rpm_max_torque, at.index, at[col]))
-    arc_probe = float(np.interp(engine.rpm_max_torque, curve["rpm"], curve["contact_arc_deg"]))
+    arc_probe = float(np.interp(engine.rpm_max_torque, curves["rpm"], curves["contact_arc_deg"]))
     # stress at the engine's maximum speed (the sweep always contains it)
     last = curve.loc[curve["rpm"] == hi].iloc[0]
     sf = float(last["safety_factor"])
@@ -381,9 +381,52 @@ def analyze(cm, params, material, *, mu: float = 0.165, rotation: str = "ccw",
                     first_touch=res.first_touch, warnings=warnings, notes=notes)
 
 
+def contact_extent(res, shoe: int = 0) -> np.ndarray:
+    """Angular extent [rad] (start, end) of shoe ``shoe``'s contact at each speed of a sweep.
+
+    The extent runs from the outermost nodes in contact plus half the spacing to the next
+    node on each side (each node stands for the boundary up to half-way to its neighbours),
+    so a single node in contact has the width of one node spacing instead of zero.  NaN rows
+    where the shoe does not touch.  Angles are polar angles of the drum frame.
+    """
+    nd = res.solver.nodes
+    out = np.full((len(res.states), 2), np.nan)
+    if nd is None:
+        return out
+    sel = np.nonzero(nd.shoe == shoe)[0]
+    if sel.size == 0:
+        return out
+    ang = nd.angle[sel]
+    ref = float(np.mean(ang))
+    ang = ref + (ang - ref + math.pi) % (2 * math.pi) - math.pi  # unwrap around the shoe
+    order = np.argsort(ang)
+    a = ang[order]
+    gaps = np.diff(a)
+    lo_half = np.concatenate([[gaps[0] if gaps.size else 0.0], gaps]) / 2  # to the previous node
+    hi_half = np.concatenate([gaps, [gaps[-1] if gaps.size else 0.0]]) / 2  # to the next node
+    for k, st in enumerate(res.states):
+        lam = st.lam[sel][order] if st.lam.size else np.zeros(0)
+        on = np.nonzero(lam > 0)[0]
+        if on.size == 0:
+            continue
+        i0, i1 = int(on.min()), int(on.max())
+        out[k] = (a[i0] - lo_half[i0], a[i1] + hi_half[i1])
+    return out
+
+
 def _coupled_curves(cm, params, material, res, mu, rotation):
     """Analytical torque with the nominal arc and with the FE contact arc (per speed)."""
-    shoe = cm.mass["shoe_0"]
+    rpm = res.curve["rpm"].to_numpy()
+    ext = contact_extent(res, 0)
+    out = pd.DataFrame({"rpm": rpm, "fe_torque_Nm": res.curve["torque_Nm"].to_numpy(),
+                        "contact_arc_deg": np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0])),
+                        "contact_node_span_deg": res.curve["contact_arc_deg"].to_numpy()})
+    shoe = cm.mass.get("shoe_0") if cm.mass else None
+    if shoe is None or not cm.pivots or not cm.contact_arcs or params is None:
+        out["analytic_nominal_arc_Nm"] = math.nan
+        out["analytic_fe_arc_Nm"] = math.nan
+        return {"source": "no analytical coupling: the design carries no shoe mass properties, "
+                          "pivot or nominal arc (user mesh)"}, out
     rho_h = material.rho * params.thickness
     m = shoe["area"] * rho_h
     cx, cy = shoe["centroid"]
@@ -401,14 +444,13 @@ def _coupled_curves(cm, params, material, res, mu, rotation):
     w_e = None if res.engagement_rpm is None else rpm_to_rad_s(res.engagement_rpm)
     F_f = m * R_Tp * w_e ** 2 if w_e else math.nan
     coupling = {"m_kg": m, "R_Tp_m": R_Tp, "F_f_N": F_f, "A_m": A, "L_m": L, "R_m": R,
-                "phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(phi2), "kind": kind,
-                "source": "m, R_Tp: OCC mass properties; F_f: FE engagement speed (eq 1); A, L: geometry "
-                          "(pivot = flexure centre); phi: nominal arc from the pivot ray"}
-    rpm = res.curve["rpm"].to_numpy()
+                "phi1_deg": math.degrees(phi1), "phi2_deg": math.degrees(phi2), "kind": kind, "n": n,
+                "source": "m, R_Tp: OCC mass properties of the shoe zone; F_f: from the FE engagement "
+                          "speed (eq 1 inverted); A, L: geometry (pivot = flexure's compliant centre, "
+                          "not fitted); phi: nominal shoe arc, measured from the pivot ray; FE arc: "
+                          "nodes in contact plus half a node spacing at each end"}
     w = rpm_to_rad_s(rpm)
     F = np.where(np.isfinite(F_f), np.maximum(m * R_Tp * w ** 2 - (F_f if np.isfinite(F_f) else 0), 0.0), 0.0)
-    out = pd.DataFrame({"rpm": rpm, "fe_torque_Nm": res.curve["torque_Nm"].to_numpy(),
-                        "contact_arc_deg": res.curve["contact_arc_deg"].to_numpy()})
     try:
         geom = ShoeGeometry(phi1, phi2, A, R, L)
         out["analytic_nominal_arc_Nm"] = shoe_torque(F, geom, mu, kind, n).total
@@ -417,17 +459,12 @@ def _coupled_curves(cm, params, material, res, mu, rotation):
         coupling["nominal_error"] = str(exc)
     # FE contact arc per speed, measured from the pivot ray
     fe_arc = []
-    shoes = res.shoes
-    for k, r_ in enumerate(rpm):
-        row = shoes[(shoes["rpm"] == r_) & (shoes["shoe"] == 0)] if not shoes.empty else shoes
-        if row.empty or not np.isfinite(row["arc_start_deg"].iloc[0]) or F[k] <= 0:
+    for k in range(len(rpm)):
+        if not np.isfinite(ext[k, 0]) or F[k] <= 0:
             fe_arc.append(0.0)
             continue
-        a0 = math.radians(row["arc_start_deg"].iloc[0])
-        a1 = math.radians(row["arc_end_deg"].iloc[0])
-        q1, q2 = sorted((abs(_wrap(a0 - th_p)), abs(_wrap(a1 - th_p))))
-        if q2 - q1 < 1e-6:  # a single node in contact: give it the node spacing
-            q2 = q1 + math.radians(0.5)
+        q = sorted((abs(_wrap(ext[k, 0] - th_p)), abs(_wrap(ext[k, 1] - th_p))))
+        q1, q2 = max(q[0], 0.0), min(q[1], math.pi)
         try:
             fe_arc.append(float(shoe_torque(F[k], ShoeGeometry(q1, q2, A, R, L), mu, kind, n).total))
         except ClutchfemError:
