@@ -97,20 +97,13 @@ class Concept1(Concept):
             hub = G.cut(hub, cuts)
             t0, t1 = a + phi_f, a + phi_f + beta
             shoe = G.shoe_body(r_si, t0, t1, lambda th, a=a: p.outer_radius(th - a, phi_f, phi_f + beta),
-                               p.profile, self._ecc_centre(p, a, phi_f, beta))
+                               p.profile, p.eccentric_centre(phi_f, phi_f + beta, a))
             material.append(shoe)
             shoes.append(G.annular_sector(r_si - 0.5 * p.slot_width, R_ext, t0, t1))
             flexures.append(G.annular_sector(0.5 * (r_h + r_fi), R_ext, a, a + phi_f))
         part = G.fuse(hub + material)
         return Shapes(material=part, shoe_zones=shoes, flexure_zones=flexures,
                       sector_start=-0.5 * post)
-
-    @staticmethod
-    def _ecc_centre(p, a, phi_f, beta):
-        if p.profile != "eccentric":
-            return None
-        cx, cy, _ = p.eccentric_circle(phi_f, phi_f + beta)
-        return (cx * math.cos(a) - cy * math.sin(a), cx * math.sin(a) + cy * math.cos(a))
 
     def shoe_arc(self, p: Concept1Params) -> tuple[float, float]:
         phi_f, beta, _, _ = p.angles()

@@ -31,7 +31,6 @@ import math
 
 import numpy as np
 
-from clutchfem.errors import GeometryError
 from clutchfem.geometry import occ as G
 from clutchfem.geometry import sketch as K
 from clutchfem.geometry.base import Annotation, Concept, ConceptParams, Shapes
@@ -115,52 +114,54 @@ class Concept3(Concept):
     Params = Concept3Params
 
     def outline(self, p: Concept3Params) -> K.Outline:
+        """The part's boundary (all shoes, canonical frame), one closed loop traversed ccw:
+        hub arc, spoke/hub fillet, spoke's cw side, spoke/shoe fillet, shoe's inner surface
+        back to its root end, :meth:`shoe_top` (root face, outer profile, tip face), the
+        shoe's inner surface forward to the spoke, and the spoke's ccw side down to the hub."""
         beta = math.radians(p.shoe_arc)
         r_si = p.r_si()
         f = p.fillets()
-        r_root = float(p.outer_radius(np.array([0.0]), 0.0, beta)[0])
-        r_tip = float(p.outer_radius(np.array([beta]), 0.0, beta)[0])
-        ecc = _ecc_centre(p, 0.0, beta)
         rho = p.fillet_radius
         out = None
         for i in range(p.n_shoes):
-            a = i * p.sector_angle
-            R = lambda q, a=a: K.rotate(np.asarray(q, float), a)  # noqa: E731
+            R = lambda q, a=i * p.sector_angle: K.rotate(np.asarray(q, float), a)  # noqa: E731
             c, tl, tc = f[("cw", "hub")]
             if out is None:
                 out = K.Outline(R(tc))
             else:
-                out.arc_to(R(tc), ccw=True)
+                out.arc_to(R(tc), ccw=True)                          # hub between spokes
             if rho > 0:
                 out.arc_to(R(tl), R(c), ccw=False)
             c, tl, tc = f[("cw", "shoe")]
-            out.line_to(R(tl))
+            out.line_to(R(tl))                                       # spoke, cw side
             if rho > 0:
                 out.arc_to(R(tc), R(c), ccw=False)
-            out.arc_to(R(K.polar(r_si, 0.0)), ccw=False)
-            out.line_to(R(K.polar(r_root, 0.0)))
-            _profile(out, p, R, 0.0, beta, r_tip, ecc)
-            out.line_to(R(K.polar(r_si, beta)))
+            out.arc_to(R(K.polar(r_si, 0.0)), ccw=False)             # under the shoe to its root end
+            self.shoe_top(out, p, R)
+            out.line_to(R(K.polar(r_si, beta)))                      # tip face
             c, tl, tc = f[("ccw", "shoe")]
-            out.arc_to(R(tc), ccw=False)
+            out.arc_to(R(tc), ccw=False)                             # under the shoe back to the spoke
             if rho > 0:
                 out.arc_to(R(tl), R(c), ccw=False)
             c, tl, tc = f[("ccw", "hub")]
-            out.line_to(R(tl))
+            out.line_to(R(tl))                                       # spoke, ccw side
             if rho > 0:
                 out.arc_to(R(tc), R(c), ccw=False)
         out.arc_to(out.points[0], ccw=True)
         return out.close()
 
-    def build(self, p: Concept3Params) -> Shapes:
-        out = self.outline(p)
-        _check_outline(out, self.name, p)
-        part = out.surface()
+    def shoe_top(self, out: K.Outline, p: Concept3Params, R) -> None:
+        """From the shoe's inner root corner: root face and the outer profile to the tip."""
+        beta = math.radians(p.shoe_arc)
+        out.line_to(R(K.polar(float(p.outer_radius(np.array([0.0]), 0.0, beta)[0]), 0.0)))
+        K.add_profile(out, p, R, 0.0, beta, 0.0, beta)
+
+    def zones(self, p: Concept3Params) -> tuple[list[int], list[int]]:
+        """(shoe zones, flexure zones): the shoe arc, and the spoke with its fillets (the
+        annulus between hub and shoe over the spoke; its radial sides in the empty windows)."""
         beta = math.radians(p.shoe_arc)
         r_si = p.r_si()
         R_ext = p.drum_radius + 2e-3
-        # the spring element is the spoke: its zone is the annulus between hub and shoe over
-        # the spoke and its fillets (radial sides in the empty windows)
         tc = 0.5 * beta
         f = p.fillets()
         half = max(abs(K.angle_of(f[(side, where)][k]) - tc) for side in ("cw", "ccw")
@@ -171,8 +172,15 @@ class Concept3(Concept):
             a = i * p.sector_angle
             shoes.append(G.annular_sector(r_si, R_ext, a, a + beta))
             flexures.append(G.annular_sector(p.hub_radius, r_si, a + tc - half, a + tc + half))
+        return shoes, flexures
+
+    def build(self, p: Concept3Params) -> Shapes:
+        out = self.outline(p)
+        K.check_outlines(self.name, p, out)
+        part = out.surface()
+        shoes, flexures = self.zones(p)
         return Shapes(material=[part], shoe_zones=shoes, flexure_zones=flexures,
-                      sector_start=0.5 * (beta - p.sector_angle))
+                      sector_start=0.5 * (math.radians(p.shoe_arc) - p.sector_angle))
 
     def shoe_arc(self, p: Concept3Params) -> tuple[float, float]:
         return 0.0, math.radians(p.shoe_arc)
@@ -196,34 +204,6 @@ class Concept3(Concept):
             Annotation(f"hub r_h = {p.hub_radius * 1e3:.1f} mm", tuple(K.polar(p.hub_radius, math.pi)),
                        tuple(K.polar(1.3 * R, math.pi + 0.5))),
         ]
-
-
-def _ecc_centre(p, a, beta):
-    if p.profile != "eccentric":
-        return None
-    cx, cy, _ = p.eccentric_circle(0.0, beta)
-    return K.rotate(K.vec(cx, cy), a)
-
-
-def _profile(out: K.Outline, p, R, t0: float, t1: float, r_end: float, ecc) -> None:
-    """Append the shoe's outer profile from angle t0 to t1 (canonical; R rotates)."""
-    q = R(K.polar(r_end, t1))
-    if p.profile == "concentric":
-        out.arc_to(q, ccw=True)
-    elif p.profile == "eccentric":
-        out.arc_to(q, R(ecc), ccw=True)
-    else:
-        ths = np.linspace(t0, t1, 33)[1:-1]
-        rs = p.outer_radius(ths, t0, t1)
-        out.spline_to(q, [R(K.polar(float(r), float(t))) for r, t in zip(rs, ths)])
-
-
-def _check_outline(out: K.Outline, name: str, p) -> None:
-    bad = out.self_intersections()
-    if bad:
-        x, y = bad[0]
-        raise GeometryError(f"{name}: the outline crosses itself near ({x * 1e3:.2f}, {y * 1e3:.2f}) mm "
-                            "(canonical frame): inconsistent parameters", p.model_dump())
 
 
 CONCEPT = Concept3()

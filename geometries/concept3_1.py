@@ -3,7 +3,9 @@ elements.  Each shoe is split into two halves that hang on the head of the radia
 one thin circumferential flexure each; with the part turning ccw the half ahead of the
 spoke trails its flexure (a *minus* half) and the half behind leads it (a *plus* half).
 
-Parametrisation (no figure survives; built from the text and concept 3).  Hub disc
+Parametrisation (no figure survives; built from the text and concept 3, whose parameters,
+checks and outline it inherits: ``Concept31`` subclasses ``Concept3`` and only replaces the
+top of the shoe).  Hub disc
 ``hub_radius`` (r_h); per shoe a radial spoke of width ``spoke_width`` (w_s) from the hub up
 to the shoe's inner radius r_si = R_d - c - t_s.  From the spoke head two flexures of
 radial thickness ``flexure_thickness`` (t_f, band r_si .. r_si + t_f) run circumferentially
@@ -30,21 +32,24 @@ Defaults: t_f = 1.0 mm, L_f = 6 mm, beta = 110 deg (two 38 deg halves): FE engag
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
-from clutchfem.errors import GeometryError
 from clutchfem.geometry import occ as G
 from clutchfem.geometry import sketch as K
-from clutchfem.geometry.base import Annotation, Concept, ConceptParams, Shapes
+from clutchfem.geometry.base import Annotation
+from clutchfem.geometry.registry import _load_file
 from clutchfem.params import param
 
+_C3 = _load_file(str(Path(__file__).resolve().with_name("concept3.py")))
+Concept3 = type(_C3)
+Concept3Params = Concept3.Params
 
-class Concept31Params(ConceptParams):
+
+class Concept31Params(Concept3Params):
     context = "concept3.1"
     fillet_radius: float = param(0.6e-3, "m", 0.0, 4e-3, "fillet radius of all concave corners", "rho")
-    hub_radius: float = param(11e-3, "m", 5e-3, 25e-3, "radius of the hub disc", "r_h")
-    spoke_width: float = param(4.0e-3, "m", 1.0e-3, 15e-3, "width of the radial spoke", "w_s")
     shoe_arc: float = param(110.0, "deg", 20.0, 170.0,
                             "angular extent of the whole shoe (two halves + the middle), centred on the spoke", "beta")
     shoe_thickness: float = param(5.0e-3, "m", 1.5e-3, 15e-3, "radial thickness of the shoe halves", "t_s")
@@ -54,9 +59,8 @@ class Concept31Params(ConceptParams):
 
     # derived ----------------------------------------------------------------------------
     def radii(self):
-        r_si = self.drum_radius - self.clearance - self.shoe_thickness
-        r_fo = r_si + self.flexure_thickness
-        return r_si, r_fo
+        r_si = self.r_si()
+        return r_si, r_si + self.flexure_thickness
 
     def angles(self):
         """(spoke centre, cw half root, ccw half root, half arc) in radians."""
@@ -67,48 +71,28 @@ class Concept31Params(ConceptParams):
         phi_f = self.flexure_length / (0.5 * (r_si + r_fo))
         return tc, tc - phi_w - phi_f, tc + phi_w + phi_f, tc - phi_w - phi_f
 
-    def spoke_lines(self):
-        tc = self.angles()[0]
-        axis = K.radial_line(tc)
-        return axis.offset(-0.5 * self.spoke_width), axis.offset(0.5 * self.spoke_width)
-
     def fillets(self):
-        """Tangent fillets of shoe 0 keyed by corner; None if one does not exist."""
-        r_si, r_fo = self.radii()
-        rh, rho = self.hub_radius, self.fillet_radius
-        tc, tr0, tr1, _ = self.angles()
-        out = {}
-        for side, line, sgn in (("cw", self.spoke_lines()[0], -1.0), ("ccw", self.spoke_lines()[1], +1.0)):
-            for where, R, outside in (("hub", rh, True), ("shoe", r_si, False)):
-                ss = line.circle_params(R)
-                if not ss:
-                    return None
-                X = line.at(ss[1])
-                f = (X, X, X) if rho == 0 else K.fillet_line_circle(line, sgn, R, outside, rho, X)
-                if f is None:
-                    return None
-                out[(side, where)] = f
+        """Concept 3's spoke fillets plus the fillets at the two half roots (keyed
+        (side, 'root')); None if one does not exist."""
+        out = super().fillets()
+        if out is None:
+            return None
+        _, r_fo = self.radii()
+        rho = self.fillet_radius
+        _, tr0, tr1, _ = self.angles()
         for side, t, sgn in (("cw", tr0, +1.0), ("ccw", tr1, -1.0)):
-            line = K.radial_line(t)
             X = K.polar(r_fo, t)
-            f = (X, X, X) if rho == 0 else K.fillet_line_circle(line, sgn, r_fo, True, rho, X)
+            f = (X, X, X) if rho == 0 else K.fillet_line_circle(K.radial_line(t), sgn, r_fo, True, rho, X)
             if f is None:
                 return None
             out[(side, "root")] = f
         return out
 
     def check(self) -> None:
-        Theta = self.sector_angle
+        super().check()  # hub, spoke, shoe arc vs sector, profile, spoke fillets
         beta = math.radians(self.shoe_arc)
-        rh, rho, ws = self.hub_radius, self.fillet_radius, self.spoke_width
+        rho = self.fillet_radius
         r_si, r_fo = self.radii()
-        if rh < self.bore_radius + 2.5e-3:
-            self.fail("hub_radius", f">= bore radius + 2.5 mm = {(self.bore_radius + 2.5e-3) * 1e3:.2f} mm")
-        if r_si - rh < 2 * rho + 3e-3:
-            self.fail("shoe_thickness", f"<= {(self.drum_radius - self.clearance - rh - 2 * rho - 3e-3) * 1e3:.2f} mm "
-                                        "(the spoke needs >= 3 mm of free length between its end fillets)")
-        if 0.5 * ws + rho > 0.7 * rh:
-            self.fail("spoke_width", f"<= {2 * (0.7 * rh - rho) * 1e3:.2f} mm (spoke plus fillets must fit on the hub)")
         r_so = float(np.min(self.outer_radius(np.linspace(0, beta, 61), 0.0, beta)))
         if r_so - r_fo < 2 * rho + 0.5e-3:
             self.fail("flexure_thickness", f"<= {(r_so - r_fo + self.flexure_thickness - 2 * rho - 0.5e-3) * 1e3:.2f} mm "
@@ -117,27 +101,17 @@ class Concept31Params(ConceptParams):
             self.fail("flexure_length", f">= {(2 * rho + 0.5e-3) * 1e3:.2f} mm (room for the fillets at both ends)")
         if 2 * self.flexure_thickness > self.flexure_length + 1e-12 and self.flexure_length < 2e-3:
             self.fail("flexure_length", ">= 2 x flexure_thickness (a flexure, not a block)")
-        gap_min = max(1.5e-3, 2 * rho)
-        beta_max = Theta - gap_min / r_si
-        if beta > beta_max:
-            self.fail("shoe_arc", f"<= {math.degrees(beta_max):.1f} deg for n_shoes = {self.n_shoes} "
-                                  f"(gap >= {gap_min * 1e3:.1f} mm between neighbouring shoes)")
         tc, tr0, tr1, half = self.angles()
         half_min = max(math.radians(4.0), 2e-3 / r_si)
         if half < half_min:
             need = math.degrees(2 * half_min + (tr1 - tr0))
             self.fail("shoe_arc", f">= {need:.1f} deg (each half needs >= {math.degrees(half_min):.1f} deg of contact "
                                   "arc besides the spoke and the two flexures)")
-        self.check_profile(0.0, beta)
-        f = self.fillets()
-        if f is None:
-            self.fail("fillet_radius", "smaller: no tangent fillet fits at the spoke's ends")
-        for side, line in zip(("cw", "ccw"), self.spoke_lines()):
-            if line.param(f[(side, "shoe")][1]) - line.param(f[(side, "hub")][1]) < 1e-3:
-                self.fail("fillet_radius", "smaller: the spoke's fillets overlap (keep >= 1 mm straight spoke)")
+        if self.fillets() is None:
+            self.fail("fillet_radius", "smaller: no tangent fillet fits at the half roots")
 
 
-class Concept31(Concept):
+class Concept31(Concept3):
     name = "concept3.1"
     title = "Concept 3.1: split shoe on a spoke, two flexures (one plus, one minus half)"
     thesis = ("Concept 3 with the spoke-shoe joint used as the bending elements; otherwise like concept 3. "
@@ -147,79 +121,30 @@ class Concept31(Concept):
     parametrisation = __doc__
     Params = Concept31Params
 
-    def outline(self, p: Concept31Params) -> K.Outline:
+    def shoe_top(self, out: K.Outline, p: Concept31Params, R) -> None:
+        """Concept 3's shoe top split in two: cw half profile, its root face and fillet, the
+        flexure tops over the spoke head, the ccw half's root fillet and face, its profile."""
         beta = math.radians(p.shoe_arc)
-        r_si, r_fo = p.radii()
         tc, tr0, tr1, _ = p.angles()
         f = p.fillets()
         rho = p.fillet_radius
-        ecc = None
-        if p.profile == "eccentric":
-            cx, cy, _ = p.eccentric_circle(0.0, beta)
-            ecc = K.vec(cx, cy)
         ro = lambda t: float(p.outer_radius(np.array([t]), 0.0, beta)[0])  # noqa: E731
-        out = None
-        for i in range(p.n_shoes):
-            a = i * p.sector_angle
-            R = lambda q, a=a: K.rotate(np.asarray(q, float), a)  # noqa: E731
+        out.line_to(R(K.polar(ro(0.0), 0.0)))                # outer end of the cw half
+        K.add_profile(out, p, R, 0.0, tr0, 0.0, beta, n=25)  # cw half contact surface
+        c, tl, tcirc = f[("cw", "root")]
+        out.line_to(R(tl))                                   # cw half root face
+        if rho > 0:
+            out.arc_to(R(tcirc), R(c), ccw=False)
+        c, tl, tcirc = f[("ccw", "root")]
+        out.arc_to(R(tcirc), ccw=True)                       # flexure tops over the spoke head
+        if rho > 0:
+            out.arc_to(R(tl), R(c), ccw=False)
+        out.line_to(R(K.polar(ro(tr1), tr1)))                # ccw half root face
+        K.add_profile(out, p, R, tr1, beta, 0.0, beta, n=25)  # ccw half contact surface
 
-            c, tl, tcirc = f[("cw", "hub")]
-            if out is None:
-                out = K.Outline(R(tcirc))
-            else:
-                out.arc_to(R(tcirc), ccw=True)                   # hub between spokes
-            if rho > 0:
-                out.arc_to(R(tl), R(c), ccw=False)
-            c, tl, tcirc = f[("cw", "shoe")]
-            out.line_to(R(tl))                                   # spoke, cw side
-            if rho > 0:
-                out.arc_to(R(tcirc), R(c), ccw=False)
-            out.arc_to(R(K.polar(r_si, 0.0)), ccw=False)         # under flexure + cw half
-            out.line_to(R(K.polar(ro(0.0), 0.0)))                # outer end of the cw half
-            self._profile(out, p, R, 0.0, tr0, ro(tr0), ecc)     # cw half contact surface
-            c, tl, tcirc = f[("cw", "root")]
-            out.line_to(R(tl))                                   # cw half root face
-            if rho > 0:
-                out.arc_to(R(tcirc), R(c), ccw=False)
-            c, tl, tcirc = f[("ccw", "root")]
-            out.arc_to(R(tcirc), ccw=True)                       # flexure tops over the spoke head
-            if rho > 0:
-                out.arc_to(R(tl), R(c), ccw=False)
-            out.line_to(R(K.polar(ro(tr1), tr1)))                # ccw half root face
-            self._profile(out, p, R, tr1, beta, ro(beta), ecc)   # ccw half contact surface
-            out.line_to(R(K.polar(r_si, beta)))
-            c, tl, tcirc = f[("ccw", "shoe")]
-            out.arc_to(R(tcirc), ccw=False)                      # under ccw half + flexure
-            if rho > 0:
-                out.arc_to(R(tl), R(c), ccw=False)
-            c, tl, tcirc = f[("ccw", "hub")]
-            out.line_to(R(tl))                                   # spoke, ccw side
-            if rho > 0:
-                out.arc_to(R(tcirc), R(c), ccw=False)
-        out.arc_to(out.points[0], ccw=True)
-        return out.close()
-
-    @staticmethod
-    def _profile(out, p, R, t0, t1, r_end, ecc):
-        beta = math.radians(p.shoe_arc)
-        q = R(K.polar(r_end, t1))
-        if p.profile == "concentric":
-            out.arc_to(q, ccw=True)
-        elif p.profile == "eccentric":
-            out.arc_to(q, R(ecc), ccw=True)
-        else:
-            ths = np.linspace(t0, t1, 25)[1:-1]
-            rs = p.outer_radius(ths, 0.0, beta)
-            out.spline_to(q, [R(K.polar(float(r), float(t))) for r, t in zip(rs, ths)])
-
-    def build(self, p: Concept31Params) -> Shapes:
-        out = self.outline(p)
-        bad = out.self_intersections()
-        if bad:
-            x, y = bad[0]
-            raise GeometryError(f"{self.name}: the outline crosses itself near ({x * 1e3:.2f}, {y * 1e3:.2f}) mm "
-                                "(canonical frame): inconsistent parameters", p.model_dump())
-        part = out.surface()
+    def zones(self, p: Concept31Params) -> tuple[list[int], list[int]]:
+        """Shoe zone: both halves, U-shaped (bridged through the relief over the flexures);
+        flexure zone: the spoke head and the two flexures up to the half roots."""
         beta = math.radians(p.shoe_arc)
         r_si, r_fo = p.radii()
         tc, tr0, tr1, _ = p.angles()
@@ -230,18 +155,14 @@ class Concept31(Concept):
         shoes, flexures = [], []
         for i in range(p.n_shoes):
             a = i * p.sector_angle
-            u = K.Outline(K.polar(r_in, a))  # U-shaped zone: both halves, bridged through the relief
+            u = K.Outline(K.polar(r_in, a))
             u.line_to(K.polar(R_ext, a)).arc_to(K.polar(R_ext, a + beta))
             u.line_to(K.polar(r_in, a + beta)).arc_to(K.polar(r_in, a + tr1), ccw=False)
             u.line_to(K.polar(r_br, a + tr1)).arc_to(K.polar(r_br, a + tr0), ccw=False)
             u.line_to(K.polar(r_in, a + tr0)).arc_to(K.polar(r_in, a), ccw=False)
             shoes.append(u.close().surface())
             flexures.append(G.annular_sector(r_in, R_ext, a + tr0, a + tr1))
-        return Shapes(material=[part], shoe_zones=shoes, flexure_zones=flexures,
-                      sector_start=0.5 * (beta - p.sector_angle))
-
-    def shoe_arc(self, p: Concept31Params) -> tuple[float, float]:
-        return 0.0, math.radians(p.shoe_arc)
+        return shoes, flexures
 
     def pivot(self, p: Concept31Params) -> tuple[float, float]:
         r_si, r_fo = p.radii()

@@ -48,7 +48,6 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from clutchfem.errors import GeometryError
 from clutchfem.geometry import occ as G
 from clutchfem.geometry import sketch as K
 from clutchfem.geometry.base import Annotation, Concept, ConceptParams, Shapes
@@ -236,7 +235,7 @@ class Concept4Params(ConceptParams):
         s_re = lay.up.param(lay.round_e[1])
         if s_re < s_fu + 0.5e-3:
             self.fail("flexure_length", "longer (or a smaller fillet_radius): the hub fillet and the slot-end "
-                                        f"round overlap along the beam's outer edge")
+                                        "round overlap along the beam's outer edge")
         s_fl = lay.lo.param(lay.fil_lo[1])
         s_l0 = lay.lo.polar_angle_param(0.0)
         if s_fl > s_l0 - 0.5e-3:
@@ -266,6 +265,10 @@ class Concept4Params(ConceptParams):
             lo, hi = (lo, mid) if bad else (mid, hi)
         return lo
 
+    def flexure_thicknesses(self) -> list[float]:
+        """Both ends of the tapered beam (the mesh is refined for the thinner one)."""
+        return [self.flexure_thickness, self.flexure_thickness * self.flexure_taper]
+
 
 class Concept4(Concept):
     name = "concept4"
@@ -292,8 +295,6 @@ class Concept4(Concept):
         c_e, t_b, t_a, _ = lay.round_e
         toe = lay.lo.at(lay.lo.polar_angle_param(0.0))
         r_root = float(p.outer_radius(np.array([0.0]), 0.0, beta)[0])
-        r_tip = float(p.outer_radius(np.array([beta]), 0.0, beta)[0])
-        ecc = self._ecc_centre(p, 0.0, beta)
         out = None
         for i in range(p.n_shoes):
             a = i * Theta
@@ -306,15 +307,7 @@ class Concept4(Concept):
                 out.arc_to(R(tl_lo), R(c_lo), ccw=False)             # acute hub fillet
             out.line_to(R(toe))                                      # beam inner edge
             out.line_to(R(K.polar(r_root, 0.0)))                     # root line
-            q_tip = R(K.polar(r_tip, beta))
-            if p.profile == "concentric":
-                out.arc_to(q_tip, ccw=True)
-            elif p.profile == "eccentric":
-                out.arc_to(q_tip, R(ecc), ccw=True)
-            else:
-                ths = np.linspace(0.0, beta, 33)[1:-1]
-                via = [R(K.polar(float(r), float(t))) for r, t in zip(p.outer_radius(ths, 0.0, beta), ths)]
-                out.spline_to(q_tip, via)
+            K.add_profile(out, p, R, 0.0, beta, 0.0, beta)           # shoe profile
             out.line_to(R(K.polar(r_si, beta)))                      # tip side
             out.arc_to(R(t_a), ccw=False)                            # shoe inner surface
             out.arc_to(R(t_b), R(c_e), ccw=False)                    # slot-end round
@@ -329,11 +322,7 @@ class Concept4(Concept):
         lay = p.full_layout()
         beta = math.radians(p.shoe_arc)
         out = self.outline(p)
-        bad = out.self_intersections()
-        if bad:
-            x, y = bad[0]
-            raise GeometryError(f"concept4: the outline crosses itself near ({x * 1e3:.2f}, {y * 1e3:.2f}) mm "
-                                "(canonical frame): inconsistent parameters", p.model_dump())
+        K.check_outlines(self.name, p, out)
         part = out.surface()
         R_ext = p.drum_radius + 2e-3
         shoes, flexures = [], []
@@ -343,13 +332,6 @@ class Concept4(Concept):
             flexures.append(G.annular_sector(p.hub_radius, lay.r_si, a - 0.02, a + lay.theta_end + 0.01))
         return Shapes(material=[part], shoe_zones=shoes, flexure_zones=flexures,
                       sector_start=0.5 * (beta - p.sector_angle))
-
-    @staticmethod
-    def _ecc_centre(p, a, beta):
-        if p.profile != "eccentric":
-            return None
-        cx, cy, _ = p.eccentric_circle(0.0, beta)
-        return (cx * math.cos(a) - cy * math.sin(a), cx * math.sin(a) + cy * math.cos(a))
 
     def shoe_arc(self, p: Concept4Params) -> tuple[float, float]:
         return 0.0, math.radians(p.shoe_arc)

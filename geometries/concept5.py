@@ -152,10 +152,6 @@ class Concept5(Concept):
         phi_a, phi_b, t0, t1 = p.angles()
         rc = p.core_radius
         ro = lambda t: float(p.outer_radius(np.array([t]), t0, t1)[0])  # noqa: E731
-        ecc = None
-        if p.profile == "eccentric":
-            cx, cy, _ = p.eccentric_circle(t0, t1)
-            ecc = K.vec(cx, cy)
         # outer loop, starting at arm 0's top centre
         out = K.Outline(K.polar(r_at, 0.0))
         holes = []
@@ -174,15 +170,7 @@ class Concept5(Concept):
             out.arc_to(R(tc), ccw=True)
             out.arc_to(R(tl), R(c), ccw=False)
             out.line_to(R(K.polar(ro(t0), t0)))                                 # shoe root face
-            q = R(K.polar(ro(t1), t1))
-            if p.profile == "concentric":
-                out.arc_to(q, ccw=True)
-            elif p.profile == "eccentric":
-                out.arc_to(q, R(ecc), ccw=True)
-            else:
-                ths = np.linspace(t0, t1, 33)[1:-1]
-                out.spline_to(q, [R(K.polar(float(r), float(t)))
-                                  for r, t in zip(p.outer_radius(ths, t0, t1), ths)])
+            K.add_profile(out, p, R, t0, t1, t0, t1)                             # shoe profile
             c, tl, tc = _corner(t1, +1.0, r_bt, True, rho)                      # shoe tip face / beam top
             out.line_to(R(tl))
             out.arc_to(R(tc), R(c), ccw=False)
@@ -218,12 +206,7 @@ class Concept5(Concept):
 
     def build(self, p: Concept5Params) -> Shapes:
         out, holes = self.outlines(p)
-        for o in [out] + holes:
-            bad = o.self_intersections()
-            if bad:
-                x, y = bad[0]
-                raise GeometryError(f"{self.name}: an outline crosses itself near ({x * 1e3:.2f}, {y * 1e3:.2f}) mm "
-                                    "(canonical frame): inconsistent parameters", p.model_dump())
+        K.check_outlines(self.name, p, out, *holes)
         part = out.surface(holes)
         r_si, r_bb, r_bt, r_bc, r_at, _ = p.radii()
         phi_a, phi_b, t0, t1 = p.angles()

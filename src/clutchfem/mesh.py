@@ -20,7 +20,6 @@ import contextlib
 import hashlib
 import inspect
 import json
-import math
 import os
 import tempfile
 import threading
@@ -31,7 +30,6 @@ from pathlib import Path
 import gmsh
 import meshio
 import numpy as np
-from scipy.spatial import cKDTree
 from skfem import MeshTri1, MeshTri2
 
 from . import __version__
@@ -382,7 +380,7 @@ def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
 def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
     with gmsh_session("step"):
         try:
-            ents = gmsh.model.occ.importShapes(str(path))
+            gmsh.model.occ.importShapes(str(path))
             gmsh.model.occ.synchronize()
         except Exception as exc:
             raise MeshError(f"{path}: gmsh cannot import the STEP file ({exc})") from None

@@ -84,6 +84,22 @@ class ConceptParams(ParamSet):
         px, py = r_mid * math.cos(tm), r_mid * math.sin(tm)
         return cx, cy, math.hypot(px - cx, py - cy)
 
+    def eccentric_centre(self, t0: float, t1: float, a: float = 0.0) -> np.ndarray | None:
+        """Centre (x, y) of the eccentric profile of a shoe spanning [t0, t1], rotated by
+        ``a`` (rad) about the origin; None unless the profile is eccentric."""
+        if self.profile != "eccentric":
+            return None
+        cx, cy, _ = self.eccentric_circle(t0, t1)
+        c, s = math.cos(a), math.sin(a)
+        return np.array([c * cx - s * cy, s * cx + c * cy])
+
+    def flexure_thicknesses(self) -> list[float]:
+        """Thicknesses [m] of the concept's flexures (every ``flexure*thickness`` parameter by
+        default; concepts with tapered or derived flexures override this).  The mesh is
+        refined in the flexure zones to ``flexure_factor`` x the thinnest of them."""
+        return [float(getattr(self, n)) for n in type(self).model_fields
+                if n.startswith("flexure") and n.endswith("thickness")]
+
     def min_clearance(self, t0: float, t1: float) -> float:
         th = np.linspace(t0, t1, 201)
         return float(np.min(self.drum_radius - self.outer_radius(th, t0, t1)))
@@ -131,7 +147,6 @@ class Shapes:
     """one surface per shoe covering its flexure(s) (may be empty)"""
     sector_start: float = 0.0
     """polar angle (rad) of a radial line that crosses only hub material (sector cut)"""
-    refine_curves: list[int] = field(default_factory=list)
 
 
 @dataclass
@@ -358,8 +373,9 @@ def _size_fields(p: ConceptParams, ms: MeshSettings, groups: dict[str, list[int]
         fields.append(t)
 
     threshold(groups.get("contact", []), ms.contact_factor * h, 0.5 * h)
-    flex_t = getattr(p, "flexure_thickness", None)
-    if flex_t:
+    flex_ts = p.flexure_thicknesses()
+    if flex_ts:
+        flex_t = min(flex_ts)
         flex_curves = []
         for name, tags in groups.items():
             if name.startswith("flexure_"):

@@ -125,23 +125,6 @@ def disk(r: float, x: float = 0.0, y: float = 0.0) -> int:
     return occ.addDisk(x, y, 0.0, r, r)
 
 
-def polygon(points: np.ndarray) -> int:
-    """Plane surface bounded by the closed polygon through ``points`` (k x 2)."""
-    tags = [_pt(float(x), float(y)) for x, y in points]
-    lines = [occ.addLine(tags[k], tags[(k + 1) % len(tags)]) for k in range(len(tags))]
-    return occ.addPlaneSurface([occ.addCurveLoop(lines)])
-
-
-def rounded_rectangle(x: float, y: float, dx: float, dy: float, angle: float = 0.0,
-                      cx: float = 0.0, cy: float = 0.0, fillet: float = 0.0) -> int:
-    """Axis-aligned rectangle [x, x+dx] x [y, y+dy] (rounded corners), then rotated by
-    ``angle`` about (cx, cy)."""
-    tag = occ.addRectangle(x, y, 0.0, dx, dy, roundedRadius=fillet)
-    if angle:
-        occ.rotate([(2, tag)], cx, cy, 0.0, 0.0, 0.0, 1.0, angle)
-    return tag
-
-
 def shoe_body(r_in: float, t0: float, t1: float, profile: Callable[[np.ndarray], np.ndarray],
               kind: str, eccentric_centre: tuple[float, float] | None = None, n_spline: int = 33) -> int:
     """A shoe: inner arc at r_in, radial sides at t0 < t1, outer profile r = profile(theta).
@@ -186,13 +169,3 @@ def fuse(objects: list[int]) -> list[int]:
         return objects
     out, _ = occ.fuse([(2, objects[0])], [(2, t) for t in objects[1:]])
     return [t for d, t in out if d == 2]
-
-
-def rotate(tags: list[int], angle: float) -> None:
-    occ.rotate([(2, t) for t in tags], 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, angle)
-
-
-def copy_rotated(tags: list[int], angle: float) -> list[int]:
-    new = occ.copy([(2, t) for t in tags])
-    occ.rotate(new, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, angle)
-    return [t for _, t in new]

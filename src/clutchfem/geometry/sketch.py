@@ -1,11 +1,11 @@
-"""Planar construction helpers for concepts with straight (possibly tapered, inclined) beams.
+"""Planar construction helpers: concepts drawn as one analytic outline.
 
-:mod:`.occ` rounds the corners of *annular sectors*, whose sides are radial lines; beams that
-leave a hub at an angle need fillets between an arbitrary straight line and a circle about
-the origin, or between two lines.  Everything here is plain 2-D analytic geometry (numpy),
-plus :func:`fillet_patch`, which turns a computed fillet into an OCC surface that is fused
-onto the material to round a concave corner exactly (the fillet arc is tangent to both
-edges; no sliver faces).
+:mod:`.occ` rounds the corners of *annular sectors*, whose sides are radial lines; spokes and
+beams that leave a hub at an angle need fillets between an arbitrary straight line and a
+circle about the origin (:func:`fillet_line_circle`).  A part is then traced as one closed
+:class:`Outline` of lines, arcs and splines (exact tangent fillets, no boolean slivers),
+with the shoe's outer profile appended by :func:`add_profile` and the finished outline
+checked by :func:`check_outlines` before OCC sees it.
 
 Conventions: points and directions are length-2 arrays in metres; a *line* is (point,
 unit direction); a *circle* is centred at the origin unless stated.
@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import GeometryError
 from . import occ as G
 
 Vec = np.ndarray
@@ -130,44 +131,6 @@ def fillet_line_circle(line: Line, line_side: float, R: float, outside: bool, rh
     t_line = c - line_side * rho * perp(line.d)
     t_circ = R * c / float(np.linalg.norm(c))
     return c, t_line, t_circ
-
-
-def fillet_line_line(l1: Line, side1: float, l2: Line, side2: float, rho: float):
-    """Circle of radius rho tangent to two lines, centre on the given sides.  Returns
-    (centre, tangent point on l1, tangent point on l2) or None for parallel lines."""
-    c = l1.offset(side1 * rho).intersect(l2.offset(side2 * rho))
-    if c is None:
-        return None
-    return c, c - side1 * rho * perp(l1.d), c - side2 * rho * perp(l2.d)
-
-
-def fillet_patch(corner: Vec, t1: Vec, m1: Vec, t2: Vec, m2: Vec, centre: Vec, rho: float,
-                 delta: float) -> list[int]:
-    """OCC surface that fills the concave corner at ``corner`` up to the fillet arc.
-
-    ``t1``/``t2`` are the fillet's tangent points on the two edges, ``m1``/``m2`` unit
-    normals pointing *into the material* at those points, ``centre``/``rho`` the fillet
-    circle.  The patch is the polygon corner -> t1 -> t2, pushed ``delta`` into the material
-    (so that curved edges between the corner and the tangent points are covered when their
-    sagitta is below ``delta``), minus the fillet disc.  Fuse it onto the material."""
-    m1, m2 = unit(m1), unit(m2)
-    mb = m1 + m2
-    nb = float(np.linalg.norm(mb))
-    c_in = corner + (delta * mb / nb if nb > 1e-9 else delta * m1)
-    pts = np.array([t1, t1 + delta * m1, c_in, t2 + delta * m2, t2])
-    poly = G.polygon(pts)
-    return G.cut([poly], [G.disk(rho, float(centre[0]), float(centre[1]))])
-
-
-def arc_points(r: float, a0: float, a1: float, max_step: float = math.radians(4.0)) -> list[Vec]:
-    """Points on the origin circle r from angle a0 to a1 inclusive (for polygon edges that
-    must follow an arc closely)."""
-    n = max(1, math.ceil(abs(a1 - a0) / max_step))
-    return [polar(r, a0 + (a1 - a0) * k / n) for k in range(n + 1)]
-
-
-def polygon(points: list[Vec]) -> int:
-    return G.polygon(np.asarray(points, float))
 
 
 # ---------------------------------------------------------------------------------------
@@ -311,3 +274,35 @@ class Outline:
 def radial_line(t: float) -> Line:
     """The line through the origin at polar angle t (direction outward)."""
     return Line(np.zeros(2), polar(1.0, t))
+
+
+def add_profile(out: Outline, p, R, t0: float, t1: float, s0: float, s1: float, n: int = 33) -> Outline:
+    """Append the shoe's outer profile from polar angle ``t0`` to ``t1`` (ccw) to ``out``.
+
+    ``p`` is the concept's parameter set (:meth:`ConceptParams.outer_radius`), the profile
+    belonging to a shoe whose contact arc spans [``s0`` (root), ``s1`` (tip)] in the canonical
+    frame; ``R`` maps canonical points to the shoe's place (rotation by i * 360/n).  A
+    concentric profile is an exact arc about the origin, an eccentric one an exact arc about
+    the eccentric centre, a linear one an interpolating spline through ``n`` profile points.
+    The outline must already end on the profile at ``t0``."""
+    r_end = float(p.outer_radius(np.array([t1]), s0, s1)[0])
+    q = R(polar(r_end, t1))
+    if p.profile == "concentric":
+        return out.arc_to(q, ccw=True)
+    if p.profile == "eccentric":
+        return out.arc_to(q, R(p.eccentric_centre(s0, s1)), ccw=True)
+    ths = np.linspace(t0, t1, n)[1:-1]
+    rs = p.outer_radius(ths, s0, s1)
+    return out.spline_to(q, [R(polar(float(r), float(t))) for r, t in zip(rs, ths)])
+
+
+def check_outlines(name: str, p, *outlines: Outline) -> None:
+    """Refuse outlines that cross themselves (a parameter combination the concept's own
+    consistency checks let through) with a :class:`GeometryError` carrying the parameter set,
+    before OCC builds a self-intersecting face."""
+    for o in outlines:
+        bad = o.self_intersections()
+        if bad:
+            x, y = bad[0]
+            raise GeometryError(f"{name}: the outline crosses itself near ({x * 1e3:.2f}, {y * 1e3:.2f}) mm "
+                                "(canonical frame): inconsistent parameters", p.model_dump())
