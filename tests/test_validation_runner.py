@@ -94,14 +94,46 @@ def test_report_contents(report):
     assert len(recs) == len({r.id for r in recs}) > 90
 
 
-def test_rich_table():
+def test_rich_table_reads_at_80_columns():
     recs = runner.collect(("chain",)).records
-    console = Console(record=True, width=220)
+    console = Console(record=True, width=80)
     runner.print_table(recs, console=console)
     out = console.export_text()
-    assert "chain.Nu2_min" in out and "differs" in out
+    assert max(len(line.rstrip()) for line in out.splitlines()) <= 80
+    assert "id (chain.*)" in out and "Nu2_min " in out and "differs" in out
+    # every differs row is listed with its reason under the module's table
+    why = out.split("Why chain rows differ:", 1)[1]
+    for r in recs:
+        if r.status == "differs":
+            assert f"- {r.id}:" in why
     assert f"{len(recs)} records" in out
     assert runner.rich_table is runner.render_table  # the name cli.py uses
+
+
+def test_options_reach_the_module(monkeypatch):
+    seen = {}
+    fake = types.ModuleType("clutchfem.validation._fake_opts")
+
+    def records(**kw):
+        seen.update(kw)
+        return [ValidationRecord("x.a", "x", "q", None, 1.0, "-")]
+
+    fake.records = records
+    monkeypatch.setitem(sys.modules, "clutchfem.validation._fake_opts", fake)
+    run = runner.collect(("_fake_opts",), options={"_fake_opts": {"concept": "concept1"}})
+    assert seen == {"concept": "concept1"} and len(run.records) == 1
+
+
+def test_report_run_does_not_run_modules_again(monkeypatch, tmp_path):
+    calls = []
+    fake = types.ModuleType("clutchfem.validation._fake_once")
+    fake.records = lambda: calls.append(1) or [ValidationRecord("y.a", "y", "q", 1.0, 1.0, "-")]
+    fake.figures = lambda out: []
+    monkeypatch.setitem(sys.modules, "clutchfem.validation._fake_once", fake)
+    run = runner.collect(("_fake_once",))
+    runner.report_run(run, tmp_path / "out", tmp_path / "v.md")
+    assert calls == [1]
+    assert "`y.a`" in (tmp_path / "v.md").read_text()
 
 
 def test_full_run_is_fast(tmp_path):
@@ -112,3 +144,26 @@ def test_full_run_is_fast(tmp_path):
         runner.write_report(tmp_path / "out", tmp_path / "validation.md")
     assert time.perf_counter() - t0 < 60.0
     assert (tmp_path / "validation.md").stat().st_size > 1000
+
+
+def test_cli_validate_docs_collects_once(monkeypatch, tmp_path):
+    from typer.testing import CliRunner
+
+    from clutchfem.cli import app
+
+    calls = []
+    real = runner.collect
+
+    def counting(modules=runner.MODULE_NAMES, **kw):
+        calls.append(kw.get("options"))
+        return real(("chain",), **kw)
+
+    monkeypatch.setattr(runner, "collect", counting)
+    res = CliRunner().invoke(app, ["validate", "--docs", str(tmp_path / "v.md"), "--out",
+                                   str(tmp_path / "out"), "--concept", "concept1"])
+    assert res.exit_code == 0, res.output
+    assert calls == [{"shaft": {"concept": "concept1"}}]
+    assert (tmp_path / "v.md").is_file() and (tmp_path / "out" / "validation.json").is_file()
+    res = CliRunner().invoke(app, ["validate", "--json"])
+    data = json.loads(res.stdout)
+    assert {"id", "paper", "computed", "unit", "status", "note"} <= set(data[0])

@@ -33,6 +33,12 @@ REQUIRED_IDS = {
 }
 
 
+@pytest.fixture(scope="module")
+def all_records():
+    """wiesik.records() once per module (a few seconds: quadratures and rounding bounds)."""
+    return wiesik.records()
+
+
 # ---- ripple, eqs 6-9, 14 ----------------------------------------------------------------
 
 
@@ -134,8 +140,8 @@ def test_loss_deficit_closed_form():
         assert loss_deficit(ms, d) == pytest.approx(expected, rel=1e-6)
 
 
-def test_loss_model_against_paper_within_stated_band():
-    recs = {r.id: r for r in wiesik.records()}
+def test_loss_model_against_paper_within_stated_band(all_records):
+    recs = {r.id: r for r in all_records}
     # torque-deficit model: within 16 % of 1.32/5.15/0.75/4.14 %; 20" worn overestimates (~26 %)
     for rid in ("loss_new", "loss_worn", "loss_13in", "loss_20in_new"):
         assert abs(recs[f"wiesik.{rid}"].rel_diff) < 0.16, rid
@@ -196,8 +202,8 @@ def test_worn_engagement_speed():
 # ---- records and figures ------------------------------------------------------------------
 
 
-def test_records_ids_and_core_reproductions():
-    recs = wiesik.records()
+def test_records_ids_and_core_reproductions(all_records):
+    recs = all_records
     ids = [r.id for r in recs]
     assert len(ids) == len(set(ids))
     assert REQUIRED_IDS <= set(ids)
@@ -219,3 +225,80 @@ def test_figures(tmp_path):
     for p in paths:
         assert p.exists() and p.stat().st_size > 10_000
         assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# ---- rule R2: range over the printed inputs within their rounding -------------------------
+
+
+def test_rounding_bound_of_a_linear_function_is_the_box():
+    d = DriveData()
+    b = wiesik.rounding_bound(lambda dd, ms: 1000.0 * dd.delta_mean + ms, d, 10.0,
+                              constrain_mb2=False)
+    h = wiesik.PRINTED_INPUT_HALF_UNITS
+    spread = 1000.0 * h["delta_mean"] + h["M_s"]
+    assert b.nominal == pytest.approx(42.0)
+    assert (b.lo, b.hi) == (pytest.approx(42.0 - spread), pytest.approx(42.0 + spread))
+
+
+def test_rounding_bound_constraint_holds_and_narrows():
+    d = DriveData()
+    ms = float(BaselineClutch.new().torque(950.0))
+    lo_c, hi_c = wiesik.MB2_CONSISTENT_N_M
+    # M_b(2) itself under its own constraint stays in the consistent slab
+    mb = wiesik.rounding_bound(lambda dd, _ms: limit_inertia_load(dd), d, ms)
+    assert lo_c - 1e-3 <= mb.lo <= mb.hi <= hi_c + 1e-3
+    free = wiesik.rounding_bound(lambda dd, _ms: limit_inertia_load(dd), d, ms,
+                                 constrain_mb2=False)
+    assert free.hi - free.lo > 20 * (mb.hi - mb.lo)
+
+    def p(dd, m):
+        return 100 * slip_probability(m, dd)
+
+    con, unc = wiesik.rounding_bound(p, d, ms), wiesik.rounding_bound(p, d, ms, False)
+    assert unc.lo < con.lo < con.nominal < con.hi < unc.hi
+
+
+def test_rounding_bound_contains_random_consistent_inputs():
+    """The LP vertices bound the value over sampled inputs that satisfy the constraint."""
+    d = DriveData()
+    ms = float(BaselineClutch.new().torque(950.0))
+
+    def p(dd, m):
+        return 100 * slip_probability(m, dd)
+
+    b = wiesik.rounding_bound(p, d, ms)
+    rng = np.random.default_rng(5)
+    h = wiesik.PRINTED_INPUT_HALF_UNITS
+    x0 = {"delta_mean": d.delta_mean, "delta_std": d.delta_std, "J_b": d.J_b, "r_k": d.r_k,
+          "m_ref": d.chain.m_ref, "M_o": d.M_o, "M_s": ms}
+    lo_c, hi_c = wiesik.MB2_CONSISTENT_N_M
+    seen = []
+    for _ in range(3000):
+        x = {k: v + h[k] * rng.uniform(-1, 1) for k, v in x0.items()}
+        dd, m = wiesik._apply_inputs(d, ms, x)
+        if lo_c <= limit_inertia_load(dd) <= hi_c:
+            seen.append(p(dd, m))
+    assert len(seen) > 50
+    slack = 0.01 * (b.hi - b.lo)
+    assert b.lo - slack <= min(seen) and max(seen) <= b.hi + slack
+
+
+def test_rounding_bound_tolerance_sides():
+    b = wiesik.RoundingBound(nominal=4.0, lo=3.9, hi=4.4, constrained=True)
+    assert b.tol_for(4.3, 0.05) == pytest.approx(0.45 / 4.3)  # paper above: upper side
+    assert b.tol_for(3.8, 0.05) == pytest.approx(0.15 / 3.8)  # paper below: lower side
+    # a paper value outside [lo - half unit, hi + half unit] cannot be reproduced
+    for paper in (3.8, 4.5):
+        assert abs(4.0 - paper) > b.tol_for(paper, 0.05) * paper
+
+
+def test_r2_records_follow_the_bound(all_records):
+    by = {r.id: r for r in all_records}
+    for rid in ("p_slip_new", "p_slip_worn", "p_slip_13in", "loss_new", "loss_worn",
+                "loss_13in", "loss_20in_new", "loss_20in_worn"):
+        r = by[f"wiesik.{rid}"]
+        assert "printed-input range" in r.note, rid
+        if r.status == "differs":
+            assert "lies outside" in r.note, rid
+    # the paper's 3.8 % is below the range its own rounded inputs allow (about 3.9-4.4 %)
+    assert by["wiesik.p_slip_new"].status == "differs"

@@ -3,30 +3,44 @@
 from __future__ import annotations
 
 import json
+import time
+import warnings
 from pathlib import Path
 from typing import Optional
 
 import typer
 
 from ..errors import ClutchfemError
-from .common import console, fail
+from .common import console, err, fail
 
 
 def validate(
     json_: bool = typer.Option(False, "--json", help="print a JSON list of records"),
-    out: Path = typer.Option(Path("out/validation"), "--out", help="folder for figures"),
+    out: Path = typer.Option(Path("out/validation"), "--out",
+                             help="folder for figures and validation.json (with --docs)"),
     docs: Optional[Path] = typer.Option(None, "--docs", help="write the Markdown report here (e.g. docs/validation.md)"),
+    concept: Optional[str] = typer.Option(None, "--concept",
+                                          help="concept whose clutch sits on the crankshaft in "
+                                               "the whirl check (default: the default design)"),
 ):
     """Reproduce the source papers' numbers (spring clutch, chain impact, shaft whirl, thesis)."""
     from ..validation import runner
 
+    t0 = time.perf_counter()
     try:
-        records = runner.run_all()
+        options = {"shaft": {"concept": concept}} if concept else None
+        run = runner.collect(options=options)  # every module runs once
         if docs is not None:
-            runner.write_report(out, docs)
+            runner.report_run(run, out, docs)
         if json_:
-            print(json.dumps([r.to_json() for r in records]))
+            print(json.dumps([r.to_json() for r in run.records]))
         else:
-            console.print(runner.rich_table(records))
+            console.print(runner.rich_table(run.records))
+        for w in run.warnings:
+            warnings.warn(w, runner.ValidationModuleWarning, stacklevel=1)
+            err.print(f"[yellow]warning:[/] {w}")
+        if not json_:
+            where = f"; report {docs}, figures in {out}" if docs is not None else ""
+            console.print(f"{len(run.records)} records in {time.perf_counter() - t0:.1f} s{where}")
     except ClutchfemError as exc:
         fail(exc)

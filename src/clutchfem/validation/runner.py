@@ -25,7 +25,7 @@ import sys
 import time
 import warnings
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -74,9 +74,13 @@ def load_module(name: str, *, strict: bool = False) -> tuple[ModuleType | None, 
         return None, f"module '{name}' failed to import: {type(exc).__name__}: {exc}"
 
 
-def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False) -> ValidationRun:
-    """Import each module and call its ``records()``; problems become warnings."""
+def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
+            options: Mapping[str, Mapping[str, object]] | None = None) -> ValidationRun:
+    """Import each module and call its ``records(**options[name])``; problems become
+    warnings.  ``options`` e.g. ``{"shaft": {"concept": "concept1"}}`` (the concept whose
+    clutch sits on the crankshaft in the whirl check)."""
     run = ValidationRun()
+    options = options or {}
     for name in modules:
         t0 = time.perf_counter()
         mod, warn = load_module(name, strict=strict)
@@ -84,7 +88,7 @@ def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False) -> V
             run.warnings.append(warn or f"module '{name}' skipped")
             continue
         try:
-            recs = list(mod.records())
+            recs = list(mod.records(**dict(options.get(name, {}))))
         except Exception as exc:  # noqa: BLE001
             if strict:
                 raise
@@ -107,11 +111,12 @@ def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False) -> V
     return run
 
 
-def run_all(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False
+def run_all(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
+            options: Mapping[str, Mapping[str, object]] | None = None
             ) -> list[ValidationRecord]:
     """All records of all available modules; skipped modules raise a
     :class:`ValidationModuleWarning` (see :func:`collect` for the details)."""
-    run = collect(modules, strict=strict)
+    run = collect(modules, strict=strict, options=options)
     for w in run.warnings:
         warnings.warn(w, ValidationModuleWarning, stacklevel=2)
     return run.records
@@ -195,12 +200,23 @@ def render_markdown(run: ValidationRun, figures: dict[str, list[Path]], docs_md:
 
 
 def write_report(out_dir: Path, docs_md: Path, modules: Sequence[str] = MODULE_NAMES, *,
-                 strict: bool = False) -> Path:
-    """Run everything, write figures under ``out_dir/figures/<module>/``, the records as
-    ``out_dir/validation.json`` and the Markdown report at ``docs_md``; returns ``docs_md``.
-    """
+                 strict: bool = False,
+                 options: Mapping[str, Mapping[str, object]] | None = None) -> Path:
+    """Run everything (:func:`collect`) and :func:`report_run` it; returns ``docs_md``."""
+    run = collect(modules, strict=strict, options=options)
+    report_run(run, out_dir, docs_md, strict=strict)
+    for w in run.warnings:
+        warnings.warn(w, ValidationModuleWarning, stacklevel=2)
+    return docs_md
+
+
+def report_run(run: ValidationRun, out_dir: Path, docs_md: Path, *, strict: bool = False
+               ) -> Path:
+    """Write the figures of ``run``'s modules under ``out_dir/figures/<module>/``, its
+    records as ``out_dir/validation.json`` and the Markdown report at ``docs_md`` (no module
+    is run again: ``clutchfem validate --docs`` collects once and reports that run).
+    Figure failures are appended to ``run.warnings``; returns ``docs_md``."""
     out_dir, docs_md = Path(out_dir), Path(docs_md)
-    run = collect(modules, strict=strict)
     figs: dict[str, list[Path]] = {}
     for name, mod in run.modules.items():
         fdir = out_dir / "figures" / name
@@ -223,32 +239,51 @@ def write_report(out_dir: Path, docs_md: Path, modules: Sequence[str] = MODULE_N
          "seconds": run.seconds}, indent=1))
     docs_md.parent.mkdir(parents=True, exist_ok=True)
     docs_md.write_text(render_markdown(run, figs, docs_md))
-    for w in run.warnings:
-        warnings.warn(w, ValidationModuleWarning, stacklevel=2)
     return docs_md
 
 
 def render_table(records: Sequence[ValidationRecord], *, title: str = "clutchfem validation"):
-    """A :class:`rich.table.Table` of the records (status coloured)."""
+    """The records as one compact :class:`rich.table.Table` per module, each followed by the
+    reasons of its ``differs`` rows (wrapped), so that it reads in an 80-column terminal;
+    a :class:`rich.console.Group`.  Status is coloured; the id column folds when narrow."""
+    from rich import box
+    from rich.console import Group
     from rich.table import Table
+    from rich.text import Text
 
     colour = {"reproduced": "green", "differs": "bold red", "computed": "cyan"}
-    table = Table(title=title, show_lines=False)
-    table.add_column("id", no_wrap=True)
-    for col in ("paper", "computed"):
-        table.add_column(col, justify="right", no_wrap=True)
-    table.add_column("unit", no_wrap=True)
-    table.add_column("rel. diff", justify="right", no_wrap=True)
-    table.add_column("status", no_wrap=True)
-    table.add_column("note (differs only)", overflow="fold", ratio=1)
-    for r in records:
-        table.add_row(r.id, fmt_value(r.paper), fmt_value(r.computed), r.unit, fmt_rel(r),
-                      f"[{colour[r.status]}]{r.status}[/]",
-                      r.note if r.status == "differs" else "")
+    parts: list = [Text(title, style="bold")]
+    for name in dict.fromkeys(r.module for r in records):
+        recs = [r for r in records if r.module == name]
+        c = _status_counts(recs)
+        table = Table(title=f"{name}: {SOURCES.get(name, name)}", title_justify="left",
+                      box=box.SIMPLE_HEAD, padding=(0, 1), pad_edge=False, expand=False,
+                      caption=(f"{name}: {len(recs)} records, {c['reproduced']} reproduced, "
+                               f"{c['differs']} differs, {c['computed']} computed"),
+                      caption_justify="left")
+        table.add_column(f"id ({name}.*)", overflow="fold", ratio=1, min_width=16)
+        table.add_column("paper", justify="right", no_wrap=True)
+        table.add_column("computed", justify="right", no_wrap=True)
+        table.add_column("unit", no_wrap=True)
+        table.add_column("diff", justify="right", no_wrap=True)
+        table.add_column("status", no_wrap=True)
+        for r in recs:
+            short = r.id[len(name) + 1:] if r.id.startswith(f"{name}.") else r.id
+            table.add_row(short, fmt_value(r.paper), fmt_value(r.computed), r.unit, fmt_rel(r),
+                          f"[{colour[r.status]}]{r.status}[/]")
+        parts.append(table)
+        why = [r for r in recs if r.status == "differs"]
+        if why:
+            notes = Text(f"Why {name} rows differ:\n", style="bold")
+            for r in why:
+                notes.append("- ")
+                notes.append(r.id, style="red")
+                notes.append(f": {r.note.strip() or 'NO EXPLANATION GIVEN'}\n")
+            parts.append(notes)
     c = _status_counts(records)
-    table.caption = (f"{len(records)} records: {c['reproduced']} reproduced, {c['differs']} "
-                     f"differs, {c['computed']} computed")
-    return table
+    parts.append(Text(f"{len(records)} records: {c['reproduced']} reproduced, {c['differs']} "
+                      f"differs, {c['computed']} computed", style="bold"))
+    return Group(*parts)
 
 
 #: Name used by ``clutchfem validate`` (cli.py).
