@@ -459,17 +459,22 @@ def _coupled_curves(cm, params, material, res, mu, rotation):
         coupling["nominal_error"] = str(exc)
     # FE contact arc per speed, measured from the pivot ray
     fe_arc = []
+    q_deg = np.full((len(rpm), 2), np.nan)
     for k in range(len(rpm)):
+        if np.isfinite(ext[k, 0]):
+            q = sorted((abs(_wrap(ext[k, 0] - th_p)), abs(_wrap(ext[k, 1] - th_p))))
+            q1, q2 = max(q[0], 0.0), min(q[1], math.pi)
+            q_deg[k] = np.degrees([q1, q2])
         if not np.isfinite(ext[k, 0]) or F[k] <= 0:
             fe_arc.append(0.0)
             continue
-        q = sorted((abs(_wrap(ext[k, 0] - th_p)), abs(_wrap(ext[k, 1] - th_p))))
-        q1, q2 = max(q[0], 0.0), min(q[1], math.pi)
         try:
             fe_arc.append(float(shoe_torque(F[k], ShoeGeometry(q1, q2, A, R, L), mu, kind, n).total))
         except ClutchfemError:
             fe_arc.append(math.nan)
     out["analytic_fe_arc_Nm"] = fe_arc
+    out["contact_phi1_deg"] = q_deg[:, 0]  # FE contact extent from the pivot ray (nominal: phi1..phi2)
+    out["contact_phi2_deg"] = q_deg[:, 1]
     return coupling, out
 
 
