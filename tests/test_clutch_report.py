@@ -203,3 +203,18 @@ def test_bad_input_clear_error(tmp_path, csv, args, fragments):
     assert "error:" in t and "Traceback" not in t
     for frag in fragments:
         assert frag in t, (frag, t)
+
+
+def test_default_design_report_writes_fig25_and_says_yield(tmp_path):
+    from clutchfem.report import default_design_report
+
+    files = default_design_report(tmp_path, mesh_size=0.002)
+    names = {f.name for f in files}
+    assert {"clutch_torque_comparison.png", "report.md", "concept1_torque_rpm.png", "concept1_arc_stress_rpm.png",
+            "concept4_torque_rpm.png", "concept4_arc_stress_rpm.png"} <= names
+    md = (tmp_path / "report.md").read_text()
+    for name in ("concept1", "concept4"):
+        sf = json.loads((tmp_path / f"{name}_analysis.json").read_text())["safety_factor"]
+        section = md.split(f"## {name}")[1].split("## ")[0]
+        assert ("STRESS ABOVE YIELD" in section) == (sf < 1.0), name
+        assert "ASSUMED" in section
