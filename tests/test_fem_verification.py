@@ -179,7 +179,7 @@ def fe_errors(solver: ClutchSolver, u: np.ndarray, exact: Lame) -> dict:
     r = np.hypot(X[0], X[1])
     ur = (u[nx] * X[0] + u[ny] * X[1]) / r
     rr = np.linspace(A_IN, B_OUT, 4001)
-    sv = (solver._stress_operator @ u).reshape(3, -1)
+    sv = solver.vertex_stresses(u)
     pts = solver._vertex_points
     _, sve = exact.cartesian(pts[0], pts[1])
     vm_exact_max = float(np.max(von_mises(exact.cartesian(rr, 0 * rr)[1])))

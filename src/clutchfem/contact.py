@@ -44,13 +44,21 @@ class ContactNodes:
     normal: np.ndarray  # (2, m) outward unit normals
     tangent: np.ndarray  # (2, m) e_theta (ccw)
     gap0: np.ndarray  # (m,) initial gaps [m]
-    weight: np.ndarray  # (m,) tributary length int phi_i ds [m]
+    _weight: object  # callable () -> (m,) weights, evaluated once on first use
     shoe: np.ndarray  # (m,) index of the shoe the node belongs to (-1 if unknown)
     angle: np.ndarray  # (m,) polar angle [rad]
 
     @property
     def m(self) -> int:
         return len(self.gap0)
+
+    @property
+    def weight(self) -> np.ndarray:
+        """(m,) tributary length int phi_i ds [m] of each node (pressure = force / (h weight));
+        computed on first use: only pressure output needs it."""
+        if callable(self._weight):
+            self._weight = self._weight()
+        return self._weight
 
 
 def contact_nodes(cm: ClutchMesh, basis: Basis, drum_radius: float) -> ContactNodes:
@@ -79,7 +87,7 @@ def contact_nodes(cm: ClutchMesh, basis: Basis, drum_radius: float) -> ContactNo
                         f"{r.max() * 1e3:.4f} mm)")
     # the contact surface must face the drum: outward boundary normals point away from the axis
     _check_facing(cm, facets)
-    w = contact_weights(cm, basis, facets)[dx]
+    dx_all, merge = dx, None
     # one-sector model: a contact node on cut_b is the rotated copy of a node on cut_a (the
     # same node of the full part, u_b = R u_a).  Keep one of each pair, with both weights:
     # two copies would make G singular and split their force arbitrarily.
@@ -94,8 +102,17 @@ def contact_nodes(cm: ClutchMesh, basis: Basis, drum_radius: float) -> ContactNo
             if dist.max() > 1e-8 * drum_radius:
                 raise MeshError(f"{cm.source}: a contact node on cut_b has no partner on cut_a "
                                 f"(mismatch {dist.max():.3g} m)")
+            merge = (keep, j, copy)
+            dx, dy, xy, n, t, gap0 = (a[..., keep] for a in (dx, dy, xy, n, t, gap0))
+
+    def weights() -> np.ndarray:
+        w = contact_weights(cm, basis, facets)[dx_all]
+        if merge is not None:
+            keep, j, copy = merge
             np.add.at(w, keep[j], w[copy])
-            dx, dy, xy, n, t, gap0, w = (a[..., keep] for a in (dx, dy, xy, n, t, gap0, w))
+            w = w[keep]
+        return w
+
     shoe = -np.ones(len(dx), dtype=np.int64)
     for name, fac in b.items():
         if name.startswith("contact_"):
@@ -106,7 +123,7 @@ def contact_nodes(cm: ClutchMesh, basis: Basis, drum_radius: float) -> ContactNo
     if np.all(shoe < 0):
         shoe[:] = 0
     return ContactNodes(dof_x=dx, dof_y=dy, xy=xy, normal=n, tangent=t, gap0=np.maximum(gap0, 0.0),
-                        weight=w, shoe=shoe, angle=np.arctan2(xy[1], xy[0]))
+                        _weight=weights, shoe=shoe, angle=np.arctan2(xy[1], xy[0]))
 
 
 def _check_facing(cm: ClutchMesh, facets: np.ndarray) -> None:
@@ -126,28 +143,59 @@ def _check_facing(cm: ClutchMesh, facets: np.ndarray) -> None:
 # ---------------------------------------------------------------------------------------
 # LCP
 # ---------------------------------------------------------------------------------------
-def lcp_residual(G: np.ndarray, q: np.ndarray, lam: np.ndarray) -> float:
-    """Max violation of the LCP conditions, scaled to gap units."""
-    w = q + G @ lam
-    scale = np.max(np.abs(np.diag(G)))
+def lcp_residual(G, q: np.ndarray, lam: np.ndarray) -> float:
+    """Max violation of the LCP conditions, scaled to gap units.  ``G`` as in :func:`solve_lcp`."""
+    cols = _as_columns(G)
+    S = np.nonzero(lam)[0]
+    GS = cols(S)
+    w = q + GS @ lam[S]
+    d = np.abs(GS[S, np.arange(len(S))]) if len(S) else np.zeros(0)
+    scale = float(np.max(d, initial=0.0)) if isinstance(G, _Lazy) else float(np.max(np.abs(np.diag(G))))
     return float(max(np.max(-w, initial=0.0), np.max(-lam, initial=0.0) * scale,
                      np.max(np.abs(w * lam), initial=0.0) / max(np.max(lam, initial=0.0), 1e-300)))
 
 
-def solve_lcp(G: np.ndarray, q: np.ndarray, active0: np.ndarray | None = None,
+class _Lazy:
+    """Columns of G on demand: ``cols(idx) -> G[:, idx]``."""
+
+    def __init__(self, cols):
+        self.cols = cols
+
+    def __call__(self, idx):
+        return self.cols(np.asarray(idx, dtype=np.int64))
+
+
+def lazy(cols) -> _Lazy:
+    """Wrap a column provider ``cols(idx) -> G[:, idx]`` (m x len(idx)) for :func:`solve_lcp`."""
+    return _Lazy(cols)
+
+
+def _as_columns(G):
+    if isinstance(G, _Lazy):
+        return G
+    G = np.asarray(G)
+    return lambda idx: G[:, idx]
+
+
+def solve_lcp(G, q: np.ndarray, active0: np.ndarray | None = None,
               tol: float = 1e-12, max_iter: int = 100) -> tuple[np.ndarray, np.ndarray]:
     """Solve w = q + G lam, 0 <= lam perp w >= 0.  Returns (lam, active mask).
 
+    ``G`` is the m x m matrix, or ``lazy(cols)``: a provider of its columns.  The active-set
+    method only ever needs the columns of the nodes it makes active (a handful of the m
+    contact nodes: the shoes touch the drum on a short arc), so a lazy G saves the
+    condensation of all the others; the Lemke fallback asks for every column.
     ``tol`` is in gap units (metres); the check is relative to the problem scale."""
     m = len(q)
     scale_q = max(float(np.max(np.abs(q))), 1e-300)
     if np.all(q >= 0):
         return np.zeros(m), np.zeros(m, dtype=bool)
     lam, active = _active_set(G, q, active0, max_iter)
-    if lam is None or lcp_residual(G, q, lam) > max(tol, 1e-9 * scale_q):
-        lam = _lemke(G, q)
+    res = math.inf if lam is None else lcp_residual(G, q, lam)
+    if res > max(tol, 1e-9 * scale_q):
+        lam = _lemke(_as_columns(G)(np.arange(m)), q)
         active = lam > 0
-    res = lcp_residual(G, q, lam)
+        res = lcp_residual(G, q, lam)
     if res > max(tol, 1e-9 * scale_q) * 10:
         raise SolverError(f"contact solve did not converge (complementarity residual {res:.3g} m)")
     return lam, active
@@ -155,21 +203,25 @@ def solve_lcp(G: np.ndarray, q: np.ndarray, active0: np.ndarray | None = None,
 
 def _active_set(G, q, active0, max_iter):
     m = len(q)
+    cols = _as_columns(G)
     active = (q < 0) if active0 is None else active0.copy()
     if not active.any():
         active = q < 0
-    c = 1.0 / np.mean(np.diag(G))  # balances forces against gaps
+    c = None  # 1 / mean diagonal: balances forces against gaps
     seen = set()
     for _ in range(max_iter):
         lam = np.zeros(m)
         A = np.nonzero(active)[0]
+        GA = cols(A)
         if len(A):
+            if c is None:
+                c = 1.0 / np.mean(np.diag(GA[A]))
             try:
-                lam[A] = sla.solve(G[np.ix_(A, A)], -q[A])
+                lam[A] = sla.solve(GA[A], -q[A])
             except (sla.LinAlgError, ValueError):
                 return None, active
-        w = q + G @ lam
-        new = (lam - c * w) > 0
+        w = q + GA @ lam[A]
+        new = (lam - (c or 0.0) * w) > 0 if c is not None else w < 0
         key = new.tobytes()
         if np.array_equal(new, active):
             return lam, active

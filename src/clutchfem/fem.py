@@ -124,15 +124,20 @@ def build_fe_model(cm: ClutchMesh, material: Material, thickness: float | None =
         return h * (2.0 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev))
 
     @BilinearForm
-    def mass(u, v, w):
-        return h * rho * dot(u, v)
+    def mass(u, v, w):  # scalar P2 mass; the vector one is kron(M, I2) (dof 2 i + component)
+        return h * rho * u * v
 
     @LinearForm
     def centrifugal(v, w):
         return h * rho * (w.x[0] * v[0] + w.x[1] * v[1])
 
     K = asm(stiffness, basis).tocsr()
-    M = asm(mass, basis).tocsr()
+    sb = basis.with_element(ElementTriP2())
+    if (np.array_equal(basis.nodal_dofs, 2 * sb.nodal_dofs + np.array([[0], [1]]))
+            and np.array_equal(basis.facet_dofs, 2 * sb.facet_dofs + np.array([[0], [1]]))):
+        M = sp.kron(asm(mass, sb), sp.identity(2, format="csr"), format="csr")
+    else:  # another dof layout: assemble the vector form directly
+        M = asm(BilinearForm(lambda u, v, w: h * rho * dot(u, v)), basis).tocsr()
     f1 = asm(centrifugal, basis)
     t1 = time.perf_counter()
     T = constraint_map(cm, basis)

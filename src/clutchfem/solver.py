@@ -7,19 +7,26 @@ Equations at speed w (rad/s), after the bore clamp and cyclic constraints (u = T
 (:mod:`clutchfem.fem` for K, M, f1; :mod:`clutchfem.contact` for B, D and the LCP).
 
 Spin softening (-w^2 M u: the centrifugal load follows the deformed position) by *mode
-acceleration*: with the lowest r eigenpairs (w_j, phi_j) of K phi = w^2 M phi, M-normalised,
+acceleration* on load-dependent Ritz pairs (w_j, phi_j), M-normalised:
 
-    (K - w^2 M)^-1 = K^-1 + sum_j phi_j phi_j' w^2 / (w_j^2 (w_j^2 - w^2))     (exact for r = all)
+    (K - w^2 M)^-1 ~ K^-1 + sum_j phi_j phi_j' w^2 / (w_j^2 (w_j^2 - w^2))
 
-so one factorisation of K serves every speed; the truncation error scales like
-(w / w_{r+1})^2 times the small high-mode share and is measured against a per-speed exact
-factorisation in ``benchmarks/bench_sweep.py``.  ``spin_softening='off'`` drops M
-(u linear in w^2); ``'exact'`` factorises K - w^2 M at every speed (reference, slow).
+The pairs come from a block Krylov space of K^-1 M seeded with the loads the sweep applies
+(centrifugal, and per shoe a uniform and a tip-heavy contact load), ``ritz_depth`` blocks
+deep: a few blocked back-solves with the one factorisation of K, and the space holds what
+the loads excite (which the lowest eigenmodes need not: an annulus' breathing mode lies
+above its torsion modes).  Its error against a per-speed factorisation of K - w^2 M
+(``spin_softening='exact'``) is measured in ``benchmarks/bench_sweep.py`` (~1e-8 in the
+normal force at the default depth).  ``'off'`` drops M (u linear in w^2).
 
-Per speed the work is O(m^2 r + m^3) for m contact nodes (tens to a few hundred): the LCP is
-solved exactly, warm-started from the previous speed; below the closed-form engagement speed
-nothing is solved at all.  Stresses, when asked for, come from one sparse operator applied
-to all displacement columns at once.
+Contact is condensed lazily: the LCP matrix G = B K^-1 D is m x m for m contact nodes, but
+the active-set method only needs the columns of the nodes it makes active (the shoes touch
+the drum on a short arc), so K^-1 D is computed column block by column block as nodes enter
+contact, with their neighbours along the shoe prefetched.  Per speed the work is then a few
+small dense solves; below the closed-form engagement speed nothing is solved at all.
+
+Every displacement of a sweep lies in span[u1, Phi, K^-1 D_condensed]: fields and vertex
+stresses of all speeds are one small dense product with that basis.
 """
 
 from __future__ import annotations
@@ -32,10 +39,9 @@ from typing import Literal
 import numpy as np
 import pandas as pd
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from scipy.optimize import brentq
 
-from .contact import ContactNodes, contact_nodes, solve_lcp
+from .contact import ContactNodes, contact_nodes, lazy, solve_lcp
 from .errors import InputError, ParameterError, SolverError
 from .fem import FEModel, build_fe_model, von_mises
 from .materials import Material
@@ -43,6 +49,9 @@ from .mesh import ClutchMesh
 from .units import rad_s_to_rpm, rpm_to_rad_s
 
 Softening = Literal["modal", "exact", "off"]
+
+#: contact-node columns condensed on each side of a newly needed one (see ClutchSolver._w)
+_PREFETCH = 8
 
 
 @dataclass
@@ -91,7 +100,7 @@ class ClutchSolver:
 
     def __init__(self, cm: ClutchMesh, material: Material, *, drum_radius: float | None = None,
                  mu: float = 0.0, rotation: Literal["ccw", "cw"] = "ccw",
-                 spin_softening: Softening = "modal", n_modes: int = 12,
+                 spin_softening: Softening = "modal", ritz_depth: int = 3,
                  thickness: float | None = None):
         if mu < 0 or not math.isfinite(mu):
             raise ParameterError("mu", mu, "a friction coefficient >= 0")
@@ -120,15 +129,6 @@ class ClutchSolver:
         self.u1 = fe.solve(fe.f1)
         self.timings["factorize_s"] = fe.timings.get("factorize_s", 0.0)
         self.timings["solve_u1_s"] = time.perf_counter() - t1 - self.timings["factorize_s"]
-        # spin-softening modes
-        t2 = time.perf_counter()
-        self.w2 = np.zeros(0)
-        self.Phi = np.zeros((fe.ndofs, 0))
-        if spin_softening == "modal":
-            self.w2, self.Phi = self._modes(n_modes)
-        self.timings["modes_s"] = time.perf_counter() - t2
-        self.Phi_f1 = self.Phi.T @ fe.f1
-        self.omega_diverge = float(np.sqrt(self.w2[0])) if len(self.w2) else None
         # contact condensation
         t3 = time.perf_counter()
         self.nodes: ContactNodes | None = None
@@ -136,19 +136,34 @@ class ClutchSolver:
             self.nodes = contact_nodes(cm, fe.basis, drum_radius)
             nd = self.nodes
             m = nd.m
-            D = sp.lil_matrix((fe.ndofs, m))
             fx = -nd.normal[0] - self.s * self.mu * nd.tangent[0]
             fy = -nd.normal[1] - self.s * self.mu * nd.tangent[1]
             D = sp.csc_matrix((np.concatenate([fx, fy]),
                                (np.concatenate([nd.dof_x, nd.dof_y]), np.concatenate([np.arange(m)] * 2))),
                               shape=(fe.ndofs, m))
             self.D = D
-            self.W = fe.solve(D.toarray())  # N x m: K^-1 D (m back-substitutions)
-            self.BW = self._B(self.W)
+            # K^-1 D is condensed lazily, column by column as nodes become active (see _w)
+            self._colpos = -np.ones(m, dtype=np.int64)
+            # neighbours along each shoe's contact surface, for prefetching columns
+            self._rank = np.empty(m, dtype=np.int64)
+            self._by_arc = np.lexsort((nd.angle, nd.shoe))
+            self._rank[self._by_arc] = np.arange(m)
+            self._Wc = np.zeros((fe.ndofs, 0))
+            self._BWc = np.zeros((m, 0))
+        self.timings["contact_setup_s"] = time.perf_counter() - t3
+        # spin softening: load-dependent Ritz pairs (after the contact nodes: their loads seed them)
+        t2 = time.perf_counter()
+        self.w2 = np.zeros(0)
+        self.Phi = np.zeros((fe.ndofs, 0))
+        if spin_softening == "modal":
+            self.w2, self.Phi = self._ritz(ritz_depth)
+        self.timings["modes_s"] = time.perf_counter() - t2
+        self.Phi_f1 = self.Phi.T @ fe.f1
+        self.omega_diverge = float(np.sqrt(self.w2[0])) if len(self.w2) else None
+        if self.nodes is not None:
             self.Bu1 = self._B(self.u1)
             self.BPhi = self._B(self.Phi)
-            self.PhiD = (D.T @ self.Phi).T  # r x m
-        self.timings["condense_s"] = time.perf_counter() - t3
+            self.PhiD = (self.D.T @ self.Phi).T  # r x m
         self.timings["setup_s"] = time.perf_counter() - t0
 
     # -- helpers ------------------------------------------------------------------------
@@ -160,21 +175,102 @@ class ClutchSolver:
             return nd.normal[0] * U[nd.dof_x] + nd.normal[1] * U[nd.dof_y]
         return nd.normal[0][:, None] * U[nd.dof_x] + nd.normal[1][:, None] * U[nd.dof_y]
 
-    def _modes(self, r: int) -> tuple[np.ndarray, np.ndarray]:
+    def _w(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Columns ``idx`` of W = K^-1 D and of B W, condensing (one blocked back-solve) those
+        not done yet.  Only the nodes the contact solve makes active are ever condensed: a
+        few of the m candidates, since the shoes touch the drum on a short arc."""
+        idx = np.asarray(idx, dtype=np.int64)
+        missing = idx[self._colpos[idx] < 0]
+        if len(missing):
+            # the contact arc grows node by node with speed: condense the PREFETCH nearest
+            # nodes on either side along the same shoe too (one blocked solve is ~2.5x
+            # cheaper per column than single ones)
+            nd = self.nodes
+            near = self._rank[missing][:, None] + np.arange(-_PREFETCH, _PREFETCH + 1)[None, :]
+            near = self._by_arc[np.clip(near, 0, nd.m - 1)]
+            near = near[nd.shoe[near] == nd.shoe[missing][:, None]]
+            missing = np.unique(np.concatenate([missing, near]))
+            missing = missing[self._colpos[missing] < 0]
+            t = time.perf_counter()
+            Wn = self.fe.solve(self.D[:, missing].toarray()).reshape(self.fe.ndofs, -1)
+            self._colpos[missing] = self._Wc.shape[1] + np.arange(len(missing))
+            self._Wc = np.hstack([self._Wc, Wn])
+            self._BWc = np.hstack([self._BWc, self._B(Wn).reshape(self.nodes.m, -1)])
+            self.timings["condense_s"] = self.timings.get("condense_s", 0.0) + time.perf_counter() - t
+        pos = self._colpos[idx]
+        return self._Wc[:, pos], self._BWc[:, pos]
+
+    def _bw(self, idx: np.ndarray) -> np.ndarray:
+        """Columns ``idx`` of B W (normal displacements at the contact nodes), condensing as
+        needed; cheaper than :meth:`_w` when the full columns are not wanted."""
+        idx = np.asarray(idx, dtype=np.int64)
+        if np.any(self._colpos[idx] < 0):
+            self._w(idx[self._colpos[idx] < 0])
+        return self._BWc[:, self._colpos[idx]]
+
+    @property
+    def n_condensed(self) -> int:
+        """Contact nodes condensed so far (columns of K^-1 D computed)."""
+        return 0 if self.nodes is None else int(self._Wc.shape[1])
+
+    def _g_columns(self, c: np.ndarray):
+        """Provider of the LCP matrix columns G[:, idx] = -(B W + B Phi diag(c) Phi' D)[:, idx]."""
+        BPc = self.BPhi * c
+
+        def cols(idx):
+            return -(self._bw(idx) + BPc @ self.PhiD[:, idx])
+
+        return lazy(cols)
+
+    def _ritz(self, depth: int) -> tuple[np.ndarray, np.ndarray]:
+        """Load-dependent Ritz pairs (Wilson, Yuan & Dickens 1982) for the mode-acceleration
+        formula: a block Krylov space of K^-1 M seeded with the loads the sweep applies,
+
+            V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X},  X = K^-1 [f1, contact loads],
+
+        M-orthonormalised, then the Rayleigh-Ritz pairs of (K, M) on V.  The contact seeds are,
+        per shoe, a uniform and a linearly varying (tip-heavy) load along its contact surface.
+        Unlike the lowest eigenmodes, the space holds what the loads excite (an annulus'
+        breathing mode above its torsion modes), for ``depth`` blocked back-solves; the error
+        against the exact K - w^2 M is measured in BENCHMARKS.md."""
         fe = self.fe
-        n = fe.Kr.shape[0]
-        r = max(1, min(r, n - 2))
-        op = spla.LinearOperator((n, n), matvec=fe.factor.solve, dtype=float)
-        try:
-            vals, vecs = spla.eigsh(fe.Kr, k=r, M=fe.Mr, sigma=0.0, OPinv=op, which="LM",
-                                    tol=1e-10)
-        except spla.ArpackNoConvergence as exc:  # pragma: no cover - rare
-            raise SolverError(f"eigen-solve for spin softening did not converge: {exc}") from None
-        order = np.argsort(vals)
-        return vals[order], fe.T @ vecs[:, order]
+        seeds = [fe.f1]
+        nd = self.nodes
+        if nd is not None:
+            for s_ in np.unique(nd.shoe):
+                sel = np.nonzero(nd.shoe == s_)[0]
+                a = nd.angle[sel]
+                a = (a - a.mean() + math.pi) % (2 * math.pi) - math.pi
+                for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
+                    seeds.append(self.D[:, sel] @ wgt)
+        Mr, Kr = fe.Mr, fe.Kr
+        blocks: list[np.ndarray] = []
+
+        def m_orthonormal(X):
+            for _ in range(2):  # block Gram-Schmidt in the M inner product, twice for stability
+                for Vb in blocks:
+                    X = X - Vb @ (Vb.T @ (Mr @ X))
+            G = X.T @ (Mr @ X)
+            d, Q = np.linalg.eigh((G + G.T) / 2)
+            keep = d > max(d.max(), 0.0) * 1e-12
+            return X @ (Q[:, keep] / np.sqrt(d[keep]))
+
+        X = fe.factor.solve(fe.T.T @ np.column_stack(seeds))
+        for _ in range(max(1, depth)):
+            X = m_orthonormal(X)
+            if X.shape[1] == 0:
+                break
+            blocks.append(X)
+            X = fe.factor.solve(Mr @ X)
+        V = np.hstack(blocks)
+        Kv = V.T @ (Kr @ V)
+        vals, Y = np.linalg.eigh((Kv + Kv.T) / 2)
+        if vals[0] <= 0:
+            raise SolverError("spin-softening Ritz space is not positive definite: is the part clamped?")
+        return vals, fe.T @ (V @ Y)
 
     def coefficients(self, omega: float) -> np.ndarray:
-        """Mode-acceleration weights c_j = w^2 / (w_j^2 (w_j^2 - w^2))."""
+        """Mode-acceleration weights c_j = w^2 / (w_j^2 (w_j^2 - w^2)) of the Ritz pairs."""
         if not len(self.w2):
             return np.zeros(0)
         w2 = omega * omega
@@ -250,8 +346,10 @@ class ClutchSolver:
         if self.softening == "exact":
             return self._exact_state(omega, active0)
         q = self.nodes.gap0 - self._free_normal(omega, c)
-        G = -(self.BW + (self.BPhi * c) @ self.PhiD)
-        lam, active = solve_lcp(G, q, active0)
+        if active0 is None or not active0.any():  # first contact: start from the deepest node
+            active0 = np.zeros(len(q), dtype=bool)  # (every node with q < 0 would condense
+            active0[int(np.argmin(q))] = True  # many columns the solution does not need)
+        lam, active = solve_lcp(self._g_columns(c), q, active0)
         return SpeedState(omega, lam, c), active
 
     def _exact_state(self, omega, active0):
@@ -273,7 +371,8 @@ class ClutchSolver:
         w2 = st.omega ** 2
         u = w2 * self.u1
         if self.nodes is not None and st.lam.any():
-            u = u + self.W @ st.lam
+            A = np.nonzero(st.lam)[0]
+            u = u + self._w(A)[0] @ st.lam[A]
         if len(st.c):
             load = w2 * self.Phi_f1
             if self.nodes is not None and st.lam.any():
@@ -298,9 +397,11 @@ class ClutchSolver:
                 active = act
             states.append(st)
         t2 = time.perf_counter()
-        U = np.column_stack([self.displacement(st) for st in states]) if len(states) else np.zeros((self.fe.ndofs, 0))
+        basis, coef = self._reduced_fields(states)
+        U = basis @ coef if basis is not None else (
+            np.column_stack([self.displacement(st) for st in states]) if states else np.zeros((self.fe.ndofs, 0)))
         t3 = time.perf_counter()
-        curve = self._curve(rpm, states, U, stresses)
+        curve = self._curve(rpm, states, U, stresses, basis, coef)
         t4 = time.perf_counter()
         first, first_angle = self._first_touch(i_eng)
         res = SweepResult(curve=curve, shoes=self._shoe_table(rpm, states),
@@ -311,7 +412,31 @@ class ClutchSolver:
                           displacements=U if keep_displacements else None)
         return res
 
-    def _curve(self, rpm, states, U, stresses) -> pd.DataFrame:
+    def _reduced_fields(self, states) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """Every displacement of the sweep lies in span[u1, Phi, W_condensed]:
+        U = basis @ coef with a few columns (1 + modes + condensed nodes), so fields and
+        stresses cost one small dense product instead of one assembly per speed.
+        (None, None) for the 'exact' softening, whose states carry their own fields."""
+        if not states or any(hasattr(st, "u_exact") for st in states):
+            return None, None
+        r = self.Phi.shape[1]
+        k = self.n_condensed
+        coef = np.zeros((1 + r + k, len(states)))
+        for j, st in enumerate(states):
+            w2 = st.omega ** 2
+            coef[0, j] = w2
+            A = np.nonzero(st.lam)[0]
+            if len(A):
+                coef[1 + r + self._colpos[A], j] = st.lam[A]
+            if r:
+                load = w2 * self.Phi_f1
+                if len(A):
+                    load = load + self.PhiD[:, A] @ st.lam[A]
+                coef[1:1 + r, j] = st.c * load
+        parts = [self.u1[:, None], self.Phi] + ([self._Wc] if k else [])
+        return np.hstack(parts), coef
+
+    def _curve(self, rpm, states, U, stresses, basis=None, coef=None) -> pd.DataFrame:
         fe = self.fe
         b = fe.basis
         ux = U[np.concatenate([b.nodal_dofs[0], b.facet_dofs[0]])]
@@ -330,9 +455,10 @@ class ClutchSolver:
             rows.append(row)
         df = pd.DataFrame(rows)
         if stresses and len(states):
-            S = self._stress_operator @ U  # (3 * nelem * 3, ns)
-            ne = fe.cm.mesh.t.shape[1]
-            S = S.reshape(3, ne * 3, -1)
+            if basis is not None:
+                S = self.vertex_stresses(basis) @ coef
+            else:
+                S = self.vertex_stresses(U)
             vm = von_mises(S)  # (ne*3, ns)
             kmax = vm.argmax(axis=0)
             pts = self._vertex_points
@@ -347,31 +473,55 @@ class ClutchSolver:
             df["safety_factor"] = np.nan
         return df
 
+    def vertex_stresses(self, U: np.ndarray) -> np.ndarray:
+        """Raw stresses (sxx, syy, sxy) [Pa] at every element's three vertices for the
+        displacement column(s) U: array (3, nelem * 3, ncols), rows ordered (element, vertex)
+        like :attr:`_vertex_points`.  No averaging: the P2 strain peaks at the vertices."""
+        U = np.asarray(U)
+        one = U.ndim == 1
+        U = U.reshape(U.shape[0], -1)
+        Gx, Gy, ex, ey = self._vertex_gradients
+        Ux, Uy = U[ex], U[ey]  # (ne, 6, ncols)
+        lam, mu = self.material.lame_plane_stress()
+        out = np.empty((3, len(Gx), 3, U.shape[1]))
+        exx = np.matmul(Gx, Ux, out=out[0])
+        eyy = np.matmul(Gy, Uy, out=out[1])
+        gxy = np.matmul(Gy, Ux, out=out[2])
+        gxy += Gx @ Uy
+        gxy *= mu
+        tr = lam * (exx + eyy)
+        exx *= 2 * mu
+        exx += tr
+        eyy *= 2 * mu
+        eyy += tr
+        out = out.reshape(3, -1, U.shape[1])
+        return out[..., 0] if one else out
+
     @property
-    def _stress_operator(self) -> sp.csr_matrix:
-        """Sparse map u -> (sxx, syy, sxy) at every element's 3 vertices, row order
-        (component, element, vertex)."""
-        if hasattr(self, "_S_op"):
-            return self._S_op
-        fe = self.fe
-        vb = fe._vertex_basis
-        lam, mu = fe.material.lame_plane_stress()
-        ne = fe.cm.mesh.t.shape[1]
-        rows, cols, vals = [], [], []
-        base = np.arange(ne)[:, None] * 3 + np.arange(3)[None, :]  # (ne, 3)
-        for j in range(vb.Nbfun):
-            g = vb.basis[j][0].grad  # (2, 2, ne, 3)
-            exx, eyy = g[0, 0], g[1, 1]
-            exy = 0.5 * (g[0, 1] + g[1, 0])
-            comps = (2 * mu * exx + lam * (exx + eyy), 2 * mu * eyy + lam * (exx + eyy), 2 * mu * exy)
-            dof = np.broadcast_to(vb.element_dofs[j][:, None], (ne, 3))
-            for ci, val in enumerate(comps):
-                rows.append((ci * ne * 3 + base).ravel())
-                cols.append(dof.ravel())
-                vals.append(np.asarray(val).ravel())
-        self._S_op = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                                   shape=(3 * ne * 3, fe.ndofs))
-        return self._S_op
+    def _vertex_gradients(self):
+        """(Gx, Gy, ex, ey): d/dx and d/dy [1/m] of the 6 scalar P2 shape functions at each
+        element's 3 vertices, (nelem, 3, 6) each, through the isoparametric (curved) map;
+        ex, ey the element dofs (nelem, 6) of the x and y displacement."""
+        if not hasattr(self, "_vg"):
+            b = self.fe.basis
+            ed = b.element_dofs  # (12, ne): local dof 2k + c = shape function k, component c
+            ex, ey = ed[0::2], ed[1::2]
+            X = b.doflocs[:, ex]  # (2, 6, ne) node positions (curved mid-edge nodes included)
+            # reference gradients of the P2 shape functions (skfem ElementTriP2 order) at the
+            # vertices (0,0), (1,0), (0,1): R[v, k, :]
+            R = np.array([[[-3, -3], [-1, 0], [0, -1], [4, 0], [0, 0], [0, 4]],
+                          [[1, 1], [3, 0], [0, -1], [-4, -4], [0, 4], [0, 0]],
+                          [[1, 1], [-1, 0], [0, 3], [0, 0], [4, 0], [-4, -4]]], dtype=float)
+            J = np.einsum("ake,vkb->evab", X, R)  # (ne, 3, 2, 2): dx_a / dxi_b
+            det = J[..., 0, 0] * J[..., 1, 1] - J[..., 0, 1] * J[..., 1, 0]
+            if np.any(det == 0):
+                raise SolverError(f"{self.cm.source}: a degenerate element (zero Jacobian at a "
+                                  "vertex); remesh")
+            Jinv = np.stack([np.stack([J[..., 1, 1], -J[..., 0, 1]], -1),
+                             np.stack([-J[..., 1, 0], J[..., 0, 0]], -1)], -2) / det[..., None, None]
+            G = R[None] @ Jinv  # (ne, 3, 6, 2): grad phi_k = J^-T grad_ref phi_k
+            self._vg = (np.ascontiguousarray(G[..., 0]), np.ascontiguousarray(G[..., 1]), ex.T.copy(), ey.T.copy())
+        return self._vg
 
     @property
     def _vertex_points(self) -> np.ndarray:
