@@ -168,9 +168,9 @@ def main(argv=None):
             ("nominal arc phi_2", "phi2_deg", 1, "deg", ".1f")]
     for lab, key, f, u, fmt in rows:
         w(f"| {lab} | " + " | ".join(f"{an.coupling[key] * f:{fmt}} {u}" for an in ans.values()) + " |")
-    w(f"| shoes n | " + " | ".join(str(an.coupling["n"]) for an in ans.values()) + " |")
-    w(f"| FE engagement speed | " + " | ".join(f"{an.engagement_rpm:.0f} rpm" for an in ans.values()) + " |")
-    w(f"| first contact | " + " | ".join(str(an.first_touch) for an in ans.values()) + " |")
+    w("| shoes n | " + " | ".join(str(an.coupling["n"]) for an in ans.values()) + " |")
+    w("| FE engagement speed | " + " | ".join(f"{an.engagement_rpm:.0f} rpm" for an in ans.values()) + " |")
+    w("| first contact | " + " | ".join(str(an.first_touch) for an in ans.values()) + " |")
     w("")
     w("![three torque curves](img/clutch_three_curves.png)\n")
     w("| concept | rpm | FE direct | analytical, FE arc | analytical, nominal arc | nominal / FE | FE arc / FE "
@@ -268,7 +268,6 @@ def main(argv=None):
 
     w("## Plus and minus shoes\n")
     ap_, am_ = plus, ans["concept1"]
-    sp, sm = ap_.mu_sensitivity, am_.mu_sensitivity
     w("The character is read off the FE model itself: the normal force with friction divided by the "
       "normal force without friction at the rpm of maximum engine torque (< 1: friction pulls the "
       "shoe off the drum, minus shoe; > 1: friction wedges it in, plus shoe). Concept 1 in both "

@@ -80,7 +80,8 @@ def summary_rows(an) -> list[tuple[str, str]]:
                                 for k in ("x0.7", "x1.0", "x1.3"))))
     m = an.torque_models_at_max_engine_torque_Nm
     rows.append((f"torque at {m['rpm']:.0f} rpm: FE / analytical FE arc / analytical nominal arc",
-                 f"{m['fe_torque_Nm']:.2f} / {m['analytic_fe_arc_Nm']:.2f} / {m['analytic_nominal_arc_Nm']:.2f} N m"))
+                 " / ".join(_fmt(m[k], ".2f", "") or "-" for k in
+                            ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm")) + " N m"))
     nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
     rows.append((f"contact arc per shoe at {m['rpm']:.0f} rpm (nominal shoe arc)",
                  f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg ({nominal:.0f} deg)"))
