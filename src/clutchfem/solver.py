@@ -353,15 +353,28 @@ class ClutchSolver:
         return SpeedState(omega, lam, c), active
 
     def _exact_state(self, omega, active0):
+        """Reference path: K - w^2 M factorised at this speed; columns of its condensed
+        compliance computed only for the nodes the LCP asks for."""
         fe = self.fe
         f = self._exact_factor(omega)
         u_f = fe.T @ f.solve(fe.T.T @ (omega * omega * fe.f1))
-        W = fe.T @ f.solve(fe.T.T @ self.D.toarray())
+        cache: dict[int, np.ndarray] = {}
+
+        def column(idx):
+            new = [int(i) for i in idx if int(i) not in cache]
+            if new:
+                Wn = (fe.T @ f.solve(fe.T.T @ self.D[:, new].toarray())).reshape(fe.ndofs, -1)
+                cache.update({i: Wn[:, k] for k, i in enumerate(new)})
+            return np.column_stack([cache[int(i)] for i in idx]) if len(idx) else np.zeros((fe.ndofs, 0))
+
         q = self.nodes.gap0 - self._B(u_f)
-        G = -self._B(W)
-        lam, active = solve_lcp(G, q, active0)
+        if active0 is None or not active0.any():
+            active0 = np.zeros(len(q), dtype=bool)
+            active0[int(np.argmin(q))] = True
+        lam, active = solve_lcp(lazy(lambda idx: -self._B(column(idx)).reshape(len(q), -1)), q, active0)
         st = SpeedState(omega, lam, np.zeros(0))
-        st.u_exact = u_f + W @ lam  # type: ignore[attr-defined]
+        A = np.nonzero(lam)[0]
+        st.u_exact = u_f + (column(A) @ lam[A] if len(A) else 0.0)  # type: ignore[attr-defined]
         return st, active
 
     def displacement(self, st: SpeedState) -> np.ndarray:
