@@ -91,6 +91,65 @@ def test_inverted_elements_refused(tmp_path):
         load_user_geometry(q, thickness=0.01)
 
 
+def test_user_mesh_without_triangles_or_unreadable_refused(tmp_path):
+    import meshio
+
+    m = meshio.read(_annulus(tmp_path / "e.msh", order=1))
+    lines = meshio.Mesh(m.points, [("line", m.cells_dict["line"])],
+                        cell_data={"gmsh:physical": [np.ones(len(m.cells_dict["line"]), dtype=int)],
+                                   "gmsh:geometrical": [np.ones(len(m.cells_dict["line"]), dtype=int)]},
+                        field_data={"bore": np.array([1, 1])})
+    q = tmp_path / "lines_only.msh"
+    meshio.write(q, lines, file_format="gmsh22")
+    with pytest.raises(MeshError, match="no triangle elements"):
+        load_user_geometry(q, thickness=0.01)
+    junk = tmp_path / "junk.msh"
+    junk.write_text("this is not a mesh\n")
+    with pytest.raises(MeshError, match="cannot read"):
+        load_user_geometry(junk)
+
+
+def test_concept_msh_with_groups_reimports_as_user_mesh():
+    """The .msh that ``clutchfem geometry`` hands out (named physical groups) is a valid user
+    mesh: re-imported through load_user_geometry it has the same nodes, elements, shoe
+    subdomains and bore/contact boundaries as the generated model."""
+    from clutchfem.mesh import groups_msh_path
+
+    c = get_concept("concept4")
+    p = c.params()
+    cm = mesh_concept(c, p, MeshSettings(size=3e-3, model="full"))
+    user = load_user_geometry(groups_msh_path(cm.msh_path), thickness=p.thickness, drum_radius=p.drum_radius)
+    assert user.n_elements == cm.n_elements and user.n_nodes == cm.n_nodes
+    for name in ("bore", "contact", "contact_0", "contact_2"):
+        assert len(user.boundary(name)) == len(cm.boundary(name)) > 0, name
+
+    assert np.array_equal(user.mesh.doflocs, cm.mesh.doflocs) and np.array_equal(user.mesh.t, cm.mesh.t)
+    for i in range(3):  # element groups too (meshio keeps one physical tag per element: solid or shoe_i)
+        assert np.array_equal(user.mesh.subdomains[f"shoe_{i}"], cm.mesh.subdomains[f"shoe_{i}"])
+
+
+def test_step_import_finds_bore_and_contact(tmp_path):
+    """A STEP file from CAD (annulus 10-30 mm) is meshed with P2 triangles; the bore is the
+    loop around the origin, the contact the outermost curves; area exact to 1e-6."""
+    step = tmp_path / "ring.step"
+    with gmsh_session("step-out"):
+        occ = gmsh.model.occ
+        occ.cut([(2, occ.addDisk(0, 0, 0, 0.03, 0.03))], [(2, occ.addDisk(0, 0, 0, 0.01, 0.01))])
+        occ.synchronize()
+        gmsh.write(str(step))
+    cm = load_user_geometry(step, mesh_size=1.5e-3, thickness=0.01, drum_radius=0.0306)
+    from skfem import ElementTriP2
+
+    m = cm.mesh
+    b = Basis(m, ElementTriP2())
+    for name, radius in (("bore", 0.01), ("contact", 0.03)):
+        xy = b.doflocs[:, b.get_dofs(cm.boundary(name)).all()]  # vertices and curved mid-edge nodes
+        assert xy.shape[1] >= 2 * len(cm.boundary(name)) > 0
+        assert np.allclose(np.hypot(*xy), radius, rtol=1e-8), name
+    area = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(Basis(m, ElementTriP0(), intorder=6))
+    assert area == pytest.approx(np.pi * (0.03 ** 2 - 0.01 ** 2), rel=1e-6)
+
+
 def test_missing_file_and_bad_suffix(tmp_path):
     with pytest.raises(MeshError, match="does not exist"):
         load_user_geometry(tmp_path / "nope.msh")
@@ -141,7 +200,7 @@ def test_params_errors_name_parameter_and_range():
     with pytest.raises(ParameterError, match="unknown parameter"):
         c.params(bogus=1.0)
     with pytest.raises(ParameterError, match="fillet_radius"):
-        c.params(fillet_radius=1.0e-3)  # larger than half the slot width
+        c.params(fillet_radius=1.2e-3)  # larger than half the (2 mm) slot width
     p = c.Params.from_assignments(["flexure_thickness=1.8mm", "shoe_arc=70"])
     assert p.flexure_thickness == pytest.approx(1.8e-3) and p.shoe_arc == 70.0
     with pytest.raises(ParameterError, match="suffix"):

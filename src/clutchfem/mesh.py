@@ -127,10 +127,18 @@ def meshio_to_skfem(m: meshio.Mesh, curve_groups: dict[str, set[int]],
                         "expected a 2-D triangle mesh")
     t_all = np.vstack([c.data for c in m.cells if c.type == tri_type])
     if tri_type == "triangle6":
+        # keep only the triangles' nodes: a gmsh file also holds nodes no triangle uses
+        # (circle-arc centres, points of curves saved on their own), which MeshTri2 would
+        # carry along as extra 'nodes'
+        used = np.unique(t_all)
+        t_all = np.searchsorted(used, t_all)
+        pts = pts[used]
+        line_map = used
         uniq = np.unique(t_all[:, :3])
         mesh = MeshTri2(np.ascontiguousarray(pts.T), np.ascontiguousarray(t_all.T))
     else:
         uniq = np.unique(t_all)
+        line_map = None
         t = np.searchsorted(uniq, t_all).T
         mesh = MeshTri2.from_mesh(MeshTri1(np.ascontiguousarray(pts[uniq].T), np.ascontiguousarray(t)))
     labels = m.cell_data.get(key)
@@ -144,7 +152,11 @@ def meshio_to_skfem(m: meshio.Mesh, curve_groups: dict[str, set[int]],
         line_blocks = [(c.data, np.asarray(labels[i])) for i, c in enumerate(m.cells)
                        if c.type in ("line", "line3")]
         if line_blocks:
-            ends = np.vstack([np.searchsorted(uniq, d[:, :2]) for d, _ in line_blocks])
+            raw = np.vstack([d[:, :2] for d, _ in line_blocks])
+            if line_map is not None:  # file node numbers -> compacted numbers (-1: not a triangle node)
+                pos = np.clip(np.searchsorted(line_map, raw), 0, len(line_map) - 1)
+                raw = np.where(line_map[pos] == raw, pos, -1)
+            ends = np.where(raw >= 0, np.searchsorted(uniq, raw), -1)
             lab = np.concatenate([lv for _, lv in line_blocks])
             lookup = _facet_lookup(mesh)
             facet = np.array([lookup.get((min(a, b), max(a, b)), -1) for a, b in ends], dtype=np.int64)
@@ -356,17 +368,35 @@ def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
         raise MeshError(f"{path}: unsupported file type '{suffix}' (use a gmsh .msh or a STEP file)")
     try:
         m = meshio.read(path)
-    except Exception as exc:
-        raise MeshError(f"{path}: meshio cannot read it ({exc})") from None
+    except (Exception, SystemExit) as exc:  # meshio calls sys.exit() on files it cannot identify
+        raise MeshError(f"{path}: meshio cannot read it as a gmsh mesh ({exc or type(exc).__name__})") from None
     names: dict[str, tuple[int, int]] = {k: (int(v[0]), int(v[1])) for k, v in (m.field_data or {}).items()}
     curves = {k: {tag} for k, (tag, dim) in names.items() if dim == 1}
     surfaces = {k: {tag} for k, (tag, dim) in names.items() if dim == 2}
     if "bore" not in curves:
         raise MeshError(f"{path}: no physical curve group named 'bore' (the clamped crankshaft bore); "
                         f"groups found: {sorted(names) or 'none'}")
-    if "gmsh:physical" not in m.cell_data:
+    key = "gmsh:physical"
+    if m.cell_sets and all(k in m.cell_sets for k in names):
+        # msh4: an element may sit in several physical groups (contact and contact_0, solid
+        # and shoe_0), but meshio's per-cell 'gmsh:physical' keeps only one of them; its
+        # cell_sets keep them all.  Label every cell by its index and map groups to indices.
+        key = "clutchfem:cell"
+        ids, off = [], 0
+        for c in m.cells:
+            ids.append(np.arange(off, off + len(c.data)))
+            off += len(c.data)
+        m.cell_data[key] = ids
+
+        def members(name: str) -> set[int]:
+            return {int(k) for blk, sel in zip(ids, m.cell_sets[name]) if sel is not None
+                    for k in blk[np.asarray(sel, dtype=np.int64)]}
+
+        curves = {k: members(k) for k in curves}
+        surfaces = {k: members(k) for k in surfaces}
+    elif key not in m.cell_data:
         raise MeshError(f"{path}: the file carries no physical tags")
-    mesh = meshio_to_skfem(m, curves, surfaces, "gmsh:physical", str(path))
+    mesh = meshio_to_skfem(m, curves, surfaces, key, str(path))
     bnd = mesh.boundaries or {}
     if len(bnd.get("bore", [])) == 0:
         raise MeshError(f"{path}: the 'bore' group has no edges on the triangle mesh")
@@ -387,15 +417,21 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         surfaces = [t for d, t in gmsh.model.getEntities(2)]
         if not surfaces or gmsh.model.getEntities(3):
             raise MeshError(f"{path}: expected a planar 2-D part (surfaces in the x-y plane, no solids)")
-        xmin, ymin, zmin, xmax, ymax, zmax = gmsh.model.getBoundingBox(-1, -1)
-        if abs(zmax - zmin) > 1e-9 * max(xmax - xmin, ymax - ymin):
-            raise MeshError(f"{path}: the part is not planar (z extent {zmax - zmin:.3g} m)")
+        # planarity from points on the boundary curves (OCC's bounding box is padded by its
+        # tolerance, ~1e-7 m, so it cannot tell a flat part from a slightly tilted one)
         bnd = gmsh.model.getBoundary([(2, t) for t in surfaces], combined=True, oriented=False)
         curves = sorted({abs(t) for d, t in bnd})
-        rmin, rmax, bore, contact = [], [], [], []
+        samples = []
         for c in curves:
             lo, hi = gmsh.model.getParametrizationBounds(1, c)
-            xy = np.asarray(gmsh.model.getValue(1, c, np.linspace(lo[0], hi[0], 9))).reshape(-1, 3)
+            samples.append(np.asarray(gmsh.model.getValue(1, c, np.linspace(lo[0], hi[0], 9))).reshape(-1, 3))
+        xyz = np.vstack(samples)
+        size = float(np.ptp(xyz[:, :2], axis=0).max())
+        if np.ptp(xyz[:, 2]) > 1e-9 * size:
+            raise MeshError(f"{path}: the part is not planar (z varies by {np.ptp(xyz[:, 2]):.3g} m); "
+                            "expected a 2-D part in the x-y plane")
+        rmin, rmax, bore, contact = [], [], [], []
+        for xy in samples:
             r = np.hypot(xy[:, 0], xy[:, 1])
             rmin.append(r.min())
             rmax.append(r.max())
