@@ -323,6 +323,27 @@ def test_concept4_defaults_engage_in_window():
         cm.mass["shoe_0"]["area"] * 7850 * p.thickness, rel=1e-3)
 
 
+#: engagement window from domain.md: engagement > a x idle, idle 2700 rpm, a = 1.3 (assumed,
+#: clutch.analyze.Requirements); upper end: well below the 8000 rpm of maximum engine torque
+WINDOW_RPM = (1.3 * 2700.0, 5000.0)
+
+
+@pytest.mark.parametrize("name", ["concept1", "concept2"])
+def test_concept1_and_2_defaults_engage_in_window(name):
+    """The 60 cc defaults engage inside the window (51CrV4, mu = 0.165, spin softening on);
+    the first contact is at the shoe tip, as on the thesis prototypes."""
+    from clutchfem.materials import get_material
+    from clutchfem.solver import ClutchSolver
+
+    c = get_concept(name)
+    p = c.params()
+    cm = mesh_concept(c, p, MeshSettings(size=2e-3))  # engagement within 0.01 % of the 0.6 mm mesh
+    s = ClutchSolver(cm, get_material("51CrV4"), drum_radius=p.drum_radius, mu=0.165, thickness=p.thickness)
+    r = s.sweep([3000.0, 8000.0], stresses=False)
+    assert WINDOW_RPM[0] < r.engagement_rpm < WINDOW_RPM[1], r.engagement_rpm
+    assert r.first_touch == "tip"
+
+
 @pytest.mark.parametrize("name", ["concept3.1", "concept4", "concept5"])
 def test_only_shoes_reach_the_drum(name):
     """Everything but the shoes' contact surfaces stays >= 0.3 mm inside the drum."""
