@@ -140,7 +140,9 @@ class Concept1(Concept):
         pol = lambda r, t: (r * math.cos(t), r * math.sin(t))
         rf = 0.5 * (r_fi + r_fo)
         return [
-            Annotation(f"flexure t_f = {p.flexure_thickness * 1e3:.2f} mm, L_f = {p.flexure_length * 1e3:.1f} mm",
+            Annotation(f"flexure t_f = {p.flexure_thickness * 1e3:.2f} mm, L_f = {p.flexure_length * 1e3:.1f} mm"
+                       + (f", e_f = {p.flexure_offset * 1e3:.1f} mm above the shoe's inner edge"
+                          if p.flexure_offset > 0 else ""),
                        pol(rf, 0.5 * phi_f), pol(p.drum_radius * 1.35, 0.5 * phi_f - 0.35)),
             Annotation(f"shoe: beta = {p.shoe_arc:.0f} deg, t_s = {p.shoe_thickness * 1e3:.1f} mm",
                        pol(0.5 * (r_si + r_so), phi_f + 0.5 * beta), pol(p.drum_radius * 1.35, phi_f + 0.5 * beta)),
@@ -148,6 +150,7 @@ class Concept1(Concept):
                        pol(p.drum_radius * 0.55, phi_f + 1.1 * beta)),
             Annotation(f"tip gap g = {p.tip_gap * 1e3:.1f} mm", pol(r_so, phi_f + beta + 0.5 * phi_g),
                        pol(p.drum_radius * 1.3, phi_f + beta + 0.5 * phi_g + 0.2)),
+            Annotation(f"fillets rho = {p.fillet_radius * 1e3:.2f} mm", pol(r_h + p.fillet_radius, 0.0), None),
         ]
 
 

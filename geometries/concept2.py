@@ -146,8 +146,9 @@ class Concept2(Concept1):
         out = super().annotations(p)
         t2, half, r_lig = p.ligament()
         R = p.drum_radius
-        out.append(Annotation(f"2nd flexure: t_2 = {p.flexure2_thickness * 1e3:.2f} mm at the contact surface, "
-                              f"gap {p.flexure2_gap * 1e3:.1f} mm",
+        out.append(Annotation(f"2nd flexure at s_2 = {p.flexure2_position:.2f} of the arc: t_2 = "
+                              f"{p.flexure2_thickness * 1e3:.2f} mm at the contact surface, gap g_2 = "
+                              f"{p.flexure2_gap * 1e3:.1f} mm",
                               tuple(K.polar(r_lig + 0.5 * p.flexure2_thickness, t2)),
                               tuple(K.polar(1.4 * R, t2 + 0.75))))
         return out

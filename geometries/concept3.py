@@ -203,6 +203,7 @@ class Concept3(Concept):
                        tuple(K.polar(1.35 * R, 0.8 * beta + 0.3))),
             Annotation(f"hub r_h = {p.hub_radius * 1e3:.1f} mm", tuple(K.polar(p.hub_radius, math.pi)),
                        tuple(K.polar(1.3 * R, math.pi + 0.5))),
+            Annotation(f"fillets rho = {p.fillet_radius * 1e3:.2f} mm", tuple(p.fillets()[("ccw", "shoe")][2]), None),
         ]
 
 

@@ -186,6 +186,9 @@ class Concept31(Concept3):
                        tuple(K.polar(1.3 * Rd, 0.5 * tr0 - 0.25))),
             Annotation(f"spoke w_s = {p.spoke_width * 1e3:.1f} mm", tuple(K.polar(0.5 * (p.hub_radius + r_si), tc)),
                        tuple(K.polar(0.45 * Rd, tc + 1.2))),
+            Annotation(f"hub r_h = {p.hub_radius * 1e3:.1f} mm", tuple(K.polar(p.hub_radius, tc + 0.5 * p.sector_angle)),
+                       None),
+            Annotation(f"fillets rho = {p.fillet_radius * 1e3:.2f} mm", tuple(p.fillets()[("ccw", "hub")][2]), None),
         ]
 
 

@@ -404,6 +404,7 @@ class Concept4(Concept):
                        tuple(K.polar(1.3 * R, math.pi + 0.9))),
             Annotation(f"shoe: beta = {p.shoe_arc:.0f} deg, t_s = {p.shoe_thickness * 1e3:.1f} mm",
                        tuple(K.polar(0.5 * (lay.r_si + r_so), 0.6 * beta)), tuple(K.polar(1.35 * R, 0.6 * beta))),
+            Annotation(f"hub fillets rho = {p.fillet_radius * 1e3:.2f} mm", tuple(p.full_layout().fil_up[2]), None),
         ]
 
 

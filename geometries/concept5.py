@@ -245,6 +245,13 @@ class Concept5(Concept):
             Annotation(f"shoe: {math.degrees(t1 - t0):.0f} deg, t_s = {p.shoe_thickness * 1e3:.1f} mm",
                        tuple(K.polar(0.5 * (r_si + r_so), 0.5 * (t0 + t1))),
                        tuple(K.polar(1.35 * Rd, 0.5 * (t0 + t1)))),
+            Annotation(f"core r_c = {p.core_radius * 1e3:.1f} mm", tuple(K.polar(p.core_radius, 0.25 * p.sector_angle)),
+                       None),
+            Annotation(f"arm tip d_a = {p.arm_recess * 1e3:.1f} mm below the shoes", tuple(K.polar(r_at, 0.0)), None),
+            Annotation(f"beam offset e_b = {p.beam_offset * 1e3:.1f} mm above the shoe's inner surface",
+                       tuple(K.polar(0.5 * (r_si + r_bb), t1 - 0.3 * phi_b)), None),
+            Annotation(f"fillets rho = {p.fillet_radius * 1e3:.2f} mm",
+                       tuple(_corner(p.arm_sides(0)[1], +1.0, p.core_radius, True, p.fillet_radius)[2]), None),
         ]
 
 

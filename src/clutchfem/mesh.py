@@ -19,11 +19,13 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import inspect
+import io
 import json
 import os
 import tempfile
 import threading
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -319,6 +321,17 @@ def _atomic_write(path: Path) -> None:
     os.replace(tmp, path)
 
 
+def _meshio_read(path: Path) -> meshio.Mesh:
+    """meshio.read without its stray prints on stdout (its gmsh reader prints an empty line
+    per file, which breaks the CLI's tables and JSON output); real messages become warnings."""
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        m = meshio.read(path)
+    if buf.getvalue().strip():
+        warnings.warn(f"meshio ({path}): {buf.getvalue().strip()}", stacklevel=2)
+    return m
+
+
 def _fix_invalid_high_order() -> None:
     """Run gmsh's high-order optimiser if some curved element is invalid or nearly so
     (scaled Jacobian < 0.2): a valid but nearly singular P2 element gives garbage raw vertex
@@ -335,7 +348,7 @@ def _fix_invalid_high_order() -> None:
 
 
 def _load_generated(msh: Path, meta: dict, source: str) -> ClutchMesh:
-    m = meshio.read(msh)
+    m = _meshio_read(msh)
     groups, dims = meta["entity_groups"], meta["group_dims"]
     curves = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 1}
     surfaces = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 2}
@@ -367,7 +380,7 @@ def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
     if suffix != ".msh":
         raise MeshError(f"{path}: unsupported file type '{suffix}' (use a gmsh .msh or a STEP file)")
     try:
-        m = meshio.read(path)
+        m = _meshio_read(path)
     except (Exception, SystemExit) as exc:  # meshio calls sys.exit() on files it cannot identify
         raise MeshError(f"{path}: meshio cannot read it as a gmsh mesh ({exc or type(exc).__name__})") from None
     names: dict[str, tuple[int, int]] = {k: (int(v[0]), int(v[1])) for k, v in (m.field_data or {}).items()}

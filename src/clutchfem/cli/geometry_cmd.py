@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import List, Optional
 
 import typer
+from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ClutchfemError
@@ -78,7 +79,7 @@ def build_geometry(c, p, out: Path, mesh_size, model: str, drawing: bool) -> dic
     info = {"concept": c.name, "elements": cm.n_elements, "nodes": cm.n_nodes,
             "shoe_mass_kg": shoe.get("area", math.nan) * rho * h, "R_Tp_m": shoe.get("radius", math.nan),
             "part_mass_kg": cm.mass["solid"]["area"] * rho * h * (cm.n_shoes_total if cm.sector_angle else 1),
-            "mesh_time_s": cm.mesh_time_s if not cm.cached else wall, "cached": cm.cached,
+            "mesh_time_s": cm.mesh_time_s, "cached": cm.cached, "wall_time_s": wall,
             "files": [str(f) for f in files]}
     (out / f"{c.name}.json").write_text(json.dumps({**info, "params": p.model_dump(), "mass": cm.mass}, indent=2))
     return info
@@ -87,12 +88,15 @@ def build_geometry(c, p, out: Path, mesh_size, model: str, drawing: bool) -> dic
 def _geometry_table(rows: list[dict]) -> None:
     t = Table(title="concept geometries (steel, rho = 7850 kg/m^3)")
     for col in ("concept", "elements", "nodes", "shoe mass [g]", "R_Tp [mm]", "part mass [g]", "mesh time [s]"):
-        t.add_column(col, justify="right")
+        # escaped: rich would eat '[g]' as markup; names never wrap ('concept3.1')
+        t.add_column(escape(col), justify="right", no_wrap=col == "concept", min_width=10 if col == "concept" else None)
     for r in rows:
         if "error" in r:
             t.add_row(r["concept"], "-", "-", "-", "-", "-", f"[red]{r['error'][:60]}[/]")
             continue
         t.add_row(r["concept"], str(r["elements"]), str(r["nodes"]), f"{r['shoe_mass_kg'] * 1e3:.2f}",
                   f"{r['R_Tp_m'] * 1e3:.2f}", f"{r['part_mass_kg'] * 1e3:.1f}",
-                  f"{r['mesh_time_s']:.2f}" + (" (cached)" if r.get("cached") else ""))
+                  f"{r['mesh_time_s']:.2f}" + ("*" if r.get("cached") else ""))
+    if any(r.get("cached") for r in rows):
+        t.caption = "* mesh read from the cache; the time is that of its original meshing"
     console.print(t)

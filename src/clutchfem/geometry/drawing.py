@@ -129,6 +129,106 @@ def _param_lines(p) -> list[str]:
     return rows
 
 
+def _nobreak(text: str) -> str:
+    """Keep numbers with their units when a label is wrapped."""
+    for unit in ("mm", "deg", "rpm", "g"):
+        text = text.replace(f" {unit}", f"\u00a0{unit}")
+    return text
+
+
+def _common_annotations(concept, p, geo) -> list:
+    """Labels every concept gets (canonical frame, shoe 0): the clearance / shoe profile."""
+    from .base import Annotation
+
+    root, tip = concept.shoe_arc(p)
+    tm = root + 0.8 * (tip - root)  # off the shoe's middle, where the concepts label the shoe
+    if p.profile == "linear":
+        text = f"clearance c = {p.clearance * 1e3:.2f} mm at the root, c_tip = {p.clearance_tip * 1e3:.2f} mm"
+    elif p.profile == "eccentric":
+        text = (f"eccentric profile: e = {p.eccentricity * 1e3:.2f} mm at psi_e = {p.eccentric_angle:.0f} deg, "
+                f"c = {p.clearance * 1e3:.2f} mm mid-shoe")
+    else:
+        text = f"clearance c = {p.clearance * 1e3:.2f} mm"
+    r = p.drum_radius - 0.5 * p.clearance
+    return [Annotation(text, (r * math.cos(tm), r * math.sin(tm)),
+                       (1.4 * p.drum_radius * math.cos(tm), 1.4 * p.drum_radius * math.sin(tm)))]
+
+
+def _place_labels(fig, ax, anns, flip, R_mm: float, lim: float, n: int) -> None:
+    """Draw the callouts outside the drum circle, inside the axes and clear of each other.
+
+    The part has n identical sectors, so a label about shoe 0 may point at the same feature
+    on any shoe: each label tries, in order, small angle offsets from the radial line through
+    its feature on every shoe, at growing radii, then larger offsets; the first free spot
+    wins.  Arrows then run radially outwards and do not cross each other."""
+    renderer = fig.canvas.get_renderer()
+    inv = ax.transData.inverted()
+    placed: list[tuple[float, float, float, float]] = []
+    mm = 1e3
+
+    arrows: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def crosses(seg, bb, pad=0.3) -> bool:
+        """Does the segment seg = (p, q) pass through the box bb (Liang-Barsky clipping)?"""
+        (px, py), (qx, qy) = seg
+        dx, dy = qx - px, qy - py
+        lo, hi = 0.0, 1.0
+        for pk, qk in ((-dx, px - (bb[0] - pad)), (dx, (bb[2] + pad) - px),
+                       (-dy, py - (bb[1] - pad)), (dy, (bb[3] + pad) - py)):
+            if abs(pk) < 1e-12:
+                if qk < 0:
+                    return False
+                continue
+            t = qk / pk
+            if pk < 0:
+                lo = max(lo, t)
+            else:
+                hi = min(hi, t)
+            if lo > hi:
+                return False
+        return True
+
+    def fits(bb, seg) -> bool:
+        x0, y0, x1, y1 = bb
+        if x0 < -lim or x1 > lim or y0 < -lim or y1 > lim:
+            return False
+        nx = min(max(0.0, x0), x1)  # nearest point of the box to the centre
+        ny = min(max(0.0, y0), y1)
+        if math.hypot(nx, ny) < 1.04 * R_mm:
+            return False
+        if not all(x1 + 0.6 < a0 or a1 + 0.6 < x0 or y1 + 0.6 < b0 or b1 + 0.6 < y0 for a0, b0, a1, b1 in placed):
+            return False
+        return not any(crosses(seg, b) for b in placed) and not any(crosses(a, bb) for a in arrows)
+
+    radii = (1.15 * R_mm, 1.3 * R_mm, 1.45 * R_mm)
+    offsets = [(0.0, 0.15, -0.15), (0.3, -0.3, 0.5, -0.5, 0.7, -0.7)]
+    for a in anns:
+        at0 = np.array(a.at) * flip * mm
+        text = textwrap.fill(_nobreak(a.text), 32)
+        cands = [(k, d, r) for group in offsets for d in group for k in range(n) for r in radii]
+        for j, (k, d, r) in enumerate(cands):
+            c, s_ = math.cos(2 * math.pi * k / n), math.sin(2 * math.pi * k / n)
+            at = np.array([c * at0[0] - s_ * at0[1], s_ * at0[0] + c * at0[1]])
+            th = math.atan2(at[1], at[0]) + d
+            xy = (r * math.cos(th), r * math.sin(th))
+            probe = ax.text(*xy, text, fontsize=8, ha="center", va="center")  # measures the box
+            ext = probe.get_window_extent(renderer).expanded(1.08, 1.3).transformed(inv)
+            probe.remove()
+            bb = (ext.x0, ext.y0, ext.x1, ext.y1)
+            # the arrow, from the box's edge towards the feature (its start is inside the box)
+            c = np.array(xy)
+            v = at - c
+            t_edge = min(0.5 * (bb[2] - bb[0]) / max(abs(v[0]), 1e-9), 0.5 * (bb[3] - bb[1]) / max(abs(v[1]), 1e-9))
+            seg = (c + min(t_edge, 1.0) * v, at)
+            if fits(bb, seg) or j == len(cands) - 1:
+                placed.append(bb)
+                arrows.append(seg)
+                ax.annotate(text, xy=at, xytext=xy, fontsize=8, ha="center", va="center", zorder=8,
+                            bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", lw=0.6),
+                            arrowprops=dict(arrowstyle="->", lw=0.8, color="0.2", shrinkA=2))
+                break
+
+
 def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
                  mesh: "ClutchMesh | None" = None, dpi: int = 110) -> list[Path]:
     """Draw ``concept`` with ``params``; write ``<out_stem>.png`` and ``<out_stem>.svg``.
@@ -186,19 +286,13 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
             ax.plot(cx, cy, marker="+", ms=6, color="k", zorder=7)
         px, py = np.array(geo["pivots"][i]) * mm
         ax.plot(px, py, marker="^", ms=7, color="#1a9641", mec="k", zorder=6)
-    # annotations (canonical frame -> final frame)
-    lim = 1.5 * Rd * mm
-    for a in concept.annotations(p):
-        at = np.array(a.at) * flip * mm
-        to = np.array(a.to) * flip * mm if a.to is not None else at
-        text = textwrap.fill(a.text, 30)
-        # half the text box width in data units (8 pt text, ~0.6 em per character, the
-        # axes box is ~7.2 in tall for 2 lim of data)
-        half = 0.5 * max(len(s) for s in text.splitlines()) * 0.6 * 8 / 72 * (2 * lim / 7.2) + 1.0
-        to = np.array([float(np.clip(to[0], -lim + half, lim - half)), float(np.clip(to[1], -0.93 * lim, 0.93 * lim))])
-        ax.annotate(text, xy=at, xytext=to, fontsize=8, ha="center", va="center", zorder=8,
-                    bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", lw=0.6),
-                    arrowprops=dict(arrowstyle="->", lw=0.8, color="0.2") if a.to is not None else None)
+    # annotations (canonical frame -> final frame), placed outside the drum, not overlapping
+    lim = 1.62 * Rd * mm
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_aspect("equal")
+    anns = list(concept.annotations(p)) + _common_annotations(concept, p, geo)
+    _place_labels(fig, ax, anns, flip, Rd * mm, lim, p.n_shoes)
     # rotation arrow (always ccw in the final frame): inside the bore, where nothing else is drawn
     r_arr = 0.6 * p.bore_radius * mm
     th_arr = np.radians(np.linspace(-110.0, 150.0, 60))
@@ -219,10 +313,8 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
                Line2D([], [], color="0.3", ls="--", lw=0.9, label=f"drum, R_d = {Rd * mm:g} mm"),
                Line2D([], [], marker="o", mfc="white", mec="k", ls="", label="shoe centroid (R_Tp)"),
                Line2D([], [], marker="^", color="#1a9641", mec="k", ls="", label="nominal pivot")]
-    ax.legend(handles=handles, loc="lower left", fontsize=7.5, framealpha=0.9, bbox_to_anchor=(0.0, 0.0))
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, lim)
-    ax.set_aspect("equal")
+    # outside the axes (below the parameter table), so that all four corners take labels
+    fig.legend(handles=handles, loc="lower left", fontsize=7.5, framealpha=0.9, bbox_to_anchor=(0.715, 0.07))
     ax.set_xlabel("x [mm]")
     ax.tick_params(labelsize=7)
     title = concept.title or concept.name
