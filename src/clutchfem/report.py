@@ -41,7 +41,9 @@ def summary_rows(an) -> list[tuple[str, str]]:
          f"{_fmt(an.engagement_rpm_with_ripple, '.0f', 'rpm')} / "
          f"{_fmt(an.engagement_rpm_with_ripple_typical, '.0f', 'rpm')}"
          if an.engagement_rpm_with_ripple is not None else "never engages"),
-        ("first contact on the shoe", str(an.first_touch)),
+        ("first contact on the shoe", str(an.first_touch)
+         + (f" (polar angle {an.first_touch_angle_deg:.1f} deg)"
+            if an.first_touch == "unknown" and getattr(an, "first_touch_angle_deg", None) is not None else "")),
     ]
     if an.slip_status in ("never slips", "never engages"):
         rows.append(("slip speed (drum held, full throttle)", an.slip_status.upper()))
@@ -79,12 +81,25 @@ def summary_rows(an) -> list[tuple[str, str]]:
                      " / ".join(_fmt(sl.get(k), ".0f", "rpm") if sl.get(k) is not None else "none"
                                 for k in ("x0.7", "x1.0", "x1.3"))))
     m = an.torque_models_at_max_engine_torque_Nm
-    rows.append((f"torque at {m['rpm']:.0f} rpm: FE / analytical FE arc / analytical nominal arc",
-                 " / ".join(_fmt(m[k], ".2f", "") or "-" for k in
-                            ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm")) + " N m"))
-    nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
-    rows.append((f"contact arc per shoe at {m['rpm']:.0f} rpm (nominal shoe arc)",
-                 f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg ({nominal:.0f} deg)"))
+    if getattr(an, "analytical_available", True):
+        rows.append((f"torque at {m['rpm']:.0f} rpm: FE / analytical FE arc / analytical nominal arc",
+                     " / ".join(_fmt(m[k], ".2f", "") or "-" for k in
+                                ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm")) + " N m"))
+        nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
+        rows.append((f"contact arc per shoe at {m['rpm']:.0f} rpm (nominal shoe arc)",
+                     f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg ({nominal:.0f} deg)"))
+    else:
+        rows.append(("analytical shoe model (eqs 2-8)",
+                     "not available (user mesh: no shoe pivot or nominal shoe arc)"))
+        rows.append((f"contact arc of shoe 0 at {m['rpm']:.0f} rpm", f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg"))
+    part = getattr(an, "part", None) or {}
+    if "mass_kg" in part:
+        rows.append((f"part mass (mesh area x rho x thickness {part['thickness_m'] * 1e3:g} mm)",
+                     _fmt(part["mass_kg"] * 1e3, ".1f", "g")))
+        if part.get("shoes"):
+            rows.append(("shoe zone mass / centre-of-mass radius (from the mesh)",
+                         "; ".join(f"shoe {s_['shoe']}: {s_['mass_kg'] * 1e3:.2f} g / {s_['R_Tp_m'] * 1e3:.2f} mm"
+                                   for s_ in part["shoes"])))
     eng_chk = req.get("engagement_checked_rpm")
     rows.append((f"requirement: engagement > a x idle = {req['a']:g} x {req['idle_rpm']:.0f} rpm",
                  ("PASS" if req["engagement_ok"] else "FAIL")
@@ -117,8 +132,11 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
     c = an.curves
     fig, ax = plt.subplots(figsize=(8.5, 5.5))
     ax.plot(c["rpm"], c["fe_torque_Nm"], "k-", lw=2, label="FE (contact + friction)")
-    ax.plot(c["rpm"], c["analytic_fe_arc_Nm"], "b--", label="analytical, FE contact arc")
-    ax.plot(c["rpm"], c["analytic_nominal_arc_Nm"], "r:", lw=2, label="analytical, nominal full arc (thesis)")
+    if getattr(an, "analytical_available", True):
+        ax.plot(c["rpm"], c["analytic_fe_arc_Nm"], "b--", label="analytical, FE contact arc")
+        ax.plot(c["rpm"], c["analytic_nominal_arc_Nm"], "r:", lw=2, label="analytical, nominal full arc (thesis)")
+    else:
+        ax.plot([], [], " ", label="analytical shoe model: not available (user mesh)")
     _engine_line(ax, engine)
     ax.plot(c["rpm"], BaselineClutch.new().torque_at_rpm(c["rpm"].to_numpy()), color="0.6", lw=1,
             label="today's spring clutch, new shoes (seed 000)")

@@ -39,6 +39,9 @@ DEFAULT_IDLE_RPM = 2700.0
 #: Safety factor below which the report adds a fatigue caution (ASSUMED threshold; yield
 #: itself is the hard limit, sf < 1).
 FATIGUE_CAUTION_SF = 1.5
+#: A user mesh's drum radius may exceed the contact surface's outer radius by at most this
+#: factor (a units check: a gap of half the part's radius cannot close elastically).
+DRUM_GAP_LIMIT = 1.5
 #: Friction factors of the mu sensitivity study (mu +- 30 %).
 MU_FACTORS = (0.7, 1.3)
 
@@ -149,6 +152,15 @@ class Analysis:
     first_touch: str | None
     warnings: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    #: whole part (and per-shoe zones where the mesh names them) from the mesh: area, mass,
+    #: centre of mass; see :func:`mesh_mass_properties`
+    part: dict = field(default_factory=dict)
+    #: False for a user mesh: no shoe mass properties / pivot / nominal arc, so the
+    #: analytical shoe-model curves are not available (NaN), the FE answers are
+    analytical_available: bool = True
+    #: polar angle [deg] of the first contact node (drum frame); with a user mesh the shoe's
+    #: root and tip are unknown, so ``first_touch`` is 'unknown' and this angle locates it
+    first_touch_angle_deg: float | None = None
 
     def to_json(self) -> dict:
         d = {k: v for k, v in self.__dict__.items() if k != "curves"}
@@ -208,12 +220,17 @@ def _character(n_mu0: float, n_mu: float) -> str:
 def analyze(cm, params, material, *, mu: float = 0.165, rotation: str = "ccw",
             engine: EngineCurve | None = None, requirements: Requirements | None = None,
             rpm=None, spin_softening: str = "modal", design: str = "",
-            idle_rpm: float | None = None, ripple_model: ripple_mod.RippleModel | None = None) -> Analysis:
+            idle_rpm: float | None = None, ripple_model: ripple_mod.RippleModel | None = None,
+            drum_radius: float | None = None, thickness: float | None = None) -> Analysis:
     """Run the FE sweeps and turn them into engagement / slip / torque / stress answers.
 
     cm: meshed design (concept mesh: mass properties, pivots and nominal arcs give the
-    analytical coupling); params: the concept's parameters (drum radius, thickness,
-    arrangement); material: E, nu, rho, yield strength; mu: friction coefficient [-];
+    analytical coupling; a user mesh from :func:`clutchfem.mesh.load_user_geometry` gives
+    every FE answer, the analytical curves are then NaN and ``analytical_available`` is
+    False); params: the concept's parameters (drum radius, thickness, arrangement), or None
+    for a user mesh; drum_radius [m], thickness [m]: override the concept's values; for a
+    user mesh the drum radius is required (no drum, no torque) and the thickness defaults to
+    ``cm.thickness``; material: E, nu, rho, yield strength; mu: friction coefficient [-];
     rotation: 'ccw' or 'cw'; engine: full-throttle curve (default: the ASSUMED 56.5 cc saw
     curve); requirements: factors a, b; rpm: sweep speeds (default 0..engine max in 125 rpm
     steps); idle_rpm: overrides the engine's idle speed (else the curve's, else 2700 rpm,
@@ -238,8 +255,8 @@ def analyze(cm, params, material, *, mu: float = 0.165, rotation: str = "ccw",
         raise ParameterError("idle_rpm", idle_rpm, "an idle speed > 0 rpm")
     lo, hi = engine.rpm_range
     rpm = check_speeds(rpm, engine)
-    R = params.drum_radius
-    kw = dict(drum_radius=R, rotation=rotation, spin_softening=spin_softening, thickness=params.thickness)
+    R, h = _drum_and_thickness(cm, params, drum_radius, thickness)
+    kw = dict(drum_radius=R, rotation=rotation, spin_softening=spin_softening, thickness=h)
     fe = ClutchSolver(cm, material, mu=mu, **kw)
     res = fe.sweep(rpm)
     curve = res.curve
@@ -303,7 +320,14 @@ def analyze(cm, params, material, *, mu: float = 0.165, rotation: str = "ccw",
         # d ln M / d ln mu: 1 for a point load (eq 12), < 1 minus shoe, > 1 plus shoe
         sens["elasticity"] = math.log(t_hi / t_lo) / math.log(1.3 / 0.7) if t_lo > 0 else math.nan
     # analytical coupling
-    coupling, curves = _coupled_curves(cm, params, material, res, mu, rotation)
+    coupling, curves = _coupled_curves(cm, params, material, res, mu, rotation, R, h)
+    analytical = bool(coupling.get("kind"))
+    if not analytical:
+        notes.append("analytical shoe-model curves (eqs 2-8) not available: a user mesh carries no shoe "
+                     "pivot or nominal shoe arc (shoe mass from the mesh is reported for information); "
+                     "every FE answer (engagement, slip, torque, stress, shoe character, mu sensitivity) "
+                     "is given")
+    part = mesh_mass_properties(cm, material.rho, h)
     if coupling.get("kind") and character in ("plus", "minus") and coupling["kind"] != character:
         warnings.append(f"the FE model behaves as a {character} shoe but the flexure arrangement "
                         f"suggests a {coupling['kind']} shoe: the analytical curves assume "
@@ -378,7 +402,77 @@ def analyze(cm, params, material, *, mu: float = 0.165, rotation: str = "ccw",
                     torque_models_at_max_engine_torque_Nm=models,
                     contact_arc_at_max_engine_torque_deg=arc_probe,
                     requirements=checks, engine=eng_info, coupling=coupling, curves=curves,
-                    first_touch=res.first_touch, warnings=warnings, notes=notes)
+                    first_touch=res.first_touch, warnings=warnings, notes=notes, part=part,
+                    analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg)
+
+
+def _drum_and_thickness(cm, params, drum_radius, thickness) -> tuple[float, float]:
+    """Drum radius and axial thickness [m]: explicit values, else the concept's, else (user
+    mesh) the thickness stored with the mesh; the drum radius has no default for a user mesh."""
+    R = drum_radius if drum_radius is not None else (params.drum_radius if params is not None else None)
+    if R is None:
+        raise ParameterError("drum_radius", None, "the drum's inner radius in m, larger than the outer radius "
+                             "of the contact surface: a user mesh carries no drum, and without a drum there "
+                             "is no friction torque", context="user mesh")
+    h = thickness if thickness is not None else (params.thickness if params is not None else cm.thickness)
+    for name, v, what in (("drum_radius", R, "the drum's inner radius, a length > 0 m (metres: 0.035 for 35 mm)"),
+                          ("thickness", h, "the axial thickness, a length > 0 m (metres: 0.011 for 11 mm)")):
+        if v is None or isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) \
+                or not math.isfinite(float(v)) or float(v) <= 0:
+            raise ParameterError(name, v, what)
+    b = cm.mesh.boundaries or {}
+    if params is None and "contact" in b and len(b["contact"]):
+        # a units slip (mm for m) or a drum far from the part: no elastic part closes a gap as
+        # large as half its own radius (steel yields at ~0.6 % strain)
+        r_c = float(np.hypot(*cm.mesh.p[:, cm.mesh.facets[:, b["contact"]].ravel()]).max())
+        if R > DRUM_GAP_LIMIT * r_c:
+            raise ParameterError("drum_radius", R, f"a radius in m between the contact surface's outer radius "
+                                 f"{r_c:.6g} m and {DRUM_GAP_LIMIT:g} x that ({DRUM_GAP_LIMIT * r_c:.6g} m): a larger "
+                                 f"gap cannot close elastically (lengths are in metres, not mm)", context="user mesh")
+    return float(R), float(h)
+
+
+def mesh_mass_properties(cm, rho: float, thickness: float) -> dict:
+    """Area, mass and centre of mass of the meshed part (and of each ``shoe_<i>`` zone the mesh
+    names), by quadrature over the (possibly curved) P2 triangles: mass = area x rho x thickness.
+
+    A one-sector model is scaled to the whole part (``n_shoes_total / n_shoes_model``); its
+    centre of mass is then not meaningful and left out.  For a full part, ``unbalance_kg_m``
+    = mass x distance of the centre of mass from the rotation axis.
+    """
+    from skfem import Basis, ElementTriP0, Functional
+
+    mesh = cm.mesh
+    basis = Basis(mesh, ElementTriP0(), intorder=4)
+    one, fx, fy = (Functional(lambda w: 1.0 + 0.0 * w.x[0]), Functional(lambda w: w.x[0]),
+                   Functional(lambda w: w.x[1]))
+
+    def props(elements=None) -> tuple[float, float, float]:
+        b = basis if elements is None else Basis(mesh, ElementTriP0(), intorder=4, elements=elements)
+        a = float(one.assemble(b))
+        return a, float(fx.assemble(b)) / a, float(fy.assemble(b)) / a
+
+    area, cx, cy = props()
+    sector = cm.sector_angle is not None
+    scale = cm.n_shoes_total / cm.n_shoes_model if sector else 1.0
+    out = {"thickness_m": thickness, "rho_kg_m3": float(rho), "area_m2": area * scale,
+           "mass_kg": area * scale * rho * thickness,
+           "source": "quadrature over the mesh: area x rho x thickness"
+                     + (f" (one-sector model x {scale:g})" if sector else "")}
+    if not sector:
+        e = math.hypot(cx, cy)
+        out.update({"centroid_m": [cx, cy], "unbalance_kg_m": out["mass_kg"] * e})
+    shoes = []
+    sub = mesh.subdomains or {}
+    i = 0
+    while f"shoe_{i}" in sub and len(sub[f"shoe_{i}"]):
+        a, sx, sy = props(np.asarray(sub[f"shoe_{i}"]))
+        shoes.append({"shoe": i, "mass_kg": a * rho * thickness, "centroid_m": [sx, sy],
+                      "R_Tp_m": math.hypot(sx, sy)})
+        i += 1
+    if shoes:
+        out["shoes"] = shoes
+    return out
 
 
 def contact_extent(res, shoe: int = 0) -> np.ndarray:
@@ -414,8 +508,9 @@ def contact_extent(res, shoe: int = 0) -> np.ndarray:
     return out
 
 
-def _coupled_curves(cm, params, material, res, mu, rotation):
-    """Analytical torque with the nominal arc and with the FE contact arc (per speed)."""
+def _coupled_curves(cm, params, material, res, mu, rotation, R, h):
+    """Analytical torque with the nominal arc and with the FE contact arc (per speed);
+    R: drum radius [m], h: thickness [m]."""
     rpm = res.curve["rpm"].to_numpy()
     ext = contact_extent(res, 0)
     out = pd.DataFrame({"rpm": rpm, "fe_torque_Nm": res.curve["torque_Nm"].to_numpy(),
@@ -427,7 +522,7 @@ def _coupled_curves(cm, params, material, res, mu, rotation):
         out["analytic_fe_arc_Nm"] = math.nan
         return {"source": "no analytical coupling: the design carries no shoe mass properties, "
                           "pivot or nominal arc (user mesh)"}, out
-    rho_h = material.rho * params.thickness
+    rho_h = material.rho * h
     m = shoe["area"] * rho_h
     cx, cy = shoe["centroid"]
     R_Tp = math.hypot(cx, cy)
@@ -435,7 +530,6 @@ def _coupled_curves(cm, params, material, res, mu, rotation):
     A = math.hypot(px, py)
     # lever of the radial apply force (through the centre of mass) about the pivot
     L = abs(px * cy - py * cx) / R_Tp
-    R = params.drum_radius
     root, tip = cm.contact_arcs[0]
     th_p = math.atan2(py, px)
     phi1, phi2 = sorted((abs(_wrap(root - th_p)), abs(_wrap(tip - th_p))))
