@@ -247,7 +247,7 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
     flip = np.array([1.0, -1.0]) if minus else np.array([1.0, 1.0])
 
     plt, fig, ax = _figure((12.0, 8.2))
-    fig.subplots_adjust(left=0.04, right=0.70, top=0.91, bottom=0.07)
+    fig.subplots_adjust(left=0.04, right=0.70, top=0.88 if mesh is not None else 0.91, bottom=0.07)
     # zones (hatched)
     for name, loops in sorted(geo["zones"].items()):
         kind = name.split("_")[0]
