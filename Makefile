@@ -6,8 +6,10 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 OUT ?= out/demo
-# Shared libraries that the gmsh wheel loads (X/GL), OSMesa for off-screen pyvista renders.
-APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 libgl1 libosmesa6
+# Shared libraries that the gmsh wheel loads (X/GL), OSMesa for off-screen pyvista renders,
+# SuiteSparse headers for the CHOLMOD solver back-end (scikit-sparse builds from source).
+APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 libgl1 libosmesa6 \
+            libsuitesparse-dev
 
 .PHONY: setup sysdeps demo test bench clean
 
@@ -19,6 +21,9 @@ $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test]'
+	@# CHOLMOD (faster, robust factorisation; see BENCHMARKS.md).  Optional: if its build fails
+	@# clutchfem falls back to SuperLU, so a missing compiler never blocks setup.
+	$(PY) -m pip install --quiet -e '.[cholmod]' || echo "note: CHOLMOD unavailable, using SuperLU"
 	@touch $(STAMP)
 
 setup: $(STAMP)

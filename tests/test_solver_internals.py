@@ -97,3 +97,22 @@ def test_lazy_lcp_matches_dense(seed, m, skew):
     assert np.allclose(lam_lazy, lam, rtol=1e-8, atol=1e-12 * max(lam.max(initial=0.0), 1e-300))
     # the active-set path only asks for columns it activates (or all, on a Lemke fallback)
     assert set(np.nonzero(lam_lazy)[0]) <= asked
+
+
+@pytest.mark.parametrize("backend", ["superlu", "cholmod"])
+def test_solver_backends_agree(concept1_coarse, backend, monkeypatch):
+    """Every installed direct solver gives the same sweep (CHOLMOD is installed by
+    `make setup` when it builds; SuperLU is always there)."""
+    from clutchfem.linsolve import available
+
+    if backend not in available():
+        pytest.skip(f"{backend} not installed here")
+    cm, p = concept1_coarse
+    ref = ClutchSolver(cm, STEEL, drum_radius=p.drum_radius, mu=0.165).sweep("0:14000:1000")
+    monkeypatch.setenv("CLUTCHFEM_SOLVER", backend)
+    s = ClutchSolver(cm, STEEL, drum_radius=p.drum_radius, mu=0.165)
+    assert s.fe.factor.name == backend
+    r = s.sweep("0:14000:1000")
+    assert r.engagement_rpm == pytest.approx(ref.engagement_rpm, rel=1e-9)
+    assert np.allclose(r.curve["normal_force_N"], ref.curve["normal_force_N"], rtol=1e-7, atol=1e-9)
+    assert np.allclose(r.curve["max_von_mises_Pa"], ref.curve["max_von_mises_Pa"], rtol=1e-7)
