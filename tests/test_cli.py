@@ -53,3 +53,26 @@ def test_solve_json_contract(tmp_path):
 def test_solve_bad_input(args, word):
     r = run("solve", "--concept", "concept1", "--mesh-size", "0.002", *args, ok=False)
     assert r.returncode == 2 and word in r.stderr and "Traceback" not in r.stderr
+
+
+def test_solve_vtk_fields_and_render(tmp_path):
+    """--vtk writes a quadratic-triangle .vtu per speed whose displacement matches the sweep
+    table, and an off-screen PNG (OSMesa is installed by `make setup`)."""
+    import meshio
+    import numpy as np
+
+    run("solve", "--concept", "concept4", "--mesh-size", "0.002", "--rpm", "0:10000:2000", "--vtk",
+        "--vtk-rpm", "4000,10000", "--out", str(tmp_path))
+    curve = {row["rpm"]: row for row in json.loads((tmp_path / "result.json").read_text())["curve"]}
+    for rpm in (4000, 10000):
+        m = meshio.read(tmp_path / f"fields_{rpm}rpm.vtu")
+        assert m.cells[0].type == "triangle6"
+        used = np.unique(m.cells[0].data)
+        assert len(used) == len(m.points)  # every P2 node belongs to an element
+        d = np.linalg.norm(m.point_data["displacement_m"], axis=1)
+        assert d.max() == pytest.approx(curve[rpm]["max_displacement_m"], rel=1e-9)
+        vm = m.point_data["von_mises_Pa"]
+        assert np.all(np.isfinite(vm)) and 0 < vm.max() <= curve[rpm]["max_von_mises_Pa"] * (1 + 1e-9)
+        press = m.point_data["contact_pressure_Pa"]
+        assert (press > 0).any() == (curve[rpm]["normal_force_N"] > 0)
+        assert (tmp_path / f"fields_{rpm}rpm.png").stat().st_size > 10_000

@@ -11,43 +11,53 @@ from .fem import von_mises
 from .units import rpm_to_rad_s
 
 
-def _nodal_average(solver, u: np.ndarray) -> np.ndarray:
-    """Element-vertex stresses averaged to mesh vertices: (3, nvertices)."""
-    mesh = solver.fe.cm.mesh
-    s = solver.fe.stress_at_vertices(u)  # (3, ne, 3)
-    nv = mesh.p.shape[1]
-    acc = np.zeros((3, nv))
-    cnt = np.bincount(mesh.t.T.ravel(), minlength=nv).astype(float)
+def _p2_cells(solver) -> tuple[np.ndarray, np.ndarray]:
+    """(points (n, 3), cells (ne, 6)) of the quadratic triangle mesh: every P2 node once, in
+    VTK's triangle6 order (3 corners, then mid-edges 01, 12, 20: scikit-fem's order too)."""
+    b = solver.fe.basis
+    ed = b.element_dofs  # (12, ne); vector dof = 2 * node + component
+    cells = (ed[0::2] // 2).T
+    xy = b.doflocs[:, 0::2]
+    return np.column_stack([xy.T, np.zeros(xy.shape[1])]), cells
+
+
+def _p2_nodal_stress(solver, u: np.ndarray, cells: np.ndarray, n: int) -> np.ndarray:
+    """Element-vertex stresses averaged to the P2 nodes: corners averaged over the elements
+    that share them, mid-edge nodes the mean of the edge's two corner values (the P2 strain
+    is linear along a straight edge).  (3, n)."""
+    sv = solver.vertex_stresses(u).reshape(3, -1, 3)  # (3, ne, 3 vertices)
+    corners = cells[:, :3].ravel()
+    acc = np.zeros((3, n))
+    cnt = np.bincount(corners, minlength=n).astype(float)
     for c in range(3):
-        acc[c] = np.bincount(mesh.t.T.ravel(), weights=s[c].ravel(), minlength=nv)
-    return acc / np.maximum(cnt, 1.0)
+        acc[c] = np.bincount(corners, weights=sv[c].ravel(), minlength=n)
+    acc[:, cnt > 0] /= cnt[cnt > 0]
+    for k, (i, j) in enumerate(((0, 1), (1, 2), (2, 0))):
+        acc[:, cells[:, 3 + k]] = 0.5 * (acc[:, cells[:, i]] + acc[:, cells[:, j]])
+    return acc
 
 
 def write_vtk(solver, rpms, out: Path, render: bool = True) -> list[Path]:
-    """One .vtu per speed: displacement, stresses, von Mises (vertex-averaged), contact
-    pressure at the contact nodes (vertex values), on the corner-node triangle mesh."""
+    """One .vtu per speed on the quadratic (triangle6) mesh: displacement, stresses and von
+    Mises (averaged to the nodes: the raw element-vertex peak is in the sweep table), and
+    the contact pressure at the contact nodes."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    mesh = solver.fe.cm.mesh
-    b = solver.fe.basis
-    nv = mesh.p.shape[1]
+    pts, cells = _p2_cells(solver)
+    n = len(pts)
     files = []
     for rpm in rpms:
         st, _ = solver.state(rpm_to_rad_s(rpm), None, engaged=_engaged(solver, rpm))
         u = solver.displacement(st)
-        disp = np.zeros((nv, 3))
-        disp[:, 0] = u[b.nodal_dofs[0]]
-        disp[:, 1] = u[b.nodal_dofs[1]]
-        s = _nodal_average(solver, u)
-        press = np.zeros(nv)
-        if solver.nodes is not None:
-            tab = solver.pressure_table(st)
-            verts = np.isin(solver.nodes.dof_x, b.nodal_dofs[0])
-            vid = np.searchsorted(b.nodal_dofs[0], solver.nodes.dof_x[verts])
-            press[vid] = (st.lam / (solver.fe.thickness * np.maximum(solver.nodes.weight, 1e-300)))[verts]
-            del tab
-        pts = np.column_stack([mesh.p.T, np.zeros(nv)])
-        m = meshio.Mesh(pts, [("triangle", mesh.t.T)],
+        disp = np.zeros((n, 3))
+        disp[:, 0] = u[0::2]
+        disp[:, 1] = u[1::2]
+        s = _p2_nodal_stress(solver, u, cells, n)
+        press = np.zeros(n)
+        if solver.nodes is not None and st.lam.any():
+            nd = solver.nodes
+            press[nd.dof_x // 2] = st.lam / (solver.fe.thickness * np.maximum(nd.weight, 1e-300))
+        m = meshio.Mesh(pts, [("triangle6", cells)],
                         point_data={"displacement_m": disp, "sxx_Pa": s[0], "syy_Pa": s[1], "sxy_Pa": s[2],
                                     "von_mises_Pa": von_mises(s), "contact_pressure_Pa": press})
         f = out / f"fields_{int(round(rpm))}rpm.vtu"
