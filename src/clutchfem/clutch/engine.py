@@ -186,35 +186,12 @@ def slip_rpm(
     would run to its governed maximum); returns ``rpm_min`` when the clutch already holds at
     ``rpm_min``.
     """
-    lo, hi = curve.rpm_range
-    a = lo if rpm_min is None else float(rpm_min)
-    b = hi if rpm_max is None else float(rpm_max)
-    if not (lo <= a < b <= hi):
-        raise ParameterError("rpm_min, rpm_max", (a, b), f"lo < hi inside the curve [{lo:g}, {hi:g}] rpm")
-    grid = np.linspace(a, b, int(n_grid))
-
-    def excess(x):
-        return np.asarray(clutch_torque_at_rpm(x), dtype=float) - curve.torque_at(x)
-
-    e = excess(grid)
-    if np.any(np.isnan(e)):
-        raise InputError("clutch torque function returned NaN")
-    hit = np.nonzero(e >= 0.0)[0]
-    if hit.size == 0:
-        return None
-    i = int(hit[0])
-    if i == 0:
+    crossings = torque_crossings(curve, clutch_torque_at_rpm, rpm_min, rpm_max, n_grid)
+    a = curve.rpm_range[0] if rpm_min is None else float(rpm_min)
+    if float(np.asarray(clutch_torque_at_rpm(np.array([a])), dtype=float)[0]) >= curve.torque_at(a):
         return float(a)
-    x0, x1 = float(grid[i - 1]), float(grid[i])
-    for _ in range(60):
-        xm = 0.5 * (x0 + x1)
-        if float(excess(np.array([xm]))[0]) >= 0.0:
-            x1 = xm
-        else:
-            x0 = xm
-        if x1 - x0 < 1e-9 * max(1.0, x1):
-            break
-    return 0.5 * (x0 + x1)
+    up = [x for x, d in crossings if d == "up"]
+    return up[0] if up else None
 
 
 def torque_crossings(
