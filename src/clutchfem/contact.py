@@ -13,9 +13,9 @@ Coulomb friction adds -s mu lam_i t_i (t_i = e_theta).  The *load operator* is t
 
     D(mu) = N + s mu Tt,     N[:, i] = -n_i,  Tt[:, i] = -t_i   (at node i's dofs),
 
-linear in mu: the condensed compliance K^-1 D(mu) = K^-1 N + s mu K^-1 Tt is built from two
-mu-free parts, so every friction coefficient (mu +-30 %, friction off) of one design reuses
-the same back-substitutions (:class:`Compliance`).  Columns are condensed lazily, only for
+linear in mu, so two condensed sets span the compliance K^-1 D(mu) of every friction
+coefficient (mu +-30 %, friction off) of one design: they reuse the same back-substitutions
+(:class:`Compliance`).  Columns are condensed lazily, only for
 the nodes the LCP (:mod:`clutchfem.lcp`) makes active, with their neighbours along the shoe
 prefetched in one blocked solve: the shoes touch the drum on a short arc.
 """
@@ -235,12 +235,15 @@ class DrumContact:
 
 
 class Compliance:
-    """Lazily condensed contact compliance of one (FE model, contact nodes) pair:
+    """Lazily condensed contact compliance of one (FE model, contact nodes) pair,
 
-        W(mu) = K^-1 D(mu) = Wn + s mu Wt,   Wn = K^-1 N,  Wt = K^-1 Tt,
+        W(f) = K^-1 D(f),   D(f) = N + f Tt,   f = s mu,
 
-    column by column as the LCP needs them.  Shared by every friction coefficient of the
-    design; ``Wt`` columns are computed only when a load case with friction asks for them.
+    column by column as the LCP needs them, shared by every friction coefficient of the
+    design.  D is linear in f, so two condensed sets span every f: the set ``a`` of the first
+    friction f_a asked for (a single sweep condenses exactly its own columns, nothing more)
+    and, when another f is asked for, a set ``b``: K^-1 N if f_a != 0 (then W(f) = r A +
+    (1 - r) B with r = f / f_a), else K^-1 Tt (then W(f) = A + f B).
     """
 
     def __init__(self, model, nodes: ContactNodes):
@@ -249,15 +252,33 @@ class Compliance:
         m = nodes.m
         self._rank = np.empty(m, dtype=np.int64)
         self._rank[nodes.by_arc] = np.arange(m)
-        self._pos = {"n": -np.ones(m, dtype=np.int64), "t": -np.ones(m, dtype=np.int64)}
-        self._W = {"n": np.zeros((model.ndofs, 0)), "t": np.zeros((model.ndofs, 0))}
-        self._BW = {"n": np.zeros((m, 0)), "t": np.zeros((m, 0))}
+        self.f_a: float | None = None
+        self._pos = {"a": -np.ones(m, dtype=np.int64), "b": -np.ones(m, dtype=np.int64)}
+        self._W = {"a": np.zeros((model.ndofs, 0)), "b": np.zeros((model.ndofs, 0))}
+        self._BW = {"a": np.zeros((m, 0)), "b": np.zeros((m, 0))}
         self.seconds = 0.0
 
     @property
     def n_condensed(self) -> int:
-        """Contact nodes condensed so far (normal columns)."""
-        return int(self._W["n"].shape[1])
+        """Contact nodes condensed so far (first set)."""
+        return int(self._W["a"].shape[1])
+
+    def weights(self, friction: float) -> tuple[float, float]:
+        """(c_a, c_b) with W(f) = c_a A + c_b B for f = ``friction``."""
+        if self.f_a is None:
+            self.f_a = float(friction)
+        if friction == self.f_a:
+            return 1.0, 0.0
+        if self.f_a != 0.0:
+            r = friction / self.f_a
+            return r, 1.0 - r
+        return 1.0, float(friction)
+
+    def _load(self, kind: str) -> sp.csc_matrix:
+        nd = self.nodes
+        if kind == "a":
+            return nd.normal_load if self.f_a == 0.0 else (nd.normal_load + self.f_a * nd.tangent_load).tocsc()
+        return nd.normal_load if self.f_a != 0.0 else nd.tangent_load
 
     def _ensure(self, kind: str, idx: np.ndarray) -> None:
         pos = self._pos[kind]
@@ -274,36 +295,35 @@ class Compliance:
         missing = np.unique(np.concatenate([missing, near]))
         missing = missing[pos[missing] < 0]
         t = time.perf_counter()
-        load = nd.normal_load if kind == "n" else nd.tangent_load
-        Wn = self.model.solve(load[:, missing].toarray()).reshape(self.model.ndofs, -1)
+        Wn = self.model.solve(self._load(kind)[:, missing].toarray()).reshape(self.model.ndofs, -1)
         pos[missing] = self._W[kind].shape[1] + np.arange(len(missing))
         self._W[kind] = np.hstack([self._W[kind], Wn])
         self._BW[kind] = np.hstack([self._BW[kind], nd.normal_displacement(Wn).reshape(nd.m, -1)])
         self.seconds += time.perf_counter() - t
 
-    def BW(self, idx, friction: float) -> np.ndarray:
-        """Columns ``idx`` of B W(mu) (normal displacements at the nodes), ``friction`` = s mu."""
+    def _columns(self, store: dict, idx, friction: float) -> np.ndarray:
         idx = np.asarray(idx, dtype=np.int64)
-        self._ensure("n", idx)
-        out = self._BW["n"][:, self._pos["n"][idx]]
-        if friction != 0.0:
-            self._ensure("t", idx)
-            out = out + friction * self._BW["t"][:, self._pos["t"][idx]]
+        ca, cb = self.weights(friction)
+        self._ensure("a", idx)
+        out = store["a"][:, self._pos["a"][idx]]
+        if ca != 1.0:
+            out = ca * out
+        if cb != 0.0:
+            self._ensure("b", idx)
+            out = out + cb * store["b"][:, self._pos["b"][idx]]
         return out
+
+    def BW(self, idx, friction: float) -> np.ndarray:
+        """Columns ``idx`` of B W(f) (normal displacements at the nodes), f = ``friction`` = s mu."""
+        return self._columns(self._BW, idx, friction)
 
     def W(self, idx, friction: float) -> np.ndarray:
-        """Columns ``idx`` of W(mu) (all dofs)."""
-        idx = np.asarray(idx, dtype=np.int64)
-        self._ensure("n", idx)
-        out = self._W["n"][:, self._pos["n"][idx]]
-        if friction != 0.0:
-            self._ensure("t", idx)
-            out = out + friction * self._W["t"][:, self._pos["t"][idx]]
-        return out
+        """Columns ``idx`` of W(f) (all dofs)."""
+        return self._columns(self._W, idx, friction)
 
     def basis(self) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """(columns, positions): every condensed column [Wn | Wt] and, per kind, the column
-        index of each node (-1: not condensed), for the reduced-basis fields of a sweep."""
-        k = self._W["n"].shape[1]
-        pos = {"n": self._pos["n"].copy(), "t": np.where(self._pos["t"] >= 0, self._pos["t"] + k, -1)}
-        return np.hstack([self._W["n"], self._W["t"]]), pos
+        """(columns, positions): every condensed column [A | B] and, per set, the column index
+        of each node (-1: not condensed), for the reduced-basis fields of a sweep."""
+        k = self._W["a"].shape[1]
+        pos = {"a": self._pos["a"].copy(), "b": np.where(self._pos["b"] >= 0, self._pos["b"] + k, -1)}
+        return np.hstack([self._W["a"], self._W["b"]]), pos

@@ -34,6 +34,9 @@ from .units import rad_s_to_rpm, rpm_to_rad_s
 
 __all__ = ["LoadCase", "sweep"]
 
+#: contact states a load case remembers (oldest dropped first): bounds its memory
+MEMO_STATES = 4096
+
 
 class LoadCase:
     """(FE model, drum contact or None, spin-softening strategy): see module docstring."""
@@ -45,6 +48,7 @@ class LoadCase:
         t0 = time.perf_counter()
         self.response = self.softening.bind(model, contact)
         self.setup_s = time.perf_counter() - t0
+        self._memo: dict[float, tuple[np.ndarray, np.ndarray]] = {}
 
     @property
     def omega_limit(self) -> float | None:
@@ -91,17 +95,26 @@ class LoadCase:
         return w is not None and omega >= w * (1 - 1e-12)
 
     def solve(self, omega: float, active0: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
-        """(nodal contact forces lam [N], active set) at speed ``omega`` [rad/s]."""
+        """(nodal contact forces lam [N], active set) at speed ``omega`` [rad/s].  Solved states
+        are memoised (a slip search and a sweep of the same case share their speeds)."""
         m = 0 if self.contact is None else self.contact.nodes.m
         if self.response.omega_limit is not None:
             self.response.coefficients(omega)  # refuses speeds at or beyond divergence
         if self.contact is None or not self.engaged(omega):
             return np.zeros(m), None
+        key = float(omega)
+        if key in self._memo:
+            lam, act = self._memo[key]
+            return lam.copy(), act.copy()
         q = self.contact.nodes.gap0 - self.response.free_normal(omega)
         if active0 is None or not active0.any():  # first contact: start from the deepest node
             active0 = np.zeros(len(q), dtype=bool)  # (every node with q < 0 would condense
             active0[int(np.argmin(q))] = True  # many columns the solution does not need)
-        return solve_lcp(self.response.columns(omega), q, active0)
+        lam, act = solve_lcp(self.response.columns(omega), q, active0)
+        if len(self._memo) >= MEMO_STATES:
+            self._memo.pop(next(iter(self._memo)))
+        self._memo[key] = (lam.copy(), act.copy())
+        return lam, act
 
     def torque(self, omega: float, active0=None) -> float:
         """Friction torque [N m] of the whole clutch at speed ``omega`` (drum held)."""

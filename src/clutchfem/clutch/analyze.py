@@ -341,10 +341,25 @@ def slip_step(case, engine: EngineCurve) -> SlipAnswer:
     return slip_answer(engine, FETorque(case), case.engagement_rpm, grid=bracket_grid(engine))
 
 
+def secondary_case(design, mu: float):
+    """The load case of a secondary friction coefficient (friction off, mu +-30 %): the
+    design's softening, with one Ritz space for all of them (seeded by both contact load
+    parts, :class:`~clutchfem.softening.Ritz` ``seeds='all'``) instead of one each."""
+    from dataclasses import replace
+
+    from ..softening import Ritz, get_softening
+
+    soft = get_softening(design.op.softening)
+    if isinstance(soft, Ritz):
+        soft = replace(soft, seeds="all")
+    return design.case(mu=mu, softening=soft)
+
+
 def character_step(design, probe: float) -> CharacterAnswer:
-    """Step 4: per shoe, normal force with friction (the design's mu) and without, at ``probe``."""
+    """Step 4: per shoe, normal force with friction (the design's mu) and without, at ``probe``
+    (both with the secondary cases' shared Ritz space, so the ratio compares like with like)."""
     w = rpm_to_rad_s(probe)
-    c0, c1 = design.case(mu=0.0), design.case()
+    c0, c1 = secondary_case(design, 0.0), secondary_case(design, design.op.mu)
     if c0.contact is None:
         return CharacterAnswer("not in contact", (), probe)
     lam0, _ = c0.solve(w)
@@ -378,7 +393,7 @@ def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAns
         if mu * f > 1.0:
             notes.append(f"mu x {f} = {mu * f:.3g} > 1: sensitivity point skipped")
             continue
-        case = design.case(mu=mu * f)
+        case = secondary_case(design, mu * f)
         torque[key] = float(FETorque(case)(probe)[0])
         slips[key] = slip_step(case, engine).rpm
     if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
@@ -541,7 +556,7 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                      "pivot or nominal shoe arc (shoe mass from the mesh is reported for information); "
                      "every FE answer (engagement, slip, torque, stress, shoe character, mu sensitivity) "
                      "is given")
-    part = mesh_mass_properties(design.cm, material.rho, design.thickness)
+    part = mesh_mass_properties(design.cm, material.rho, design.thickness, design.model.basis)
     if coupling.get("kind") and character in ("plus", "minus") and coupling["kind"] != character:
         warnings.append(f"the FE model behaves as a {character} shoe but the flexure arrangement "
                         f"suggests a {coupling['kind']} shoe: the analytical curves assume "
@@ -606,9 +621,11 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                     part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg)
 
 
-def mesh_mass_properties(cm, rho: float, thickness: float) -> dict:
+def mesh_mass_properties(cm, rho: float, thickness: float, basis=None) -> dict:
     """Area, mass and centre of mass of the meshed part (and of each ``shoe_<i>`` zone the mesh
     names), by quadrature over the (possibly curved) P2 triangles: mass = area x rho x thickness.
+    ``basis``: a scikit-fem basis on ``cm.mesh`` whose quadrature to use (default: P0,
+    order 4).
 
     A one-sector model is scaled to the whole part (``n_shoes_total / n_shoes_model``); its
     centre of mass is then not meaningful and left out.  For a full part, ``unbalance_kg_m``
@@ -617,7 +634,8 @@ def mesh_mass_properties(cm, rho: float, thickness: float) -> dict:
     from skfem import Basis, ElementTriP0
 
     mesh = cm.mesh
-    basis = Basis(mesh, ElementTriP0(), intorder=4)
+    if basis is None:  # any basis on the mesh will do (an FE model's: its quadrature is reused)
+        basis = Basis(mesh, ElementTriP0(), intorder=4)
     dx = basis.dx  # (nelem, nqp) quadrature weights x |det J|
     xq = basis.mapping.F(basis.X)  # (2, nelem, nqp)
     a_e, x_e, y_e = dx.sum(axis=1), (xq[0] * dx).sum(axis=1), (xq[1] * dx).sum(axis=1)
