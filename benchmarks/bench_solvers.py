@@ -30,7 +30,7 @@ def build(f: float):
     import scipy.sparse as sp
 
     from clutchfem.contact import contact_nodes
-    from clutchfem.fem import build_fe_model
+    from clutchfem.fem import FEModel
     from clutchfem.geometry import MeshSettings, get_concept
     from clutchfem.materials import get_material
     from clutchfem.mesh import mesh_concept
@@ -40,8 +40,8 @@ def build(f: float):
     d = MeshSettings()
     ms = MeshSettings(size=d.size * f, flexure_factor=d.flexure_factor * f, fillet_factor=d.fillet_factor * f)
     cm = mesh_concept(c, p, ms)
-    fe = build_fe_model(cm, get_material("51CrV4"))
-    nd = contact_nodes(cm, fe.basis, p.drum_radius)
+    fe = FEModel(cm, get_material("51CrV4"))
+    nd = contact_nodes(fe, p.drum_radius)
     m = nd.m
     D = sp.csc_matrix((np.concatenate([-nd.normal[0], -nd.normal[1]]),
                        (np.concatenate([nd.dof_x, nd.dof_y]), np.concatenate([np.arange(m)] * 2))),

@@ -11,8 +11,11 @@
 3. Mesh-size table: uniform refinement factor f (global size 1.2 mm * f, flexure and fillet
    factors scaled with f), elements, dofs, contact nodes, time, error of engagement rpm and
    torque at 8000 rpm against a reference (finest mesh, spin_softening='exact').
-4. Spin softening: 'modal' (load-dependent Ritz, depth 1..6) / 'off' against 'exact' on the
+4. Spin softening: 'ritz' (load-dependent Ritz, depth 1..6) / 'off' against 'exact' on the
    default mesh.
+5. ``analyze`` (every answer: slip, character, mu +-30 %, coupling, stresses) against one full
+   sweep with stresses on the same speeds, both from the mesh in memory (FE model built in
+   both): the ratio that says what the answers cost on top of the sweep.
 
     .venv/bin/python benchmarks/bench_sweep.py [--concept concept4] [--ref-factor 0.25] [--repeat 3]
 
@@ -26,15 +29,21 @@ import argparse
 import statistics
 import time
 
+import numpy as np
+
 from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, asm
 from skfem.helpers import ddot, sym_grad, trace
 
-from clutchfem.fem import build_fe_model, constraint_map
-from clutchfem.linsolve import factorize
+from clutchfem.clutch.analyze import analyze, bracket_grid, check_speeds
+from clutchfem.clutch.engine import EngineCurve
+from clutchfem.design import Design
+from clutchfem.fem import FEModel, constraint_map
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.linsolve import factorize
 from clutchfem.materials import get_material
 from clutchfem.mesh import mesh_concept
-from clutchfem.solver import ClutchSolver
+from clutchfem.operating import OperatingPoint
+from clutchfem.softening import Ritz
 
 RPM = "0:14000:250"
 MU = 0.165
@@ -46,13 +55,15 @@ def settings(f: float) -> MeshSettings:
                         fillet_factor=d.fillet_factor * f)
 
 
-def run(cm, p, mat, softening="modal", rpm=RPM, stresses=True, clock=time.perf_counter, **kw):
+def run(cm, p, mat, softening="ritz", rpm=RPM, stresses=True, clock=time.perf_counter):
+    """(design, result, setup time, sweep time): setup = FE model (assembly, constraints);
+    the sweep includes the factorisation, Ritz vectors, condensation, contact and fields."""
     t0 = clock()
-    s = ClutchSolver(cm, mat, drum_radius=p.drum_radius, mu=MU, spin_softening=softening, **kw)
+    d = Design(cm, OperatingPoint(mu=MU, material=mat), params=p)
     t1 = clock()
-    r = s.sweep(rpm, stresses=stresses)
+    r = d.sweep(rpm, softening=softening, stresses=stresses)
     t2 = clock()
-    return r, t1 - t0, t2 - t1
+    return d, r, t1 - t0, t2 - t1
 
 
 def static_solve(cm, p, mat):
@@ -111,24 +122,26 @@ def main() -> None:
           f"{first:.3f} s), load from cache {t_cache:.3f} s (excluded below)")
     setups, sweeps, totals, cpu = [], [], [], []
     for _ in range(a.repeat):
-        r, ts, tw = run(cm, p, mat)
+        d, r, ts, tw = run(cm, p, mat)
         setups.append(ts)
         sweeps.append(tw)
         totals.append(ts + tw)
-        _, cs, cw = run(cm, p, mat, clock=time.process_time)
+        _, _, cs, cw = run(cm, p, mat, clock=time.process_time)
         cpu.append(cs + cw)
-    s = r.solver
-    print(f"solver back-end {s.fe.factor.name}, dofs {s.fe.ndofs}, reduced {s.fe.Kr.shape[0]}, contact "
-          f"nodes {s.nodes.m} (condensed: {s.n_condensed}), Ritz vectors {s.Phi.shape[1]}, speeds "
-          f"{len(r.curve)}, engagement {r.engagement_rpm:.1f} rpm, torque(8000) {torque_at(r):.4f} N m")
+    fe, resp = d.model, d.case().response
+    print(f"solver back-end {fe.factor.name}, dofs {fe.ndofs}, reduced {fe.Kr.shape[0]}, contact "
+          f"nodes {d.nodes.m} (condensed: {resp.compliance.n_condensed}), Ritz vectors {resp.Phi.shape[1]}, "
+          f"speeds {len(r.curve)}, engagement {r.engagement_rpm:.1f} rpm, torque(8000) {torque_at(r):.4f} N m")
     print(f"wall time (min / median of {a.repeat}): setup {min(setups):.3f} / "
           f"{statistics.median(setups):.3f} s, sweep {min(sweeps):.3f} / {statistics.median(sweeps):.3f} s, "
           f"total {min(totals):.3f} / {statistics.median(totals):.3f} s; CPU time total {min(cpu):.3f} s")
     tm = r.timings
-    parts = ["assemble_s", "constraints_s", "factorize_s", "solve_u1_s", "contact_setup_s", "modes_s",
-             "engagement_s", "contact_s", "condense_s", "fields_s", "post_s"]
+    tm = {**tm, "condense_s": resp.compliance.seconds}
+    parts = ["assemble_s", "constraints_s", "mass_s", "factorize_s", "solve_u1_s", "case_setup_s",
+             "engagement_s", "contact_s", "condense_s", "post_s"]
     print("breakdown (last run): " + ", ".join(f"{k[:-2]} {tm[k] * 1e3:.1f} ms" for k in parts if k in tm)
-          + "  (condense is part of contact)")
+          + "  (case_setup: mass, factorisation, u1, Ritz vectors; condense is part of contact; "
+          "post: fields and stresses)")
 
     # -- 2. one static solve ----------------------------------------------------------------
     st, st_cpu, st_fe = [], [], []
@@ -138,21 +151,21 @@ def main() -> None:
         st.append(time.perf_counter() - t0)
         st_cpu.append(time.process_time() - c0)
         t0 = time.perf_counter()
-        fe = build_fe_model(cm, mat)
+        fe = FEModel(cm, mat)
         fe.solve(fe.f1)
         st_fe.append(time.perf_counter() - t0)
     print(f"\n== 2. one no-contact static solve (K and f1 assembly, constraints, factorisation, solve): "
-          f"wall {min(st):.3f} s, CPU {min(st_cpu):.3f} s  (clutchfem's FE model with M too: {min(st_fe):.3f} s)")
+          f"wall {min(st):.3f} s, CPU {min(st_cpu):.3f} s  (clutchfem's FEModel + u1: {min(st_fe):.3f} s)")
     print(f"full sweep / static solve: wall {min(totals) / min(st):.2f}, CPU {min(cpu) / min(st_cpu):.2f}")
 
     # -- 3. mesh table ----------------------------------------------------------------------
     print(f"\n== 3. mesh size vs time vs error (reference: f = {a.ref_factor}, spin_softening='exact')")
     cm_ref = mesh_concept(c, p, settings(a.ref_factor))
     t0 = time.perf_counter()
-    ref, ts, tw = run(cm_ref, p, mat, softening="exact", rpm=[8000.0], stresses=False)
+    dref, ref, ts, tw = run(cm_ref, p, mat, softening="exact", rpm=[8000.0], stresses=False)
     t_ref = time.perf_counter() - t0
     e_ref, T_ref = ref.engagement_rpm, torque_at(ref)
-    print(f"reference: {cm_ref.n_elements} elements, {ref.solver.fe.ndofs} dofs, {ref.solver.nodes.m} "
+    print(f"reference: {cm_ref.n_elements} elements, {dref.model.ndofs} dofs, {dref.nodes.m} "
           f"contact nodes, engagement {e_ref:.3f} rpm, torque(8000) {T_ref:.5f} N m ({t_ref:.1f} s)")
     rows = []
     factors = [float(x) for x in a.factors.split(",")] + [a.ref_factor]
@@ -162,9 +175,9 @@ def main() -> None:
         t_mesh = time.perf_counter() - t0
         best = None
         for _ in range(1 if f < 0.5 else a.repeat):
-            rf, ts, tw = run(cmf, p, mat)
+            df, rf, ts, tw = run(cmf, p, mat)
             best = (ts, tw) if best is None or ts + tw < sum(best) else best
-        rows.append((f, cmf.mesh_settings["size"] * 1e3, cmf.n_elements, rf.solver.fe.ndofs, rf.solver.nodes.m,
+        rows.append((f, cmf.mesh_settings["size"] * 1e3, cmf.n_elements, df.model.ndofs, df.nodes.m,
                      t_mesh, best[0], best[1], best[0] + best[1],
                      rf.engagement_rpm - e_ref, 100 * (rf.engagement_rpm / e_ref - 1),
                      100 * (torque_at(rf) / T_ref - 1)))
@@ -178,25 +191,42 @@ def main() -> None:
     # -- 4. spin softening --------------------------------------------------------------------
     print("\n== 4. spin softening on the default mesh (errors against 'exact')")
     res = {}
-    variants = [("exact", {}), ("off", {})] + [(f"modal depth {d}", {"ritz_depth": d}) for d in (1, 2, 3, 4, 6)]
-    for name, kw in variants:
+    variants = [("exact", "exact"), ("off", "off")] + [(f"ritz depth {d}", Ritz(depth=d)) for d in (1, 2, 3, 4, 6)]
+    for name, soft in variants:
         t0 = time.perf_counter()
-        rk, _, _ = run(cm, p, mat, softening=name.split()[0], **kw)
-        res[name] = (rk, time.perf_counter() - t0)
+        dk, rk, _, _ = run(cm, p, mat, softening=soft)
+        res[name] = (rk, time.perf_counter() - t0, dk.case(softening=soft).response)
     ex = res["exact"][0]
     cx = ex.curve.set_index("rpm")
     hi = cx.index >= 6000
     rows = []
     for name, _ in variants:
-        rk, tk = res[name]
+        rk, tk, resp = res[name]
         c_ = rk.curve.set_index("rpm")
         dN = (c_.loc[hi, "normal_force_N"] / cx.loc[hi, "normal_force_N"] - 1).abs().max()
-        rows.append((name, rk.solver.Phi.shape[1], tk, rk.engagement_rpm,
+        rows.append((name, getattr(resp, "Phi", np.zeros((0, 0))).shape[1], tk, rk.engagement_rpm,
                      100 * (rk.engagement_rpm / ex.engagement_rpm - 1),
                      100 * (torque_at(rk) / torque_at(ex) - 1), 100 * dN))
     table(["softening", "vectors", "time s", "engagement rpm", "d_eng %", "d_T8000 %", "max|dN| >= 6000 rpm %"],
           rows, ["{}", "{:d}", "{:.3f}", "{:.2f}", "{:+.2e}", "{:+.2e}", "{:.2e}"])
     print("(default: depth 3)")
+
+    # -- 5. analyze vs one full sweep ---------------------------------------------------------
+    engine = EngineCurve.default()
+    speeds = check_speeds(None, engine)
+    t_sw, t_an = [], []
+    for _ in range(a.repeat):
+        t0 = time.perf_counter()
+        Design(cm, OperatingPoint(mu=MU, material=mat), params=p).sweep(speeds, stresses=True)
+        t_sw.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        an = analyze(Design(cm, OperatingPoint(mu=MU, material=mat), params=p), engine=engine)
+        t_an.append(time.perf_counter() - t0)
+    print(f"\n== 5. analyze vs one full sweep with stresses ({len(speeds)} speeds, FE model built in both; "
+          f"slip crossings bracketed on {len(bracket_grid(engine))} speeds)")
+    print(f"full sweep {min(t_sw):.3f} s, analyze {min(t_an):.3f} s (min of {a.repeat}): ratio "
+          f"{min(t_an) / min(t_sw):.2f}; slip {an.slip_rpm:.1f} rpm, torque(8000) "
+          f"{an.torque_at_max_engine_torque_Nm:.4f} N m")
 
 
 if __name__ == "__main__":

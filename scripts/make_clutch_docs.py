@@ -25,8 +25,8 @@ from clutchfem.clutch.analyze import analyze, slip_answer  # noqa: E402
 from clutchfem.clutch.baseline import BaselineClutch  # noqa: E402
 from clutchfem.clutch.engine import EngineCurve  # noqa: E402
 from clutchfem.clutch.shoe import ShoeGeometry, torque_factor  # noqa: E402
+from clutchfem.design import Design  # noqa: E402
 from clutchfem.geometry import MeshSettings, get_concept  # noqa: E402
-from clutchfem.materials import get_material  # noqa: E402
 from clutchfem.mesh import mesh_concept  # noqa: E402
 from clutchfem.report import comparison_plot, summary_rows  # noqa: E402
 
@@ -40,7 +40,7 @@ def run(name, **overrides):
     p = c.params(**overrides)
     cm = mesh_concept(c, p, MeshSettings())
     t0 = time.perf_counter()
-    an = analyze(cm, p, get_material("51CrV4"), engine=EngineCurve.default(), design=name)
+    an = analyze(Design(cm, params=p, name=name), engine=EngineCurve.default())
     return an, cm, time.perf_counter() - t0
 
 

@@ -47,13 +47,9 @@ RPM_MAX_TORQUE, RPM_MAX = 8000.0, 14000.0  # ... and below the engine's max-torq
 def _engagement(cm, p) -> float | None:
     """FE engagement speed [rpm]: 51CrV4, mu = 0.165, modal spin softening (the solver's
     defaults); None if the shoe never reaches the drum below its first natural frequency."""
-    try:
-        from clutchfem.materials import get_material
-        from clutchfem.solver import ClutchSolver
-    except ImportError:
-        return None
-    s = ClutchSolver(cm, get_material("51CrV4"), drum_radius=p.drum_radius, mu=0.165, thickness=p.thickness)
-    w, _ = s.engagement()
+    from clutchfem.design import Design
+
+    w, _ = Design(cm, params=p).case().engagement
     return None if w is None else w * 60 / (2 * math.pi)
 
 

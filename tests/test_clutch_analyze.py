@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 
 from clutchfem.clutch.analyze import analyze, shoe_kind
+from clutchfem.design import Design
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.materials import get_material
 from clutchfem.mesh import mesh_concept
+from clutchfem.operating import OperatingPoint
 
 
 def test_shoe_kind_convention():
@@ -21,7 +22,7 @@ def analyses():
     for arr in ("minus", "plus"):
         p = c.params(arrangement=arr)
         cm = mesh_concept(c, p, MeshSettings(size=2.0e-3))
-        out[arr] = analyze(cm, p, get_material("51CrV4"), rpm=np.arange(0, 14001, 500.0))
+        out[arr] = analyze(Design(cm, OperatingPoint(material="51CrV4", rpm=np.arange(0, 14001, 500.0)), params=p))
     return out
 
 

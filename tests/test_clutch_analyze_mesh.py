@@ -15,6 +15,8 @@ import numpy as np
 import pytest
 
 from clutchfem.clutch.analyze import analyze, mesh_mass_properties
+from clutchfem.design import Design
+from clutchfem.operating import OperatingPoint
 from clutchfem.errors import ParameterError
 from clutchfem.geometry import MeshSettings, get_concept
 from clutchfem.materials import get_material
@@ -61,11 +63,9 @@ def mesh_json(c4_msh, c4):
 @pytest.fixture(scope="module")
 def concept_full(c4):
     """The concept path (analytical coupling and all) on the full model, through the API."""
-    from clutchfem.solver import parse_rpm
-
     c, p = c4
     cm = mesh_concept(c, p, MeshSettings(size=float(SIZE), model="full"))
-    return analyze(cm, p, get_material("51CrV4"), rpm=parse_rpm(RPM), design="concept4")
+    return analyze(Design(cm, OperatingPoint(material="51CrV4", rpm=RPM), params=p, name="concept4"))
 
 
 def test_mesh_answers_equal_concept_path_on_the_same_mesh(mesh_json, concept_full):
@@ -179,9 +179,9 @@ def test_mesh_without_contact_group_is_clear(tmp_path):
 def test_api_user_mesh_needs_drum_radius(c4_msh):
     cm = load_user_geometry(c4_msh, thickness=0.011)
     with pytest.raises(ParameterError, match="drum_radius"):
-        analyze(cm, None, get_material("51CrV4"))
+        analyze(Design(cm, OperatingPoint(material="51CrV4")))
     with pytest.raises(ParameterError, match="thickness"):
-        analyze(cm, None, get_material("51CrV4"), drum_radius=0.0344, thickness=-1.0)
+        Design(cm, OperatingPoint(material="51CrV4", drum_radius=0.0344, thickness=-1.0))
 
 
 def test_mesh_mass_properties_hand_values(tmp_path):

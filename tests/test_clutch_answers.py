@@ -9,9 +9,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from clutchfem.clutch.analyze import Requirements, check_speeds, contact_extent, slip_answer
+from clutchfem.clutch.analyze import Requirements, check_speeds, slip_answer
 from clutchfem.clutch.engine import EngineCurve, torque_crossings
 from clutchfem.errors import ParameterError
+from clutchfem.results import contact_extent
 
 FLAT = EngineCurve((1000.0, 10000.0), (3.0, 3.0), source="flat 3 N m")
 
@@ -87,7 +88,8 @@ def test_sweep_speeds_inside_the_engine_curve():
     eng = EngineCurve.default()
     r = check_speeds(None, eng)
     assert r[0] == 0.0 and r[-1] == 14000.0 and np.all(np.diff(r) > 0)
-    assert check_speeds([1000.0, 5000.0], eng).tolist() == [1000.0, 5000.0, 14000.0]  # max rpm added
+    # the engine's max speed (stresses) and rpm of max torque (torque, arc) are always solved
+    assert check_speeds([1000.0, 5000.0], eng).tolist() == [1000.0, 5000.0, 8000.0, 14000.0]
     for bad in ([0.0, 15000.0], [-10.0, 100.0], [np.nan]):
         with pytest.raises(ParameterError) as ei:
             check_speeds(bad, eng)
@@ -98,14 +100,13 @@ def test_sweep_speeds_inside_the_engine_curve():
 
 def _fake_sweep(angles_deg, lams):
     nodes = SimpleNamespace(shoe=np.zeros(len(angles_deg), dtype=int), angle=np.radians(angles_deg))
-    return SimpleNamespace(solver=SimpleNamespace(nodes=nodes),
-                           states=[SimpleNamespace(lam=np.asarray(l, dtype=float)) for l in lams])
+    return SimpleNamespace(nodes=nodes), np.asarray(lams, dtype=float)
 
 
 def test_contact_extent_adds_half_a_node_spacing_each_side():
     ang = [4.0, 0.0, 1.0, 2.0, 3.0]  # unsorted on purpose
     lams = [[0, 0, 0, 0, 0], [0, 0, 0, 5, 0], [0, 0, 1, 2, 3], [7, 0, 0, 0, 0]]
-    ext = np.degrees(contact_extent(_fake_sweep(ang, lams)))
+    ext = np.degrees(contact_extent(*_fake_sweep(ang, lams)))
     assert np.all(np.isnan(ext[0]))
     assert ext[1] == pytest.approx([1.5, 2.5])  # single node at 2 deg: one spacing wide
     assert ext[2] == pytest.approx([0.5, 3.5])  # nodes 1..3 deg

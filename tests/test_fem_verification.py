@@ -59,15 +59,22 @@ from skfem import (Basis, BilinearForm, ElementTriP1, ElementVector, FacetBasis,
                    asm, condense, solve)
 from skfem.helpers import ddot, sym_grad, trace
 
-from clutchfem.contact import _active_set, _lemke, lcp_residual, solve_lcp
+from clutchfem.design import Design
+from clutchfem.lcp import _active_set, _lemke, lcp_residual, solve_lcp
 from clutchfem.errors import MeshError, SolverError
-from clutchfem.fem import build_fe_model, von_mises
+from clutchfem.fem import FEModel, von_mises
 from clutchfem.materials import Material, get_material
-from clutchfem.solver import ClutchSolver
+from clutchfem.operating import OperatingPoint
 from clutchfem.testshapes import load_annulus, load_cantilever
 from clutchfem.units import rad_s_to_rpm
 
 STEEL = Material(name="steel (verification)", E=210e9, nu=0.3, rho=7850.0)
+
+
+def _design(cm, mat, drum_radius=None, mu=0.0, rotation="ccw", spin_softening="ritz", params=None):
+    """The design the tests below solve: mesh, material and operating point."""
+    op = OperatingPoint(drum_radius=drum_radius, mu=mu, rotation=rotation, softening=spin_softening, material=mat)
+    return Design(cm, op, params=params)
 A_IN, B_OUT, H = 6.5e-3, 33.8e-3, 11e-3  # bore, rim radius, axial thickness [m]
 
 
@@ -159,12 +166,11 @@ def lame_engagement(mat, a, b, c, soft):
     return brentq(lambda w: Lame(mat, w, a, b, soft=True).u(b) - c, 0.5 * w0, w0, xtol=1e-9)
 
 
-def fe_errors(solver: ClutchSolver, u: np.ndarray, exact: Lame) -> dict:
+def fe_errors(design: Design, u: np.ndarray, exact: Lame) -> dict:
     """Relative errors of an FE displacement against the closed form: L2 of u, max radial
     nodal error, L2 of the stress tensor (quadrature points), max von Mises at element
     vertices (the solver's raw stress points) relative to the exact maximum."""
-    fe = solver.fe
-    bas = fe.basis
+    bas = design.model.basis
     ip = bas.interpolate(u)
     x = np.asarray(bas.global_coordinates())
     ue, se = exact.cartesian(x[0], x[1])
@@ -179,8 +185,8 @@ def fe_errors(solver: ClutchSolver, u: np.ndarray, exact: Lame) -> dict:
     r = np.hypot(X[0], X[1])
     ur = (u[nx] * X[0] + u[ny] * X[1]) / r
     rr = np.linspace(A_IN, B_OUT, 4001)
-    sv = solver.vertex_stresses(u)
-    pts = solver._vertex_points
+    sv = design.model.stress(u)
+    pts = design.model.stress.points
     _, sve = exact.cartesian(pts[0], pts[1])
     vm_exact_max = float(np.max(von_mises(exact.cartesian(rr, 0 * rr)[1])))
     return {"u_L2": l2(np.asarray(ip) - ue) / l2(ue),
@@ -210,8 +216,8 @@ def test_annulus_spin_convergence(tmp_path):
     hs, errs = [], []
     for size in (3e-3, 1.5e-3, 0.75e-3):
         cm = load_annulus(tmp_path / f"ann{size}.msh", A_IN, B_OUT, size, thickness=H)
-        s = ClutchSolver(cm, STEEL, spin_softening="off")
-        r = s.sweep([rad_s_to_rpm(omega)], keep_displacements=True)
+        s = _design(cm, STEEL, spin_softening="off")
+        r = s.sweep([rad_s_to_rpm(omega)])
         e = fe_errors(s, r.displacements[:, 0], exact)
         # the sweep's own post-processing (peak displacement) against the closed form
         rr = np.linspace(A_IN, B_OUT, 4001)
@@ -252,8 +258,8 @@ def test_annulus_spin_softening_closed_form(annulus_full, softening):
     rr = np.linspace(A_IN, B_OUT, 20001)
     umax_soft, umax_plain = soft.u(rr).max(), plain.u(rr).max()
     assert umax_soft / umax_plain - 1 == pytest.approx(0.0204, abs=5e-4)
-    s = ClutchSolver(annulus_full, STEEL, spin_softening=softening)
-    r = s.sweep([rad_s_to_rpm(omega)], keep_displacements=True)
+    s = _design(annulus_full, STEEL, spin_softening=softening)
+    r = s.sweep([rad_s_to_rpm(omega)])
     umax = r.curve["max_displacement_m"][0]
     e = fe_errors(s, r.displacements[:, 0], soft)
     print(f"\n{softening}: peak displacement error {umax / umax_soft - 1:.2e}, u L2 {e['u_L2']:.2e}, "
@@ -265,8 +271,8 @@ def test_annulus_spin_softening_closed_form(annulus_full, softening):
 def test_annulus_no_softening_closed_form(annulus_full):
     omega = 5.0e4
     plain = Lame(STEEL, omega, A_IN, B_OUT)
-    s = ClutchSolver(annulus_full, STEEL, spin_softening="off")
-    r = s.sweep([rad_s_to_rpm(omega)], keep_displacements=True)
+    s = _design(annulus_full, STEEL, spin_softening="off")
+    r = s.sweep([rad_s_to_rpm(omega)])
     e = fe_errors(s, r.displacements[:, 0], plain)
     assert r.curve["max_displacement_m"][0] / plain.u(np.linspace(A_IN, B_OUT, 20001)).max() - 1 == \
         pytest.approx(0, abs=1e-4)
@@ -289,8 +295,8 @@ def drum_meshes(tmp_path_factory):
 
 
 def _drum_case(cm, softening):
-    s = ClutchSolver(cm, STEEL, drum_radius=B_OUT + CLEAR, mu=MU, spin_softening=softening)
-    return s.sweep(rad_s_to_rpm(OMEGAS), stresses=True, keep_displacements=True)
+    s = _design(cm, STEEL, drum_radius=B_OUT + CLEAR, mu=MU, spin_softening=softening)
+    return s, s.sweep(rad_s_to_rpm(OMEGAS), stresses=True)
 
 
 @pytest.mark.slow
@@ -309,7 +315,7 @@ def test_annulus_drum_closed_form(drum_meshes, softening, models):
     w0 = lame_engagement(STEEL, A_IN, B_OUT, CLEAR, soft)
     results = {}
     for name in models:
-        res = _drum_case(drum_meshes[name], softening)
+        des, res = _drum_case(drum_meshes[name], softening)
         results[name] = res
         assert res.engagement_rpm == pytest.approx(rad_s_to_rpm(w0), rel=1e-5), name
         for k, om in enumerate(OMEGAS):
@@ -328,7 +334,7 @@ def test_annulus_drum_closed_form(drum_meshes, softening, models):
                 # fields: radial Lame part + torsion from the rim friction (tau = -mu p for
                 # ccw rotation); the peak von Mises sits at the clamped bore
                 cft = Lame(STEEL, om, A_IN, B_OUT, rim=CLEAR, soft=soft, tau_b=-MU * p)
-                e = fe_errors(res.solver, res.displacements[:, k], cft)
+                e = fe_errors(des, res.displacements[:, k], cft)
                 print(f"   fields: u L2 {e['u_L2']:.1e}, stress L2 {e['sigma_L2']:.1e}, "
                       f"peak vM {e['vm_max']:+.1e}")
                 # (modal: 0.92 of the torsion-mode speed at 5e4 rad/s amplifies the torsion
@@ -348,7 +354,7 @@ def test_sector_contact_pressure_uniform_across_cut(drum_meshes):
     G has two identical rows/columns (singular), the LCP splits their force arbitrarily
     (here 0 and 2x) and the pressure table shows 0 and twice the pressure there (totals are
     right).  FAILS until contact_nodes() merges the cut_b copies into their cut_a partners."""
-    res = _drum_case(drum_meshes["sector60"], "off")
+    _, res = _drum_case(drum_meshes["sector60"], "off")
     k = 1
     cf = Lame(STEEL, OMEGAS[k], A_IN, B_OUT, rim=CLEAR)
     p = -float(cf.sigma_r(B_OUT))
@@ -374,7 +380,7 @@ def _cantilever(tmp_path, ratio, element="P2", t=2e-3, depth=10e-3, P=100.0):
         return (P / t) * v[1]  # uniform shear traction on the tip edge, resultant P
 
     if element == "P2":
-        fe = build_fe_model(cm, STEEL)
+        fe = FEModel(cm, STEEL)
         F = asm(tip_load, FacetBasis(cm.mesh, fe.basis.elem, facets=cm.boundary("tip"), intorder=4))
         assert F.sum() == pytest.approx(P)
         u = fe.solve(F)
@@ -465,7 +471,7 @@ def test_concept1_sector_vs_full_and_friction_sign():
             for rot, mu in (("ccw", 0.0), ("ccw", 0.165), ("cw", 0.165)):
                 if model == "full" and rot == "cw":
                     continue
-                s = ClutchSolver(cm, steel, drum_radius=p.drum_radius, mu=mu, rotation=rot)
+                s = _design(cm, steel, drum_radius=p.drum_radius, params=p, mu=mu, rotation=rot)
                 out[arr, model, rot, mu] = s.sweep([8000.0], stresses=False)
     sec, full = out["minus", "sector", "ccw", 0.165], out["minus", "full", "ccw", 0.165]
     assert full.engagement_rpm == pytest.approx(sec.engagement_rpm, rel=5e-3)
@@ -503,7 +509,7 @@ def test_concept_mesh_convergence():
     for f in (2.0, 1.0, 0.5):
         ms = MeshSettings(size=1.2e-3 * f, flexure_factor=0.4 * f, fillet_factor=0.5 * f)
         cm = mesh_concept(c, p, ms)
-        r = ClutchSolver(cm, steel, drum_radius=p.drum_radius, mu=0.165).sweep([8000.0], stresses=False)
+        r = _design(cm, steel, drum_radius=p.drum_radius, params=p, mu=0.165).sweep([8000.0], stresses=False)
         eng.append(r.engagement_rpm)
         tq.append(_at(r, 8000, "torque_Nm"))
         print(f"\n{name} f={f}: {cm.n_elements} elements, engagement {r.engagement_rpm:.2f} rpm, "
@@ -522,7 +528,7 @@ def test_spin_softening_modal_vs_exact_concept1():
     cm, p = _concept_cm("concept1")
     steel = get_material("51CrV4")
     rpm = [4000.0, 8000.0, 11000.0, 14000.0]
-    res = {k: ClutchSolver(cm, steel, drum_radius=p.drum_radius, mu=0.165, spin_softening=k)
+    res = {k: _design(cm, steel, drum_radius=p.drum_radius, params=p, mu=0.165, spin_softening=k)
            .sweep(rpm, stresses=False) for k in ("modal", "exact", "off")}
     ex, mo, off = res["exact"], res["modal"], res["off"]
     assert mo.engagement_rpm == pytest.approx(ex.engagement_rpm, rel=5e-4)
@@ -536,11 +542,11 @@ def test_spin_softening_modal_vs_exact_concept1():
 def test_exact_softening_below_engagement():
     """Below engagement (and with no drum) 'exact' must still soften: its displacement
     field has to match 'modal' (both are (K - w^2 M)^-1 w^2 f1 there).  FAILS:
-    ClutchSolver.state returns an empty state for an unengaged speed and displacement()
+    the old ClutchSolver.state returned an empty state for an unengaged speed and displacement()
     falls back to w^2 u1 (no softening) for 'exact'."""
     cm, p = _concept_cm("concept1")
     steel = get_material("51CrV4")
-    res = {k: ClutchSolver(cm, steel, drum_radius=p.drum_radius, mu=0.165, spin_softening=k)
+    res = {k: _design(cm, steel, drum_radius=p.drum_radius, params=p, mu=0.165, spin_softening=k)
            .sweep([3000.0], stresses=False) for k in ("modal", "exact", "off")}
     d = {k: float(r.curve["max_displacement_m"][0]) for k, r in res.items()}
     assert d["modal"] / d["off"] - 1 > 5e-3  # softening is visible at 3000 rpm
@@ -567,11 +573,11 @@ def test_concept_peak_stress_not_a_mesh_artefact(name):
     p = c.params()
     cm = mesh_concept(c, p, MeshSettings())
     steel = get_material("51CrV4")
-    s = ClutchSolver(cm, steel, drum_radius=p.drum_radius, spin_softening="off")
-    w0, _ = s.engagement()
-    r = s.sweep([rad_s_to_rpm(0.9 * w0)], keep_displacements=True)
+    s = _design(cm, steel, drum_radius=p.drum_radius, params=p, spin_softening="off")
+    w0, _ = s.case().engagement
+    r = s.sweep([rad_s_to_rpm(0.9 * w0)])
     u = r.displacements[:, 0]
-    g = s.fe.basis.interpolate(u).grad
+    g = s.model.basis.interpolate(u).grad
     lam, mu = steel.lame_plane_stress()
     exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
     vm_quad = float(np.max(von_mises(np.array([2 * mu * exx + lam * (exx + eyy),
@@ -689,7 +695,8 @@ def test_user_mesh_empty_bore_group(tmp_path):
     tagged, and load_user_geometry calls mesh.boundaries.get(...) -> AttributeError."""
     import gmsh
 
-    from clutchfem.mesh import gmsh_session, load_user_geometry
+    from clutchfem.geometry.session import gmsh_session
+    from clutchfem.mesh import load_user_geometry
 
     path = tmp_path / "nobore.msh"
     with gmsh_session("nobore"):

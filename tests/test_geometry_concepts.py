@@ -313,14 +313,14 @@ def test_unknown_parameter_is_refused():
 # concept 4: the defaults are a sensible 60 cc clutch; the beam stays off the drum
 # --------------------------------------------------------------------------------------
 def test_concept4_defaults_engage_in_window():
-    from clutchfem.materials import get_material
-    from clutchfem.solver import ClutchSolver
+    from clutchfem.design import Design
+    from clutchfem.operating import OperatingPoint
 
     c = get_concept("concept4")
     p = c.params()
     cm = mesh_concept(c, p, MeshSettings(size=2e-3))  # engagement is mesh-converged to < 1 % here
-    solver = ClutchSolver(cm, get_material("steel"), drum_radius=p.drum_radius, spin_softening="off")
-    w, _ = solver.engagement()
+    d = Design(cm, OperatingPoint(material="steel", softening="off"), params=p)
+    w, _ = d.case().engagement
     rpm = w * 60 / (2 * math.pi)
     assert 3500 < rpm < 5000, rpm
     est = c.hand_estimate(p)
@@ -337,14 +337,14 @@ WINDOW_RPM = (1.3 * 2700.0, 5000.0)
 def test_concept1_and_2_defaults_engage_in_window(name):
     """The 60 cc defaults engage inside the window (51CrV4, mu = 0.165, spin softening on);
     the first contact is at the shoe tip, as on the thesis prototypes."""
-    from clutchfem.materials import get_material
-    from clutchfem.solver import ClutchSolver
+    from clutchfem.design import Design
+    from clutchfem.operating import OperatingPoint
 
     c = get_concept(name)
     p = c.params()
     cm = mesh_concept(c, p, MeshSettings(size=2e-3))  # engagement within 0.01 % of the 0.6 mm mesh
-    s = ClutchSolver(cm, get_material("51CrV4"), drum_radius=p.drum_radius, mu=0.165, thickness=p.thickness)
-    r = s.sweep([3000.0, 8000.0], stresses=False)
+    d = Design(cm, OperatingPoint(material="51CrV4", mu=0.165), params=p)
+    r = d.sweep([3000.0, 8000.0], stresses=False)
     assert WINDOW_RPM[0] < r.engagement_rpm < WINDOW_RPM[1], r.engagement_rpm
     assert r.first_touch == "tip"
 

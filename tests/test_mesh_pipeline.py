@@ -9,7 +9,8 @@ from skfem import Basis, ElementTriP0, Functional
 
 from clutchfem.errors import MeshError, ParameterError
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.mesh import gmsh_session, load_user_geometry, mesh_concept
+from clutchfem.geometry.session import gmsh_session
+from clutchfem.mesh import load_user_geometry, mesh_concept
 
 COARSE = MeshSettings(size=2.0e-3)
 

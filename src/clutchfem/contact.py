@@ -1,70 +1,117 @@
-"""Rigid-drum contact: the contact nodes and a small linear complementarity solver.
+"""Rigid-drum contact: the contact nodes, the drum as a load case part, and the lazily
+condensed contact compliance.
 
 The drum is rigid, coaxial, of inner radius R_d.  Contact is node-to-circle at the P2 nodes
 (vertices and mid-edge nodes) of the ``contact`` boundary: node i at x_i has the exact
 initial gap g0_i = R_d - |x_i| and outward normal n_i = x_i/|x_i| (the drum's, evaluated on
 the exact circle, so a coarse chord does not eat the 0.6 mm clearance).  With small
-displacements the gap is g_i = g0_i - n_i . u_i.
+displacements the gap is g_i = g0_i - n_i . u_i  (B u: the *normal operator*).
 
-A compressive nodal force lam_i >= 0 acts on the part along -n_i; with the drum held and
-the hub turning in direction s (+1 ccw, -1 cw) the shoe slides along s e_theta, so full-slip
-Coulomb friction adds -s mu lam_i t_i (t_i = e_theta).  With the condensed compliance the
-contact conditions at one speed are the LCP
+A compressive nodal force lam_i >= 0 acts on the part along -n_i; with the drum held and the
+hub turning in direction s (+1 ccw, -1 cw) the shoe slides along s e_theta, so full-slip
+Coulomb friction adds -s mu lam_i t_i (t_i = e_theta).  The *load operator* is therefore
 
-    w = q + G lam >= 0,  lam >= 0,  w . lam = 0
+    D(mu) = N + s mu Tt,     N[:, i] = -n_i,  Tt[:, i] = -t_i   (at node i's dofs),
 
-with w the gaps.  G is m x m (m = contact nodes), symmetric positive definite without
-friction and non-symmetric with it (still a P-matrix for moderate mu, so the solution is
-unique).  :func:`solve_lcp` uses a primal-dual active set (exact after finitely many steps,
-warm-started from the previous speed) and falls back to Lemke's complementary pivoting.
-A result that does not satisfy the conditions to tolerance raises :class:`SolverError`.
+linear in mu, so two condensed sets span the compliance K^-1 D(mu) of every friction
+coefficient (mu +-30 %, friction off) of one design: they reuse the same back-substitutions
+(:class:`Compliance`).  Columns are condensed lazily, only for
+the nodes the LCP (:mod:`clutchfem.lcp`) makes active, with their neighbours along the shoe
+prefetched in one blocked solve: the shoes touch the drum on a short arc.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import time
+from dataclasses import dataclass, replace
+from functools import cached_property
+from typing import Literal
 
 import numpy as np
-import scipy.linalg as sla
+import scipy.sparse as sp
 from scipy.spatial import cKDTree
-from skfem import Basis
 
-from .errors import MeshError, SolverError
-from .mesh import ClutchMesh
+from .errors import MeshError, ParameterError
+from .units import wrap_angle
+
+Rotation = Literal["ccw", "cw"]
+
+#: contact-node columns condensed on each side of a newly needed one (see Compliance)
+PREFETCH = 8
 
 
-@dataclass
+@dataclass(frozen=True, eq=False)
 class ContactNodes:
-    """The candidate contact nodes of a model (m of them)."""
+    """The m candidate contact nodes of a model and the drum circle they face (read-only)."""
 
-    dof_x: np.ndarray
-    dof_y: np.ndarray
+    drum_radius: float
+    dof_x: np.ndarray  # (m,) x dof of each node
+    dof_y: np.ndarray  # (m,) y dof
     xy: np.ndarray  # (2, m) positions [m]
     normal: np.ndarray  # (2, m) outward unit normals
     tangent: np.ndarray  # (2, m) e_theta (ccw)
     gap0: np.ndarray  # (m,) initial gaps [m]
-    _weight: object  # callable () -> (m,) weights, evaluated once on first use
-    shoe: np.ndarray  # (m,) index of the shoe the node belongs to (-1 if unknown)
+    shoe: np.ndarray  # (m,) index of the shoe the node belongs to
     angle: np.ndarray  # (m,) polar angle [rad]
+    ndofs: int
+    _weights: object = None  # callable () -> (m,), evaluated once on first use
 
     @property
     def m(self) -> int:
         return len(self.gap0)
 
-    @property
+    @cached_property
     def weight(self) -> np.ndarray:
         """(m,) tributary length int phi_i ds [m] of each node (pressure = force / (h weight));
         computed on first use: only pressure output needs it."""
-        if callable(self._weight):
-            self._weight = self._weight()
-        return self._weight
+        return np.asarray(self._weights())
+
+    @cached_property
+    def shoes(self) -> list[int]:
+        return sorted(set(self.shoe.tolist()))
+
+    @cached_property
+    def by_arc(self) -> np.ndarray:
+        """Node indices sorted by shoe, then by polar angle unwrapped around the shoe."""
+        ang = self.angle.copy()
+        for s_ in self.shoes:
+            sel = self.shoe == s_
+            ang[sel] = wrap_angle(ang[sel], float(np.angle(np.exp(1j * ang[sel]).mean())))
+        return np.lexsort((ang, self.shoe))
+
+    @cached_property
+    def normal_load(self) -> sp.csc_matrix:
+        """N (ndofs x m): unit compressive force along -n_i at node i."""
+        return self._load(-self.normal)
+
+    @cached_property
+    def tangent_load(self) -> sp.csc_matrix:
+        """Tt (ndofs x m): unit force along -t_i at node i (friction direction for s = +1)."""
+        return self._load(-self.tangent)
+
+    def _load(self, vec: np.ndarray) -> sp.csc_matrix:
+        m = self.m
+        return sp.csc_matrix((np.concatenate([vec[0], vec[1]]),
+                              (np.concatenate([self.dof_x, self.dof_y]), np.concatenate([np.arange(m)] * 2))),
+                             shape=(self.ndofs, m))
+
+    def normal_displacement(self, U: np.ndarray) -> np.ndarray:
+        """B U: outward normal displacement at the nodes (rows) of U's column(s)."""
+        U = np.asarray(U)
+        if U.ndim == 1:
+            return self.normal[0] * U[self.dof_x] + self.normal[1] * U[self.dof_y]
+        return self.normal[0][:, None] * U[self.dof_x] + self.normal[1][:, None] * U[self.dof_y]
 
 
-def contact_nodes(cm: ClutchMesh, basis: Basis, drum_radius: float) -> ContactNodes:
-    """Collect contact nodes from the ``contact`` group (per shoe from ``contact_<i>``)."""
+def contact_nodes(model, drum_radius: float) -> ContactNodes:
+    """The contact nodes of ``model`` (an :class:`~clutchfem.fem.FEModel`) facing a drum of
+    inner radius ``drum_radius`` [m]: the ``contact`` group, per shoe from ``contact_<i>``."""
     from .fem import contact_weights
 
+    cm, basis = model.cm, model.basis
+    if not (isinstance(drum_radius, (int, float)) and math.isfinite(drum_radius) and drum_radius > 0):
+        raise ParameterError("drum_radius", drum_radius, "a radius > 0 m")
     mesh = cm.mesh
     b = mesh.boundaries or {}
     if "contact" not in b:
@@ -122,11 +169,12 @@ def contact_nodes(cm: ClutchMesh, basis: Basis, drum_radius: float) -> ContactNo
             shoe[np.isin(dx, ids)] = i
     if np.all(shoe < 0):
         shoe[:] = 0
-    return ContactNodes(dof_x=dx, dof_y=dy, xy=xy, normal=n, tangent=t, gap0=np.maximum(gap0, 0.0),
-                        _weight=weights, shoe=shoe, angle=np.arctan2(xy[1], xy[0]))
+    return ContactNodes(drum_radius=float(drum_radius), dof_x=dx, dof_y=dy, xy=xy, normal=n, tangent=t,
+                        gap0=np.maximum(gap0, 0.0), shoe=shoe, angle=np.arctan2(xy[1], xy[0]),
+                        ndofs=basis.N, _weights=weights)
 
 
-def _check_facing(cm: ClutchMesh, facets: np.ndarray) -> None:
+def _check_facing(cm, facets: np.ndarray) -> None:
     mesh = cm.mesh
     p = mesh.p
     f = mesh.facets[:, facets]
@@ -140,133 +188,142 @@ def _check_facing(cm: ClutchMesh, facets: np.ndarray) -> None:
                         "towards the axis); it must be the shoes' outer surface facing the drum")
 
 
-# ---------------------------------------------------------------------------------------
-# LCP
-# ---------------------------------------------------------------------------------------
-def lcp_residual(G, q: np.ndarray, lam: np.ndarray) -> float:
-    """Max violation of the LCP conditions, scaled to gap units.  ``G`` as in :func:`solve_lcp`."""
-    cols = _as_columns(G)
-    S = np.nonzero(lam)[0]
-    GS = cols(S)
-    w = q + GS @ lam[S]
-    d = np.abs(GS[S, np.arange(len(S))]) if len(S) else np.zeros(0)
-    scale = float(np.max(d, initial=0.0)) if isinstance(G, _Lazy) else float(np.max(np.abs(np.diag(G))))
-    return float(max(np.max(-w, initial=0.0), np.max(-lam, initial=0.0) * scale,
-                     np.max(np.abs(w * lam), initial=0.0) / max(np.max(lam, initial=0.0), 1e-300)))
+@dataclass(frozen=True, eq=False)
+class DrumContact:
+    """The drum as one part of a load case: contact nodes, friction coefficient and the
+    hub's sense of rotation (drum held, hub turning: full-slip Coulomb friction)."""
+
+    nodes: ContactNodes
+    mu: float = 0.0
+    rotation: Rotation = "ccw"
+
+    def __post_init__(self):
+        if isinstance(self.mu, bool) or not isinstance(self.mu, (int, float, np.floating)) \
+                or not (math.isfinite(self.mu) and 0.0 <= self.mu <= 1.0):
+            raise ParameterError("mu", self.mu, "a friction coefficient in [0, 1]")
+        if self.rotation not in ("ccw", "cw"):
+            raise ParameterError("rotation", self.rotation, "'ccw' or 'cw' (hub's sense of rotation)")
+
+    @property
+    def drum_radius(self) -> float:
+        return self.nodes.drum_radius
+
+    @property
+    def s(self) -> float:
+        """+1 for a hub turning ccw, -1 for cw."""
+        return 1.0 if self.rotation == "ccw" else -1.0
+
+    @property
+    def friction(self) -> float:
+        """s mu: the weight of the tangential load in D(mu) = N + s mu Tt."""
+        return self.s * self.mu
+
+    def with_mu(self, mu: float) -> "DrumContact":
+        """The same drum and nodes with another friction coefficient."""
+        return replace(self, mu=mu)
+
+    @cached_property
+    def load(self) -> sp.csc_matrix:
+        """D (ndofs x m): nodal forces on the part per unit contact force (normal + friction)."""
+        if self.mu == 0.0:
+            return self.nodes.normal_load
+        return (self.nodes.normal_load + self.friction * self.nodes.tangent_load).tocsc()
+
+    def pressure(self, lam: np.ndarray, thickness: float) -> np.ndarray:
+        """Contact pressure [Pa] at the nodes for nodal forces ``lam`` [N]."""
+        return lam / (thickness * np.maximum(self.nodes.weight, 1e-300))
 
 
-class _Lazy:
-    """Columns of G on demand: ``cols(idx) -> G[:, idx]``."""
+class Compliance:
+    """Lazily condensed contact compliance of one (FE model, contact nodes) pair,
 
-    def __init__(self, cols):
-        self.cols = cols
+        W(f) = K^-1 D(f),   D(f) = N + f Tt,   f = s mu,
 
-    def __call__(self, idx):
-        return self.cols(np.asarray(idx, dtype=np.int64))
+    column by column as the LCP needs them, shared by every friction coefficient of the
+    design.  D is linear in f, so two condensed sets span every f: the set ``a`` of the first
+    friction f_a asked for (a single sweep condenses exactly its own columns, nothing more)
+    and, when another f is asked for, a set ``b``: K^-1 N if f_a != 0 (then W(f) = r A +
+    (1 - r) B with r = f / f_a), else K^-1 Tt (then W(f) = A + f B).
+    """
 
+    def __init__(self, model, nodes: ContactNodes):
+        self.model = model
+        self.nodes = nodes
+        m = nodes.m
+        self._rank = np.empty(m, dtype=np.int64)
+        self._rank[nodes.by_arc] = np.arange(m)
+        self.f_a: float | None = None
+        self._pos = {"a": -np.ones(m, dtype=np.int64), "b": -np.ones(m, dtype=np.int64)}
+        self._W = {"a": np.zeros((model.ndofs, 0)), "b": np.zeros((model.ndofs, 0))}
+        self._BW = {"a": np.zeros((m, 0)), "b": np.zeros((m, 0))}
+        self.seconds = 0.0
 
-def lazy(cols) -> _Lazy:
-    """Wrap a column provider ``cols(idx) -> G[:, idx]`` (m x len(idx)) for :func:`solve_lcp`."""
-    return _Lazy(cols)
+    @property
+    def n_condensed(self) -> int:
+        """Contact nodes condensed so far (first set)."""
+        return int(self._W["a"].shape[1])
 
+    def weights(self, friction: float) -> tuple[float, float]:
+        """(c_a, c_b) with W(f) = c_a A + c_b B for f = ``friction``."""
+        if self.f_a is None:
+            self.f_a = float(friction)
+        if friction == self.f_a:
+            return 1.0, 0.0
+        if self.f_a != 0.0:
+            r = friction / self.f_a
+            return r, 1.0 - r
+        return 1.0, float(friction)
 
-def _as_columns(G):
-    if isinstance(G, _Lazy):
-        return G
-    G = np.asarray(G)
-    return lambda idx: G[:, idx]
+    def _load(self, kind: str) -> sp.csc_matrix:
+        nd = self.nodes
+        if kind == "a":
+            return nd.normal_load if self.f_a == 0.0 else (nd.normal_load + self.f_a * nd.tangent_load).tocsc()
+        return nd.normal_load if self.f_a != 0.0 else nd.tangent_load
 
+    def _ensure(self, kind: str, idx: np.ndarray) -> None:
+        pos = self._pos[kind]
+        missing = idx[pos[idx] < 0]
+        if not len(missing):
+            return
+        # the contact arc grows node by node with speed: condense the PREFETCH nearest nodes
+        # on either side along the same shoe too (one blocked solve is ~2.5x cheaper per
+        # column than single ones)
+        nd = self.nodes
+        near = self._rank[missing][:, None] + np.arange(-PREFETCH, PREFETCH + 1)[None, :]
+        near = nd.by_arc[np.clip(near, 0, nd.m - 1)]
+        near = near[nd.shoe[near] == nd.shoe[missing][:, None]]
+        missing = np.unique(np.concatenate([missing, near]))
+        missing = missing[pos[missing] < 0]
+        t = time.perf_counter()
+        Wn = self.model.solve(self._load(kind)[:, missing].toarray()).reshape(self.model.ndofs, -1)
+        pos[missing] = self._W[kind].shape[1] + np.arange(len(missing))
+        self._W[kind] = np.hstack([self._W[kind], Wn])
+        self._BW[kind] = np.hstack([self._BW[kind], nd.normal_displacement(Wn).reshape(nd.m, -1)])
+        self.seconds += time.perf_counter() - t
 
-def solve_lcp(G, q: np.ndarray, active0: np.ndarray | None = None,
-              tol: float = 1e-12, max_iter: int = 100) -> tuple[np.ndarray, np.ndarray]:
-    """Solve w = q + G lam, 0 <= lam perp w >= 0.  Returns (lam, active mask).
+    def _columns(self, store: dict, idx, friction: float) -> np.ndarray:
+        idx = np.asarray(idx, dtype=np.int64)
+        ca, cb = self.weights(friction)
+        self._ensure("a", idx)
+        out = store["a"][:, self._pos["a"][idx]]
+        if ca != 1.0:
+            out = ca * out
+        if cb != 0.0:
+            self._ensure("b", idx)
+            out = out + cb * store["b"][:, self._pos["b"][idx]]
+        return out
 
-    ``G`` is the m x m matrix, or ``lazy(cols)``: a provider of its columns.  The active-set
-    method only ever needs the columns of the nodes it makes active (a handful of the m
-    contact nodes: the shoes touch the drum on a short arc), so a lazy G saves the
-    condensation of all the others; the Lemke fallback asks for every column.
-    ``tol`` is in gap units (metres); the check is relative to the problem scale."""
-    m = len(q)
-    scale_q = max(float(np.max(np.abs(q))), 1e-300)
-    if np.all(q >= 0):
-        return np.zeros(m), np.zeros(m, dtype=bool)
-    lam, active = _active_set(G, q, active0, max_iter)
-    res = math.inf if lam is None else lcp_residual(G, q, lam)
-    if res > max(tol, 1e-9 * scale_q):
-        lam = _lemke(_as_columns(G)(np.arange(m)), q)
-        active = lam > 0
-        res = lcp_residual(G, q, lam)
-    if res > max(tol, 1e-9 * scale_q) * 10:
-        raise SolverError(f"contact solve did not converge (complementarity residual {res:.3g} m)")
-    return lam, active
+    def BW(self, idx, friction: float) -> np.ndarray:
+        """Columns ``idx`` of B W(f) (normal displacements at the nodes), f = ``friction`` = s mu."""
+        return self._columns(self._BW, idx, friction)
 
+    def W(self, idx, friction: float) -> np.ndarray:
+        """Columns ``idx`` of W(f) (all dofs)."""
+        return self._columns(self._W, idx, friction)
 
-def _active_set(G, q, active0, max_iter):
-    m = len(q)
-    cols = _as_columns(G)
-    active = (q < 0) if active0 is None else active0.copy()
-    if not active.any():
-        active = q < 0
-    c = None  # 1 / mean diagonal: balances forces against gaps
-    seen = set()
-    for _ in range(max_iter):
-        lam = np.zeros(m)
-        A = np.nonzero(active)[0]
-        GA = cols(A)
-        if len(A):
-            if c is None:
-                c = 1.0 / np.mean(np.diag(GA[A]))
-            try:
-                lam[A] = sla.solve(GA[A], -q[A])
-            except (sla.LinAlgError, ValueError):
-                return None, active
-        w = q + GA @ lam[A]
-        new = (lam - (c or 0.0) * w) > 0 if c is not None else w < 0
-        key = new.tobytes()
-        if np.array_equal(new, active):
-            return lam, active
-        if key in seen:  # cycling
-            return None, active
-        seen.add(key)
-        active = new
-    return None, active
-
-
-def _lemke(M: np.ndarray, q: np.ndarray, max_iter: int | None = None) -> np.ndarray:
-    """Lemke's complementary pivoting with covering vector e (dense tableau)."""
-    n = len(q)
-    max_iter = max_iter or 50 * n + 100
-    # tableau [I, -M, -e, q] for w - M z - e z0 = q
-    T = np.hstack([np.eye(n), -M, -np.ones((n, 1)), q.reshape(-1, 1)]).astype(float)
-    basis = list(range(n))  # w variables basic
-    z0 = 2 * n
-    r = int(np.argmin(q))
-    entering = z0
-    for _ in range(max_iter):
-        # pivot on (r, entering)
-        T[r] /= T[r, entering]
-        for i in range(n):
-            if i != r and T[i, entering] != 0.0:
-                T[i] -= T[i, entering] * T[r]
-        leaving = basis[r]
-        basis[r] = entering
-        if leaving == z0:
-            break
-        # complement of the leaving variable enters
-        entering = leaving + n if leaving < n else leaving - n
-        col = T[:, entering]
-        pos = col > 1e-14 * np.max(np.abs(col))
-        if not pos.any():
-            raise SolverError("contact solve failed: Lemke ray termination (no solution found)")
-        ratios = np.full(n, np.inf)
-        ratios[pos] = T[pos, -1] / col[pos]
-        rmin = ratios.min()
-        cand = np.nonzero(ratios <= rmin * (1 + 1e-12) + 1e-300)[0]
-        # prefer z0 leaving to terminate
-        r = next((i for i in cand if basis[i] == z0), int(cand[0]))
-    else:
-        raise SolverError("contact solve failed: Lemke iteration limit reached")
-    z = np.zeros(2 * n + 1)
-    for i, bvar in enumerate(basis):
-        z[bvar] = T[i, -1]
-    return np.maximum(z[n:2 * n], 0.0)
+    def basis(self) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """(columns, positions): every condensed column [A | B] and, per set, the column index
+        of each node (-1: not condensed), for the reduced-basis fields of a sweep."""
+        k = self._W["a"].shape[1]
+        pos = {"a": self._pos["a"].copy(), "b": np.where(self._pos["b"] >= 0, self._pos["b"] + k, -1)}
+        return np.hstack([self._W["a"], self._W["b"]]), pos

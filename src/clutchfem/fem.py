@@ -1,149 +1,200 @@
-"""Plane-stress linear elasticity of the spinning part (scikit-fem, P2 on curved MeshTri2).
+"""The FE model of one design: linear elasticity of the spinning part (scikit-fem, P2 on the
+curved ``MeshTri2``), built once per (mesh, material, thickness, formulation) and shared by
+every load case of that design (speeds, friction coefficients, softening strategies).
 
-Unknowns: the in-plane displacement u, P2 vector field, thickness h.  Operators (all
+Unknowns: the in-plane displacement u, P2 vector field, axial thickness h.  Operators (all
 multiplied by h):
 
-* ``K``  stiffness, plane stress (Lame pair computed in :class:`~clutchfem.materials.Material`);
-* ``M``  in-plane mass matrix rho h int u.v: the *spin-softening* operator, because the
-  centrifugal load acts on the deformed position, f = rho w^2 (x + u);
+* ``K``  stiffness.  *Plane stress* (thin plate, s_zz = 0): Lame pair (lambda*, mu) =
+  (E nu / (1 - nu^2), E / (2 (1 + nu))).  *Plane strain* (long prism, e_zz = 0): (lambda, mu)
+  = (E nu / ((1 + nu)(1 - 2 nu)), E / (2 (1 + nu))) and s_zz = nu (s_xx + s_yy).  Both are
+  computed in :class:`~clutchfem.materials.Material` (skfem's ``plane_stress`` helper changed
+  meaning between releases).  The true 11 mm plate with 1.75 mm flexures lies between them;
+  the model-form error is measured in BENCHMARKS.md;
+* ``M``  in-plane mass rho h int u.v: the *spin-softening* operator, because the centrifugal
+  load acts on the deformed position, f = rho w^2 (x + u).  Assembled on first use only
+  (a load case without spin softening never needs it);
 * ``f1`` centrifugal load at w = 1 rad/s: rho h int x.v (rotation about z through the origin).
 
 Constraints: the bore is clamped (u = 0); a one-sector model of n identical shoes gets the
 cyclic (rotated periodic) constraint u(cut_b) = R(2 pi/n) u(cut_a).  Both are applied by a
-sparse map ``T`` from independent dofs to all dofs, u = T a, and the reduced stiffness
-T' K T is factorised once (:mod:`clutchfem.linsolve`).
+sparse map ``T`` from independent dofs to all dofs, u = T a; the reduced stiffness T' K T is
+factorised once, on first use, by the injected sparse solver (:mod:`clutchfem.linsolve`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+import time
+from functools import cached_property
+from typing import Literal
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
-from skfem import (Basis, BilinearForm, ElementTriP2, ElementVector, FacetBasis, LinearForm,
-                   asm)
+from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm
 from skfem.helpers import ddot, dot, sym_grad, trace
 
-from .errors import MeshError, SolverError
-from .linsolve import factorize
+from .errors import MeshError, ParameterError, SolverError
+from .linsolve import COUNTS, Solver, factorize
 from .materials import Material
 from .mesh import ClutchMesh
 
+Formulation = Literal["plane-stress", "plane-strain"]
+FORMULATIONS: tuple[str, ...] = ("plane-stress", "plane-strain")
 
-@dataclass
+
 class FEModel:
-    """Assembled operators of one meshed part and material (see module docstring)."""
+    """Assembled operators of one meshed part, material, thickness and formulation.
 
-    cm: ClutchMesh
-    material: Material
-    thickness: float
-    basis: Basis
-    K: sp.csr_matrix
-    M: sp.csr_matrix
-    f1: np.ndarray
-    T: sp.csr_matrix
-    timings: dict = field(default_factory=dict)
-    _factor: object = None
+    ``solver``: the sparse direct solver back-end (a name or a factory ``A -> .solve(B)``;
+    None: the default of :func:`clutchfem.linsolve.factorize`).  Built once per design; the
+    factorisation of T' K T happens on the first :meth:`solve`.
+    """
 
+    def __init__(self, cm: ClutchMesh, material: Material, thickness: float | None = None, *,
+                 formulation: Formulation = "plane-stress", solver: Solver = None):
+        if formulation not in FORMULATIONS:
+            raise ParameterError("formulation", formulation, "one of " + ", ".join(FORMULATIONS))
+        h = thickness if thickness is not None else cm.thickness
+        if h is None:
+            raise SolverError("the axial thickness is unknown: give thickness (m) for a user mesh")
+        h = float(h)
+        if not (math.isfinite(h) and h > 0):
+            raise ParameterError("thickness", h, "an axial thickness > 0 m")
+        t0 = time.perf_counter()
+        self.cm = cm
+        self.material = material
+        self.thickness = h
+        self.formulation = formulation
+        self.solver = solver
+        self.timings: dict[str, float] = {}
+        self.basis = Basis(cm.mesh, ElementVector(ElementTriP2()), intorder=4)
+        lam, mu = self.lame
+        rho = material.rho
+
+        @BilinearForm
+        def stiffness(u, v, w):
+            eu, ev = sym_grad(u), sym_grad(v)
+            return h * (2.0 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev))
+
+        @LinearForm
+        def centrifugal(v, w):
+            return h * rho * (w.x[0] * v[0] + w.x[1] * v[1])
+
+        self.K = asm(stiffness, self.basis).tocsr()
+        self.f1 = asm(centrifugal, self.basis)
+        COUNTS["assemble"] += 1
+        t1 = time.perf_counter()
+        self.T = constraint_map(cm, self.basis)
+        self.timings.update({"assemble_s": t1 - t0, "constraints_s": time.perf_counter() - t1})
+
+    # -- material law -------------------------------------------------------------------
+    @property
+    def lame(self) -> tuple[float, float]:
+        """(lambda, mu) [Pa] of the formulation (see module docstring)."""
+        if self.formulation == "plane-strain":
+            return self.material.lame_plane_strain()
+        return self.material.lame_plane_stress()
+
+    @property
+    def szz_factor(self) -> float:
+        """s_zz = factor * (s_xx + s_yy): 0 in plane stress, nu in plane strain."""
+        return self.material.nu if self.formulation == "plane-strain" else 0.0
+
+    # -- operators ----------------------------------------------------------------------
     @property
     def ndofs(self) -> int:
         return self.basis.N
 
-    @property
-    def factor(self):
-        """Factorisation of T' K T (computed on first use)."""
-        if self._factor is None:
-            import time
+    @cached_property
+    def M(self) -> sp.csr_matrix:
+        """Mass matrix rho h int u.v (spin softening); assembled on first use."""
+        t0 = time.perf_counter()
+        h, rho = self.thickness, self.material.rho
+        basis = self.basis
+        sb = basis.with_element(ElementTriP2())
 
-            t0 = time.perf_counter()
-            self._factor = factorize(self.Kr)
-            self.timings["factorize_s"] = time.perf_counter() - t0
-        return self._factor
+        @BilinearForm
+        def mass(u, v, w):  # scalar P2 mass; the vector one is kron(M, I2) (dof 2 i + component)
+            return h * rho * u * v
 
-    @property
+        if (np.array_equal(basis.nodal_dofs, 2 * sb.nodal_dofs + np.array([[0], [1]]))
+                and np.array_equal(basis.facet_dofs, 2 * sb.facet_dofs + np.array([[0], [1]]))):
+            M = sp.kron(asm(mass, sb), sp.identity(2, format="csr"), format="csr")
+        else:  # another dof layout: assemble the vector form directly
+            M = asm(BilinearForm(lambda u, v, w: h * rho * dot(u, v)), basis).tocsr()
+        self.timings["mass_s"] = time.perf_counter() - t0
+        return M
+
+    @cached_property
     def Kr(self) -> sp.csc_matrix:
-        if not hasattr(self, "_Kr"):
-            self._Kr = (self.T.T @ self.K @ self.T).tocsc()
-        return self._Kr
+        return (self.T.T @ self.K @ self.T).tocsc()
 
-    @property
+    @cached_property
     def Mr(self) -> sp.csc_matrix:
-        if not hasattr(self, "_Mr"):
-            self._Mr = (self.T.T @ self.M @ self.T).tocsc()
-        return self._Mr
+        return (self.T.T @ self.M @ self.T).tocsc()
+
+    @cached_property
+    def factor(self):
+        """Factorisation of T' K T by the injected solver (computed on first use)."""
+        t0 = time.perf_counter()
+        f = factorize(self.Kr, self.solver)
+        self.timings["factorize_s"] = time.perf_counter() - t0
+        return f
 
     def solve(self, F: np.ndarray) -> np.ndarray:
         """Displacements (all dofs) for load(s) F (N or N x k), no contact, no softening."""
         return self.T @ self.factor.solve(self.T.T @ F)
 
+    @cached_property
+    def u1(self) -> np.ndarray:
+        """Free displacement at w = 1 rad/s (no contact, no softening): u(w) = w^2 u1."""
+        t0 = time.perf_counter()
+        u = self.solve(self.f1)
+        self.timings["solve_u1_s"] = time.perf_counter() - t0
+        return u
+
+    # -- post-processing ----------------------------------------------------------------
+    @cached_property
+    def stress(self):
+        """Raw vertex stress recovery (:class:`clutchfem.stress.VertexStress`)."""
+        from .stress import VertexStress
+
+        return VertexStress(self)
+
+    @cached_property
+    def _vertex_basis(self) -> Basis:
+        X = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+        W = np.full(3, 1.0 / 6.0)
+        return Basis(self.cm.mesh, ElementVector(ElementTriP2()), quadrature=(X, W))
+
     def stress_at_vertices(self, u: np.ndarray) -> np.ndarray:
-        """Raw (unaveraged) stresses at each element's three vertices: array (3, nelem, 3)
-        of (sxx, syy, sxy) [Pa].  The P2 strain is linear on a straight element, so its
-        extremes sit at the vertices; no smoothing hides a peak."""
-        b = self._vertex_basis
-        g = b.interpolate(u).grad  # (2, 2, nelem, 3)
-        lam, mu = self.material.lame_plane_stress()
+        """Raw stresses (sxx, syy, sxy) [Pa] at each element's three vertices from
+        scikit-fem's own interpolation: array (3, nelem, 3).  The reference for the fast
+        :class:`~clutchfem.stress.VertexStress` (which must equal it to round-off)."""
+        g = self._vertex_basis.interpolate(u).grad  # (2, 2, nelem, 3)
+        lam, mu = self.lame
         exx, eyy = g[0, 0], g[1, 1]
         exy = 0.5 * (g[0, 1] + g[1, 0])
         tr = exx + eyy
         return np.stack([2 * mu * exx + lam * tr, 2 * mu * eyy + lam * tr, 2 * mu * exy])
 
-    @property
-    def _vertex_basis(self) -> Basis:
-        if not hasattr(self, "_vb"):
-            X = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
-            W = np.full(3, 1.0 / 6.0)
-            self._vb = Basis(self.cm.mesh, ElementVector(ElementTriP2()), quadrature=(X, W))
-        return self._vb
+    def von_mises(self, s: np.ndarray) -> np.ndarray:
+        """von Mises stress of (sxx, syy, sxy) stacked on the first axis, with the
+        formulation's s_zz."""
+        return von_mises(s, self.szz_factor)
 
 
-def von_mises(s: np.ndarray) -> np.ndarray:
-    """Plane-stress von Mises stress from (sxx, syy, sxy) stacked on the first axis."""
+def von_mises(s: np.ndarray, szz_factor: float = 0.0) -> np.ndarray:
+    """von Mises stress from (sxx, syy, sxy) stacked on the first axis; s_zz = szz_factor
+    (s_xx + s_yy) (0: plane stress, nu: plane strain)."""
     sxx, syy, sxy = s[0], s[1], s[2]
-    return np.sqrt(np.maximum(sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy, 0.0))
-
-
-def build_fe_model(cm: ClutchMesh, material: Material, thickness: float | None = None) -> FEModel:
-    """Assemble K, M and f1 for ``cm`` and build the constraint map T."""
-    import time
-
-    t0 = time.perf_counter()
-    h = float(thickness if thickness is not None else (cm.thickness or 0.0))
-    if not h > 0:
-        raise SolverError("the axial thickness is unknown: give thickness (m) for a user mesh")
-    mesh = cm.mesh
-    basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)
-    lam, mu = material.lame_plane_stress()
-    rho = material.rho
-
-    @BilinearForm
-    def stiffness(u, v, w):
-        eu, ev = sym_grad(u), sym_grad(v)
-        return h * (2.0 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev))
-
-    @BilinearForm
-    def mass(u, v, w):  # scalar P2 mass; the vector one is kron(M, I2) (dof 2 i + component)
-        return h * rho * u * v
-
-    @LinearForm
-    def centrifugal(v, w):
-        return h * rho * (w.x[0] * v[0] + w.x[1] * v[1])
-
-    K = asm(stiffness, basis).tocsr()
-    sb = basis.with_element(ElementTriP2())
-    if (np.array_equal(basis.nodal_dofs, 2 * sb.nodal_dofs + np.array([[0], [1]]))
-            and np.array_equal(basis.facet_dofs, 2 * sb.facet_dofs + np.array([[0], [1]]))):
-        M = sp.kron(asm(mass, sb), sp.identity(2, format="csr"), format="csr")
-    else:  # another dof layout: assemble the vector form directly
-        M = asm(BilinearForm(lambda u, v, w: h * rho * dot(u, v)), basis).tocsr()
-    f1 = asm(centrifugal, basis)
-    t1 = time.perf_counter()
-    T = constraint_map(cm, basis)
-    model = FEModel(cm=cm, material=material, thickness=h, basis=basis, K=K, M=M, f1=f1, T=T)
-    model.timings.update({"assemble_s": t1 - t0, "constraints_s": time.perf_counter() - t1})
-    return model
+    if szz_factor == 0.0:
+        return np.sqrt(np.maximum(sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy, 0.0))
+    szz = szz_factor * (sxx + syy)
+    return np.sqrt(np.maximum(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
+                              + 3.0 * sxy * sxy, 0.0))
 
 
 def constraint_map(cm: ClutchMesh, basis: Basis) -> sp.csr_matrix:
@@ -195,9 +246,8 @@ def constraint_map(cm: ClutchMesh, basis: Basis) -> sp.csr_matrix:
         cols += [col[master_x], col[master_y], col[master_x], col[master_y]]
         vals += [np.full(len(slave_x), c), np.full(len(slave_x), -s),
                  np.full(len(slave_x), s), np.full(len(slave_x), c)]
-    T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(N, len(indep)))
-    return T
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(N, len(indep)))
 
 
 def contact_weights(cm: ClutchMesh, basis: Basis, facets: np.ndarray) -> np.ndarray:

@@ -1,6 +1,9 @@
 """Sparse direct solvers behind one tiny interface: ``factorize(A).solve(B)``.
 
-Back-ends, chosen by ``CLUTCHFEM_SOLVER`` (``auto`` default):
+The back-end is *injected* where a model is built (``FEModel(..., solver=...)``, in the way
+scikit-fem's ``solve(A, b, solver=...)`` takes one): a back-end name, or any callable
+``A -> object with .solve(B)`` (e.g. a PARDISO or an iterative wrapper of your own).  The
+environment variable ``CLUTCHFEM_SOLVER`` only sets the default (``auto``).  Back-ends:
 * ``cholmod``: supernodal Cholesky from SuiteSparse via scikit-sparse (optional extra
   ``clutchfem[cholmod]``; needs Debian's libsuitesparse-dev to build);
 * ``superlu``: scipy's SuperLU in symmetric mode (minimum-degree ordering of A + A',
@@ -12,6 +15,8 @@ choice are in BENCHMARKS.md (benchmarks/bench_solvers.py).
 from __future__ import annotations
 
 import os
+from collections import Counter
+from typing import Any, Callable, Union
 
 import numpy as np
 import scipy.sparse as sp
@@ -82,8 +87,26 @@ def available() -> list[str]:
     return out
 
 
-def factorize(A: sp.spmatrix, backend: str | None = None):
-    """Factorise the symmetric positive definite matrix A."""
+#: what ``solver=`` accepts: None (the default back-end), a back-end name, or a factory
+Solver = Union[None, str, Callable[[sp.spmatrix], Any]]
+
+#: factorisations done in this process, by kind ('K': stiffness, 'shifted': K - w^2 M of the
+#: exact spin-softening reference); tests read it to check that work is not repeated
+COUNTS: Counter = Counter()
+
+
+def factorize(A: sp.spmatrix, backend: Solver = None, kind: str = "K"):
+    """Factorise the symmetric positive definite matrix A with ``backend`` (see module doc)."""
+    COUNTS[kind] += 1
+    if callable(backend):
+        f = backend(A)
+        if not hasattr(f, "solve"):
+            raise SolverError(f"solver factory {backend!r} returned {type(f).__name__}, which has no "
+                              ".solve(B) method")
+        return f
+    if backend is not None and not isinstance(backend, str):
+        raise SolverError(f"solver={backend!r} is not allowed: use None, 'auto', 'cholmod', 'superlu' "
+                          "or a callable A -> object with .solve(B)")
     backend = (backend or os.environ.get("CLUTCHFEM_SOLVER", "auto")).lower()
     if backend == "auto":
         backend = available()[0]

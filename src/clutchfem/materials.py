@@ -29,6 +29,11 @@ class Material(ParamSet):
         releases."""
         return self.E * self.nu / (1.0 - self.nu ** 2), self.E / (2.0 * (1.0 + self.nu))
 
+    def lame_plane_strain(self) -> tuple[float, float]:
+        """Plane-strain (3-D) Lame pair (lambda, mu) = (E nu / ((1 + nu)(1 - 2 nu)), E / (2 (1 + nu)))."""
+        return (self.E * self.nu / ((1.0 + self.nu) * (1.0 - 2.0 * self.nu)),
+                self.E / (2.0 * (1.0 + self.nu)))
+
 
 LIBRARY: dict[str, Material] = {
     "51CrV4": Material(name="51CrV4 (SS 2230) spring steel, hardened ~45 HRC", E=210e9, nu=0.3,

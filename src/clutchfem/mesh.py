@@ -11,7 +11,7 @@
   axis at the origin, physical curve groups ``bore`` and optionally ``contact``).
 
 gmsh is a process-global C++ library and not thread-safe: one model at a time per process,
-guarded by :func:`gmsh_session`; parallel sweeps use processes.
+guarded by :func:`clutchfem.geometry.session.gmsh_session`; parallel sweeps use processes.
 """
 
 from __future__ import annotations
@@ -23,7 +23,6 @@ import io
 import json
 import os
 import tempfile
-import threading
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -37,23 +36,7 @@ from skfem import MeshTri1, MeshTri2
 from . import __version__
 from .errors import GeometryError, MeshError
 from .geometry.base import BuiltModel, Concept, ConceptParams, MeshSettings, build_model
-
-_GMSH_LOCK = threading.Lock()
-
-
-@contextlib.contextmanager
-def gmsh_session(name: str = "clutchfem"):
-    """Initialise gmsh quietly for one model; always finalise."""
-    with _GMSH_LOCK:
-        gmsh.initialize(interruptible=False)
-        try:
-            gmsh.option.setNumber("General.Terminal", 0)
-            gmsh.option.setNumber("General.Verbosity", 1)
-            gmsh.model.add(name)
-            yield
-        finally:
-            gmsh.finalize()
-
+from .geometry.session import gmsh_session
 
 @dataclass
 class ClutchMesh:

@@ -1,4 +1,9 @@
-"""Field output: .vtu files (meshio) that open in ParaView, and off-screen PNG renders."""
+"""Field output: .vtu files (meshio) that open in ParaView, and off-screen PNG renders.
+
+Written from a :class:`~clutchfem.results.SweepResult`'s stored states (no solving again):
+displacement, stresses and von Mises on the quadratic triangle6 mesh, and the contact
+pressure at the contact nodes.
+"""
 
 from __future__ import annotations
 
@@ -7,25 +12,24 @@ from pathlib import Path
 import meshio
 import numpy as np
 
-from .fem import von_mises
-from .units import rpm_to_rad_s
+#: deformation scale of the PNG renders (the .vtu holds the true displacement)
+RENDER_SCALE = 5.0
 
 
-def _p2_cells(solver) -> tuple[np.ndarray, np.ndarray]:
+def _p2_cells(fe_basis) -> tuple[np.ndarray, np.ndarray]:
     """(points (n, 3), cells (ne, 6)) of the quadratic triangle mesh: every P2 node once, in
     VTK's triangle6 order (3 corners, then mid-edges 01, 12, 20: scikit-fem's order too)."""
-    b = solver.fe.basis
-    ed = b.element_dofs  # (12, ne); vector dof = 2 * node + component
+    ed = fe_basis.element_dofs  # (12, ne); vector dof = 2 * node + component
     cells = (ed[0::2] // 2).T
-    xy = b.doflocs[:, 0::2]
+    xy = fe_basis.doflocs[:, 0::2]
     return np.column_stack([xy.T, np.zeros(xy.shape[1])]), cells
 
 
-def _p2_nodal_stress(solver, u: np.ndarray, cells: np.ndarray, n: int) -> np.ndarray:
+def _p2_nodal_stress(stress, u: np.ndarray, cells: np.ndarray, n: int) -> np.ndarray:
     """Element-vertex stresses averaged to the P2 nodes: corners averaged over the elements
     that share them, mid-edge nodes the mean of the edge's two corner values (the P2 strain
     is linear along a straight edge).  (3, n)."""
-    sv = solver.vertex_stresses(u).reshape(3, -1, 3)  # (3, ne, 3 vertices)
+    sv = stress(u).reshape(3, -1, 3)  # (3, ne, 3 vertices)
     corners = cells[:, :3].ravel()
     acc = np.zeros((3, n))
     cnt = np.bincount(corners, minlength=n).astype(float)
@@ -37,57 +41,55 @@ def _p2_nodal_stress(solver, u: np.ndarray, cells: np.ndarray, n: int) -> np.nda
     return acc
 
 
-def write_vtk(solver, rpms, out: Path, render: bool = True) -> list[Path]:
-    """One .vtu per speed on the quadratic (triangle6) mesh: displacement, stresses and von
-    Mises (averaged to the nodes: the raw element-vertex peak is in the sweep table), and
-    the contact pressure at the contact nodes."""
+def write_vtk(res, rpms, out: Path, render: bool = True) -> list[Path]:
+    """One .vtu per speed of ``res`` (a SweepResult; each rpm must be one of its speeds) on
+    the quadratic (triangle6) mesh: displacement, stresses and von Mises (averaged to the
+    nodes: the raw element-vertex peak is in the sweep table), and the contact pressure at
+    the contact nodes.  With ``render``, a PNG of von Mises on the shape deformed x
+    :data:`RENDER_SCALE` beside each file."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    pts, cells = _p2_cells(solver)
+    f_ = res.fields
+    pts, cells = _p2_cells(f_.fe_basis)
     n = len(pts)
     files = []
     for rpm in rpms:
-        st, _ = solver.state(rpm_to_rad_s(rpm), None, engaged=_engaged(solver, rpm))
-        u = solver.displacement(st)
+        k = res.index(float(rpm))
+        u = res.displacement(k)
         disp = np.zeros((n, 3))
         disp[:, 0] = u[0::2]
         disp[:, 1] = u[1::2]
-        s = _p2_nodal_stress(solver, u, cells, n)
+        s = _p2_nodal_stress(f_.stress, u, cells, n)
         press = np.zeros(n)
-        if solver.nodes is not None and st.lam.any():
-            nd = solver.nodes
-            press[nd.dof_x // 2] = st.lam / (solver.fe.thickness * np.maximum(nd.weight, 1e-300))
+        if res.contact is not None and res.lam[k].any():
+            nd = res.contact.nodes
+            press[nd.dof_x // 2] = res.contact.pressure(res.lam[k], res.thickness)
         m = meshio.Mesh(pts, [("triangle6", cells)],
                         point_data={"displacement_m": disp, "sxx_Pa": s[0], "syy_Pa": s[1], "sxy_Pa": s[2],
-                                    "von_mises_Pa": von_mises(s), "contact_pressure_Pa": press})
-        f = out / f"fields_{int(round(rpm))}rpm.vtu"
+                                    "von_mises_Pa": f_.stress.von_mises(s), "contact_pressure_Pa": press})
+        f = out / f"fields_{int(round(float(rpm)))}rpm.vtu"
         m.write(f)
         files.append(f)
         if render:
-            png = render_png(f, f.with_suffix(".png"), title=f"von Mises at {rpm:.0f} rpm")
+            png = render_png(f, f.with_suffix(".png"), title=f"von Mises at {float(rpm):.0f} rpm")
             if png:
                 files.append(png)
     return files
 
 
-def _engaged(solver, rpm) -> bool:
-    w, _ = solver.engagement()
-    return w is not None and rpm_to_rad_s(rpm) >= w
-
-
-def render_png(vtu: Path, png: Path, title: str = "") -> Path | None:
-    """Off-screen pyvista render of von Mises on the deformed shape (x50); None if no
+def render_png(vtu: Path, png: Path, title: str = "", scale: float = RENDER_SCALE) -> Path | None:
+    """Off-screen pyvista render of von Mises on the shape deformed x ``scale``; None if no
     off-screen OpenGL is available (OSMesa/EGL)."""
     try:
         import pyvista as pv
 
         pv.OFF_SCREEN = True
         grid = pv.read(vtu)
-        warped = grid.warp_by_vector("displacement_m", factor=5.0)
+        warped = grid.warp_by_vector("displacement_m", factor=scale)
         pl = pv.Plotter(off_screen=True, window_size=(900, 800))
         pl.add_mesh(warped, scalars="von_mises_Pa", cmap="turbo", show_edges=False,
                     scalar_bar_args={"title": "von Mises [Pa]"})
-        pl.add_text(title + " (deformation x5)", font_size=10)
+        pl.add_text(f"{title} (deformation x{scale:g})", font_size=10)
         pl.view_xy()
         pl.screenshot(str(png))
         pl.close()

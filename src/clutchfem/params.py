@@ -23,6 +23,9 @@ from .errors import ParameterError
 
 _SUFFIX = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "cm": 1e-2, "deg": 1.0, "Pa": 1.0,
            "MPa": 1e6, "GPa": 1e9, "rpm": 1.0}
+#: the dimension of each suffix (and unit): a suffix is accepted only on a field of its dimension
+_DIMENSION = {"m": "length", "mm": "length", "um": "length", "µm": "length", "cm": "length",
+              "deg": "angle", "Pa": "stress", "MPa": "stress", "GPa": "stress", "rpm": "speed"}
 
 
 def param(default: Any, unit: str, lo: float | None = None, hi: float | None = None,
@@ -66,7 +69,9 @@ class ParamSet(BaseModel):
             return ParameterError(name, values.get(name), "unknown parameter; known: "
                                   + ", ".join(cls.model_fields), cls.context or cls.__name__)
         value = values.get(name, err.get("input"))
-        return ParameterError(name, value, cls.allowed(name), cls.context or cls.__name__)
+        what = cls.model_fields[name].description if name in cls.model_fields else ""
+        allowed = cls.allowed(name) + (f" ({what})" if what else "")
+        return ParameterError(name, value, allowed, cls.context or cls.__name__)
 
     @classmethod
     def allowed(cls, name: str) -> str:
@@ -122,7 +127,8 @@ class ParamSet(BaseModel):
     # -- parsing ------------------------------------------------------------------------
     @classmethod
     def parse_assignments(cls, assignments: list[str] | tuple[str, ...]) -> dict[str, Any]:
-        """Parse ``name=value`` strings (with optional unit suffix) into typed values."""
+        """Parse ``name=value`` strings (with optional unit suffix) into typed values; a
+        parameter given twice is refused (which one was meant?)."""
         out: dict[str, Any] = {}
         for item in assignments:
             if "=" not in item:
@@ -131,34 +137,46 @@ class ParamSet(BaseModel):
             if name not in cls.model_fields:
                 raise ParameterError(name, raw, "unknown parameter; known: "
                                      + ", ".join(cls.model_fields), cls.context or cls.__name__)
+            if name in out:
+                raise ParameterError(name, raw, f"one value (it is given twice: also {name}="
+                                     f"{out[name]!r})", cls.context or cls.__name__)
             out[name] = cls._parse_value(name, raw)
         return out
 
     @classmethod
     def _parse_value(cls, name: str, raw: str) -> Any:
+        """A ``--set`` / CLI string to the field's type; numbers may carry a unit suffix of
+        the field's own dimension (``1.8mm`` for a length, ``80deg`` for an angle, ``8000rpm``
+        for a speed); any other suffix is refused, naming the unit expected."""
         ann = cls.model_fields[name].annotation
-        if get_origin(ann) is Literal:
+        args = [a for a in get_args(ann) if a is not type(None)]
+        numeric = ann in (int, float) or (args and all(a in (int, float) for a in args))
+        if get_origin(ann) is Literal or not numeric:
             return raw
-        m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*([a-zA-Zµ]*)\s*", raw)
+        ctx = cls.context or cls.__name__
+        m = re.fullmatch(r"\s*([-+0-9.eE]+|[-+]?inf|nan)\s*([a-zA-Zµ/^0-9]*)\s*", raw, flags=re.IGNORECASE)
         if not m:
-            raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__)
+            raise ParameterError(name, raw, cls.allowed(name), ctx)
         number, suffix = m.groups()
         try:
             value = float(number)
         except ValueError:
-            raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__) from None
+            raise ParameterError(name, raw, cls.allowed(name), ctx) from None
         unit = cls.unit(name)
         if suffix:
-            if suffix not in _SUFFIX or (unit == "m") != (suffix in ("m", "mm", "um", "µm", "cm")):
-                raise ParameterError(name, raw, f"a value in {unit} (suffix must match the unit)",
-                                     cls.context or cls.__name__)
+            if suffix not in _SUFFIX or _DIMENSION.get(suffix) != _DIMENSION.get(unit, unit):
+                expected = {"m": "a length in m (suffix m, mm, um or cm)", "deg": "an angle in deg (suffix deg)",
+                            "rpm": "a speed in rpm (suffix rpm)", "Pa": "a stress in Pa (suffix Pa, MPa or GPa)"}.get(
+                    unit, f"a plain number in {unit} (no unit suffix)" if unit not in ("-", "")
+                    else "a plain number (dimensionless: no unit suffix)")
+                raise ParameterError(name, raw, expected, ctx)
             value *= _SUFFIX[suffix]
         if ann is int:
             if not math.isfinite(value) or value != int(value):
-                raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__)
+                raise ParameterError(name, raw, cls.allowed(name), ctx)
             return int(value)
         if not math.isfinite(value):
-            raise ParameterError(name, raw, cls.allowed(name), cls.context or cls.__name__)
+            raise ParameterError(name, raw, cls.allowed(name), ctx)
         return value
 
     @classmethod

@@ -6,17 +6,14 @@ number in :func:`summary_rows` carries its unit.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from .clutch.baseline import BaselineClutch  # noqa: E402
+from .clutch.baseline import BaselineClutch
+from .jsonio import write as write_json
+from .plotting import figure
 
 __all__ = ["summary_rows", "torque_plot", "arc_stress_plot", "comparison_plot", "write_analysis",
            "markdown_summary", "default_design_report"]
@@ -130,7 +127,7 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
     """Torque vs rpm of one design: FE and both analytical curves, engine, baseline,
     engagement and slip markers, requirement bands."""
     c = an.curves
-    fig, ax = plt.subplots(figsize=(8.5, 5.5))
+    fig, ax = figure(figsize=(8.5, 5.5))
     ax.plot(c["rpm"], c["fe_torque_Nm"], "k-", lw=2, label="FE (contact + friction)")
     if getattr(an, "analytical_available", True):
         ax.plot(c["rpm"], c["analytic_fe_arc_Nm"], "b--", label="analytical, FE contact arc")
@@ -161,14 +158,13 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
     ax.legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return Path(path)
 
 
 def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
     """Contact arc per shoe vs rpm (with the nominal arc) and peak von Mises vs rpm (with yield)."""
     c = an.curves
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (a1, a2) = figure(1, 2, figsize=(11, 4.2))
     nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
     arc = c["contact_arc_deg"].where(c["contact_arc_deg"] > 0)
     a1.plot(c["rpm"], arc, "k-", label="FE contact arc per shoe (nodes in contact + half spacing)")
@@ -201,7 +197,6 @@ def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
         fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return Path(path)
 
 
@@ -212,7 +207,7 @@ def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None
     requirement bands of the first design's requirement factors."""
     from .clutch.analyze import slip_answer
 
-    fig, ax = plt.subplots(figsize=(9, 5.8))
+    fig, ax = figure(figsize=(9, 5.8))
     rpm_max = engine.rpm_range[1]
     r = np.linspace(0, rpm_max, 561)
     ymax = 8.0
@@ -251,7 +246,6 @@ def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None
     ax.legend(fontsize=7, loc="upper left", ncol=1)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
-    plt.close(fig)
     return Path(path)
 
 
@@ -263,7 +257,7 @@ def write_analysis(an, engine, out: Path, name: str) -> list[Path]:
              arc_stress_plot(an, out / f"{name}_arc_stress_rpm.png", f"{name}: contact arc and peak stress vs rpm")]
     an.curves.to_csv(out / f"{name}_curves.csv", index=False)
     files.append(out / f"{name}_curves.csv")
-    (out / f"{name}_analysis.json").write_text(json.dumps(an.to_json(), indent=2))
+    write_json(out / f"{name}_analysis.json", an.to_json(), indent=2)
     files.append(out / f"{name}_analysis.json")
     return files
 
@@ -295,9 +289,8 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
     spring clutch) and a Markdown summary ``report.md``."""
     from .clutch.analyze import analyze
     from .clutch.engine import EngineCurve
-    from .geometry import MeshSettings, concepts, get_concept
-    from .materials import get_material
-    from .mesh import mesh_concept
+    from .design import Design
+    from .geometry import MeshSettings, concepts
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -306,13 +299,10 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
     elif isinstance(concept_names, str):
         concept_names = (concept_names,)
     engine = EngineCurve.default()
-    mat = get_material("51CrV4")
     analyses, files = {}, []
     for name in concept_names:
-        c = get_concept(name)
-        p = c.params()
-        cm = mesh_concept(c, p, MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size))
-        an = analyze(cm, p, mat, engine=engine, design=name)
+        ms = MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size)
+        an = analyze(Design.from_concept(name, mesh_settings=ms), engine=engine)
         analyses[name] = an
         files += write_analysis(an, engine, out, name)
     fig25 = comparison_plot(analyses, engine, out / "clutch_torque_comparison.png")

@@ -22,7 +22,8 @@ from pathlib import Path
 import gmsh
 
 from .errors import GeometryError
-from .mesh import ClutchMesh, gmsh_session, load_user_geometry
+from .geometry.session import gmsh_session
+from .mesh import ClutchMesh, load_user_geometry
 
 __all__ = ["annulus_msh", "cantilever_msh", "load_annulus", "load_cantilever"]
 

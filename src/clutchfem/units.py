@@ -31,3 +31,10 @@ def mm(x: float) -> float:
 def deg(x: float) -> float:
     """Degrees -> radians."""
     return math.radians(x)
+
+
+def wrap_angle(a, ref: float = 0.0):
+    """Angle(s) [rad] shifted by whole turns into [ref - pi, ref + pi): the one place where
+    polar angles are unwrapped (around a shoe, a pivot ray, a mean direction)."""
+    out = ref + (np.asarray(a, dtype=float) - ref + math.pi) % (2 * math.pi) - math.pi
+    return float(out) if np.ndim(out) == 0 else out

@@ -13,7 +13,7 @@ from .geometry_cmd import geometry
 from .solve_cmd import solve
 from .validate_cmd import validate
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
+app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
 for _cmd in (geometry, solve, analyze, validate, demo):
     app.command()(_cmd)

@@ -2,37 +2,41 @@
 
 from __future__ import annotations
 
-import json
-import math
 from pathlib import Path
 from typing import List, Optional
 
 import typer
+from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ClutchfemError
-from .common import console, err, fail, load_design, material_from
+from ..operating import OperatingPoint as _OP
+from .common import (check_out_dir, console, err, fail, length_option, load_design, material_from,
+                     operating_point)
 
 
 def analyze(
     concept: Optional[str] = typer.Option(None, "--concept", help="concept name"),
-    set_: List[str] = typer.Option([], "--set", help="concept parameter override name=value"),
+    set_: List[str] = typer.Option([], "--set", help="concept parameter override name=value (unit suffix: mm, deg)"),
     mesh: Optional[Path] = typer.Option(None, "--mesh", help="user mesh (.msh with curve groups bore, contact "
                                         "[, contact_0, contact_1, ...]) or STEP; metres, x-y plane, axis at the origin"),
-    drum_radius: Optional[float] = typer.Option(None, "--drum-radius", help="drum inner radius [m] (required with --mesh; "
-                                                "concepts: use --set drum_radius=...)"),
-    thickness: Optional[float] = typer.Option(None, "--thickness", help="axial thickness [m] (--mesh only; default 0.011)"),
+    drum_radius: Optional[str] = typer.Option(None, "--drum-radius", help=_OP.help("drum_radius")
+                                              + "; required with --mesh; concepts: --set drum_radius=..."),
+    thickness: Optional[str] = typer.Option(None, "--thickness", help=_OP.help("thickness") + "; --mesh only"),
     engine: Optional[Path] = typer.Option(None, "--engine", help="engine torque CSV (columns rpm, torque [N m])"),
     idle_rpm: Optional[float] = typer.Option(None, "--idle-rpm", help="engine idle speed [rpm] (default: 2700, ASSUMED)"),
-    mu: float = typer.Option(0.165, "--mu", help="friction coefficient [-]"),
-    rotation: str = typer.Option("ccw", "--rotation", help="ccw or cw"),
-    a: float = typer.Option(1.3, "--a", help="requirement: engagement > a x idle rpm (ASSUMED default)"),
-    b: float = typer.Option(1.0, "--b", help="requirement: slip < b x rpm of max torque (ASSUMED default)"),
-    rpm: Optional[str] = typer.Option(None, "--rpm", help="sweep speeds, e.g. 0:14000:125 (default: 0..engine max, 125 rpm steps)"),
-    material: Optional[str] = typer.Option(None, "--material", help="51CrV4, titanium, aluminium"),
+    mu: Optional[str] = typer.Option(None, "--mu", help=_OP.help("mu")),
+    rotation: Optional[str] = typer.Option(None, "--rotation", help=_OP.help("rotation")),
+    a: float = typer.Option(1.3, "--a", help="requirement: engagement > a x idle rpm [-] (ASSUMED default)"),
+    b: float = typer.Option(1.0, "--b", help="requirement: slip < b x rpm of max torque [-] (ASSUMED default)"),
+    rpm: Optional[str] = typer.Option(None, "--rpm", help="speeds [rpm] to tabulate, e.g. 0:14000:125 (default: "
+                                      "0..engine max, 125 rpm steps); the answers do not depend on them"),
+    material: Optional[str] = typer.Option(None, "--material", help=_OP.help("material")),
+    softening: Optional[str] = typer.Option(None, "--spin-softening", help=_OP.help("softening")),
+    formulation: Optional[str] = typer.Option(None, "--formulation", help=_OP.help("formulation")),
     json_: bool = typer.Option(False, "--json", help="print the JSON document"),
     out: Optional[Path] = typer.Option(None, "--out", help="folder for plots and tables"),
-    mesh_size: Optional[float] = typer.Option(None, "--mesh-size", help="global element size [m]"),
+    mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm)"),
 ):
     """Engagement (static, with ripple), slip rpm, torque margin, stress, plus/minus character."""
     from ..clutch.analyze import Requirements, analyze as run, check_speeds
@@ -40,61 +44,54 @@ def analyze(
     from ..errors import InputError, ParameterError
 
     try:
+        check_out_dir(out)
         if (concept is None) == (mesh is None):
             raise InputError("give exactly one of --concept NAME or --mesh FILE")
         if concept is not None and (drum_radius is not None or thickness is not None):
             raise InputError("--drum-radius and --thickness apply to --mesh only; for a concept use "
                              "--set drum_radius=... / --set thickness=...")
-        if mesh is not None:
-            if drum_radius is None:
-                raise InputError("analyze --mesh needs --drum-radius M: the drum's inner radius in metres "
-                                 "(> 0 and larger than the outer radius of the 'contact' curves, e.g. 0.035); "
-                                 "without a drum there is no friction torque to analyse")
-            if not (math.isfinite(drum_radius) and drum_radius > 0):
-                raise ParameterError("--drum-radius", drum_radius, "a radius > 0 m (metres: 0.035 for 35 mm)")
-            if thickness is not None and not (math.isfinite(thickness) and thickness > 0):
-                raise ParameterError("--thickness", thickness, "a thickness > 0 m (metres: 0.011 for 11 mm)")
+        if mesh is not None and drum_radius is None:
+            raise InputError("analyze --mesh needs --drum-radius: the drum's inner radius (e.g. 0.035 or 35mm), "
+                             "larger than the outer radius of the 'contact' curves; without a drum there is no "
+                             "friction torque to analyse")
         # cheap input checks first, before any meshing
         req = Requirements(a=a, b=b)
-        if idle_rpm is not None and not (math.isfinite(idle_rpm) and idle_rpm > 0):
+        if idle_rpm is not None and not (idle_rpm > 0 and idle_rpm < 1e6):
             raise ParameterError("idle_rpm", idle_rpm, "an idle speed > 0 rpm")
         eng = EngineCurve.from_csv(engine, idle_rpm=idle_rpm) if engine else EngineCurve.default()
-        speeds = None
-        if rpm is not None:
-            from ..solver import parse_rpm
-
-            speeds = check_speeds(parse_rpm(rpm), eng)
         mat = material_from(material, None, None, None)
-        cm, R, h, c, p = load_design(concept, set_, mesh, mesh_size, "sector", thickness, drum_radius)
-        name = c.name if c is not None else mesh.name.rsplit(".", 1)[0]
-        if c is not None:
-            an = run(cm, p, mat, mu=mu, rotation=rotation, engine=eng,
-                     requirements=req, design=name, rpm=speeds, idle_rpm=idle_rpm)
-        else:
-            if "contact" not in (cm.mesh.boundaries or {}):
-                raise InputError(f"{mesh}: analyze needs a physical curve group 'contact' (the shoe surfaces "
-                                 f"facing the drum); groups found: {sorted(cm.mesh.boundaries or {})}")
-            an = run(cm, None, mat, mu=mu, rotation=rotation, engine=eng, requirements=req, design=name,
-                     rpm=speeds, idle_rpm=idle_rpm, drum_radius=R, thickness=h)
+        op = operating_point(mat, drum_radius=drum_radius, mu=mu, rotation=rotation, thickness=thickness,
+                             softening=softening, formulation=formulation, rpm=rpm)
+        if op.rpm is not None:
+            check_speeds(op.speeds(), eng)
+        size = length_option("size", mesh_size)
+        design, c, p = load_design(concept, set_, mesh, size, "sector", op)
+        if c is None and "contact" not in (design.cm.mesh.boundaries or {}):
+            raise InputError(f"{mesh}: analyze needs a physical curve group 'contact' (the shoe surfaces "
+                             f"facing the drum); groups found: {sorted(design.cm.mesh.boundaries or {})}")
+        an = run(design, engine=eng, requirements=req, idle_rpm=idle_rpm)
+        name = design.name
         if out is not None:
             from ..report import write_analysis
 
             for f in write_analysis(an, eng, out, name):
-                err.print(f"wrote {f}")
+                err.print(f"wrote {escape(str(f))}")
         if json_:
-            print(json.dumps(an.to_json()))
+            from ..jsonio import dumps
+
+            print(dumps(an.to_json()))
             return
         from ..report import summary_rows
 
-        t = Table(title=f"{name}: clutch answers (mu = {an.mu:g}, {rotation})")
+        t = Table(title=escape(f"{name}: clutch answers (mu = {an.mu:g}, {op.rotation})"))
         t.add_column("quantity")
         t.add_column("value", justify="right")
         for q, v in summary_rows(an):
-            t.add_row(q, v)
+            t.add_row(escape(q), escape(v))
         console.print(t)
         for w in an.warnings:
-            console.print(f"[bold red]WARNING:[/] {w}")
+            console.print(f"[bold red]WARNING:[/] {escape(w)}")
         for n in an.notes:
-            console.print(f"[dim]note: {n}[/]")
+            console.print(f"[dim]note: {escape(n)}[/]")
     except ClutchfemError as exc:
         fail(exc)

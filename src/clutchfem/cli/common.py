@@ -1,24 +1,77 @@
-"""Shared CLI plumbing: consoles, error exit, and loading a design (concept or user mesh)."""
+"""Shared CLI plumbing: consoles, error exit, output folders, the operating point from the
+options, and loading a design (concept or user mesh)."""
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
 from typing import Optional
 
 import typer
 from rich.console import Console
 
-from ..errors import ClutchfemError
+from ..errors import ClutchfemError, InputError
 
 console = Console()
 err = Console(stderr=True)
 
 
 def fail(exc: Exception) -> None:
-    err.print(f"[bold red]error:[/] {exc}")
+    from rich.markup import escape
+
+    err.print(f"[bold red]error:[/] {escape(str(exc))}")
     raise typer.Exit(code=2)
 
 
-def mesh_settings(size: Optional[float], model: str):
+def check_out_dir(out: Optional[Path], option: str = "--out") -> Optional[Path]:
+    """Refuse an output folder that cannot be written *before* any work: a file, a folder
+    inside a file, or a folder without write permission (created if missing)."""
+    if out is None:
+        return None
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"{option} {out}: is a file, not a folder")
+    parent = out
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise InputError(f"{option} {out}: {parent} is a file, so no folder can be made inside it")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise InputError(f"{option} {out}: no permission to write in {parent}")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"{option} {out}: cannot create the folder ({exc.strerror})") from None
+    return out
+
+
+def operating_point(material=None, **given):
+    """An :class:`~clutchfem.operating.OperatingPoint` from CLI option strings (None: not
+    given), each parsed with its unit suffix and checked against its range."""
+    from ..operating import OperatingPoint
+
+    from ..errors import ParameterError
+
+    try:
+        values = OperatingPoint.parse_assignments([f"{k}={v}" for k, v in given.items() if v is not None])
+        if material is not None:
+            values["material"] = material
+        return OperatingPoint(**values)
+    except ParameterError as exc:  # name the option the user typed
+        opt = {"softening": "--spin-softening"}.get(exc.name, "--" + str(exc.name).replace("_", "-"))
+        raise ParameterError(exc.name, exc.value, exc.allowed, f"option {opt}") from None
+
+
+def length_option(name: str, raw: Optional[str]):
+    """A length option (``--mesh-size 0.8mm``) in m, or None."""
+    if raw is None:
+        return None
+    from ..geometry import MeshSettings
+
+    return MeshSettings._parse_value(name, raw)
+
+
+def mesh_settings(size, model: str):
     from ..geometry import MeshSettings
 
     kw = {"model": model}
@@ -37,20 +90,27 @@ def material_from(material: Optional[str], E, nu, rho):
     return get_material(material or "51CrV4")
 
 
-def load_design(concept, set_, mesh, mesh_size, model, thickness, drum_radius):
+#: axial thickness assumed for a user mesh without --thickness [m]
+USER_THICKNESS = 11e-3
+
+
+def load_design(concept, set_, mesh, mesh_size, model, op, solver=None):
+    """(Design, concept or None, params or None) for ``--concept NAME [--set ...]`` or
+    ``--mesh FILE``; ``op`` the operating point."""
+    from ..design import Design
     from ..geometry import get_concept
     from ..mesh import load_user_geometry, mesh_concept
 
     if (concept is None) == (mesh is None):
-        raise ClutchfemError("give exactly one of --concept NAME or --mesh FILE")
+        raise InputError("give exactly one of --concept NAME or --mesh FILE")
     if concept is not None:
         c = get_concept(concept)
         p = c.Params.from_assignments(set_)
         cm = mesh_concept(c, p, mesh_settings(mesh_size, model))
-        return cm, (drum_radius if drum_radius is not None else p.drum_radius), (thickness or p.thickness), c, p
+        return Design(cm, op, params=p, solver=solver, name=c.name), c, p
     if set_:
-        raise ClutchfemError("--set applies to --concept designs only")
-    if thickness is None:
-        thickness = 11e-3
-    cm = load_user_geometry(mesh, mesh_size=mesh_size, thickness=thickness, drum_radius=drum_radius)
-    return cm, drum_radius, thickness, None, None
+        raise InputError("--set applies to --concept designs only")
+    if op.thickness is None:
+        op = op.replace(thickness=USER_THICKNESS)
+    cm = load_user_geometry(mesh, mesh_size=mesh_size, thickness=op.thickness, drum_radius=op.drum_radius)
+    return Design(cm, op, solver=solver, name=Path(mesh).name.rsplit(".", 1)[0]), None, None

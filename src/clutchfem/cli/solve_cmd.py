@@ -2,67 +2,79 @@
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import List, Optional
 
+import numpy as np
 import typer
+from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ClutchfemError
-from .common import console, fail, load_design, material_from
+from ..operating import OperatingPoint as _OP
+from .common import (check_out_dir, console, fail, length_option, load_design, material_from,
+                     operating_point)
 
 
 def solve(
     concept: Optional[str] = typer.Option(None, "--concept", help="concept name"),
-    set_: List[str] = typer.Option([], "--set", help="concept parameter override name=value"),
+    set_: List[str] = typer.Option([], "--set", help="concept parameter override name=value (unit suffix: mm, deg)"),
     mesh: Optional[Path] = typer.Option(None, "--mesh", help="user mesh (.msh with groups bore/contact) or STEP"),
-    drum_radius: Optional[float] = typer.Option(None, "--drum-radius", help="drum inner radius [m]"),
-    mu: float = typer.Option(0.165, "--mu", help="shoe-drum friction coefficient [-]"),
-    rotation: str = typer.Option("ccw", "--rotation", help="hub rotation: ccw or cw"),
-    material: Optional[str] = typer.Option(None, "--material", help="51CrV4, titanium, aluminium"),
-    E: Optional[float] = typer.Option(None, "--E", help="Young's modulus [Pa]"),
-    nu: Optional[float] = typer.Option(None, "--nu", help="Poisson's ratio [-]"),
-    rho: Optional[float] = typer.Option(None, "--rho", help="density [kg/m^3]"),
-    thickness: Optional[float] = typer.Option(None, "--thickness", help="axial thickness [m] (user mesh default 0.011)"),
-    rpm: str = typer.Option("0:14000:250", "--rpm", help="speeds: 8000 | 1000,2000 | start:stop:step [rpm]"),
+    drum_radius: Optional[str] = typer.Option(None, "--drum-radius", help=_OP.help("drum_radius")),
+    mu: Optional[str] = typer.Option(None, "--mu", help=_OP.help("mu")),
+    rotation: Optional[str] = typer.Option(None, "--rotation", help=_OP.help("rotation")),
+    material: Optional[str] = typer.Option(None, "--material", help=_OP.help("material")),
+    E: Optional[float] = typer.Option(None, "--E", help="Young's modulus [Pa] (overrides the material's)"),
+    nu: Optional[float] = typer.Option(None, "--nu", help="Poisson's ratio [-] (overrides the material's)"),
+    rho: Optional[float] = typer.Option(None, "--rho", help="density [kg/m^3] (overrides the material's)"),
+    thickness: Optional[str] = typer.Option(None, "--thickness", help=_OP.help("thickness")),
+    rpm: str = typer.Option("0:14000:250", "--rpm", help="speeds [rpm]: 8000 | 1000,2000 | start:stop:step"),
     vtk: bool = typer.Option(False, "--vtk", help="write .vtu fields (and PNG renders) for the speeds in --vtk-rpm"),
-    vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds for VTK output (default: max of --rpm)"),
+    vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds [rpm] for VTK output (default: max of --rpm)"),
     out: Optional[Path] = typer.Option(None, "--out", help="output folder for tables/fields"),
     json_: bool = typer.Option(False, "--json", help="print one JSON object to stdout"),
-    mesh_size: Optional[float] = typer.Option(None, "--mesh-size", help="global element size [m]"),
+    mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm)"),
     model: str = typer.Option("sector", "--model", help="sector (cyclic) or full"),
-    softening: str = typer.Option("modal", "--spin-softening", help="modal | exact | off"),
+    softening: Optional[str] = typer.Option(None, "--spin-softening", help=_OP.help("softening")),
+    formulation: Optional[str] = typer.Option(None, "--formulation", help=_OP.help("formulation")),
     no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery"),
 ):
     """Speed sweep: engagement, contact forces and arc, friction torque (drum held), stresses."""
-    from ..solver import ClutchSolver, parse_rpm
+    from ..jsonio import dumps, write
+    from ..operating import parse_rpm
 
     try:
+        check_out_dir(out)
         mat = material_from(material, E, nu, rho)
-        speeds = parse_rpm(rpm)
-        cm, R, h, c, p = load_design(concept, set_, mesh, mesh_size, model, thickness, drum_radius)
-        solver = ClutchSolver(cm, mat, drum_radius=R, mu=mu, rotation=rotation,
-                              spin_softening=softening, thickness=h)
-        res = solver.sweep(speeds, stresses=not no_stress)
+        op = operating_point(mat, drum_radius=drum_radius, mu=mu, rotation=rotation, thickness=thickness,
+                             softening=softening, formulation=formulation, rpm=rpm)
+        speeds = op.speeds()
+        which = parse_rpm(vtk_rpm) if vtk_rpm else np.array([float(speeds.max())])
+        if vtk:
+            speeds = np.union1d(speeds, which)
+        if concept is not None and op.drum_radius is not None:
+            raise ClutchfemError("the drum radius of a concept is one of its geometry parameters (its "
+                                 "clearance is built against it): use --set drum_radius=...; --drum-radius "
+                                 "applies to --mesh only")
+        size = length_option("size", mesh_size)
+        design, c, p = load_design(concept, set_, mesh, size, model, op)
+        res = design.sweep(speeds, stresses=not no_stress)
         if out is not None:
-            out.mkdir(parents=True, exist_ok=True)
             res.curve.to_csv(out / "curve.csv", index=False)
             if not res.shoes.empty:
                 res.shoes.to_csv(out / "shoes.csv", index=False)
-            (out / "result.json").write_text(json.dumps(res.to_json(), indent=2))
+            write(out / "result.json", res.to_json(), indent=2)
         if vtk:
             from ..output import write_vtk
 
-            target = out or Path("out/solve")
-            which = parse_rpm(vtk_rpm) if vtk_rpm else [float(speeds.max())]
-            files = write_vtk(solver, which, target)
+            target = check_out_dir(out or Path("out/solve"))
+            files = write_vtk(res, which, target)
             if not json_:
                 for f in files:
-                    console.print(f"wrote {f}")
+                    console.print(f"wrote {escape(str(f))}")
         if json_:
-            print(json.dumps(res.to_json()))
+            print(dumps(res.to_json()))
         else:
             _print_sweep(res, mat)
     except ClutchfemError as exc:
@@ -73,10 +85,10 @@ def _print_sweep(res, mat) -> None:
     eng = res.engagement_rpm
     console.print(f"engagement speed: {eng:.0f} rpm (first touch at the shoe {res.first_touch})" if eng
                   else "engagement speed: none in the speed range (never touches the drum)")
-    t = Table(title=f"speed sweep ({mat.name})")
+    t = Table(title=f"speed sweep ({escape(mat.name)})")
     for col in ("rpm", "normal force [N]", "torque [N m]", "contact arc [deg]", "max von Mises [MPa]",
-                "safety factor", "max displ. [mm]"):
-        t.add_column(col, justify="right")
+                "safety factor [-]", "max displ. [mm]"):
+        t.add_column(escape(col), justify="right")
     df = res.curve
     step = max(1, len(df) // 15)
     for _, r in df.iloc[::step].iterrows():
@@ -85,4 +97,7 @@ def _print_sweep(res, mat) -> None:
                   f"{r.safety_factor:.2f}" if not math.isnan(r.safety_factor) else "-",
                   f"{r.max_displacement_m * 1e3:.3f}")
     console.print(t)
-    console.print(f"wall time: setup {res.timings['setup_s']:.2f} s, sweep {res.timings['sweep_s']:.2f} s")
+    tm = res.timings
+    console.print(f"wall time: model {tm.get('assemble_s', 0) + tm.get('factorize_s', 0):.2f} s, "
+                  f"sweep {tm['sweep_s']:.2f} s")
+

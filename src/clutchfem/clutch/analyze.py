@@ -1,4 +1,24 @@
-"""From a solved design to the answers a clutch designer asks for.
+"""From a design to the answers a clutch designer asks for: a sequence of small steps.
+
+:func:`analyze` runs, on one :class:`~clutchfem.design.Design` (one FE model, one
+factorisation for everything below):
+
+1. :func:`slip_step`: the slip speed with the drum held, from the *exact* FE torque (crossings
+   bracketed on a fixed internal grid and refined by bisection with FE solves: the answer
+   does not depend on the speeds the user asked to tabulate);
+2. :func:`fe_sweep`: the FE speed sweep with stresses on the output speeds, to which the
+   engagement and slip speeds, the rpm of maximum engine torque and the engine's maximum
+   speed are added (every answer is read at a solved speed, never interpolated);
+3. :func:`engagement_step`: static engagement (FE, closed form) and with the 2-stroke ripple;
+4. :func:`character_step`: plus/minus character per shoe (normal force with and without
+   friction at the rpm of maximum engine torque);
+5. :func:`mu_sensitivity_step`: torque and slip speed at mu x 0.7 and x 1.3;
+6. :func:`coupling_step`: the analytical plus/minus shoe model fitted to the FE (below);
+7. :func:`stress_step`: peak stress and safety factor at the engine's maximum speed;
+8. :func:`requirements_step`: engagement > a x idle, slip < b x rpm of max engine torque.
+
+Each returns a small frozen result; :class:`Analysis` collects the answers the report
+renders (:mod:`clutchfem.report`).
 
 FE -> analytical coupling (thesis eqs 1-8 via :mod:`clutchfem.clutch.shoe`):
 
@@ -25,11 +45,10 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ClutchfemError, ParameterError
-from ..units import rpm_to_rad_s
+from ..units import rpm_to_rad_s, wrap_angle
 from . import ripple as ripple_mod
-from .engine import EngineCurve, slip_rpm, torque_crossings
+from .engine import EngineCurve, _holds, torque_crossings
 from .shoe import ShoeGeometry, shoe_torque
-
 
 #: Defaults of the requirement factors.  The thesis keeps a and b confidential: ASSUMED.
 DEFAULT_A = 1.3
@@ -39,11 +58,11 @@ DEFAULT_IDLE_RPM = 2700.0
 #: Safety factor below which the report adds a fatigue caution (ASSUMED threshold; yield
 #: itself is the hard limit, sf < 1).
 FATIGUE_CAUTION_SF = 1.5
-#: A user mesh's drum radius may exceed the contact surface's outer radius by at most this
-#: factor (a units check: a gap of half the part's radius cannot close elastically).
-DRUM_GAP_LIMIT = 1.5
 #: Friction factors of the mu sensitivity study (mu +- 30 %).
 MU_FACTORS = (0.7, 1.3)
+#: spacing [rpm] of the internal grid on which clutch/engine crossings are bracketed (then
+#: refined by bisection with exact FE solves); also the default output spacing
+GRID_RPM = 125.0
 
 
 @dataclass
@@ -71,6 +90,9 @@ class Requirements:
         return (self.a, self.b) == (DEFAULT_A, DEFAULT_B)
 
 
+# ---------------------------------------------------------------------------------------
+# step results
+# ---------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class SlipAnswer:
     """Slip speed with the drum held and full throttle.
@@ -87,35 +109,56 @@ class SlipAnswer:
     crossings: tuple[tuple[float, str], ...] = ()
 
 
-def slip_answer(engine: EngineCurve, clutch_torque_at_rpm, engagement_rpm: float | None) -> SlipAnswer:
-    """Classify the slip speed: see :class:`SlipAnswer` (pure function, no FE)."""
-    lo, hi = engine.rpm_range
-    if engagement_rpm is None or not math.isfinite(engagement_rpm) or engagement_rpm > hi:
-        eng = "none found" if engagement_rpm is None else f"{engagement_rpm:.0f} rpm"
-        return SlipAnswer(None, "never engages",
-                          f"never engages within the engine's speed range (up to {hi:.0f} rpm; "
-                          f"engagement {eng}): the clutch transmits no torque")
-    cross = tuple(torque_crossings(engine, clutch_torque_at_rpm))
-    s = slip_rpm(engine, clutch_torque_at_rpm)
-    extra = ""
-    ups = [r for r, d in cross if d == "up"]
-    if len(cross) > 1:
-        extra = ("; the curves cross " + str(len(cross)) + " times ("
-                 + ", ".join(f"{r:.0f} rpm {d}" for r, d in cross)
-                 + "): the engine stops at the first upward crossing")
-    if s is None:
-        return SlipAnswer(None, "never slips",
-                          f"never slips: the clutch torque stays below the engine torque up to "
-                          f"{hi:.0f} rpm, so with the drum held the engine runs to its maximum speed"
-                          + extra, cross)
-    if not ups or s <= lo * (1 + 1e-12):
-        return SlipAnswer(float(s), "holds at start",
-                          f"the clutch already holds the engine torque at {lo:.0f} rpm, the lowest "
-                          f"speed of the engine curve" + extra, cross)
-    return SlipAnswer(float(s), "slips", "clutch torque meets the engine curve" + extra, cross)
+@dataclass(frozen=True)
+class EngagementAnswer:
+    """Static engagement (FE) and with the 2-stroke ripple (3 sigma and typical cycle) [rpm]."""
+
+    static_rpm: float | None
+    with_ripple_rpm: float | None
+    with_ripple_typical_rpm: float | None
+    note: str
 
 
-@dataclass
+@dataclass(frozen=True)
+class CharacterAnswer:
+    """Plus/minus character of the shoes from the FE (friction raises or lowers N)."""
+
+    overall: str
+    per_shoe: tuple
+    probe_rpm: float
+
+
+@dataclass(frozen=True)
+class MuSensitivity:
+    """Torque at ``rpm`` and slip speed at mu x 0.7 / 1.0 / 1.3."""
+
+    rpm: float
+    mu: float
+    torque_Nm: dict
+    slip_rpm: dict
+    torque_change_pct: dict | None = None
+    elasticity: float | None = None
+
+    def as_dict(self) -> dict:
+        d = {"rpm": self.rpm, "mu": self.mu, "torque_Nm": dict(self.torque_Nm), "slip_rpm": dict(self.slip_rpm)}
+        if self.torque_change_pct is not None:
+            d["torque_change_pct"] = dict(self.torque_change_pct)
+            d["elasticity"] = self.elasticity
+        return d
+
+
+@dataclass(frozen=True)
+class StressAnswer:
+    """Peak von Mises and safety factor against yield at ``rpm`` (the engine maximum)."""
+
+    rpm: float
+    max_von_mises_Pa: float
+    safety_factor: float
+    location_m: tuple[float, float]
+    yield_strength_Pa: float
+
+
+@dataclass(frozen=True)
 class Analysis:
     """Answers for one design (see :func:`analyze`); units in the field names or docstrings."""
 
@@ -163,26 +206,47 @@ class Analysis:
     first_touch_angle_deg: float | None = None
 
     def to_json(self) -> dict:
+        from ..jsonio import clean
+
         d = {k: v for k, v in self.__dict__.items() if k != "curves"}
         d["units"] = {"rpm": "1/min", "torque": "N m", "stress": "Pa", "power": "W",
                       "safety_factor": "- (yield strength / max von Mises)", "angles": "deg",
                       "lengths": "m", "mass": "kg", "force": "N"}
-        d["curves"] = self.curves.replace({np.inf: None}).to_dict("records")
-        return _clean(d)
+        d["curves"] = self.curves.to_dict("records")
+        return clean(d)
 
 
-def _clean(x):
-    if isinstance(x, dict):
-        return {k: _clean(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_clean(v) for v in x]
-    if isinstance(x, (np.floating, float)):
-        return None if not math.isfinite(float(x)) else float(x)
-    if isinstance(x, np.integer):
-        return int(x)
-    if isinstance(x, np.bool_):
-        return bool(x)
-    return x
+# ---------------------------------------------------------------------------------------
+# pure helpers (no FE)
+# ---------------------------------------------------------------------------------------
+def slip_answer(engine: EngineCurve, clutch_torque_at_rpm, engagement_rpm: float | None,
+                grid: np.ndarray | None = None) -> SlipAnswer:
+    """Classify the slip speed: see :class:`SlipAnswer` (``clutch_torque_at_rpm`` is any
+    vectorised function; crossings are bracketed on ``grid``, default 2001 equal steps)."""
+    lo, hi = engine.rpm_range
+    if engagement_rpm is None or not math.isfinite(engagement_rpm) or engagement_rpm > hi:
+        eng = "none found" if engagement_rpm is None else f"{engagement_rpm:.0f} rpm"
+        return SlipAnswer(None, "never engages",
+                          f"never engages within the engine's speed range (up to {hi:.0f} rpm; "
+                          f"engagement {eng}): the clutch transmits no torque")
+    cross = tuple(torque_crossings(engine, clutch_torque_at_rpm, grid=grid))
+    ups = [r for r, d in cross if d == "up"]
+    s = float(lo) if bool(_holds(engine, clutch_torque_at_rpm, np.array([lo]))[0]) else (ups[0] if ups else None)
+    extra = ""
+    if len(cross) > 1:
+        extra = ("; the curves cross " + str(len(cross)) + " times ("
+                 + ", ".join(f"{r:.0f} rpm {d}" for r, d in cross)
+                 + "): the engine stops at the first upward crossing")
+    if s is None:
+        return SlipAnswer(None, "never slips",
+                          f"never slips: the clutch torque stays below the engine torque up to "
+                          f"{hi:.0f} rpm, so with the drum held the engine runs to its maximum speed"
+                          + extra, cross)
+    if not ups or s <= lo * (1 + 1e-12):
+        return SlipAnswer(float(s), "holds at start",
+                          f"the clutch already holds the engine torque at {lo:.0f} rpm, the lowest "
+                          f"speed of the engine curve" + extra, cross)
+    return SlipAnswer(float(s), "slips", "clutch torque meets the engine curve" + extra, cross)
 
 
 def shoe_kind(arrangement: str, rotation: str) -> str:
@@ -192,19 +256,29 @@ def shoe_kind(arrangement: str, rotation: str) -> str:
 
 
 def check_speeds(rpm, engine: EngineCurve) -> np.ndarray:
-    """The sweep speeds [rpm]: finite, >= 0, within 0..max rpm of the engine curve, sorted,
-    and always including the engine's maximum speed (where stresses are reported)."""
+    """The output speeds [rpm]: finite, >= 0, within 0..max rpm of the engine curve, sorted,
+    and always including the engine's maximum speed (where stresses are reported) and the
+    rpm of its maximum torque (where torque, arc and character are reported)."""
     lo, hi = engine.rpm_range
     if rpm is None:
-        return np.arange(0.0, hi + 1e-9, 125.0) if hi % 125.0 == 0 else np.append(np.arange(0.0, hi, 125.0), hi)
-    r = np.atleast_1d(np.asarray(rpm, dtype=float)).ravel()
-    if r.size == 0 or not np.all(np.isfinite(r)):
-        raise ParameterError("rpm", rpm, "finite speeds in rpm (at least one)")
-    if r.min() < 0 or r.max() > hi:
-        raise ParameterError("rpm", f"{r.min():g}..{r.max():g}",
-                             f"speeds within 0..{hi:g} rpm (the engine curve, {engine.source}, "
-                             f"ends at {hi:g} rpm; extend the curve to analyse faster)")
-    return np.union1d(r, [hi])
+        r = np.arange(0.0, hi + 1e-9, GRID_RPM)
+    else:
+        r = np.atleast_1d(np.asarray(rpm, dtype=float)).ravel()
+        if r.size == 0 or not np.all(np.isfinite(r)):
+            raise ParameterError("rpm", rpm, "finite speeds in rpm (at least one)")
+        if r.min() < 0 or r.max() > hi:
+            raise ParameterError("rpm", f"{r.min():g}..{r.max():g}",
+                                 f"speeds within 0..{hi:g} rpm (the engine curve, {engine.source}, "
+                                 f"ends at {hi:g} rpm; extend the curve to analyse faster)")
+    return np.union1d(r, [hi, float(engine.rpm_max_torque)])
+
+
+def bracket_grid(engine: EngineCurve) -> np.ndarray:
+    """The internal grid on which crossings with the engine curve are bracketed: the engine
+    range in GRID_RPM steps plus the engine table's own speeds (fixed: independent of the
+    speeds the user tabulates)."""
+    lo, hi = engine.rpm_range
+    return np.union1d(np.append(np.arange(lo, hi, GRID_RPM), hi), engine.rpm)
 
 
 def _character(n_mu0: float, n_mu: float) -> str:
@@ -217,305 +291,129 @@ def _character(n_mu0: float, n_mu: float) -> str:
     return "neutral"
 
 
-def analyze(cm, params, material, *, mu: float = 0.165, rotation: str = "ccw",
-            engine: EngineCurve | None = None, requirements: Requirements | None = None,
-            rpm=None, spin_softening: str = "modal", design: str = "",
-            idle_rpm: float | None = None, ripple_model: ripple_mod.RippleModel | None = None,
-            drum_radius: float | None = None, thickness: float | None = None) -> Analysis:
-    """Run the FE sweeps and turn them into engagement / slip / torque / stress answers.
+class FETorque:
+    """The exact FE clutch torque [N m] as a vectorised function of rpm (each speed one small
+    contact solve with the design's one factorisation; results memoised)."""
 
-    cm: meshed design (concept mesh: mass properties, pivots and nominal arcs give the
-    analytical coupling; a user mesh from :func:`clutchfem.mesh.load_user_geometry` gives
-    every FE answer, the analytical curves are then NaN and ``analytical_available`` is
-    False); params: the concept's parameters (drum radius, thickness, arrangement), or None
-    for a user mesh; drum_radius [m], thickness [m]: override the concept's values; for a
-    user mesh the drum radius is required (no drum, no torque) and the thickness defaults to
-    ``cm.thickness``; material: E, nu, rho, yield strength; mu: friction coefficient [-];
-    rotation: 'ccw' or 'cw'; engine: full-throttle curve (default: the ASSUMED 56.5 cc saw
-    curve); requirements: factors a, b; rpm: sweep speeds (default 0..engine max in 125 rpm
-    steps); idle_rpm: overrides the engine's idle speed (else the curve's, else 2700 rpm,
-    ASSUMED).
-    """
-    from ..solver import ClutchSolver
+    def __init__(self, case):
+        self.case = case
+        self.memo: dict[float, float] = {}
+        self._active = None
 
-    engine = engine or EngineCurve.default()
-    req = requirements or Requirements()
-    if not isinstance(mu, (int, float)) or not (math.isfinite(mu) and 0.0 <= mu <= 1.0):
-        raise ParameterError("mu", mu, "a friction coefficient in [0, 1]")
-    if rotation not in ("ccw", "cw"):
-        raise ParameterError("rotation", rotation, "'ccw' or 'cw' (hub's sense of rotation)")
-    notes: list[str] = []
-    warnings: list[str] = []
-    if idle_rpm is None:
-        idle_rpm = engine.idle_rpm
-        if idle_rpm is None:
-            idle_rpm = DEFAULT_IDLE_RPM
-            notes.append(f"idle speed {DEFAULT_IDLE_RPM:.0f} rpm ASSUMED (the engine curve gives none)")
-    if not (isinstance(idle_rpm, (int, float)) and math.isfinite(idle_rpm) and idle_rpm > 0):
-        raise ParameterError("idle_rpm", idle_rpm, "an idle speed > 0 rpm")
-    lo, hi = engine.rpm_range
-    rpm = check_speeds(rpm, engine)
-    R, h = _drum_and_thickness(cm, params, drum_radius, thickness)
-    kw = dict(drum_radius=R, rotation=rotation, spin_softening=spin_softening, thickness=h)
-    fe = ClutchSolver(cm, material, mu=mu, **kw)
-    res = fe.sweep(rpm)
-    curve = res.curve
-    eng = res.engagement_rpm
-    fe_torque = lambda x: np.interp(x, curve["rpm"], curve["torque_Nm"])  # noqa: E731
-    slip = slip_answer(engine, fe_torque, eng)
-    in_range = slip.status != "never engages"
-    if in_range:
-        eng_r = ripple_mod.effective_engagement_rpm(eng, ripple_model, k_sigma=3.0)
-        eng_r0 = ripple_mod.effective_engagement_rpm(eng, ripple_model, k_sigma=0.0)
-        eng_note = ("static: steady speed (FE, closed form); with ripple: mean crank speed at which the "
-                    "2-stroke speed ripple's peak reaches the static value (3 sigma cycle; typical cycle "
-                    "also given); ripple growth with rpm ASSUMED proportional")
-    else:
-        eng_r = eng_r0 = None
-        eng_note = slip.note
-    # plus/minus character from the model itself: friction raises (plus) or lowers (minus) N
-    probe = float(engine.rpm_max_torque)
-    if eng is not None and eng > probe and eng <= hi:
-        probe = hi
-        notes.append(f"not engaged at the rpm of max engine torque: plus/minus character and mu "
-                     f"sensitivity evaluated at {hi:.0f} rpm")
-    sw0 = ClutchSolver(cm, material, mu=0.0, **kw).sweep([probe], stresses=False)
-    sw1 = fe.sweep([probe], stresses=False)
-    per_shoe = []
-    if not sw0.shoes.empty:
-        for s_ in sorted(set(sw0.shoes["shoe"])):
-            n0 = float(sw0.shoes.loc[sw0.shoes["shoe"] == s_, "normal_force_N"].iloc[0])
-            n1 = float(sw1.shoes.loc[sw1.shoes["shoe"] == s_, "normal_force_N"].iloc[0])
-            per_shoe.append({"shoe": int(s_), "character": _character(n0, n1), "rpm": probe,
-                             "normal_force_mu0_N": n0, "normal_force_N": n1,
-                             "normal_force_ratio": n1 / n0 if n0 > 0 else math.nan})
-        if cm.sector_angle:
-            notes.append(f"sector model: shoe 0 stands for all {cm.n_shoes_total} identical shoes")
-    chars = sorted({p_["character"] for p_ in per_shoe})
+    def __call__(self, rpm) -> np.ndarray:
+        r = np.atleast_1d(np.asarray(rpm, dtype=float))
+        out = np.empty(r.shape)
+        for k, x in enumerate(r.ravel()):
+            x = float(x)
+            if x not in self.memo:
+                lam, act = self.case.solve(rpm_to_rad_s(x), self._active)
+                if act is not None:
+                    self._active = act
+                c = self.case.contact
+                self.memo[x] = 0.0 if c is None else float(c.mu * c.drum_radius * lam.sum() * self.case.scale)
+            out.flat[k] = self.memo[x]
+        return out
+
+
+# ---------------------------------------------------------------------------------------
+# steps
+# ---------------------------------------------------------------------------------------
+def fe_sweep(design, speeds):
+    """Step 1: the FE sweep with stresses at the output ``speeds`` [rpm]."""
+    return design.sweep(speeds, stresses=True)
+
+
+def engagement_step(res, ripple_model, in_range: bool, slip: SlipAnswer) -> EngagementAnswer:
+    """Step 2: static engagement and the crank speed at which the ripple's peak reaches it."""
     if not in_range:
-        character = "never engages"
-    elif len(chars) == 1:
-        character = chars[0]
+        return EngagementAnswer(None, None, None, slip.note)
+    eng = res.engagement_rpm
+    return EngagementAnswer(
+        eng, ripple_mod.effective_engagement_rpm(eng, ripple_model, k_sigma=3.0),
+        ripple_mod.effective_engagement_rpm(eng, ripple_model, k_sigma=0.0),
+        "static: steady speed (FE, closed form); with ripple: mean crank speed at which the 2-stroke "
+        "speed ripple's peak reaches the static value (3 sigma cycle; typical cycle also given); ripple "
+        "growth with rpm ASSUMED proportional")
+
+
+def slip_step(case, engine: EngineCurve) -> SlipAnswer:
+    """Step 3: slip speed from the exact FE torque (see module docstring)."""
+    return slip_answer(engine, FETorque(case), case.engagement_rpm, grid=bracket_grid(engine))
+
+
+def secondary_case(design, mu: float):
+    """The load case of a secondary friction coefficient (friction off, mu +-30 %): the
+    design's softening, with one Ritz space for all of them (seeded by both contact load
+    parts, :class:`~clutchfem.softening.Ritz` ``seeds='all'``) instead of one each."""
+    from dataclasses import replace
+
+    from ..softening import Ritz, get_softening
+
+    soft = get_softening(design.op.softening)
+    if isinstance(soft, Ritz):
+        soft = replace(soft, seeds="all")
+    return design.case(mu=mu, softening=soft)
+
+
+def character_step(design, probe: float) -> CharacterAnswer:
+    """Step 4: per shoe, normal force with friction (the design's mu) and without, at ``probe``
+    (both with the secondary cases' shared Ritz space, so the ratio compares like with like)."""
+    w = rpm_to_rad_s(probe)
+    c0, c1 = secondary_case(design, 0.0), secondary_case(design, design.op.mu)
+    if c0.contact is None:
+        return CharacterAnswer("not in contact", (), probe)
+    lam0, _ = c0.solve(w)
+    lam1, _ = c1.solve(w)
+    nd = c0.contact.nodes
+    per = []
+    for s_ in nd.shoes:
+        sel = nd.shoe == s_
+        n0, n1 = float(lam0[sel].sum()), float(lam1[sel].sum())
+        per.append({"shoe": int(s_), "character": _character(n0, n1), "rpm": probe,
+                    "normal_force_mu0_N": n0, "normal_force_N": n1,
+                    "normal_force_ratio": n1 / n0 if n0 > 0 else math.nan})
+    chars = sorted({p_["character"] for p_ in per})
+    if len(chars) == 1:
+        overall = chars[0]
     elif chars:
-        character = "mixed: " + ", ".join(chars)
+        overall = "mixed: " + ", ".join(chars)
     else:
-        character = _character(float(sw0.curve["normal_force_N"].iloc[0]),
-                               float(sw1.curve["normal_force_N"].iloc[0]))
-    # sensitivity to mu +- 30 %: torque at the probe speed and slip speed
-    t_probe = float(sw1.curve["torque_Nm"].iloc[0])
-    sens: dict = {"rpm": probe, "mu": mu, "torque_Nm": {"x1.0": t_probe}, "slip_rpm": {"x1.0": slip.rpm}}
+        overall = _character(float(lam0.sum()), float(lam1.sum()))
+    return CharacterAnswer(overall, tuple(per), probe)
+
+
+def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAnswer,
+                        notes: list[str]) -> MuSensitivity:
+    """Step 5: torque at ``probe`` and slip speed at mu x 0.7 and x 1.3 (same FE model)."""
+    mu = design.op.mu
+    t_probe = float(FETorque(design.case())(probe)[0])
+    torque, slips = {"x1.0": t_probe}, {"x1.0": slip.rpm}
     for f in MU_FACTORS:
         key = f"x{f}"
         if mu * f > 1.0:
             notes.append(f"mu x {f} = {mu * f:.3g} > 1: sensitivity point skipped")
             continue
-        s_ = ClutchSolver(cm, material, mu=mu * f, **kw).sweep(rpm, stresses=False)
-        c_ = s_.curve
-        sens["torque_Nm"][key] = float(np.interp(probe, c_["rpm"], c_["torque_Nm"]))
-        sens["slip_rpm"][key] = slip_answer(
-            engine, lambda x, c_=c_: np.interp(x, c_["rpm"], c_["torque_Nm"]), s_.engagement_rpm).rpm
-    if t_probe > 0 and all(f"x{f}" in sens["torque_Nm"] for f in MU_FACTORS):
-        t_lo, t_hi = sens["torque_Nm"]["x0.7"], sens["torque_Nm"]["x1.3"]
-        sens["torque_change_pct"] = {"x0.7": 100 * (t_lo / t_probe - 1), "x1.3": 100 * (t_hi / t_probe - 1)}
+        case = secondary_case(design, mu * f)
+        torque[key] = float(FETorque(case)(probe)[0])
+        slips[key] = slip_step(case, engine).rpm
+    if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
+        t_lo, t_hi = torque["x0.7"], torque["x1.3"]
+        pct = {"x0.7": 100 * (t_lo / t_probe - 1), "x1.3": 100 * (t_hi / t_probe - 1)}
         # d ln M / d ln mu: 1 for a point load (eq 12), < 1 minus shoe, > 1 plus shoe
-        sens["elasticity"] = math.log(t_hi / t_lo) / math.log(1.3 / 0.7) if t_lo > 0 else math.nan
-    # analytical coupling
-    coupling, curves = _coupled_curves(cm, params, material, res, mu, rotation, R, h)
-    analytical = bool(coupling.get("kind"))
-    if not analytical:
-        notes.append("analytical shoe-model curves (eqs 2-8) not available: a user mesh carries no shoe "
-                     "pivot or nominal shoe arc (shoe mass from the mesh is reported for information); "
-                     "every FE answer (engagement, slip, torque, stress, shoe character, mu sensitivity) "
-                     "is given")
-    part = mesh_mass_properties(cm, material.rho, h)
-    if coupling.get("kind") and character in ("plus", "minus") and coupling["kind"] != character:
-        warnings.append(f"the FE model behaves as a {character} shoe but the flexure arrangement "
-                        f"suggests a {coupling['kind']} shoe: the analytical curves assume "
-                        f"{coupling['kind']}; trust the FE")
-    t_nom = float(np.interp(engine.rpm_max_torque, curve["rpm"], curve["torque_Nm"]))
-    at = curves.set_index("rpm")
-    models = {"rpm": float(engine.rpm_max_torque)}
-    for col in ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm"):
-        models[col] = float(np.interp(engine.rpm_max_torque, at.index, at[col]))
-    arc_probe = float(np.interp(engine.rpm_max_torque, curves["rpm"], curves["contact_arc_deg"]))
-    # stress at the engine's maximum speed (the sweep always contains it)
-    last = curve.loc[curve["rpm"] == hi].iloc[0]
-    sf = float(last["safety_factor"])
-    vm = float(last["max_von_mises_Pa"])
-    fy = float(material.yield_strength)
-    if sf < 1.0:
-        warnings.append(f"STRESS ABOVE YIELD: peak von Mises {vm / 1e6:.0f} MPa at {hi:.0f} rpm (engine "
-                        f"maximum) exceeds the yield strength {fy / 1e6:.0f} MPa of {material.name} "
-                        f"(safety factor {sf:.2f} < 1): this design would yield at full speed")
-    elif sf < FATIGUE_CAUTION_SF:
-        warnings.append(f"low stress margin: safety factor {sf:.2f} at {hi:.0f} rpm (below "
-                        f"{FATIGUE_CAUTION_SF}, an ASSUMED minimum with fatigue in mind)")
-    slip_power = None
-    if slip.rpm is not None:
-        slip_power = float(engine.torque_at(slip.rpm) * rpm_to_rad_s(slip.rpm))
-    curves["engine_torque_Nm"] = [float(engine.torque_at(x)) if lo <= x <= hi else math.nan for x in curves["rpm"]]
-    curves["normal_force_N"] = curve["normal_force_N"].to_numpy()
-    curves["max_von_mises_Pa"] = curve["max_von_mises_Pa"].to_numpy()
-    curves["safety_factor"] = curve["safety_factor"].to_numpy()
-    nominal = coupling.get("phi2_deg", math.nan) - coupling.get("phi1_deg", math.nan)
-    curves["arc_fraction"] = curves["contact_arc_deg"] / nominal if nominal and math.isfinite(nominal) else math.nan
-    eng_limit = req.a * idle_rpm
-    slip_limit = req.b * engine.rpm_max_torque
-    eng_ok = (not in_range) or (eng_r is not None and eng_r > eng_limit)
-    slip_ok = slip.rpm is not None and slip.rpm < slip_limit
-    checks = {
-        "a": req.a, "b": req.b, "idle_rpm": float(idle_rpm), "rpm_max_torque": float(engine.rpm_max_torque),
-        "engagement_limit_rpm": eng_limit, "engagement_checked_rpm": eng_r,
-        "engagement_checked_with": "engagement with ripple (3 sigma cycle)",
-        "slip_limit_rpm": slip_limit,
-        "engagement_ok": bool(eng_ok), "slip_ok": bool(slip_ok),
-        "assumed": ("a = 1.3 and b = 1.0 are ASSUMED defaults (confidential in the thesis)" if req.assumed
-                    else "user factors a, b"),
-    }
-    if not eng_ok:
-        warnings.append(f"REQUIREMENT NOT MET: engagement with ripple {eng_r:.0f} rpm is not above "
-                        f"a x idle = {req.a:g} x {idle_rpm:.0f} = {eng_limit:.0f} rpm (chain may move at idle)")
-    if not slip_ok:
-        got = {"never slips": "never slips", "never engages": "never engages"}.get(
-            slip.status, f"slip {slip.rpm:.0f} rpm" if slip.rpm is not None else "no slip speed")
-        warnings.append(f"REQUIREMENT NOT MET: {got}; required slip below b x rpm(max torque) = "
-                        f"{req.b:g} x {engine.rpm_max_torque:.0f} = {slip_limit:.0f} rpm")
-    if engine.assumed:
-        notes.append("engine curve: built-in 56.5 cc saw curve; its SHAPE IS ASSUMED (anchors 3.40 N m at "
-                     "8000 rpm and 3.20 N m at 9072 rpm from seed 000); use --engine CSV for design work")
-    if req.assumed:
-        notes.append("requirement factors a = 1.3, b = 1.0 are ASSUMED defaults (the thesis keeps them confidential)")
-    eng_info = {"source": engine.source, "assumed_shape": engine.assumed, "rpm_range": list(engine.rpm_range),
-                "max_torque_Nm": engine.max_torque, "rpm_max_torque": float(engine.rpm_max_torque),
-                "idle_rpm": float(idle_rpm)}
-    return Analysis(design=design, engagement_rpm=eng if in_range else None,
-                    engagement_rpm_with_ripple=eng_r, engagement_rpm_with_ripple_typical=eng_r0,
-                    engagement_note=eng_note,
-                    slip_rpm=slip.rpm, slip_status=slip.status, slip_note=slip.note,
-                    slip_crossings_rpm=[{"rpm": r, "direction": d} for r, d in slip.crossings],
-                    rpm_max_engine_torque=float(engine.rpm_max_torque), max_engine_torque_Nm=engine.max_torque,
-                    torque_at_max_engine_torque_Nm=t_nom, torque_margin_Nm=t_nom - engine.max_torque,
-                    max_engine_rpm=float(hi), max_von_mises_Pa=vm, safety_factor=sf, max_stress_rpm=float(hi),
-                    max_stress_location_m=[float(last["max_vm_x_m"]), float(last["max_vm_y_m"])],
-                    yield_strength_Pa=fy, slip_power_W=slip_power, shoe_character=character,
-                    shoe_character_per_shoe=per_shoe, mu=float(mu), mu_sensitivity=sens,
-                    torque_models_at_max_engine_torque_Nm=models,
-                    contact_arc_at_max_engine_torque_deg=arc_probe,
-                    requirements=checks, engine=eng_info, coupling=coupling, curves=curves,
-                    first_touch=res.first_touch, warnings=warnings, notes=notes, part=part,
-                    analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg)
+        el = math.log(t_hi / t_lo) / math.log(1.3 / 0.7) if t_lo > 0 else math.nan
+        return MuSensitivity(probe, mu, torque, slips, pct, el)
+    return MuSensitivity(probe, mu, torque, slips)
 
 
-def _drum_and_thickness(cm, params, drum_radius, thickness) -> tuple[float, float]:
-    """Drum radius and axial thickness [m]: explicit values, else the concept's, else (user
-    mesh) the thickness stored with the mesh; the drum radius has no default for a user mesh."""
-    R = drum_radius if drum_radius is not None else (params.drum_radius if params is not None else None)
-    if R is None:
-        raise ParameterError("drum_radius", None, "the drum's inner radius in m, larger than the outer radius "
-                             "of the contact surface: a user mesh carries no drum, and without a drum there "
-                             "is no friction torque", context="user mesh")
-    h = thickness if thickness is not None else (params.thickness if params is not None else cm.thickness)
-    for name, v, what in (("drum_radius", R, "the drum's inner radius, a length > 0 m (metres: 0.035 for 35 mm)"),
-                          ("thickness", h, "the axial thickness, a length > 0 m (metres: 0.011 for 11 mm)")):
-        if v is None or isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) \
-                or not math.isfinite(float(v)) or float(v) <= 0:
-            raise ParameterError(name, v, what)
-    b = cm.mesh.boundaries or {}
-    if params is None and "contact" in b and len(b["contact"]):
-        # a units slip (mm for m) or a drum far from the part: no elastic part closes a gap as
-        # large as half its own radius (steel yields at ~0.6 % strain)
-        r_c = float(np.hypot(*cm.mesh.p[:, cm.mesh.facets[:, b["contact"]].ravel()]).max())
-        if R > DRUM_GAP_LIMIT * r_c:
-            raise ParameterError("drum_radius", R, f"a radius in m between the contact surface's outer radius "
-                                 f"{r_c:.6g} m and {DRUM_GAP_LIMIT:g} x that ({DRUM_GAP_LIMIT * r_c:.6g} m): a larger "
-                                 f"gap cannot close elastically (lengths are in metres, not mm)", context="user mesh")
-    return float(R), float(h)
-
-
-def mesh_mass_properties(cm, rho: float, thickness: float) -> dict:
-    """Area, mass and centre of mass of the meshed part (and of each ``shoe_<i>`` zone the mesh
-    names), by quadrature over the (possibly curved) P2 triangles: mass = area x rho x thickness.
-
-    A one-sector model is scaled to the whole part (``n_shoes_total / n_shoes_model``); its
-    centre of mass is then not meaningful and left out.  For a full part, ``unbalance_kg_m``
-    = mass x distance of the centre of mass from the rotation axis.
-    """
-    from skfem import Basis, ElementTriP0, Functional
-
-    mesh = cm.mesh
-    basis = Basis(mesh, ElementTriP0(), intorder=4)
-    one, fx, fy = (Functional(lambda w: 1.0 + 0.0 * w.x[0]), Functional(lambda w: w.x[0]),
-                   Functional(lambda w: w.x[1]))
-
-    def props(elements=None) -> tuple[float, float, float]:
-        b = basis if elements is None else Basis(mesh, ElementTriP0(), intorder=4, elements=elements)
-        a = float(one.assemble(b))
-        return a, float(fx.assemble(b)) / a, float(fy.assemble(b)) / a
-
-    area, cx, cy = props()
-    sector = cm.sector_angle is not None
-    scale = cm.n_shoes_total / cm.n_shoes_model if sector else 1.0
-    out = {"thickness_m": thickness, "rho_kg_m3": float(rho), "area_m2": area * scale,
-           "mass_kg": area * scale * rho * thickness,
-           "source": "quadrature over the mesh: area x rho x thickness"
-                     + (f" (one-sector model x {scale:g})" if sector else "")}
-    if not sector:
-        e = math.hypot(cx, cy)
-        out.update({"centroid_m": [cx, cy], "unbalance_kg_m": out["mass_kg"] * e})
-    shoes = []
-    sub = mesh.subdomains or {}
-    i = 0
-    while f"shoe_{i}" in sub and len(sub[f"shoe_{i}"]):
-        a, sx, sy = props(np.asarray(sub[f"shoe_{i}"]))
-        shoes.append({"shoe": i, "mass_kg": a * rho * thickness, "centroid_m": [sx, sy],
-                      "R_Tp_m": math.hypot(sx, sy)})
-        i += 1
-    if shoes:
-        out["shoes"] = shoes
-    return out
-
-
-def contact_extent(res, shoe: int = 0) -> np.ndarray:
-    """Angular extent [rad] (start, end) of shoe ``shoe``'s contact at each speed of a sweep.
-
-    The extent runs from the outermost nodes in contact plus half the spacing to the next
-    node on each side (each node stands for the boundary up to half-way to its neighbours),
-    so a single node in contact has the width of one node spacing instead of zero.  NaN rows
-    where the shoe does not touch.  Angles are polar angles of the drum frame.
-    """
-    nd = res.solver.nodes
-    out = np.full((len(res.states), 2), np.nan)
-    if nd is None:
-        return out
-    sel = np.nonzero(nd.shoe == shoe)[0]
-    if sel.size == 0:
-        return out
-    ang = nd.angle[sel]
-    ref = float(np.mean(ang))
-    ang = ref + (ang - ref + math.pi) % (2 * math.pi) - math.pi  # unwrap around the shoe
-    order = np.argsort(ang)
-    a = ang[order]
-    gaps = np.diff(a)
-    lo_half = np.concatenate([[gaps[0] if gaps.size else 0.0], gaps]) / 2  # to the previous node
-    hi_half = np.concatenate([gaps, [gaps[-1] if gaps.size else 0.0]]) / 2  # to the next node
-    for k, st in enumerate(res.states):
-        lam = st.lam[sel][order] if st.lam.size else np.zeros(0)
-        on = np.nonzero(lam > 0)[0]
-        if on.size == 0:
-            continue
-        i0, i1 = int(on.min()), int(on.max())
-        out[k] = (a[i0] - lo_half[i0], a[i1] + hi_half[i1])
-    return out
-
-
-def _coupled_curves(cm, params, material, res, mu, rotation, R, h):
-    """Analytical torque with the nominal arc and with the FE contact arc (per speed);
-    R: drum radius [m], h: thickness [m]."""
-    rpm = res.curve["rpm"].to_numpy()
-    ext = contact_extent(res, 0)
+def coupling_step(design, res) -> tuple[dict, pd.DataFrame]:
+    """Step 6: analytical torque with the nominal arc and with the FE contact arc (per speed)."""
+    cm, params, material = design.cm, design.params, design.model.material
+    R, h = design.drum_radius, design.thickness
+    mu, rotation = design.op.mu, design.op.rotation
+    rpm = res.rpm
+    ext = res.contact_extent(0)
     out = pd.DataFrame({"rpm": rpm, "fe_torque_Nm": res.curve["torque_Nm"].to_numpy(),
-                        "contact_arc_deg": np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0])),
-                        "contact_node_span_deg": res.curve["contact_arc_deg"].to_numpy()})
+                        "contact_arc_deg": np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0]))})
     shoe = cm.mass.get("shoe_0") if cm.mass else None
     if shoe is None or not cm.pivots or not cm.contact_arcs or params is None:
         out["analytic_nominal_arc_Nm"] = math.nan
@@ -532,7 +430,7 @@ def _coupled_curves(cm, params, material, res, mu, rotation, R, h):
     L = abs(px * cy - py * cx) / R_Tp
     root, tip = cm.contact_arcs[0]
     th_p = math.atan2(py, px)
-    phi1, phi2 = sorted((abs(_wrap(root - th_p)), abs(_wrap(tip - th_p))))
+    phi1, phi2 = sorted((abs(wrap_angle(root - th_p)), abs(wrap_angle(tip - th_p))))
     kind = shoe_kind(params.arrangement, rotation)
     n = cm.n_shoes_total
     w_e = None if res.engagement_rpm is None else rpm_to_rad_s(res.engagement_rpm)
@@ -556,7 +454,7 @@ def _coupled_curves(cm, params, material, res, mu, rotation, R, h):
     q_deg = np.full((len(rpm), 2), np.nan)
     for k in range(len(rpm)):
         if np.isfinite(ext[k, 0]):
-            q = sorted((abs(_wrap(ext[k, 0] - th_p)), abs(_wrap(ext[k, 1] - th_p))))
+            q = sorted((abs(wrap_angle(ext[k, 0] - th_p)), abs(wrap_angle(ext[k, 1] - th_p))))
             q1, q2 = max(q[0], 0.0), min(q[1], math.pi)
             q_deg[k] = np.degrees([q1, q2])
         if not np.isfinite(ext[k, 0]) or F[k] <= 0:
@@ -572,5 +470,199 @@ def _coupled_curves(cm, params, material, res, mu, rotation, R, h):
     return coupling, out
 
 
-def _wrap(a: float) -> float:
-    return (a + math.pi) % (2 * math.pi) - math.pi
+def stress_step(res, rpm: float, material) -> StressAnswer:
+    """Step 7: peak von Mises and safety factor at the sweep speed ``rpm``."""
+    row = res.curve.iloc[res.index(rpm)]
+    return StressAnswer(float(rpm), float(row["max_von_mises_Pa"]), float(row["safety_factor"]),
+                        (float(row["max_vm_x_m"]), float(row["max_vm_y_m"])), float(material.yield_strength))
+
+
+def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, eng: EngagementAnswer,
+                      slip: SlipAnswer, in_range: bool) -> dict:
+    """Step 8: the two requirement checks (with the values checked and the limits)."""
+    eng_limit = req.a * idle_rpm
+    slip_limit = req.b * engine.rpm_max_torque
+    eng_r = eng.with_ripple_rpm
+    return {"a": req.a, "b": req.b, "idle_rpm": float(idle_rpm), "rpm_max_torque": float(engine.rpm_max_torque),
+            "engagement_limit_rpm": eng_limit, "engagement_checked_rpm": eng_r,
+            "engagement_checked_with": "engagement with ripple (3 sigma cycle)",
+            "slip_limit_rpm": slip_limit,
+            "engagement_ok": bool((not in_range) or (eng_r is not None and eng_r > eng_limit)),
+            "slip_ok": bool(slip.rpm is not None and slip.rpm < slip_limit),
+            "assumed": ("a = 1.3 and b = 1.0 are ASSUMED defaults (confidential in the thesis)" if req.assumed
+                        else "user factors a, b")}
+
+
+# ---------------------------------------------------------------------------------------
+# the sequence
+# ---------------------------------------------------------------------------------------
+def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirements | None = None,
+            idle_rpm: float | None = None, ripple_model: ripple_mod.RippleModel | None = None) -> Analysis:
+    """Run the steps (module docstring) on ``design`` (a :class:`~clutchfem.design.Design`:
+    mesh, parameters, material, mu, rotation, drum, thickness, softening and output speeds in
+    its operating point).  engine: full-throttle curve (default: the ASSUMED 56.5 cc saw
+    curve); requirements: factors a, b; idle_rpm: overrides the engine's idle speed (else the
+    curve's, else 2700 rpm, ASSUMED).  A user mesh (``design.params`` None) gets every FE
+    answer; the analytical curves are then NaN and ``analytical_available`` is False."""
+    from ..design import Design
+
+    if not isinstance(design, Design):
+        raise ParameterError("design", type(design).__name__, "a clutchfem.design.Design (mesh + operating point)")
+    engine = engine or EngineCurve.default()
+    req = requirements or Requirements()
+    if design.drum_radius is None:
+        raise ParameterError("drum_radius", None, "the drum's inner radius in m, larger than the outer radius "
+                             "of the contact surface: a user mesh carries no drum, and without a drum there "
+                             "is no friction torque", context="user mesh")
+    notes: list[str] = []
+    warnings: list[str] = []
+    if idle_rpm is None:
+        idle_rpm = engine.idle_rpm
+        if idle_rpm is None:
+            idle_rpm = DEFAULT_IDLE_RPM
+            notes.append(f"idle speed {DEFAULT_IDLE_RPM:.0f} rpm ASSUMED (the engine curve gives none)")
+    if isinstance(idle_rpm, bool) or not (isinstance(idle_rpm, (int, float)) and math.isfinite(idle_rpm)
+                                          and idle_rpm > 0):
+        raise ParameterError("idle_rpm", idle_rpm, "an idle speed > 0 rpm")
+    lo, hi = engine.rpm_range
+    op = design.op
+    rpm = check_speeds(None if op.rpm is None else op.speeds(), engine)
+    material = design.model.material
+    case = design.case()
+    # 1-3: slip (exact FE crossings), the sweep (output speeds plus the engagement and slip
+    # speeds, so the curves hold the exact answers), engagement with ripple
+    slip = slip_step(case, engine)
+    in_range = slip.status != "never engages"
+    key = [x for x in (case.engagement_rpm, slip.rpm) if x is not None and 0 <= x <= hi]
+    res = fe_sweep(design, np.union1d(rpm, key))
+    eng = engagement_step(res, ripple_model, in_range, slip)
+    # 4-5: character and mu sensitivity at the rpm of max engine torque (engine max if the
+    # clutch is not engaged there)
+    probe = float(engine.rpm_max_torque)
+    if res.engagement_rpm is not None and res.engagement_rpm > probe and res.engagement_rpm <= hi:
+        probe = hi
+        notes.append(f"not engaged at the rpm of max engine torque: plus/minus character and mu "
+                     f"sensitivity evaluated at {hi:.0f} rpm")
+    ch = character_step(design, probe)
+    character = ch.overall if in_range else "never engages"
+    if ch.per_shoe and design.cm.sector_angle:
+        notes.append(f"sector model: shoe 0 stands for all {design.cm.n_shoes_total} identical shoes")
+    sens = mu_sensitivity_step(design, engine, probe, slip, notes)
+    # 6: analytical coupling
+    coupling, curves = coupling_step(design, res)
+    analytical = bool(coupling.get("kind"))
+    if not analytical:
+        notes.append("analytical shoe-model curves (eqs 2-8) not available: a user mesh carries no shoe "
+                     "pivot or nominal shoe arc (shoe mass from the mesh is reported for information); "
+                     "every FE answer (engagement, slip, torque, stress, shoe character, mu sensitivity) "
+                     "is given")
+    part = mesh_mass_properties(design.cm, material.rho, design.thickness, design.model.basis)
+    if coupling.get("kind") and character in ("plus", "minus") and coupling["kind"] != character:
+        warnings.append(f"the FE model behaves as a {character} shoe but the flexure arrangement "
+                        f"suggests a {coupling['kind']} shoe: the analytical curves assume "
+                        f"{coupling['kind']}; trust the FE")
+    k_nom = res.index(float(engine.rpm_max_torque))
+    t_nom = float(res.curve["torque_Nm"].iloc[k_nom])
+    models = {"rpm": float(engine.rpm_max_torque)}
+    for col in ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm"):
+        models[col] = float(curves[col].iloc[k_nom])
+    arc_probe = float(curves["contact_arc_deg"].iloc[k_nom])
+    # 7: stress at the engine's maximum speed
+    st = stress_step(res, hi, material)
+    fy = st.yield_strength_Pa
+    if st.safety_factor < 1.0:
+        warnings.append(f"STRESS ABOVE YIELD: peak von Mises {st.max_von_mises_Pa / 1e6:.0f} MPa at {hi:.0f} rpm "
+                        f"(engine maximum) exceeds the yield strength {fy / 1e6:.0f} MPa of {material.name} "
+                        f"(safety factor {st.safety_factor:.2f} < 1): this design would yield at full speed")
+    elif st.safety_factor < FATIGUE_CAUTION_SF:
+        warnings.append(f"low stress margin: safety factor {st.safety_factor:.2f} at {hi:.0f} rpm (below "
+                        f"{FATIGUE_CAUTION_SF}, an ASSUMED minimum with fatigue in mind)")
+    slip_power = None
+    if slip.rpm is not None:
+        slip_power = float(engine.torque_at(slip.rpm) * rpm_to_rad_s(slip.rpm))
+    curves["engine_torque_Nm"] = [float(engine.torque_at(x)) if lo <= x <= hi else math.nan for x in curves["rpm"]]
+    curves["normal_force_N"] = res.curve["normal_force_N"].to_numpy()
+    curves["max_von_mises_Pa"] = res.curve["max_von_mises_Pa"].to_numpy()
+    curves["safety_factor"] = res.curve["safety_factor"].to_numpy()
+    nominal = coupling.get("phi2_deg", math.nan) - coupling.get("phi1_deg", math.nan)
+    curves["arc_fraction"] = curves["contact_arc_deg"] / nominal if nominal and math.isfinite(nominal) else math.nan
+    # 8: requirements
+    checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)
+    if not checks["engagement_ok"]:
+        warnings.append(f"REQUIREMENT NOT MET: engagement with ripple {eng.with_ripple_rpm:.0f} rpm is not above "
+                        f"a x idle = {req.a:g} x {idle_rpm:.0f} = {checks['engagement_limit_rpm']:.0f} rpm "
+                        "(chain may move at idle)")
+    if not checks["slip_ok"]:
+        got = {"never slips": "never slips", "never engages": "never engages"}.get(
+            slip.status, f"slip {slip.rpm:.0f} rpm" if slip.rpm is not None else "no slip speed")
+        warnings.append(f"REQUIREMENT NOT MET: {got}; required slip below b x rpm(max torque) = "
+                        f"{req.b:g} x {engine.rpm_max_torque:.0f} = {checks['slip_limit_rpm']:.0f} rpm")
+    if engine.assumed:
+        notes.append("engine curve: built-in 56.5 cc saw curve; its SHAPE IS ASSUMED (anchors 3.40 N m at "
+                     "8000 rpm and 3.20 N m at 9072 rpm from seed 000); use --engine CSV for design work")
+    if req.assumed:
+        notes.append("requirement factors a = 1.3, b = 1.0 are ASSUMED defaults (the thesis keeps them confidential)")
+    eng_info = {"source": engine.source, "assumed_shape": engine.assumed, "rpm_range": list(engine.rpm_range),
+                "max_torque_Nm": engine.max_torque, "rpm_max_torque": float(engine.rpm_max_torque),
+                "idle_rpm": float(idle_rpm)}
+    return Analysis(design=design.name, engagement_rpm=eng.static_rpm,
+                    engagement_rpm_with_ripple=eng.with_ripple_rpm,
+                    engagement_rpm_with_ripple_typical=eng.with_ripple_typical_rpm, engagement_note=eng.note,
+                    slip_rpm=slip.rpm, slip_status=slip.status, slip_note=slip.note,
+                    slip_crossings_rpm=[{"rpm": r, "direction": d} for r, d in slip.crossings],
+                    rpm_max_engine_torque=float(engine.rpm_max_torque), max_engine_torque_Nm=engine.max_torque,
+                    torque_at_max_engine_torque_Nm=t_nom, torque_margin_Nm=t_nom - engine.max_torque,
+                    max_engine_rpm=float(hi), max_von_mises_Pa=st.max_von_mises_Pa, safety_factor=st.safety_factor,
+                    max_stress_rpm=st.rpm, max_stress_location_m=list(st.location_m), yield_strength_Pa=fy,
+                    slip_power_W=slip_power, shoe_character=character, shoe_character_per_shoe=list(ch.per_shoe),
+                    mu=float(op.mu), mu_sensitivity=sens.as_dict(), torque_models_at_max_engine_torque_Nm=models,
+                    contact_arc_at_max_engine_torque_deg=arc_probe, requirements=checks, engine=eng_info,
+                    coupling=coupling, curves=curves, first_touch=res.first_touch, warnings=warnings, notes=notes,
+                    part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg)
+
+
+def mesh_mass_properties(cm, rho: float, thickness: float, basis=None) -> dict:
+    """Area, mass and centre of mass of the meshed part (and of each ``shoe_<i>`` zone the mesh
+    names), by quadrature over the (possibly curved) P2 triangles: mass = area x rho x thickness.
+    ``basis``: a scikit-fem basis on ``cm.mesh`` whose quadrature to use (default: P0,
+    order 4).
+
+    A one-sector model is scaled to the whole part (``n_shoes_total / n_shoes_model``); its
+    centre of mass is then not meaningful and left out.  For a full part, ``unbalance_kg_m``
+    = mass x distance of the centre of mass from the rotation axis.
+    """
+    from skfem import Basis, ElementTriP0
+
+    mesh = cm.mesh
+    if basis is None:  # any basis on the mesh will do (an FE model's: its quadrature is reused)
+        basis = Basis(mesh, ElementTriP0(), intorder=4)
+    dx = basis.dx  # (nelem, nqp) quadrature weights x |det J|
+    xq = basis.mapping.F(basis.X)  # (2, nelem, nqp)
+    a_e, x_e, y_e = dx.sum(axis=1), (xq[0] * dx).sum(axis=1), (xq[1] * dx).sum(axis=1)
+
+    def props(elements=None) -> tuple[float, float, float]:
+        sel = slice(None) if elements is None else np.asarray(elements)
+        a = float(a_e[sel].sum())
+        return a, float(x_e[sel].sum()) / a, float(y_e[sel].sum()) / a
+
+    area, cx, cy = props()
+    sector = cm.sector_angle is not None
+    scale = cm.n_shoes_total / cm.n_shoes_model if sector else 1.0
+    out = {"thickness_m": thickness, "rho_kg_m3": float(rho), "area_m2": area * scale,
+           "mass_kg": area * scale * rho * thickness,
+           "source": "quadrature over the mesh: area x rho x thickness"
+                     + (f" (one-sector model x {scale:g})" if sector else "")}
+    if not sector:
+        e = math.hypot(cx, cy)
+        out.update({"centroid_m": [cx, cy], "unbalance_kg_m": out["mass_kg"] * e})
+    shoes = []
+    sub = cm.mesh.subdomains or {}
+    i = 0
+    while f"shoe_{i}" in sub and len(sub[f"shoe_{i}"]):
+        a, sx, sy = props(np.asarray(sub[f"shoe_{i}"]))
+        shoes.append({"shoe": i, "mass_kg": a * rho * thickness, "centroid_m": [sx, sy],
+                      "R_Tp_m": math.hypot(sx, sy)})
+        i += 1
+    if shoes:
+        out["shoes"] = shoes
+    return out

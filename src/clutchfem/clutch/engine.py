@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
+from scipy.optimize import brentq
 
 from clutchfem.errors import InputError, ParameterError
 
@@ -175,23 +176,34 @@ def slip_rpm(
     rpm_min: float | None = None,
     rpm_max: float | None = None,
     n_grid: int = 2001,
+    grid: np.ndarray | None = None,
 ) -> float | None:
     """Slip speed [rpm]: first speed where the clutch torque reaches the engine torque.
 
     With the drum locked (chain brake) and full throttle the engine runs up its curve until
     the clutch's slip torque equals the engine torque (thesis 2.1).  The crossing is bracketed
-    on an ``n_grid`` grid over [rpm_min, rpm_max] (default: the curve's range) and refined by
-    bisection (robust to an ``inf`` clutch torque of a self-locking shoe).  Returns ``None``
-    when the clutch torque stays below the engine curve over the whole range (the engine
-    would run to its governed maximum); returns ``rpm_min`` when the clutch already holds at
-    ``rpm_min``.
+    on ``grid`` (default: ``n_grid`` equal steps over [rpm_min, rpm_max], the curve's range)
+    and refined by bisection (robust to an ``inf`` clutch torque of a self-locking shoe).
+    Returns ``None`` when the clutch never holds the engine over the whole range (it slips at
+    every speed and the engine runs to its governed maximum); returns ``rpm_min`` when the
+    clutch already holds at ``rpm_min``.
     """
-    crossings = torque_crossings(curve, clutch_torque_at_rpm, rpm_min, rpm_max, n_grid)
+    crossings = torque_crossings(curve, clutch_torque_at_rpm, rpm_min, rpm_max, n_grid, grid)
     a = curve.rpm_range[0] if rpm_min is None else float(rpm_min)
-    if float(np.asarray(clutch_torque_at_rpm(np.array([a])), dtype=float)[0]) >= curve.torque_at(a):
+    if bool(_holds(curve, clutch_torque_at_rpm, np.array([a]))[0]):
         return float(a)
     up = [x for x, d in crossings if d == "up"]
     return up[0] if up else None
+
+
+def _holds(curve: EngineCurve, clutch_torque_at_rpm, x) -> np.ndarray:
+    """The clutch holds the engine at speeds ``x``: its torque is > 0 (it transmits) and
+    reaches the engine torque.  (0 >= 0 where neither delivers torque is *not* holding.)"""
+    t = np.asarray(clutch_torque_at_rpm(x), dtype=float)
+    e = t - curve.torque_at(x)
+    if np.any(np.isnan(e)):
+        raise InputError("clutch torque function returned NaN")
+    return (e >= 0.0) & (t > 0.0)
 
 
 def torque_crossings(
@@ -200,16 +212,20 @@ def torque_crossings(
     rpm_min: float | None = None,
     rpm_max: float | None = None,
     n_grid: int = 2001,
+    grid: np.ndarray | None = None,
 ) -> list[tuple[float, str]]:
     """Every speed [rpm] where the clutch torque curve crosses the engine curve.
 
     Returns ``(rpm, direction)`` pairs in increasing rpm; ``direction`` is ``'up'`` where the
     clutch torque rises through the engine torque (a stable slip point: above it the clutch
     holds more than the engine gives) and ``'down'`` where it falls below again (possible
-    with a drooping FE curve or a user engine curve with a late torque peak).  Sign changes
-    of ``clutch - engine`` are bracketed on an ``n_grid`` grid and refined by bisection (60
-    halvings or 1e-9 relative), which also works with an ``inf`` clutch torque.  A crossing
-    closer together than the grid spacing can be missed; :func:`slip_rpm` is the first
+    with a drooping FE curve or a user engine curve with a late torque peak).  Changes of
+    "holds" (:func:`_holds`) are bracketed on ``grid`` (default: ``n_grid`` equal steps over
+    the range) and refined to 1e-9 relative: by Brent's method where clutch minus engine
+    torque changes sign strictly with the clutch transmitting at both ends (the curves are
+    continuous), else by bisection of "holds" (which also works with an ``inf`` clutch
+    torque and needs no continuity).  Two crossings closer
+    together than the bracketing grid's spacing can be missed; :func:`slip_rpm` is the first
     ``'up'`` crossing (or ``rpm_min`` when the clutch holds from the start).
     """
     lo, hi = curve.rpm_range
@@ -217,19 +233,30 @@ def torque_crossings(
     b = hi if rpm_max is None else float(rpm_max)
     if not (lo <= a < b <= hi):
         raise ParameterError("rpm_min, rpm_max", (a, b), f"lo < hi inside the curve [{lo:g}, {hi:g}] rpm")
-    grid = np.linspace(a, b, int(n_grid))
+    if grid is None:
+        grid = np.linspace(a, b, int(n_grid))
+    else:
+        grid = np.union1d(np.asarray(grid, dtype=float), [a, b])
+        grid = grid[(grid >= a) & (grid <= b)]
 
     def holds(x) -> np.ndarray:
-        e = np.asarray(clutch_torque_at_rpm(x), dtype=float) - curve.torque_at(x)
-        if np.any(np.isnan(e)):
-            raise InputError("clutch torque function returned NaN")
-        return e >= 0.0
+        return _holds(curve, clutch_torque_at_rpm, x)
 
+    t = np.asarray(clutch_torque_at_rpm(grid), dtype=float)
     h = holds(grid)
     out: list[tuple[float, str]] = []
     for i in np.nonzero(h[1:] != h[:-1])[0]:
         x0, x1 = float(grid[i]), float(grid[i + 1])
         up = bool(h[i + 1])
+        f0, f1 = t[i] - curve.torque_at(x0), t[i + 1] - curve.torque_at(x1)
+        if t[i] > 0 and t[i + 1] > 0 and np.isfinite(f0) and np.isfinite(f1) and f0 * f1 < 0:
+            # a strict sign change of a continuous difference: Brent's method (a few
+            # evaluations instead of ~30 halvings; each may be an FE contact solve)
+            def diff(x):
+                return float(np.asarray(clutch_torque_at_rpm(np.array([x])), dtype=float)[0]) - curve.torque_at(x)
+
+            out.append((brentq(diff, x0, x1, xtol=1e-9 * max(1.0, x1), rtol=1e-12), "up" if up else "down"))
+            continue
         for _ in range(60):
             xm = 0.5 * (x0 + x1)
             if bool(holds(np.array([xm]))[0]) == up:

@@ -29,6 +29,7 @@ import numpy as np
 
 from ..errors import GeometryError
 from ..params import ParamSet, choice, param
+from ..units import wrap_angle
 from . import occ as G
 
 occ = gmsh.model.occ
@@ -209,10 +210,6 @@ class BuiltModel:
     """per shoe (root angle, tip angle) of the contact surface in the final frame (rad)"""
 
 
-def _wrap(a: np.ndarray | float, ref: float = 0.0):
-    return ref + (np.asarray(a) - ref + math.pi) % (2 * math.pi) - math.pi
-
-
 def _curve_samples(tag: int, n: int = 7) -> np.ndarray:
     lo, hi = gmsh.model.getParametrizationBounds(1, tag)
     ts = np.linspace(lo[0], hi[0], n)
@@ -294,12 +291,12 @@ def build_model(concept: Concept, p: ConceptParams, ms: MeshSettings) -> BuiltMo
             groups["bore"].append(c)
             continue
         if cut_angles is not None:
-            side = [k for k, ang in zip("ab", cut_angles) if np.all(np.abs(_wrap(th, ang) - ang) * r < tol)]
+            side = [k for k, ang in zip("ab", cut_angles) if np.all(np.abs(wrap_angle(th, ang) - ang) * r < tol)]
             if side:
                 cuts[side[0]].append((float(np.mean(r)), c))
                 continue
         for i in range(n_model):
-            th_can = _wrap(th - i * Theta, 0.5 * (root + tip))
+            th_can = wrap_angle(th - i * Theta, 0.5 * (root + tip))
             inside = np.all((th_can >= root - 1e-9) & (th_can <= tip + 1e-9))
             if inside and np.all(np.abs(r - p.outer_radius(th_can, root, tip)) < tol):
                 contact_by_shoe.setdefault(i, []).append(c)

@@ -36,12 +36,9 @@ _ZONE_STYLE = {
 
 
 def _figure(figsize):
-    import matplotlib
+    from ..plotting import figure
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt, *plt.subplots(figsize=figsize)
+    return figure(figsize=figsize)
 
 
 def _chain(segments: list[np.ndarray], tol: float) -> list[np.ndarray]:
@@ -75,7 +72,7 @@ def sample_concept(concept: "Concept", p: "ConceptParams", n_per_curve: int = 64
     ``flexure_i`` and ``hub`` to closed polylines (list of k x 2 arrays)."""
     import gmsh
 
-    from ..mesh import gmsh_session
+    from .session import gmsh_session
     from .base import MeshSettings, build_model
 
     flip = np.array([1.0, -1.0]) if p.arrangement == "minus" else np.array([1.0, 1.0])
@@ -246,7 +243,7 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
     minus = p.arrangement == "minus"
     flip = np.array([1.0, -1.0]) if minus else np.array([1.0, 1.0])
 
-    plt, fig, ax = _figure((12.0, 8.2))
+    fig, ax = _figure((12.0, 8.2))
     fig.subplots_adjust(left=0.04, right=0.70, top=0.88 if mesh is not None else 0.91, bottom=0.07)
     # zones (hatched)
     for name, loops in sorted(geo["zones"].items()):
@@ -337,7 +334,6 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
     png, svg = out_stem.parent / f"{out_stem.name}.png", out_stem.parent / f"{out_stem.name}.svg"
     fig.savefig(png, dpi=dpi)
     fig.savefig(svg)
-    plt.close(fig)
     return [png, svg]
 
 
@@ -347,7 +343,7 @@ def draw_mesh(cm: "ClutchMesh", path: Path, dpi: int = 120) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     m = cm.mesh
     mm = 1e3
-    plt, fig, ax = _figure((8.0, 8.0))
+    fig, ax = _figure((8.0, 8.0))
     ax.triplot(m.p[0] * mm, m.p[1] * mm, m.t[:3].T, lw=0.25, color="0.35")
     colours = {"bore": "#2c7bb6", "cut_a": "#1a9641", "cut_b": "#a6611a"}
     seen = set()
@@ -373,5 +369,4 @@ def draw_mesh(cm: "ClutchMesh", path: Path, dpi: int = 120) -> Path:
     ax.set_ylabel("y [mm]")
     fig.tight_layout()
     fig.savefig(path, dpi=dpi)
-    plt.close(fig)
     return path

@@ -17,6 +17,8 @@ from collections.abc import Callable
 import gmsh
 import numpy as np
 
+from ..units import wrap_angle
+
 occ = gmsh.model.occ
 
 
@@ -26,8 +28,7 @@ def _pt(x: float, y: float) -> int:
 
 def _ang(p, ref: float) -> float:
     """Polar angle of point p, unwrapped to lie within pi of ``ref``."""
-    a = math.atan2(p[1], p[0])
-    return ref + (a - ref + math.pi) % (2 * math.pi) - math.pi
+    return wrap_angle(math.atan2(p[1], p[0]), ref)
 
 
 def _fillet_corner(R: float, side_angle: float, rho: float, inner: bool, into: float):

@@ -313,10 +313,7 @@ def records() -> list[ValidationRecord]:
 
 def figures(out_dir: Path) -> list[Path]:
     """Reproduce figs 3 (N_u2 vs psi) and 4 (N_u1 vs psi) for z = 6, 8, 10; returns PNG paths."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from clutchfem.plotting import figure
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -330,7 +327,7 @@ def figures(out_dir: Path) -> list[Path]:
          "Rys. 4: impact tension on the non-working side $N_{u1}$ (same for all z)"),
     ]
     for which, name, title in specs:
-        fig, ax = plt.subplots(figsize=(6.4, 4.2))
+        fig, ax = figure(figsize=(6.4, 4.2))
         for z, ls in zip(ex.teeth, ("-", "--", ":")):
             ax.plot(deg_, impact_tensions(z, psi, ex)[which], ls, label=f"z = {z}")
         if which == 1:
@@ -345,6 +342,5 @@ def figures(out_dir: Path) -> list[Path]:
         fig.tight_layout()
         p = out_dir / name
         fig.savefig(p, dpi=110)
-        plt.close(fig)
         paths.append(p)
     return paths

@@ -851,17 +851,14 @@ def _curve(fn, xs) -> np.ndarray:
 
 def figures(out_dir: Path) -> list[Path]:
     """Figs 2 (beta_1, beta_2 vs l2) and 3 (omega_1 vs l2 for the three discs); PNG paths."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from clutchfem.plotting import figure
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     l2s = np.linspace(0.10, 0.30, 31)
     paths: list[Path] = []
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
+    fig, axes = figure(1, 2, figsize=(10, 4.2), sharey=True)
     for ax, l1 in zip(axes, TABLE1):
         x, yp = _curve(lambda l2: paper_betas(l1, l2, "D500"), l2s)
         xf, yf = _curve(lambda l2: physical_betas(l1, l2, "D500"), l2s)
@@ -880,10 +877,9 @@ def figures(out_dir: Path) -> list[Path]:
     fig.tight_layout()
     p = out_dir / "fig2_beta_vs_l2.png"
     fig.savefig(p, dpi=110)
-    plt.close(fig)
     paths.append(p)
 
-    fig, ax = plt.subplots(figsize=(6.8, 4.4))
+    fig, ax = figure(figsize=(6.8, 4.4))
     for (disc, col) in zip(DISCS, ("C0", "C1", "C2")):
         sh_paper = paper_shaft(0.34, 0.2, disc, "polar", "polar")
         x, yp = _curve(lambda l2: paper_betas(0.34, l2, disc, 1), l2s)
@@ -901,7 +897,6 @@ def figures(out_dir: Path) -> list[Path]:
     fig.tight_layout()
     p = out_dir / "fig3_omega1_vs_l2.png"
     fig.savefig(p, dpi=110)
-    plt.close(fig)
     paths.append(p)
     return paths
 

@@ -13,13 +13,19 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from clutchfem.contact import lazy, solve_lcp
+from clutchfem.design import Design
+from clutchfem.fem import FEModel
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.lcp import lazy, solve_lcp
 from clutchfem.materials import get_material
 from clutchfem.mesh import mesh_concept
-from clutchfem.solver import ClutchSolver
+from clutchfem.operating import OperatingPoint
 
 STEEL = get_material("51CrV4")
+
+
+def design(cm, p, mu=0.165, **op):
+    return Design(cm, OperatingPoint(mu=mu, material=STEEL, **op), params=p)
 
 
 @pytest.fixture(scope="module")
@@ -31,50 +37,56 @@ def concept1_coarse():
 
 def test_lazy_condensation_equals_dense_lcp(concept1_coarse):
     cm, p = concept1_coarse
-    s = ClutchSolver(cm, STEEL, drum_radius=p.drum_radius, mu=0.3)
-    res = s.sweep("0:14000:500")
-    nd = s.nodes
+    d = design(cm, p, mu=0.3)
+    res = d.sweep("0:14000:500")
+    case = d.case()
+    r = case.response
+    nd = d.nodes
     assert res.engagement_rpm is not None
     # the saving is real: far fewer columns than contact nodes
-    assert 0 < s.n_condensed < nd.m / 2
+    assert 0 < r.compliance.n_condensed < nd.m / 2
     # the dense reference: all m columns of K^-1 D
-    W = s.fe.solve(s.D.toarray())
-    BW = s._B(W)
+    D = case.contact.load
+    W = d.model.solve(D.toarray())
+    BW = nd.normal_displacement(W)
     engaged = 0
-    for st_ in res.states:
-        if not st_.lam.any():
+    for k, w in enumerate(res.omega):
+        lam_k = res.lam[k]
+        if not lam_k.any():
             continue
         engaged += 1
-        G = -(BW + (s.BPhi * st_.c) @ s.PhiD)
-        q = nd.gap0 - s._free_normal(st_.omega, st_.c)
+        c = r.coefficients(w)
+        G = -(BW + (r.BPhi * c) @ r.PhiD)
+        q = nd.gap0 - r.free_normal(w)
         lam, _ = solve_lcp(G, q)
-        assert np.allclose(st_.lam, lam, rtol=1e-8, atol=1e-10 * lam.max())
+        assert np.allclose(lam_k, lam, rtol=1e-8, atol=1e-10 * lam.max())
         # and the displacement assembled from the reduced basis equals the dense one
-        u_dense = st_.omega ** 2 * s.u1 + W @ lam + s.Phi @ (st_.c * (st_.omega ** 2 * s.Phi_f1 + s.PhiD @ lam))
-        assert np.allclose(s.displacement(st_), u_dense, rtol=1e-9, atol=1e-12 * np.abs(u_dense).max())
+        u_dense = w ** 2 * d.model.u1 + W @ lam + r.Phi @ (c * (w ** 2 * r.Phi_f1 + r.PhiD @ lam))
+        assert np.allclose(res.displacement(k), u_dense, rtol=1e-9, atol=1e-12 * np.abs(u_dense).max())
     assert engaged >= 5
 
 
 def test_sweep_fields_from_reduced_basis(concept1_coarse):
     """Max displacement and max von Mises of the curve equal those of the per-speed fields."""
     cm, p = concept1_coarse
-    s = ClutchSolver(cm, STEEL, drum_radius=p.drum_radius, mu=0.165)
-    res = s.sweep("3000,8000,14000", keep_displacements=True)
-    for k, st_ in enumerate(res.states):
-        u = s.displacement(st_)
-        assert np.allclose(res.displacements[:, k], u, rtol=1e-10, atol=1e-14)
-        vm = s.fe.stress_at_vertices(u)
+    d = design(cm, p)
+    res = d.sweep("3000,8000,14000")
+    for k in range(len(res.rpm)):
+        u = res.displacement(k)
+        vm = d.model.stress_at_vertices(u)
         vm = np.sqrt(vm[0] ** 2 - vm[0] * vm[1] + vm[1] ** 2 + 3 * vm[2] ** 2)
         assert res.curve["max_von_mises_Pa"][k] == pytest.approx(vm.max(), rel=1e-9)
+        ux, uy = u[0::2], u[1::2]
+        assert res.curve["max_displacement_m"][k] == pytest.approx(np.hypot(ux, uy).max(), rel=1e-12)
 
 
 def test_vertex_stresses_match_skfem_on_curved_mesh(concept1_coarse):
     cm, p = concept1_coarse
-    s = ClutchSolver(cm, STEEL)
-    u = np.random.default_rng(1).normal(size=(s.fe.ndofs, 3))
-    mine = s.vertex_stresses(u)
+    fe = FEModel(cm, STEEL, p.thickness)
+    u = np.random.default_rng(1).normal(size=(fe.ndofs, 3))
+    mine = fe.stress(u)
     for j in range(3):
-        ref = s.fe.stress_at_vertices(u[:, j]).reshape(3, -1)
+        ref = fe.stress_at_vertices(u[:, j]).reshape(3, -1)
         assert np.allclose(mine[..., j], ref, rtol=1e-10, atol=1e-12 * np.abs(ref).max())
 
 
@@ -102,17 +114,39 @@ def test_lazy_lcp_matches_dense(seed, m, skew):
 @pytest.mark.parametrize("backend", ["superlu", "cholmod"])
 def test_solver_backends_agree(concept1_coarse, backend, monkeypatch):
     """Every installed direct solver gives the same sweep (CHOLMOD is installed by
-    `make setup` when it builds; SuperLU is always there)."""
+    `make setup` when it builds; SuperLU is always there), whether chosen by the environment
+    variable (the default) or injected."""
     from clutchfem.linsolve import available
 
     if backend not in available():
         pytest.skip(f"{backend} not installed here")
     cm, p = concept1_coarse
-    ref = ClutchSolver(cm, STEEL, drum_radius=p.drum_radius, mu=0.165).sweep("0:14000:1000")
+    ref = design(cm, p).sweep("0:14000:1000")
     monkeypatch.setenv("CLUTCHFEM_SOLVER", backend)
-    s = ClutchSolver(cm, STEEL, drum_radius=p.drum_radius, mu=0.165)
-    assert s.fe.factor.name == backend
-    r = s.sweep("0:14000:1000")
-    assert r.engagement_rpm == pytest.approx(ref.engagement_rpm, rel=1e-9)
-    assert np.allclose(r.curve["normal_force_N"], ref.curve["normal_force_N"], rtol=1e-7, atol=1e-9)
-    assert np.allclose(r.curve["max_von_mises_Pa"], ref.curve["max_von_mises_Pa"], rtol=1e-7)
+    d = design(cm, p)
+    assert d.model.factor.name == backend
+    monkeypatch.delenv("CLUTCHFEM_SOLVER")
+    injected = Design(cm, OperatingPoint(mu=0.165, material=STEEL), params=p, solver=backend)
+    assert injected.model.factor.name == backend
+    for r in (d.sweep("0:14000:1000"), injected.sweep("0:14000:1000")):
+        assert r.engagement_rpm == pytest.approx(ref.engagement_rpm, rel=1e-9)
+        assert np.allclose(r.curve["normal_force_N"], ref.curve["normal_force_N"], rtol=1e-7, atol=1e-9)
+        assert np.allclose(r.curve["max_von_mises_Pa"], ref.curve["max_von_mises_Pa"], rtol=1e-7)
+
+
+def test_injected_solver_factory_is_used(concept1_coarse):
+    """A user's own factory (here scipy's splu wrapped) is what factorises K."""
+    import scipy.sparse.linalg as spla
+
+    cm, p = concept1_coarse
+    calls = []
+
+    def my_solver(A):
+        calls.append(A.shape)
+        return spla.splu(A.tocsc())
+
+    d = Design(cm, OperatingPoint(material=STEEL), params=p, solver=my_solver)
+    r = d.sweep("0,9000")
+    ref = design(cm, p).sweep("0,9000")
+    assert len(calls) == 1 and calls[0][0] == calls[0][1]
+    assert np.allclose(r.curve["normal_force_N"], ref.curve["normal_force_N"], rtol=1e-8)

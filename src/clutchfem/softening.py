@@ -1,0 +1,306 @@
+"""Spin softening as interchangeable strategies: :class:`Off`, :class:`Ritz`, :class:`Exact`.
+
+Equations at speed w (rad/s), after the bore clamp and cyclic constraints (u = T a):
+
+    (K - w^2 M) u = w^2 f1 + D lam,      gaps  g = g0 - B u >= 0,  lam >= 0,  g . lam = 0
+
+(:mod:`clutchfem.fem` for K, M, f1; :mod:`clutchfem.contact` for B and D).  -w^2 M u is the
+spin softening: the centrifugal load follows the deformed position.  A strategy decides how
+(K - w^2 M)^-1 is applied; ``strategy.bind(model, contact)`` returns a *response* with one
+small interface used by :mod:`clutchfem.sweep`:
+
+* ``free_normal(w)``: B u of the part without contact at speed w (the LCP's q = g0 - that);
+* ``columns(w)``: a lazy provider of the LCP matrix G = -B (K - w^2 M)^-1 D, column by column;
+* ``fields(omegas, lams)``: the displacement of every state, as a reduced basis and
+  coefficients (``U = basis @ coef``) or explicit columns;
+* ``linear`` (free response exactly w^2 u1: engagement in closed form), ``omega_limit``
+  (divergence speed of the free part, rad/s, or None).
+
+``Off``: drops M, u is linear in w^2.  Its error is ~gap / R_cg (~2 % in stiffness near
+engagement, ~1 % in engagement speed), measured in BENCHMARKS.md.
+
+``Ritz`` (default): *mode acceleration* on load-dependent Ritz pairs (w_j, phi_j),
+M-normalised,
+
+    (K - w^2 M)^-1 ~ K^-1 + sum_j phi_j phi_j' w^2 / (w_j^2 (w_j^2 - w^2)).
+
+The pairs come from a block Krylov space of K^-1 M seeded with the loads the sweep applies
+(centrifugal, and per shoe a uniform and a tip-heavy contact load D(mu) 1, D(mu) a),
+``depth`` blocks deep (Wilson, Yuan & Dickens 1982): a few blocked back-solves with the one
+factorisation of K, and the space holds what the loads excite (which the lowest eigenmodes
+need not: an annulus' breathing mode lies above its torsion modes).  Its error against
+``Exact`` is ~1e-8 in the normal force at the default depth (BENCHMARKS.md).  The space
+depends on mu through the seeds; it is cached on the model per (depth, nodes, s mu), so each
+friction coefficient builds it once (~10 ms) and nothing is re-factorised.
+
+``Exact``: the reference: K - w^2 M factorised at every speed it is asked for (SuperLU),
+columns of its condensed compliance computed only for the nodes the LCP asks for.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import ParameterError, SolverError
+from .lcp import lazy
+from .units import rad_s_to_rpm, wrap_angle
+
+__all__ = ["Off", "Ritz", "Exact", "Softening", "get_softening", "SOFTENINGS"]
+
+
+@dataclass(frozen=True)
+class Off:
+    """No spin softening: (K)^-1 only; u(w) = w^2 u1 without contact."""
+
+    name = "off"
+
+    def bind(self, model, contact):
+        return _ModalResponse(model, contact, np.zeros(0), np.zeros((model.ndofs, 0)))
+
+
+@dataclass(frozen=True)
+class Ritz:
+    """Mode acceleration on ``depth`` blocks of load-dependent Ritz vectors (default).
+
+    ``seeds``: ``"load"`` seeds the space with the load case's own contact load D(mu) (one
+    space per friction coefficient); ``"all"`` with both its parts N and Tt, one space for
+    every mu of a design (a superset of each ``"load"`` space's seeds: at least as accurate;
+    the two differ by the Ritz truncation error, ~1e-8 in the normal force).  ``analyze``
+    uses ``"all"`` for its secondary cases (friction off, mu +-30 %) and ``"load"`` for the
+    design's own mu."""
+
+    depth: int = 3
+    seeds: str = "load"
+    name = "ritz"
+
+    def __post_init__(self):
+        if isinstance(self.depth, bool) or not isinstance(self.depth, int) or not 1 <= self.depth <= 20:
+            raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
+        if self.seeds not in ("load", "all"):
+            raise ParameterError("ritz seeds", self.seeds, "'load' or 'all'")
+
+    def bind(self, model, contact):
+        friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
+        key = ("ritz", self.depth, self.seeds, None if contact is None else id(contact.nodes), friction)
+        cache = model.__dict__.setdefault("_ritz_cache", {})
+        if key not in cache:  # the nodes are kept with the pairs: their id is then never reused
+            cache[key] = (None if contact is None else contact.nodes,
+                          ritz_pairs(model, contact, self.depth, self.seeds))
+        w2, Phi = cache[key][1]
+        return _ModalResponse(model, contact, w2, Phi)
+
+
+@dataclass(frozen=True)
+class Exact:
+    """Reference: K - w^2 M factorised at every speed."""
+
+    name = "exact"
+
+    def bind(self, model, contact):
+        return _ExactResponse(model, contact)
+
+
+Softening = Off | Ritz | Exact
+SOFTENINGS = {"ritz": Ritz, "modal": Ritz, "exact": Exact, "off": Off}
+
+
+def get_softening(spec) -> Softening:
+    """A strategy from an instance or a name ('ritz' (alias 'modal'), 'exact', 'off')."""
+    if isinstance(spec, (Off, Ritz, Exact)):
+        return spec
+    if isinstance(spec, str) and spec.strip().lower() in SOFTENINGS:
+        return SOFTENINGS[spec.strip().lower()]()
+    raise ParameterError("softening", spec, "'ritz' (mode acceleration, default; alias 'modal'), "
+                         "'exact' (per-speed factorisation, reference) or 'off'")
+
+
+def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndarray, np.ndarray]:
+    """Load-dependent Ritz pairs (w_j^2, Phi) of (K, M), M-orthonormal (see module doc):
+
+        V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X},  X = K^-1 [f1, contact loads],
+
+    M-orthonormalised by block Gram-Schmidt (twice), then the Rayleigh-Ritz pairs on V.  The
+    contact loads are, per shoe, a uniform and a tip-heavy distribution of D(mu) (``which``
+    = "load") or of both N and Tt ("all")."""
+    seeds = [model.f1]
+    if contact is not None:
+        nd = contact.nodes
+        loads = [contact.load] if which == "load" else [nd.normal_load, nd.tangent_load]
+        for s_ in np.unique(nd.shoe):
+            sel = np.nonzero(nd.shoe == s_)[0]
+            a = nd.angle[sel]
+            a = wrap_angle(a - a.mean())
+            for D in loads:
+                for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
+                    seeds.append(D[:, sel] @ wgt)
+    Mr, Kr, T = model.Mr, model.Kr, model.T
+    blocks: list[np.ndarray] = []
+
+    def m_orthonormal(X):
+        for _ in range(2):  # block Gram-Schmidt in the M inner product, twice for stability
+            for Vb in blocks:
+                X = X - Vb @ (Vb.T @ (Mr @ X))
+        G = X.T @ (Mr @ X)
+        d, Q = np.linalg.eigh((G + G.T) / 2)
+        keep = d > max(d.max(), 0.0) * 1e-12
+        return X @ (Q[:, keep] / np.sqrt(d[keep]))
+
+    X = model.factor.solve(T.T @ np.column_stack(seeds))
+    for _ in range(max(1, depth)):
+        X = m_orthonormal(X)
+        if X.shape[1] == 0:
+            break
+        blocks.append(X)
+        X = model.factor.solve(Mr @ X)
+    V = np.hstack(blocks)
+    Kv = V.T @ (Kr @ V)
+    vals, Y = np.linalg.eigh((Kv + Kv.T) / 2)
+    if vals[0] <= 0:
+        raise SolverError("spin-softening Ritz space is not positive definite: is the part clamped?")
+    return vals, T @ (V @ Y)
+
+
+class _ModalResponse:
+    """Off (no vectors) and Ritz: u = w^2 u1 + W lam + Phi c(w) (w^2 Phi' f1 + Phi' D lam)."""
+
+    def __init__(self, model, contact, w2: np.ndarray, Phi: np.ndarray):
+        self.model = model
+        self.contact = contact
+        self.w2 = w2
+        self.Phi = Phi
+        self.u1 = model.u1
+        self.Phi_f1 = Phi.T @ model.f1
+        self.linear = len(w2) == 0
+        self.omega_limit = float(math.sqrt(w2[0])) if len(w2) else None
+        if contact is not None:
+            nd = contact.nodes
+            self.compliance = model_compliance(model, nd)
+            self.friction = contact.friction
+            self.Bu1 = nd.normal_displacement(self.u1)
+            self.BPhi = nd.normal_displacement(Phi).reshape(nd.m, -1)
+            self.PhiD = (contact.load.T @ Phi).T  # r x m
+
+    def coefficients(self, omega: float) -> np.ndarray:
+        """Mode-acceleration weights c_j = w^2 / (w_j^2 (w_j^2 - w^2))."""
+        if self.linear:
+            return np.zeros(0)
+        w2 = omega * omega
+        if w2 >= self.w2[0] * (1 - 1e-9):
+            raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm reaches the spin-softening divergence "
+                              f"speed {rad_s_to_rpm(math.sqrt(self.w2[0])):.0f} rpm of the free part: the "
+                              "shoes would fly out (stiffer flexures or lower speed)")
+        return w2 / (self.w2 * (self.w2 - w2))
+
+    def free_normal(self, omega: float) -> np.ndarray:
+        c = self.coefficients(omega)
+        return omega * omega * (self.Bu1 + self.BPhi @ (c * self.Phi_f1))
+
+    def columns(self, omega: float):
+        BPc = self.BPhi * self.coefficients(omega)
+        comp, fr = self.compliance, self.friction
+
+        def cols(idx):
+            return -(comp.BW(idx, fr) + BPc @ self.PhiD[:, idx])
+
+        return lazy(cols)
+
+    def fields(self, omegas: np.ndarray, lams: np.ndarray):
+        """(basis, coef, None): every state's displacement is basis @ coef[:, k]; only the
+        columns some state uses are kept."""
+        r = self.Phi.shape[1]
+        if self.contact is not None:
+            W, pos = self.compliance.basis()
+        else:
+            W, pos = np.zeros((self.model.ndofs, 0)), None
+        coef = np.zeros((1 + r + W.shape[1], len(omegas)))
+        for j, (w, lam) in enumerate(zip(omegas, lams)):
+            w2 = w * w
+            coef[0, j] = w2
+            A = np.nonzero(lam)[0] if lam.size else np.zeros(0, dtype=np.int64)
+            if len(A):
+                ca, cb = self.compliance.weights(self.friction)
+                coef[1 + r + pos["a"][A], j] = ca * lam[A]
+                if cb != 0.0:
+                    coef[1 + r + pos["b"][A], j] = cb * lam[A]
+            if r:
+                load = w2 * self.Phi_f1
+                if len(A):
+                    load = load + self.PhiD[:, A] @ lam[A]
+                coef[1:1 + r, j] = self.coefficients(w) * load
+        used = np.any(coef != 0.0, axis=1)
+        used[0] = True
+        basis = np.hstack([self.u1[:, None], self.Phi, W])[:, used]
+        return basis, coef[used], None
+
+
+class _ExactResponse:
+    """K - w^2 M factorised per speed (the reference); fields kept explicitly per state."""
+
+    linear = False
+    omega_limit = None
+
+    def __init__(self, model, contact):
+        self.model = model
+        self.contact = contact
+        self._omega = None
+        self._f = None
+        self._cols: dict[int, np.ndarray] = {}
+
+    def _factor(self, omega: float):
+        if self._omega != omega:
+            from .linsolve import factorize
+
+            m = self.model
+            A = (m.Kr - omega * omega * m.Mr).tocsc()
+            try:
+                self._f = factorize(A, "superlu", kind="shifted")
+            except SolverError:
+                raise SolverError(f"K - w^2 M is singular at {rad_s_to_rpm(omega):.0f} rpm") from None
+            self._omega, self._cols = omega, {}
+        return self._f
+
+    def free(self, omega: float) -> np.ndarray:
+        m = self.model
+        return m.T @ self._factor(omega).solve(m.T.T @ (omega * omega * m.f1))
+
+    def free_normal(self, omega: float) -> np.ndarray:
+        return self.contact.nodes.normal_displacement(self.free(omega))
+
+    def _column(self, omega: float, idx) -> np.ndarray:
+        m = self.model
+        f = self._factor(omega)
+        new = [int(i) for i in idx if int(i) not in self._cols]
+        if new:
+            Wn = (m.T @ f.solve(m.T.T @ self.contact.load[:, new].toarray())).reshape(m.ndofs, -1)
+            self._cols.update({i: Wn[:, k] for k, i in enumerate(new)})
+        return np.column_stack([self._cols[int(i)] for i in idx]) if len(idx) else np.zeros((m.ndofs, 0))
+
+    def columns(self, omega: float):
+        nd = self.contact.nodes
+        return lazy(lambda idx: -nd.normal_displacement(self._column(omega, idx)).reshape(nd.m, -1))
+
+    def displacement(self, omega: float, lam: np.ndarray) -> np.ndarray:
+        if omega == 0:
+            return np.zeros(self.model.ndofs)
+        u = self.free(omega)
+        A = np.nonzero(lam)[0] if lam.size else np.zeros(0, dtype=np.int64)
+        return u + (self._column(omega, A) @ lam[A] if len(A) else 0.0)
+
+    def fields(self, omegas: np.ndarray, lams: np.ndarray):
+        U = np.column_stack([self.displacement(w, lam) for w, lam in zip(omegas, lams)]) if len(omegas) \
+            else np.zeros((self.model.ndofs, 0))
+        return None, None, U
+
+
+def model_compliance(model, nodes):
+    """The :class:`~clutchfem.contact.Compliance` of (model, nodes), created once."""
+    from .contact import Compliance
+
+    cache = model.__dict__.setdefault("_compliance_cache", {})
+    key = id(nodes)
+    if key not in cache:
+        cache[key] = (nodes, Compliance(model, nodes))  # keep nodes alive: ids are not reused
+    return cache[key][1]

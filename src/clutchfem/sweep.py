@@ -1,0 +1,163 @@
+"""Load cases and speed sweeps: one FE model, one factorisation, any number of speeds.
+
+A :class:`LoadCase` is (FE model, drum contact, spin-softening strategy): the drum with its
+friction coefficient and sense of rotation, on a model shared with every other load case
+of the same design (friction off, mu +-30 %, other softening strategies re-use its K, its
+factorisation and its condensed contact columns).  It answers
+
+* the **engagement speed**: without contact the free response is w^2 u1 (plus the softening
+  terms), so the first gap closes at w0^2 = min_i g0_i / (B u1)_i in closed form; with spin
+  softening the root of min_i (g0_i - B u_free(w)_i) is bracketed from w0 and refined with
+  ``brentq`` (1e-10 relative);
+* the **contact state at a speed**: below engagement nothing is solved; above it the small
+  LCP of :mod:`clutchfem.lcp` with q = g0 - B u_free(w), warm-started from the previous speed.
+
+:func:`sweep` solves a list of speeds and returns a frozen :class:`~clutchfem.results.SweepResult`
+with the curve, per-shoe table and every state's displacement (reduced basis).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from functools import cached_property
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .contact import DrumContact
+from .lcp import solve_lcp
+from .operating import parse_rpm
+from .results import Fields, SweepResult, curve_table, first_touch, shoe_table
+from .softening import Ritz, Softening, get_softening
+from .units import rad_s_to_rpm, rpm_to_rad_s
+
+__all__ = ["LoadCase", "sweep"]
+
+#: contact states a load case remembers (oldest dropped first): bounds its memory
+MEMO_STATES = 4096
+
+
+class LoadCase:
+    """(FE model, drum contact or None, spin-softening strategy): see module docstring."""
+
+    def __init__(self, model, contact: DrumContact | None = None, softening: Softening | str = Ritz()):
+        self.model = model
+        self.contact = contact
+        self.softening = get_softening(softening)
+        t0 = time.perf_counter()
+        self.response = self.softening.bind(model, contact)
+        self.setup_s = time.perf_counter() - t0
+        self._memo: dict[float, tuple[np.ndarray, np.ndarray]] = {}
+
+    @property
+    def omega_limit(self) -> float | None:
+        """Divergence speed [rad/s] of the free part (Ritz softening), else None."""
+        return self.response.omega_limit
+
+    @cached_property
+    def engagement(self) -> tuple[float | None, int | None]:
+        """(engagement speed [rad/s], index of the first contact node), or (None, None)."""
+        if self.contact is None:
+            return None, None
+        g0 = self.contact.nodes.gap0
+        out = self.contact.nodes.normal_displacement(self.model.u1)
+        pos = out > 0
+        if not pos.any():
+            return None, None
+        ratio = np.full_like(g0, np.inf)
+        ratio[pos] = g0[pos] / out[pos]
+        i0 = int(np.argmin(ratio))
+        w0 = math.sqrt(ratio[i0])
+        r = self.response
+        if r.linear:
+            return w0, i0
+
+        def h(w):
+            return float(np.min(g0 - r.free_normal(w)))
+
+        hi = w0
+        limit = r.omega_limit * (1 - 1e-6) if r.omega_limit else 10 * w0
+        while h(hi) > 0:
+            hi = min(hi * 1.05, limit)
+            if hi >= limit:
+                return None, None
+        w = brentq(h, 0.0, hi, xtol=1e-10 * hi, rtol=1e-13)
+        return w, int(np.argmin(g0 - r.free_normal(w)))
+
+    @property
+    def engagement_rpm(self) -> float | None:
+        w = self.engagement[0]
+        return None if w is None else rad_s_to_rpm(w)
+
+    def engaged(self, omega: float) -> bool:
+        w = self.engagement[0]
+        return w is not None and omega >= w * (1 - 1e-12)
+
+    def solve(self, omega: float, active0: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+        """(nodal contact forces lam [N], active set) at speed ``omega`` [rad/s].  Solved states
+        are memoised (a slip search and a sweep of the same case share their speeds)."""
+        m = 0 if self.contact is None else self.contact.nodes.m
+        if self.response.omega_limit is not None:
+            self.response.coefficients(omega)  # refuses speeds at or beyond divergence
+        if self.contact is None or not self.engaged(omega):
+            return np.zeros(m), None
+        key = float(omega)
+        if key in self._memo:
+            lam, act = self._memo[key]
+            return lam.copy(), act.copy()
+        q = self.contact.nodes.gap0 - self.response.free_normal(omega)
+        if active0 is None or not active0.any():  # first contact: start from the deepest node
+            active0 = np.zeros(len(q), dtype=bool)  # (every node with q < 0 would condense
+            active0[int(np.argmin(q))] = True  # many columns the solution does not need)
+        lam, act = solve_lcp(self.response.columns(omega), q, active0)
+        if len(self._memo) >= MEMO_STATES:
+            self._memo.pop(next(iter(self._memo)))
+        self._memo[key] = (lam.copy(), act.copy())
+        return lam, act
+
+    def torque(self, omega: float, active0=None) -> float:
+        """Friction torque [N m] of the whole clutch at speed ``omega`` (drum held)."""
+        if self.contact is None:
+            return 0.0
+        lam, _ = self.solve(omega, active0)
+        return float(self.contact.mu * self.contact.drum_radius * lam.sum() * self.scale)
+
+    @property
+    def scale(self) -> float:
+        cm = self.model.cm
+        return cm.n_shoes_total / cm.n_shoes_model if cm.sector_angle else 1.0
+
+
+def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:
+    """Solve every speed in ``rpm`` (a spec or numbers, ascending or not) for ``case``."""
+    t0 = time.perf_counter()
+    rpm = parse_rpm(rpm)
+    omegas = rpm_to_rad_s(rpm)
+    w_eng, i_eng = case.engagement
+    t1 = time.perf_counter()
+    m = 0 if case.contact is None else case.contact.nodes.m
+    lam = np.zeros((len(rpm), m))
+    active = None
+    for k, w in enumerate(omegas):
+        lam[k], act = case.solve(float(w), active)
+        if act is not None:
+            active = act
+    t2 = time.perf_counter()
+    basis, coef, U = case.response.fields(omegas, lam)
+    model = case.model
+    fields = Fields(basis=basis, coef=coef, U=U, stress=model.stress, fe_basis=model.basis)
+    curve = curve_table(rpm, omegas, lam, case.contact, case.scale, fields, stresses,
+                        model.material.yield_strength)
+    t3 = time.perf_counter()
+    nominal = list(model.cm.contact_arcs)
+    where, angle = first_touch(case.contact, i_eng, nominal)
+    div = case.omega_limit
+    timings = {"engagement_s": t1 - t0, "contact_s": t2 - t1, "post_s": t3 - t2, "sweep_s": t3 - t0,
+               **model.timings, "case_setup_s": case.setup_s}
+    return SweepResult(rpm=rpm, omega=omegas, lam=lam, engagement_rpm=None if w_eng is None else rad_s_to_rpm(w_eng),
+                       first_touch=where, first_touch_angle_deg=angle,
+                       divergence_rpm=None if div is None else rad_s_to_rpm(div), contact=case.contact,
+                       scale=case.scale, thickness=model.thickness, softening=case.softening.name,
+                       curve=curve, shoes=shoe_table(rpm, lam, case.contact, nominal), fields=fields,
+                       timings=timings)

@@ -1,0 +1,57 @@
+"""The core redesign must not change an answer: FE sweeps of concepts 1 and 4 (default
+mesh, the four load cases and the exact-softening reference) equal the numbers recorded
+with the pre-redesign solver (``tests/data/core_reference.json``, commit 2d28ee7) to 1e-9
+relative; and one analysis assembles and factorises K once."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from clutchfem.design import Design
+from clutchfem.geometry import MeshSettings
+
+REF = json.loads((Path(__file__).parent / "data" / "core_reference.json").read_text())
+TOL = 1e-9
+
+
+@pytest.fixture(scope="module", params=["concept1", "concept4"])
+def design(request):
+    return Design.from_concept(request.param, mesh_settings=MeshSettings())
+
+
+def _rel(a, b) -> float:
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
+
+
+def test_sweeps_equal_the_pre_redesign_numbers(design):
+    cases = {k: v for k, v in REF["cases"].items() if k.startswith(design.name + "/")}
+    assert len(cases) == 5
+    for key, case in cases.items():
+        _, mu, soft = key.split("/")
+        res = design.sweep(case["rpm"], mu=float(mu[3:]), softening=soft)
+        assert design.cm.n_nodes == cases[f"{design.name}/mu=0.165/modal"]["n_nodes"], "mesh changed"
+        assert res.engagement_rpm == pytest.approx(case["engagement_rpm"], rel=TOL), key
+        for col in ("normal_force_N", "torque_Nm", "max_von_mises_Pa"):
+            assert _rel(res.curve[col], case[col]) < TOL, (key, col)
+        if "shoe_normal_force_N" in case:
+            assert _rel(res.shoes["normal_force_N"], case["shoe_normal_force_N"]) < TOL, key
+
+
+def test_analyze_assembles_and_factorises_once(monkeypatch):
+    from clutchfem.clutch.analyze import analyze
+    from clutchfem.linsolve import COUNTS
+
+    d = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2e-3))
+    before = COUNTS.copy()
+    an = analyze(d)
+    assert an.slip_rpm is not None and an.mu_sensitivity["slip_rpm"]["x1.3"] is not None
+    used = COUNTS - before
+    # the design's model was assembled when the design was built; analyze adds nothing
+    assert used.get("assemble", 0) == 0
+    assert used.get("K", 0) == 1  # one factorisation for the sweep, friction off and mu +-30 %
+    assert used.get("shifted", 0) == 0
