@@ -41,7 +41,7 @@ import scipy.sparse.linalg as spla
 from scipy.integrate import solve_bvp
 from skfem import FacetBasis, LinearForm, asm
 
-from clutchfem.fem import build_fe_model
+from clutchfem.fem import FEModel
 from clutchfem.materials import Material
 from clutchfem.nonlinear import (NonlinearModel, NonlinearSettings, geometric_stiffness,
                                  second_order_engagement)
@@ -135,7 +135,7 @@ def sector(tmp_path_factory):
 def test_tangent_is_the_derivative_of_the_residual(sector):
     """Central differences of the internal force (and of the contact force) match the
     assembled tangents to O(eps^2): the Newton iteration can converge quadratically."""
-    fe = build_fe_model(sector, STEEL)
+    fe = FEModel(sector, STEEL)
     nl = NonlinearModel(fe, drum_radius=B_OUT + 1e-4, mu=0.3)
     rng = np.random.default_rng(1)
     u = rng.standard_normal(fe.ndofs) * 1e-4
@@ -156,7 +156,7 @@ def test_tangent_is_the_derivative_of_the_residual(sector):
 
 
 def test_zero_displacement_tangent_is_linear_stiffness(sector):
-    fe = build_fe_model(sector, STEEL)
+    fe = FEModel(sector, STEEL)
     nl = NonlinearModel(fe)
     _, K0 = nl.kin.residual_and_tangent(np.zeros(fe.ndofs))
     assert abs(K0 - fe.K).max() < 1e-12 * abs(fe.K).max()
@@ -166,7 +166,7 @@ def test_annulus_svk_free_spin_matches_ode(sector):
     """Large strain (a soft material at high speed: rim strain ~3 %): the FE reference matches
     the 1-D SVK solution, far closer than the linear answer does."""
     soft = Material(name="soft", E=2.1e9, nu=0.3, rho=7850.0)
-    fe = build_fe_model(sector, soft)
+    fe = FEModel(sector, soft)
     nl = NonlinearModel(fe)
     w = 6000.0
     st = nl.sweep([2000.0, 4000.0, w], contact=False)[-1]
@@ -184,7 +184,7 @@ def test_annulus_svk_free_spin_matches_ode(sector):
 
 def test_annulus_small_strain_limit_is_linear(sector):
     """Steel: the non-linear - linear (spin-softened) difference vanishes like w^2 (strain)."""
-    fe = build_fe_model(sector, STEEL)
+    fe = FEModel(sector, STEEL)
     nl = NonlinearModel(fe)
     rows = []
     for w in (2000.0, 4000.0, 8000.0):
@@ -205,7 +205,7 @@ def test_annulus_on_drum_contact_force_matches_ode(sector):
     """The whole rim pressed on the exact circle R_d = b + c: total normal force vs the SVK
     ODE with u(b) = c (soft material, large strain), and the linear answer's error."""
     soft = Material(name="soft", E=2.1e9, nu=0.3, rho=7850.0)
-    fe = build_fe_model(sector, soft)
+    fe = FEModel(sector, soft)
     c = 0.6e-3
     nl = NonlinearModel(fe, drum_radius=B_OUT + c)
     w = 6000.0
@@ -229,7 +229,7 @@ def test_spinning_beam_stress_stiffening(tmp_path):
     linear path (softening only) and the prestressed linear path."""
     L, t, h, P = 40e-3, 1e-3, 5e-3, 1e-3
     cm = load_cantilever(tmp_path / "beam.msh", L, t, 0.5e-3, depth=h)
-    fe = build_fe_model(cm, STEEL)
+    fe = FEModel(cm, STEEL)
     fb = FacetBasis(cm.mesh, fe.basis.elem, facets=cm.boundary("tip"), intorder=4)
     fP = asm(LinearForm(lambda v, w: P / t * v[1]), fb)  # shear traction, total P
     X = fe.basis.doflocs[:, 0::2]
@@ -283,12 +283,13 @@ def test_concept4_friction_contact_linear_limit():
     from clutchfem.geometry.base import MeshSettings
     from clutchfem.geometry.registry import get_concept
     from clutchfem.mesh import mesh_concept
-    from clutchfem.solver import ClutchSolver
+    from clutchfem.contact import DrumContact
+    from clutchfem.sweep import LoadCase, sweep
     from clutchfem.units import rad_s_to_rpm
 
     c = get_concept("concept4")
     cm = mesh_concept(c, c.Params(), MeshSettings())
-    fe = build_fe_model(cm, STEEL)
+    fe = FEModel(cm, STEEL)
     probe = NonlinearModel(fe, drum_radius=0.0344)
     Rd = float(np.hypot(*probe.nodes.xy).max()) + 2e-6
     w = 300.0
@@ -296,8 +297,8 @@ def test_concept4_friction_contact_linear_limit():
     for mu in (0.0, 0.165):
         nl = NonlinearModel(fe, drum_radius=Rd, mu=mu)
         st = nl.sweep([w / 2, w])[-1]
-        lin = ClutchSolver(cm, STEEL, drum_radius=Rd, mu=mu, spin_softening="exact")
-        ref = lin.sweep([rad_s_to_rpm(w)], stresses=False)
+        case = LoadCase(fe, DrumContact(nl.nodes, mu, "ccw"), "exact")
+        ref = sweep(case, [rad_s_to_rpm(w)], stresses=False)
         rows[mu] = (nl.normal_force(st), float(ref.curve["normal_force_N"].iloc[0]),
                     nl.torque(st), float(ref.curve["torque_Nm"].iloc[0]))
     print("\nconcept4 linear limit at %.0f rad/s: mu, N non-linear, N linear, ratio - 1" % w)

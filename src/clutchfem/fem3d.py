@@ -66,7 +66,8 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import cached_property
 from typing import ClassVar
 
 import numpy as np
@@ -81,8 +82,8 @@ from .materials import Material
 from .mesh import ClutchMesh
 from .params import ParamSet, param
 
-__all__ = ["ExtrusionSettings", "ExtrudedMesh", "FEModel3D", "extrude", "build_fe_model_3d",
-           "von_mises_3d", "lame_3d"]
+__all__ = ["ExtrusionSettings", "ExtrudedMesh", "FEModel3D", "VertexStress3D", "extrude",
+           "build_fe_model_3d", "von_mises_3d", "lame_3d"]
 
 
 class ExtrusionSettings(ParamSet):
@@ -241,92 +242,228 @@ def lame_3d(material: Material) -> tuple[float, float]:
     return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
 
 
-@dataclass
 class FEModel3D:
-    """Assembled 3-D operators of one extruded part (module docstring).  Mirrors
-    :class:`clutchfem.fem.FEModel`: ``basis, K, M, f1, T, Kr, Mr, factor, solve, ndofs``."""
+    """Assembled 3-D operators of one extruded part (module docstring).  The same interface
+    as the 2-D :class:`clutchfem.fem.FEModel` (``cm, material, thickness, formulation,
+    basis, K, f1, T, M, Kr, Mr, factor, solve, u1, stress, ndofs, timings``), so the contact,
+    friction, spin-softening and sweep machinery runs on it unchanged; plus ``em`` (the
+    extruded mesh), ``symmetry_factor`` (totals / model) and :meth:`contact_nodes`.
 
-    em: ExtrudedMesh
-    material: Material
-    basis: Basis
-    K: sp.csr_matrix
-    M: sp.csr_matrix
-    f1: np.ndarray
-    T: sp.csr_matrix
-    timings: dict = field(default_factory=dict)
-    _factor: object = None
+    ``slide_z``: extra faces with u_z = 0 (``('top',)`` turns the half model into plane
+    strain: the verification of tests/test_fem3d.py)."""
+
+    formulation = "3d"
+
+    def __init__(self, cm: ClutchMesh, material: Material, thickness: float | None = None, *,
+                 settings: ExtrusionSettings | None = None, solver=None,
+                 slide_z: tuple[str, ...] = ()):
+        t0 = time.perf_counter()
+        self.cm = cm
+        self.material = material
+        self.settings = settings or ExtrusionSettings()
+        self.solver = solver
+        self.timings: dict[str, float] = {}
+        self.em = extrude(cm, thickness, self.settings)
+        self.thickness = self.em.thickness
+        t1 = time.perf_counter()
+        self.basis = Basis(self.em.mesh, ElementVector(ElementTetP2()), intorder=4)
+        self._sb = self.basis.with_element(ElementTetP2())
+        off = np.array([[0], [1], [2]])
+        if not (np.array_equal(self.basis.nodal_dofs, 3 * self._sb.nodal_dofs + off)
+                and np.array_equal(self.basis.edge_dofs, 3 * self._sb.edge_dofs + off)):  # pragma: no cover
+            raise SolverError("unexpected scikit-fem dof layout for ElementVector(ElementTetP2)")
+        lam, mu = self.lame
+        rho = material.rho
+        self.K = _stiffness(self._sb, lam, mu)
+
+        @LinearForm
+        def centrifugal(v, w):
+            return rho * (w.x[0] * v[0] + w.x[1] * v[1])
+
+        self.f1 = asm(centrifugal, self.basis)
+        t2 = time.perf_counter()
+        self.T = constraint_map_3d(self.em, self.basis, slide_z)
+        self.timings.update({"extrude_s": t1 - t0, "assemble_s": t2 - t1,
+                             "constraints_s": time.perf_counter() - t2})
+
+    # -- material law -------------------------------------------------------------------
+    @property
+    def lame(self) -> tuple[float, float]:
+        return lame_3d(self.material)
 
     @property
-    def cm(self) -> ClutchMesh:
-        return self.em.cm
+    def symmetry_factor(self) -> float:
+        return self.em.symmetry_factor
 
-    @property
-    def thickness(self) -> float:
-        return self.em.thickness
-
+    # -- operators ----------------------------------------------------------------------
     @property
     def ndofs(self) -> int:
         return self.basis.N
 
-    @property
-    def factor(self):
-        if self._factor is None:
-            t0 = time.perf_counter()
-            self._factor = factorize(self.Kr)
-            self.timings["factorize_s"] = time.perf_counter() - t0
-        return self._factor
+    @cached_property
+    def M(self) -> sp.csr_matrix:
+        """In-plane mass rho int (u_x v_x + u_y v_y) (spin softening); on first use."""
+        t0 = time.perf_counter()
+        rho = self.material.rho
 
-    @property
+        @BilinearForm
+        def mass(u, v, w):
+            return rho * u * v
+
+        M = sp.kron(asm(mass, self._sb), sp.diags([1.0, 1.0, 0.0]), format="csr")
+        M.eliminate_zeros()
+        self.timings["mass_s"] = time.perf_counter() - t0
+        return M
+
+    @cached_property
     def Kr(self) -> sp.csc_matrix:
-        if not hasattr(self, "_Kr"):
-            self._Kr = (self.T.T @ self.K @ self.T).tocsc()
-        return self._Kr
+        return (self.T.T @ self.K @ self.T).tocsc()
 
-    @property
+    @cached_property
     def Mr(self) -> sp.csc_matrix:
-        if not hasattr(self, "_Mr"):
-            self._Mr = (self.T.T @ self.M @ self.T).tocsc()
-        return self._Mr
+        return (self.T.T @ self.M @ self.T).tocsc()
+
+    @cached_property
+    def factor(self):
+        t0 = time.perf_counter()
+        f = factorize(self.Kr, self.solver)
+        self.timings["factorize_s"] = time.perf_counter() - t0
+        return f
 
     def solve(self, F: np.ndarray) -> np.ndarray:
         """Displacements (all dofs) for load(s) F, no contact, no softening."""
         return self.T @ self.factor.solve(self.T.T @ F)
 
-    # -- stresses -----------------------------------------------------------------------
-    @property
-    def _vertex_gradients(self):
-        """(G, ed): d/dx_a of the 10 scalar P2 shape functions at each tetrahedron's 4
-        vertices through the curved map, G (3, nelem, 4, 10); ed (3, nelem, 10) the element
-        dofs of the x, y, z displacement."""
-        if not hasattr(self, "_vg"):
-            b = self.basis
-            ed = b.element_dofs  # (30, ne): local dof 3 k + c
-            ex = ed[0::3]
-            X = b.doflocs[:, ex]  # (3, 10, ne)
-            el = ElementTetP2()
-            V = np.array([[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
-            R = np.stack([el.lbasis(V, q)[1] for q in range(10)], axis=1).transpose(2, 1, 0)  # (4, 10, 3)
-            J = np.einsum("ake,vkb->evab", X, R)  # (ne, 4, 3, 3)
-            det = np.linalg.det(J)
-            if np.any(np.abs(det) <= 1e-14 * np.median(np.abs(det))):
-                raise SolverError(f"{self.cm.source}: a degenerate tetrahedron (zero Jacobian at "
-                                  "a vertex)")
-            Jinv = np.linalg.inv(J)
-            G = np.einsum("vkb,evba->aevk", R, Jinv)  # grad phi_k = J^-T grad_ref phi_k
-            self._vg = (np.ascontiguousarray(G), np.stack([ed[0::3].T, ed[1::3].T, ed[2::3].T]))
-        return self._vg
+    @cached_property
+    def u1(self) -> np.ndarray:
+        t0 = time.perf_counter()
+        u = self.solve(self.f1)
+        self.timings["solve_u1_s"] = time.perf_counter() - t0
+        return u
+
+    # -- post-processing ----------------------------------------------------------------
+    @cached_property
+    def stress(self) -> "VertexStress3D":
+        return VertexStress3D(self)
 
     def vertex_stresses(self, U: np.ndarray) -> np.ndarray:
-        """Raw stresses [Pa] at every tetrahedron's 4 vertices for displacement column(s) U:
-        array (6, nelem * 4[, ncols]) in Voigt order (xx, yy, zz, yz, xz, xy), rows ordered
-        (element, vertex) like :attr:`vertex_points`."""
+        return self.stress(U)
+
+    @property
+    def vertex_points(self) -> np.ndarray:
+        return self.stress.points
+
+    def von_mises(self, s: np.ndarray) -> np.ndarray:
+        return von_mises_3d(s)
+
+    def max_von_mises(self, u: np.ndarray) -> tuple[float, np.ndarray]:
+        """(peak raw vertex von Mises stress [Pa], its position (3,))."""
+        vm = von_mises_3d(self.stress(u))
+        k = int(np.argmax(vm))
+        return float(vm[k]), self.stress.points[:, k]
+
+    # -- contact ------------------------------------------------------------------------
+    def contact_nodes(self, drum_radius: float):
+        """:class:`~clutchfem.contact.ContactNodes` of the extruded contact surface: every P2
+        node of the ``contact`` side faces (all levels), gaps on the exact circle, in-plane
+        normals; on a sector, the cut_b copies of cut_a nodes merged (as in 2-D).  The
+        weights are tributary *areas* divided by the part's axial thickness, so the drum's
+        pressure = force / (thickness x weight) is force / area, as in 2-D."""
+        from .contact import ContactNodes, _check_facing
+
+        cm, em, basis = self.cm, self.em, self.basis
+        if not (isinstance(drum_radius, (int, float)) and math.isfinite(drum_radius) and drum_radius > 0):
+            from .errors import ParameterError
+
+            raise ParameterError("drum_radius", drum_radius, "a radius > 0 m")
+        b = em.mesh.boundaries or {}
+        if "contact" not in b:
+            raise MeshError(f"{cm.source}: no 'contact' boundary group; cannot model the drum")
+        facets = em.boundary("contact")
+        dx, dy, _ = _component_dofs(basis, facets)
+        order = np.argsort(dx)
+        dx, dy = dx[order], dy[order]
+        X = basis.doflocs[:, dx]
+        xy = X[:2]
+        r = np.hypot(xy[0], xy[1])
+        gap0 = drum_radius - r
+        if np.any(gap0 < -1e-9 * drum_radius):
+            raise MeshError(f"drum radius {drum_radius * 1e3:.4f} mm lies inside the part: contact nodes "
+                            f"overlap the drum by up to {float(-gap0.min()) * 1e3:.4f} mm (drum radius must "
+                            f"exceed {r.max() * 1e3:.4f} mm)")
+        _check_facing(cm, cm.boundary("contact"))
+        dx_all, merge = dx, None
+        if cm.sector_angle is not None and "cut_b" in b:
+            bx = _component_dofs(basis, em.boundary("cut_b"))[0]
+            copy = np.isin(dx, bx)
+            if copy.any():
+                cs, sn = math.cos(cm.sector_angle), math.sin(cm.sector_angle)
+                back = np.array([[cs, sn, 0], [-sn, cs, 0], [0, 0, 1]]) @ X[:, copy]
+                keep = np.nonzero(~copy)[0]
+                dist, j = cKDTree(X[:, keep].T).query(back.T)
+                if dist.max() > 1e-8 * drum_radius:
+                    raise MeshError(f"{cm.source}: a contact node on cut_b has no partner on cut_a "
+                                    f"(mismatch {dist.max():.3g} m)")
+                merge = (keep, j, copy)
+                dx, dy, xy, gap0 = dx[keep], dy[keep], xy[:, keep], gap0[keep]
+        n = xy / np.hypot(xy[0], xy[1])
+        t = np.vstack([-n[1], n[0]])
+        h = self.thickness
+
+        def weights() -> np.ndarray:
+            w = contact_area_weights(em, basis, facets)[dx_all] / h
+            if merge is not None:
+                keep, j, copy = merge
+                np.add.at(w, keep[j], w[copy])
+                w = w[keep]
+            return w
+
+        shoe = -np.ones(len(dx), dtype=np.int64)
+        for name, fac in b.items():
+            if name.startswith("contact_"):
+                ids = _component_dofs(basis, np.asarray(fac))[0]
+                shoe[np.isin(dx, ids)] = int(name.split("_")[1])
+        if np.all(shoe < 0):
+            shoe[:] = 0
+        return ContactNodes(drum_radius=float(drum_radius), dof_x=dx, dof_y=dy, xy=xy, normal=n,
+                            tangent=t, gap0=np.maximum(gap0, 0.0), shoe=shoe,
+                            angle=np.arctan2(xy[1], xy[0]), ndofs=basis.N, _weights=weights)
+
+
+class VertexStress3D:
+    """Raw stress recovery of a 3-D model: the 3-D twin of :class:`clutchfem.stress.VertexStress`
+    (``__call__(U)`` -> (6, npts[, ncols]) Voigt xx, yy, zz, yz, xz, xy; ``von_mises``;
+    ``points`` (3, npts)).  The gradients of the 10 scalar P2 shape functions at each
+    tetrahedron's 4 vertices are computed once through the curved map."""
+
+    def __init__(self, model: FEModel3D):
+        self._basis = model.basis
+        self._mesh = model.em.mesh
+        self._source = model.cm.source
+        self.lame = model.lame
+
+    @cached_property
+    def _gradients(self):
+        b = self._basis
+        ed = b.element_dofs  # (30, ne): local dof 3 k + c
+        X = b.doflocs[:, ed[0::3]]  # (3, 10, ne)
+        el = ElementTetP2()
+        V = np.array([[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
+        R = np.stack([el.lbasis(V, q)[1] for q in range(10)], axis=1).transpose(2, 1, 0)  # (4, 10, 3)
+        J = np.einsum("ake,vkb->evab", X, R)  # (ne, 4, 3, 3)
+        det = np.linalg.det(J)
+        if np.any(np.abs(det) <= 1e-14 * np.median(np.abs(det))):
+            raise SolverError(f"{self._source}: a degenerate tetrahedron (zero Jacobian at a vertex)")
+        G = np.einsum("vkb,evba->aevk", R, np.linalg.inv(J))  # grad phi_k = J^-T grad_ref phi_k
+        return np.ascontiguousarray(G), np.stack([ed[0::3].T, ed[1::3].T, ed[2::3].T])
+
+    def __call__(self, U: np.ndarray) -> np.ndarray:
         U = np.asarray(U)
         one = U.ndim == 1
         U = U.reshape(U.shape[0], -1)
-        G, ed = self._vertex_gradients
-        lam, mu = lame_3d(self.material)
-        # grad[a][c] = d u_c / d x_a, each (ne, 4, ncols)
-        g = [[G[a] @ U[ed[c]] for c in range(3)] for a in range(3)]
+        G, ed = self._gradients
+        lam, mu = self.lame
+        g = [[G[a] @ U[ed[c]] for c in range(3)] for a in range(3)]  # d u_c / d x_a
         tr = g[0][0] + g[1][1] + g[2][2]
         s = np.stack([2 * mu * g[0][0] + lam * tr, 2 * mu * g[1][1] + lam * tr,
                       2 * mu * g[2][2] + lam * tr, mu * (g[1][2] + g[2][1]),
@@ -334,17 +471,13 @@ class FEModel3D:
         s = s.reshape(6, -1, U.shape[1])
         return s[..., 0] if one else s
 
-    @property
-    def vertex_points(self) -> np.ndarray:
-        """(3, nelem * 4) positions of the element vertices of :meth:`vertex_stresses`."""
-        m = self.em.mesh
-        return m.doflocs[:, m.t.T.ravel()]
+    def von_mises(self, s: np.ndarray) -> np.ndarray:
+        return von_mises_3d(s)
 
-    def max_von_mises(self, u: np.ndarray) -> tuple[float, np.ndarray]:
-        """(peak raw vertex von Mises stress [Pa], its position (3,))."""
-        vm = von_mises_3d(self.vertex_stresses(u))
-        k = int(np.argmax(vm))
-        return float(vm[k]), self.vertex_points[:, k]
+    @cached_property
+    def points(self) -> np.ndarray:
+        """(3, nelem * 4) positions [m] of the stress points (tetrahedron vertices)."""
+        return self._mesh.doflocs[:, self._mesh.t.T.ravel()]
 
 
 def von_mises_3d(s: np.ndarray) -> np.ndarray:
@@ -355,39 +488,9 @@ def von_mises_3d(s: np.ndarray) -> np.ndarray:
 
 
 def build_fe_model_3d(cm: ClutchMesh, material: Material, thickness: float | None = None,
-                      settings: ExtrusionSettings | None = None) -> FEModel3D:
-    """Extrude ``cm``, assemble K, M, f1 and build the constraint map T."""
-    t0 = time.perf_counter()
-    em = extrude(cm, thickness, settings)
-    t1 = time.perf_counter()
-    mesh = em.mesh
-    basis = Basis(mesh, ElementVector(ElementTetP2()), intorder=4)
-    lam, mu = lame_3d(material)
-    rho = material.rho
-
-    @BilinearForm
-    def mass(u, v, w):
-        return rho * u * v
-
-    @LinearForm
-    def centrifugal(v, w):
-        return rho * (w.x[0] * v[0] + w.x[1] * v[1])
-
-    sb = basis.with_element(ElementTetP2())
-    off = np.array([[0], [1], [2]])
-    if not (np.array_equal(basis.nodal_dofs, 3 * sb.nodal_dofs + off)
-            and np.array_equal(basis.edge_dofs, 3 * sb.edge_dofs + off)):  # pragma: no cover
-        raise SolverError("unexpected scikit-fem dof layout for ElementVector(ElementTetP2)")
-    K = _stiffness(sb, lam, mu)
-    M = sp.kron(asm(mass, sb), sp.diags([1.0, 1.0, 0.0]), format="csr")
-    M.eliminate_zeros()
-    f1 = asm(centrifugal, basis)
-    t2 = time.perf_counter()
-    T = constraint_map_3d(em, basis)
-    model = FEModel3D(em=em, material=material, basis=basis, K=K, M=M, f1=f1, T=T)
-    model.timings.update({"extrude_s": t1 - t0, "assemble_s": t2 - t1,
-                          "constraints_s": time.perf_counter() - t2})
-    return model
+                      settings: ExtrusionSettings | None = None, **kw) -> FEModel3D:
+    """Extrude ``cm`` and assemble its 3-D model (:class:`FEModel3D`)."""
+    return FEModel3D(cm, material, thickness, settings=settings, **kw)
 
 
 def _stiffness(sb: Basis, lam: float, mu: float) -> sp.csr_matrix:

@@ -222,6 +222,9 @@ class NonlinearModel:
         self.fe = fe
         self.settings = settings or NonlinearSettings()
         self.mu, self.s = float(mu), (1.0 if rotation == "ccw" else -1.0)
+        if getattr(fe, "formulation", "plane-stress") != "plane-stress":
+            raise ParameterError("formulation", fe.formulation, "'plane-stress' (the non-linear "
+                                 "reference is a plane-stress membrane)")
         lam, mu_ = fe.material.lame_plane_stress()
         self.kin = _Kinematics(fe.basis, lam, mu_, fe.thickness)
         self.T = fe.T.tocsr()
@@ -229,7 +232,7 @@ class NonlinearModel:
         self.M = fe.M.tocsr()
         self.f1 = fe.f1
         self.R = drum_radius
-        self.nodes = contact_nodes(fe.cm, fe.basis, drum_radius) if drum_radius is not None else None
+        self.nodes = contact_nodes(fe, drum_radius) if drum_radius is not None else None
         self.timings: dict[str, float] = {}
         self.scale = (fe.cm.n_shoes_total / fe.cm.n_shoes_model) if fe.cm.sector_angle else 1.0
         kdiag = self.kin.residual_and_tangent(np.zeros(fe.basis.N))[1].diagonal()
