@@ -13,6 +13,10 @@
   over the n rotated copies; C_rr is symmetric positive semi-definite.
 * Spinning drum: the free rotating annulus's inner-wall expansion (Lame) tends to the thin
   ring's rho w^2 R^3 / E.
+* In the contact problem (core ``LoadCase``, LCP matrix G + C_d, gaps opened by the spinning
+  drum's expansion): the clamped annulus pressed on an elastic ring has the closed form
+  N = (u_free - u_d - c) / (s_clutch + a_0 / (2 pi R_c)); the non-linear reference with the
+  same drum tends to the linear answer like the strain.
 """
 
 from __future__ import annotations
@@ -24,7 +28,7 @@ import pytest
 
 from clutchfem.drum import DrumWall, RingDrum, annulus_harmonic_compliance, lame_free_ring_expansion
 from clutchfem.errors import ParameterError
-from clutchfem.materials import get_material
+from clutchfem.materials import Material, get_material
 
 RD = 0.0344
 
@@ -98,3 +102,105 @@ def test_refuses_bad_input():
         RingDrum(0.01, DrumWall(wall_thickness=8e-3))
     with pytest.raises(ParameterError, match="drum_radius"):
         RingDrum(-1.0)
+
+
+# ---------------------------------------------------------------------------------------
+# the elastic drum in the contact problem (core LoadCase) and in the non-linear reference
+# ---------------------------------------------------------------------------------------
+A_IN, B_OUT, H = 6.5e-3, 33.8e-3, 11e-3
+
+
+def _lame_annulus(mat, omega, rim_pressure, a=A_IN, b=B_OUT):
+    """Plane-stress annulus, u(a) = 0, sigma_r(b) = -rim_pressure: u(b)."""
+    E, nu, rho = mat.E, mat.nu, mat.rho
+    D = E / (1 - nu * nu)
+    C = rho * omega ** 2 / D
+    f = [lambda r: r, lambda r: 1 / r, lambda r: -C * r ** 3 / 8]
+    df = [lambda r: 1.0, lambda r: -1 / r ** 2, lambda r: -3 * C * r ** 2 / 8]
+    sr = lambda i, r: D * (df[i](r) + nu * f[i](r) / r)  # noqa: E731
+    A, B = np.linalg.solve([[f[0](a), f[1](a)], [sr(0, b), sr(1, b)]], [-f[2](a), -rim_pressure - sr(2, b)])
+    return A * f[0](b) + B * f[1](b) + f[2](b)
+
+
+@pytest.mark.parametrize("state", ["held", "spinning"])
+def test_annulus_on_elastic_drum_closed_form(tmp_path, state):
+    """A 30 degree sector of the clamped annulus pressed on an elastic drum (the whole rim
+    touches; friction on): the LCP with G + C_d and the drum's free expansion gives the
+    closed form N = (u_free(w) - u_d(w) - c) / (s_clutch + a_0 / (2 pi R_c)) (Lame for the
+    annulus under rim pressure, the drum's k = 0 compliance a_0; the cyclic harmonics of the
+    discrete nodal loads add ~1e-4), and the non-linear reference with the same drum agrees
+    in the small-strain limit."""
+    from clutchfem.contact import DrumContact, contact_nodes
+    from clutchfem.fem import FEModel
+    from clutchfem.nonlinear import NonlinearModel
+    from clutchfem.sweep import LoadCase, sweep
+    from clutchfem.testshapes import load_annulus
+    from clutchfem.units import rad_s_to_rpm
+
+    steel = get_material("51CrV4")
+    c, mu, w = 0.2e-3, 0.3, 3.5e4
+    Rd = B_OUT + c
+    cm = load_annulus(tmp_path / "sec.msh", A_IN, B_OUT, 2e-3, thickness=H, sector_deg=30.0)
+    fe = FEModel(cm, steel, H)
+    nodes = contact_nodes(fe, Rd)
+    # (a steel drum spinning at 3.5e4 rad/s would expand 2 mm, more than the clamped annulus,
+    # and lose contact: the spinning case takes a drum 100 x lighter)
+    drum_mat = steel if state == "held" else Material(name="light", E=steel.E, nu=0.3, rho=steel.rho / 100)
+    ring = RingDrum(Rd, DrumWall(wall_thickness=2e-3, state=state, material=drum_mat))
+    rigid = sweep(LoadCase(fe, DrumContact(nodes, mu, "ccw"), "off"), [rad_s_to_rpm(w)])
+    res = sweep(LoadCase(fe, DrumContact(nodes, mu, "ccw", drum=ring, sectors=12), "off"), [rad_s_to_rpm(w)])
+    u_free = _lame_annulus(steel, w, 0.0)
+    s_c = -(_lame_annulus(steel, 0.0, 1.0) - _lame_annulus(steel, 0.0, 0.0)) / (2 * math.pi * B_OUT * H)
+    a0 = ring.harmonics([0])[0][0]
+    ud = ring.free_expansion(w)
+    N_cf = (u_free - ud - c) / (s_c + a0 / (2 * math.pi * ring.Rc))
+    N_rigid_cf = (u_free - c) / s_c
+    N, Nr = float(res.curve["normal_force_N"][0]), float(rigid.curve["normal_force_N"][0])
+    print(f"\nelastic drum ({state}): N {N:.6e} (closed form {N_cf:.6e}, {N / N_cf - 1:+.1e}); rigid drum "
+          f"{Nr:.6e} ({Nr / N_rigid_cf - 1:+.1e}); drum softens the contact by {1 - N / Nr:.2%}")
+    assert N == pytest.approx(N_cf, rel=5e-4)
+    assert Nr == pytest.approx(N_rigid_cf, rel=5e-4)
+    assert N < Nr
+    assert N > 0
+
+
+def test_nonlinear_reference_with_elastic_drum_linear_limit(tmp_path):
+    """The non-linear reference with an elastic drum (C_d in its bordered Newton system, the
+    drum's free expansion in its gaps) tends to the linear path with the same physics (spin
+    softening exact) in the small-strain limit: with E x s and the clearance / s the forces
+    stay those of a steel clutch while the strains drop s-fold, and so must the difference
+    (measured: 5.7e-2 at s = 1, 6e-3 at s = 10, 1.5e-3 at s = 40)."""
+    from clutchfem.contact import DrumContact, contact_nodes
+    from clutchfem.fem import FEModel
+    from clutchfem.nonlinear import NonlinearModel
+    from clutchfem.sweep import LoadCase, sweep
+    from clutchfem.testshapes import load_annulus
+    from clutchfem.units import rad_s_to_rpm
+
+    steel = get_material("51CrV4")
+    mu, w = 0.3, 3.5e4
+    cm = load_annulus(tmp_path / "sec.msh", A_IN, B_OUT, 2e-3, thickness=H, sector_deg=30.0)
+    rows = []
+    for scale in (10.0, 40.0):
+        c = 0.2e-3 / scale
+        Rd = B_OUT + c
+        stiff = Material(name="steel x s", E=scale * steel.E, nu=0.3, rho=steel.rho)
+        light = Material(name="light drum", E=scale * steel.E, nu=0.3, rho=steel.rho / 100)
+        fe = FEModel(cm, stiff, H)
+        nodes = contact_nodes(fe, Rd)
+        for state, mat in (("held", stiff), ("spinning", light)):
+            ring = RingDrum(Rd, DrumWall(wall_thickness=2e-3, state=state, material=mat))
+            dc = DrumContact(nodes, mu, "ccw", drum=ring, sectors=12)
+            lin = sweep(LoadCase(fe, dc, "exact"), [rad_s_to_rpm(w)])
+            Nx = float(lin.curve["normal_force_N"][0])
+            nl = NonlinearModel(fe, drum_radius=Rd, mu=mu, drum_compliance=dc.drum_compliance)
+            nl.drum_free = np.full(nodes.m, ring.free_expansion(w))
+            st = nl.sweep([w / 2, w])[-1]
+            rows.append((scale, state, nl.normal_force(st), Nx, nl.normal_force(st) / Nx - 1))
+    print("\nnon-linear reference with an elastic drum: scale, state, N non-linear, N linear")
+    for r in rows:
+        print("  %4.0f %-8s %.6e %.6e (%+.1e)" % r)
+    d = {(r[0], r[1]): r[4] for r in rows}
+    for state in ("held", "spinning"):
+        assert abs(d[(40.0, state)]) < 2.5e-3
+        assert 3.0 < d[(10.0, state)] / d[(40.0, state)] < 5.0  # O(strain)

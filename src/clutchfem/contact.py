@@ -1,7 +1,8 @@
 """Rigid-drum contact: the contact nodes, the drum as a load case part, and the lazily
 condensed contact compliance.
 
-The drum is rigid, coaxial, of inner radius R_d.  Contact is node-to-circle at the P2 nodes
+The drum is coaxial, of inner radius R_d, rigid unless an elastic drum is given
+(:mod:`clutchfem.drum`: its wall moves out by u_d(w) + C_d lam, which opens the gaps).  Contact is node-to-circle at the P2 nodes
 (vertices and mid-edge nodes) of the ``contact`` boundary: node i at x_i has the exact
 initial gap g0_i = R_d - |x_i| and outward normal n_i = x_i/|x_i| (the drum's, evaluated on
 the exact circle, so a coarse chord does not eat the 0.6 mm clearance).  With small
@@ -196,6 +197,10 @@ class DrumContact:
     nodes: ContactNodes
     mu: float = 0.0
     rotation: Rotation = "ccw"
+    #: elastic drum (:class:`clutchfem.drum.RingDrum`) or None (rigid); ``sectors``: the number
+    #: of identical sectors the model stands for (its loads repeat around the drum)
+    drum: object = None
+    sectors: int = 1
 
     def __post_init__(self):
         if isinstance(self.mu, bool) or not isinstance(self.mu, (int, float, np.floating)) \
@@ -229,9 +234,28 @@ class DrumContact:
             return self.nodes.normal_load
         return (self.nodes.normal_load + self.friction * self.nodes.tangent_load).tocsc()
 
+    @cached_property
+    def drum_compliance(self) -> np.ndarray | None:
+        """C_d = C_rr + s mu C_rt (m x m) [m/N] of an elastic drum at the contact nodes (the
+        drum's wall moves out by C_d lam: the LCP matrix becomes G + C_d), None if rigid."""
+        if self.drum is None:
+            return None
+        return self.drum.operator(self.nodes, self.friction, self.sectors)
+
+    def drum_gap(self, omega: float) -> float:
+        """Free radial expansion [m] of a spinning elastic drum at ``omega`` [rad/s] (opens
+        every gap; 0 for a rigid or held drum)."""
+        return 0.0 if self.drum is None else float(self.drum.free_expansion(omega))
+
     def pressure(self, lam: np.ndarray, thickness: float) -> np.ndarray:
-        """Contact pressure [Pa] at the nodes for nodal forces ``lam`` [N]."""
-        return lam / (thickness * np.maximum(self.nodes.weight, 1e-300))
+        """Contact pressure [Pa] at the nodes for nodal forces ``lam`` [N] (NaN at nodes of zero
+        tributary area: the vertices of quadratic triangular faces in 3-D, whose consistent
+        share of a pressure is zero on a flat face, ~3e-5 of an edge node's on a curved one;
+        below 1e-3 of the largest weight counts as zero)."""
+        w = self.nodes.weight
+        ok = w > 1e-3 * float(np.max(w, initial=0.0))  # (a curved face's vertex: ~3e-5 x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(ok, lam / (thickness * np.where(ok, w, 1.0)), np.nan)
 
 
 class Compliance:

@@ -56,7 +56,13 @@ class Design:
                                  "e.g. 0.011 for 11 mm)")
         if params is None and self.drum_radius is not None:
             self._check_user_drum()
-        self.model = FEModel(cm, op.material, self.thickness, formulation=op.formulation, solver=solver)
+        if op.formulation == "3d":
+            from .fem3d import ExtrusionSettings, FEModel3D
+
+            self.model = FEModel3D(cm, op.material, self.thickness, settings=ExtrusionSettings(layers=op.layers),
+                                   solver=solver)
+        else:
+            self.model = FEModel(cm, op.material, self.thickness, formulation=op.formulation, solver=solver)
         self._cases: dict = {}
 
     @classmethod
@@ -75,12 +81,28 @@ class Design:
     @cached_property
     def nodes(self):
         """Contact nodes (None without a drum)."""
-        return None if self.drum_radius is None else contact_nodes(self.model, self.drum_radius)
+        if self.drum_radius is None:
+            return None
+        if hasattr(self.model, "contact_nodes"):  # the 3-D model collects its own (all levels)
+            return self.model.contact_nodes(self.drum_radius)
+        return contact_nodes(self.model, self.drum_radius)
+
+    @cached_property
+    def drum(self):
+        """The elastic drum (:class:`clutchfem.drum.RingDrum`), or None for a rigid drum."""
+        if self.drum_radius is None or self.op.drum_wall is None:
+            return None
+        from .drum import DrumWall, RingDrum
+
+        return RingDrum(self.drum_radius, DrumWall(wall_thickness=self.op.drum_wall, state=self.op.drum_state,
+                                                   material=self.op.material))
 
     def contact(self, mu: float | None = None) -> DrumContact | None:
         if self.nodes is None:
             return None
-        return DrumContact(self.nodes, self.op.mu if mu is None else mu, self.op.rotation)
+        sectors = self.cm.n_shoes_total // self.cm.n_shoes_model if self.cm.sector_angle else 1
+        return DrumContact(self.nodes, self.op.mu if mu is None else mu, self.op.rotation, drum=self.drum,
+                           sectors=sectors)
 
     def case(self, mu: float | None = None, softening=None) -> LoadCase:
         """The load case with friction ``mu`` (default: the operating point's) and spin
@@ -100,7 +122,8 @@ class Design:
     @property
     def scale(self) -> float:
         cm = self.cm
-        return cm.n_shoes_total / cm.n_shoes_model if cm.sector_angle else 1.0
+        s = cm.n_shoes_total / cm.n_shoes_model if cm.sector_angle else 1.0
+        return s * getattr(self.model, "symmetry_factor", 1.0)
 
     def _check_user_drum(self) -> None:
         b = self.cm.mesh.boundaries or {}

@@ -2,7 +2,8 @@
 the solver alike.
 
 Drum radius, friction coefficient, sense of rotation, axial thickness, material, spin
-softening, plane formulation and the speeds: one default, one range and one error message
+softening, formulation (plane stress, plane strain, 3-D with its layers), the drum's
+elasticity (rigid, or a ring wall, held or spinning) and the speeds: one default, one range and one error message
 for each (:mod:`clutchfem.params`).  ``None`` for the drum radius and the thickness means
 "the concept's value" (a user mesh has no drum: its radius must be given).
 
@@ -43,8 +44,16 @@ class OperatingPoint(ParamSet):
     material: Material = get_material("51CrV4")
     softening: Literal["ritz", "modal", "exact", "off"] = choice(
         "ritz", "spin softening: ritz (mode acceleration, default; alias modal), exact (reference), off")
-    formulation: Literal["plane-stress", "plane-strain"] = choice(
-        "plane-stress", "2-D formulation: plane-stress (thin part) or plane-strain (long part)")
+    formulation: Literal["plane-stress", "plane-strain", "3d"] = choice(
+        "plane-stress", "formulation: plane-stress (thin part), plane-strain (long part) or 3d "
+        "(the 2-D mesh extruded through the thickness, P2 tetrahedra)")
+    layers: int = param(2, "-", 1, 16, "3d: element layers through half the thickness (mid-plane symmetry)")
+    drum_wall: float | None = param(None, "m", 0.2e-3, 30e-3,
+                                    "elastic drum: wall thickness (default: rigid drum); a ring of width 14 mm "
+                                    "ASSUMED, the part's material")
+    drum_state: Literal["held", "spinning"] = choice(
+        "held", "elastic drum: held (idle, chain brake, slip) or spinning with the clutch (its centrifugal "
+        "expansion opens the gap)")
     rpm: str | None = param(None, "rpm", None, None,
                             "speeds: 8000 | 1000,2000 | start:stop:step (default: 0..engine max for "
                             "analyze, 0:14000:250 for solve)")

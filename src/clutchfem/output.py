@@ -47,9 +47,14 @@ def write_vtk(res, rpms, out: Path, render: bool = True) -> list[Path]:
     nodes: the raw element-vertex peak is in the sweep table), and the contact pressure at
     the contact nodes.  With ``render``, a PNG of von Mises on the shape deformed x
     :data:`RENDER_SCALE` beside each file."""
+    f_ = res.fields
+    if f_.fe_basis.mesh.dim() != 2:
+        from .errors import InputError
+
+        raise InputError("VTK output is written for the 2-D formulations only (the 3-D model's fields are "
+                         "not exported yet): drop --vtk or use --formulation plane-stress/plane-strain")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    f_ = res.fields
     pts, cells = _p2_cells(f_.fe_basis)
     n = len(pts)
     files = []

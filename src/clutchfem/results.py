@@ -58,13 +58,15 @@ class Fields:
     def stresses(self, sl: slice) -> np.ndarray:
         """Vertex stresses (3, npts, len(sl)) of states ``sl``."""
         if self.U is not None:
-            return self.stress(self.U[:, sl]).reshape(3, -1, len(range(*sl.indices(self.n))))
+            s = self.stress(self.U[:, sl])
+            return s.reshape(s.shape[0], -1, len(range(*sl.indices(self.n))))
         return self._basis_stress @ self.coef[:, sl]
 
     @property
     def _basis_stress(self) -> np.ndarray:
-        if "_bs" not in self.__dict__:
-            object.__setattr__(self, "_bs", self.stress(self.basis).reshape(3, -1, self.basis.shape[1]))
+        if "_bs" not in self.__dict__:  # (components: 3 in 2-D, 6 in 3-D)
+            s = self.stress(self.basis)
+            object.__setattr__(self, "_bs", s.reshape(s.shape[0], -1, self.basis.shape[1]))
         return self.__dict__["_bs"]
 
 
@@ -152,12 +154,14 @@ def contact_extent(contact, lam: np.ndarray, shoe: int = 0) -> np.ndarray:
         return out
     ang = nd.angle[sel]
     ang = wrap_angle(ang, float(np.angle(np.exp(1j * ang).mean())))  # unwrap around the shoe
-    order = np.argsort(ang)
-    a = ang[order]
+    # nodes at one angle (a 3-D model's levels) are one position along the arc: in contact
+    # if any of them is
+    a, inv = np.unique(np.round(ang, 12), return_inverse=True)
     gaps = np.diff(a)
     lo_half = np.concatenate([[gaps[0] if gaps.size else 0.0], gaps]) / 2  # to the previous node
     hi_half = np.concatenate([gaps, [gaps[-1] if gaps.size else 0.0]]) / 2  # to the next node
-    on = lam[:, sel][:, order] > 0
+    on = np.zeros((lam.shape[0], len(a)), dtype=bool)
+    np.logical_or.at(on.T, inv, (lam[:, sel] > 0).T)
     hit = on.any(axis=1)
     i0 = np.argmax(on, axis=1)
     i1 = on.shape[1] - 1 - np.argmax(on[:, ::-1], axis=1)
@@ -187,8 +191,9 @@ def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses
     arcs = contact_arcs_deg(contact, lam)
     arc = np.mean(np.vstack(list(arcs.values())), axis=0) if arcs else np.zeros(ns)
     b = fields.fe_basis
-    xd = np.concatenate([b.nodal_dofs[0], b.facet_dofs[0]])
-    yd = np.concatenate([b.nodal_dofs[1], b.facet_dofs[1]])
+    # every node's x and y dof (2-D P2: vertices and facets; 3-D P2 tetrahedra: vertices and edges)
+    xd, yd = (np.concatenate([d[c] for d in (b.nodal_dofs, b.facet_dofs, b.edge_dofs) if d.shape[0] > c])
+              for c in (0, 1))
     umax = np.zeros(ns)
     vm_max = np.full(ns, np.nan)
     kmax = np.zeros(ns, dtype=np.int64)

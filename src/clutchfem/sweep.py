@@ -26,7 +26,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .contact import DrumContact
-from .lcp import solve_lcp
+from .lcp import lazy, solve_lcp
 from .operating import parse_rpm
 from .results import Fields, SweepResult, curve_table, first_touch, shoe_table
 from .softening import Ritz, Softening, get_softening
@@ -61,7 +61,8 @@ class LoadCase:
         if self.contact is None:
             return None, None
         g0 = self.contact.nodes.gap0
-        out = self.contact.nodes.normal_displacement(self.model.u1)
+        # a spinning elastic drum expands with w^2 too: it adds to the closing speed's gap
+        out = self.contact.nodes.normal_displacement(self.model.u1) - self.contact.drum_gap(1.0)
         pos = out > 0
         if not pos.any():
             return None, None
@@ -74,7 +75,7 @@ class LoadCase:
             return w0, i0
 
         def h(w):
-            return float(np.min(g0 - r.free_normal(w)))
+            return float(np.min(g0 + self.contact.drum_gap(w) - r.free_normal(w)))
 
         hi = w0
         limit = r.omega_limit * (1 - 1e-6) if r.omega_limit else 10 * w0
@@ -83,7 +84,7 @@ class LoadCase:
             if hi >= limit:
                 return None, None
         w = brentq(h, 0.0, hi, xtol=1e-10 * hi, rtol=1e-13)
-        return w, int(np.argmin(g0 - r.free_normal(w)))
+        return w, int(np.argmin(g0 + self.contact.drum_gap(w) - r.free_normal(w)))
 
     @property
     def engagement_rpm(self) -> float | None:
@@ -106,11 +107,15 @@ class LoadCase:
         if key in self._memo:
             lam, act = self._memo[key]
             return lam.copy(), act.copy()
-        q = self.contact.nodes.gap0 - self.response.free_normal(omega)
+        q = self.contact.nodes.gap0 + self.contact.drum_gap(omega) - self.response.free_normal(omega)
         if active0 is None or not active0.any():  # first contact: start from the deepest node
             active0 = np.zeros(len(q), dtype=bool)  # (every node with q < 0 would condense
             active0[int(np.argmin(q))] = True  # many columns the solution does not need)
-        lam, act = solve_lcp(self.response.columns(omega), q, active0)
+        G = self.response.columns(omega)
+        Cd = self.contact.drum_compliance
+        if Cd is not None:  # elastic drum: G + C_d
+            G = lazy(lambda idx, G=G: G(idx) + Cd[:, idx])
+        lam, act = solve_lcp(G, q, active0)
         if len(self._memo) >= MEMO_STATES:
             self._memo.pop(next(iter(self._memo)))
         self._memo[key] = (lam.copy(), act.copy())
@@ -125,8 +130,10 @@ class LoadCase:
 
     @property
     def scale(self) -> float:
+        """Totals of the whole clutch / totals of the model (sector and mid-plane symmetry)."""
         cm = self.model.cm
-        return cm.n_shoes_total / cm.n_shoes_model if cm.sector_angle else 1.0
+        s = cm.n_shoes_total / cm.n_shoes_model if cm.sector_angle else 1.0
+        return s * getattr(self.model, "symmetry_factor", 1.0)
 
 
 def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:

@@ -34,6 +34,9 @@ def analyze(
     material: Optional[str] = typer.Option(None, "--material", help=_OP.help("material")),
     softening: Optional[str] = typer.Option(None, "--spin-softening", help=_OP.help("softening")),
     formulation: Optional[str] = typer.Option(None, "--formulation", help=_OP.help("formulation")),
+    layers: Optional[str] = typer.Option(None, "--layers", help=_OP.help("layers")),
+    drum_wall: Optional[str] = typer.Option(None, "--drum-wall", help=_OP.help("drum_wall")),
+    drum_state: Optional[str] = typer.Option(None, "--drum-state", help=_OP.help("drum_state")),
     json_: bool = typer.Option(False, "--json", help="print the JSON document"),
     out: Optional[Path] = typer.Option(None, "--out", help="folder for plots and tables"),
     mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm)"),
@@ -61,7 +64,8 @@ def analyze(
         eng = EngineCurve.from_csv(engine, idle_rpm=idle_rpm) if engine else EngineCurve.default()
         mat = material_from(material, None, None, None)
         op = operating_point(mat, drum_radius=drum_radius, mu=mu, rotation=rotation, thickness=thickness,
-                             softening=softening, formulation=formulation, rpm=rpm)
+                             softening=softening, formulation=formulation, rpm=rpm,
+                             layers=layers, drum_wall=drum_wall, drum_state=drum_state)
         if op.rpm is not None:
             check_speeds(op.speeds(), eng)
         size = length_option("size", mesh_size)

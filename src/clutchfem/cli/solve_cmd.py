@@ -38,6 +38,9 @@ def solve(
     model: str = typer.Option("sector", "--model", help="sector (cyclic) or full"),
     softening: Optional[str] = typer.Option(None, "--spin-softening", help=_OP.help("softening")),
     formulation: Optional[str] = typer.Option(None, "--formulation", help=_OP.help("formulation")),
+    layers: Optional[str] = typer.Option(None, "--layers", help=_OP.help("layers")),
+    drum_wall: Optional[str] = typer.Option(None, "--drum-wall", help=_OP.help("drum_wall")),
+    drum_state: Optional[str] = typer.Option(None, "--drum-state", help=_OP.help("drum_state")),
     no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery"),
 ):
     """Speed sweep: engagement, contact forces and arc, friction torque (drum held), stresses."""
@@ -48,7 +51,8 @@ def solve(
         check_out_dir(out)
         mat = material_from(material, E, nu, rho)
         op = operating_point(mat, drum_radius=drum_radius, mu=mu, rotation=rotation, thickness=thickness,
-                             softening=softening, formulation=formulation, rpm=rpm)
+                             softening=softening, formulation=formulation, rpm=rpm,
+                             layers=layers, drum_wall=drum_wall, drum_state=drum_state)
         speeds = op.speeds()
         which = parse_rpm(vtk_rpm) if vtk_rpm else np.array([float(speeds.max())])
         if vtk:

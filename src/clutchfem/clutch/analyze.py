@@ -556,7 +556,8 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                      "pivot or nominal shoe arc (shoe mass from the mesh is reported for information); "
                      "every FE answer (engagement, slip, torque, stress, shoe character, mu sensitivity) "
                      "is given")
-    part = mesh_mass_properties(design.cm, material.rho, design.thickness, design.model.basis)
+    basis = design.model.basis if design.model.basis.mesh is design.cm.mesh else None  # 3-D: its own
+    part = mesh_mass_properties(design.cm, material.rho, design.thickness, basis)
     if coupling.get("kind") and character in ("plus", "minus") and coupling["kind"] != character:
         warnings.append(f"the FE model behaves as a {character} shoe but the flexure arrangement "
                         f"suggests a {coupling['kind']} shoe: the analytical curves assume "
