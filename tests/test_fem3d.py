@@ -338,3 +338,25 @@ def test_concept4_3d_cli_json(tmp_path):
         out[form] = json.loads(r.stdout)["engagement_rpm"]
     print(f"\nconcept4 engagement: {out}")
     assert out["plane-stress"] < out["3d"] < out["plane-strain"]
+
+
+def test_3d_geometric_stiffness_matches_skfem_form(sectors):
+    from skfem.helpers import grad
+
+    from clutchfem.nonlinear import geometric_stiffness
+
+    fe = build_fe_model_3d(sectors[4e-3], STEEL, settings=ExtrusionSettings(layers=1))
+    u = fe.u1
+    lam, mu = fe.lame
+
+    @BilinearForm
+    def kg(du, v, w):
+        g = w["p"].grad
+        eps = 0.5 * (g + g.transpose(1, 0, 2, 3))
+        tr = eps[0, 0] + eps[1, 1] + eps[2, 2]
+        sig = 2 * mu * eps + lam * tr * np.eye(3)[:, :, None, None]
+        return np.einsum("ab...,ca...,cb...->...", sig, grad(du), grad(v))
+
+    K2 = asm(kg, fe.basis, p=fe.basis.interpolate(u))
+    K1 = geometric_stiffness(fe, u)
+    assert abs(K1 - K2).max() < 1e-12 * abs(K2).max()

@@ -517,6 +517,31 @@ def _stiffness(sb: Basis, lam: float, mu: float) -> sp.csr_matrix:
     return sp.coo_matrix((Ke.ravel(), (r, c)), shape=(N, N)).tocsr()
 
 
+def geometric_stiffness_3d(model: "FEModel3D", u: np.ndarray) -> sp.csr_matrix:
+    """Geometric stiffness of the (linear) pre-stress sigma(u): int sigma : (grad du' grad v)
+    over the modelled volume, K[(k, c), (l, c)] = int sigma_ab d_a phi_k d_b phi_l."""
+    sb = model._sb
+    lam, mu = model.lame
+    g = model.basis.interpolate(u).grad  # (3, 3, ne, nq): d u_i / d x_j
+    eps = 0.5 * (g + g.transpose(1, 0, 2, 3))
+    tr = eps[0, 0] + eps[1, 1] + eps[2, 2]
+    sig = 2 * mu * eps + lam * tr[None, None] * np.eye(3)[:, :, None, None]
+    nb = sb.Nbfun
+    G = np.stack([sb.basis[k][0].grad for k in range(nb)])  # (nb, 3, ne, nq)
+    SG = np.einsum("abeq,lbeq->aleq", sig * sb.dx[None, None], G)  # (3, nb, ne, nq)
+    kg = np.einsum("kaeq,aleq->ekl", G, SG)  # (ne, nb, nb)
+    Ke = np.zeros((len(kg), nb, 3, nb, 3))
+    for c in range(3):
+        Ke[:, :, c, :, c] = kg
+    Ke = Ke.reshape(len(kg), 3 * nb, 3 * nb)
+    ed = sb.element_dofs
+    dofs = (3 * ed.T[:, :, None] + np.arange(3)[None, None, :]).reshape(len(Ke), -1)
+    r = np.repeat(dofs, 3 * nb, axis=1).ravel()
+    c_ = np.tile(dofs, (1, 3 * nb)).ravel()
+    N = 3 * sb.N
+    return sp.coo_matrix((Ke.ravel(), (r, c_)), shape=(N, N)).tocsr()
+
+
 def _component_dofs(basis: Basis, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     d = basis.get_dofs(facets)
     return tuple(np.asarray(d.all(f"u^{c}"), dtype=np.int64) for c in (1, 2, 3))

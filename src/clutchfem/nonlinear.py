@@ -169,9 +169,14 @@ class _Kinematics:
 
 def geometric_stiffness(fe, u1: np.ndarray) -> sp.csr_matrix:
     """Geometric stiffness of the pre-stress sigma1 of the displacement u1 (the linear
-    centrifugal field at w = 1): K_sigma1 = h int sigma1 : (grad du' grad v), N x N.
+    centrifugal field at w = 1): K_sigma1 = h int sigma1 : (grad du' grad v), N x N (2-D,
+    with the model's Lame pair; a 3-D model gets the volume form, :mod:`clutchfem.fem3d`).
     The linearised prestressed operator at speed w is K + w^2 (K_sigma1 - M)."""
-    lam, mu = fe.material.lame_plane_stress()
+    if fe.basis.mesh.dim() == 3:
+        from .fem3d import geometric_stiffness_3d
+
+        return geometric_stiffness_3d(fe, u1)
+    lam, mu = fe.lame if hasattr(fe, "lame") else fe.material.lame_plane_stress()
     kin = _Kinematics(fe.basis, lam, mu, fe.thickness)
     s = kin.linear_stress(u1)
     GS = np.einsum("eqka,eqab->eqkb", kin.G, s)
@@ -472,3 +477,135 @@ class NonlinearModel:
 class _NoConvergence(Exception):
     def __init__(self, omega, res):
         super().__init__(f"no convergence at {omega} rad/s (residual {res:.3g})")
+
+
+class PrestressedModel:
+    """The linear fast path with the centrifugal pre-stress stiffness: a view of a 2-D
+    :class:`~clutchfem.fem.FEModel` whose spin-softening operator is M - K_sigma1, so that
+
+        (K - w^2 (M - K_sigma1)) u = w^2 f1 + D lam
+
+    is solved by the unchanged softening strategies (``Exact``: per-speed factorisation;
+    ``Ritz``: the one factorisation of K, mode acceleration on Ritz pairs of (K, M - K_sigma1)).
+    Everything else (K, f1, T, the factorisation, u1, stresses) is the base model's.  Both
+    terms are linear in w^2: the same cost as spin softening alone (one extra assembly of
+    K_sigma1 from u1).  Where M - K_sigma1 is indefinite (compressed regions stiffen less
+    than the mass softens ... or more), the Ritz space keeps its M-positive part only; its
+    error against ``Exact`` is measured in the benchmark."""
+
+    def __init__(self, model):
+        self.__dict__["_base"] = model
+
+    def __getattr__(self, name):
+        return getattr(self.__dict__["_base"], name)
+
+    @property
+    def K_sigma1(self):
+        d = self.__dict__
+        if "_Ks" not in d:
+            t0 = time.perf_counter()
+            d["_Ks"] = geometric_stiffness(self._base, self._base.u1)
+            self._base.timings["prestress_s"] = time.perf_counter() - t0
+        return d["_Ks"]
+
+    @property
+    def M(self):
+        d = self.__dict__
+        if "_M" not in d:
+            d["_M"] = (self._base.M - self.K_sigma1).tocsr()
+        return d["_M"]
+
+    @property
+    def Mr(self):
+        d = self.__dict__
+        if "_Mr" not in d:
+            d["_Mr"] = (self.T.T @ self.M @ self.T).tocsc()
+        return d["_Mr"]
+
+
+@dataclass(frozen=True)
+class PrestressRitz:
+    """Spin softening *and* centrifugal pre-stress stiffening on the one factorisation of K:
+    mode acceleration on Ritz pairs of (K, M - K_sigma1), a softening strategy for
+    :class:`clutchfem.sweep.LoadCase` (``LoadCase(model, contact, PrestressRitz())``).
+
+    M_eff = M - K_sigma1 is indefinite (the tensioned flexure stiffens more than its mass
+    softens it), so the space is K-orthonormalised instead of M-orthonormalised: with V the
+    block Krylov space of K^-1 M_eff seeded like :func:`clutchfem.softening.ritz_pairs`,
+    Psi = V Y K-orthonormal and M_eff Psi ~ K Psi diag(theta) (theta = 1 / w_j^2, negative for
+    stiffened directions),
+
+        (K - w^2 M_eff)^-1 ~ K^-1 + sum_j psi_j psi_j' w^2 theta_j / (1 - w^2 theta_j),
+
+    which is the usual mode-acceleration formula for theta > 0 and stays valid for theta <= 0.
+    The divergence speed is 1 / sqrt(max theta) (None if no theta > 0).  Its error against the
+    per-speed factorisation (``Exact`` on :class:`PrestressedModel`) is measured in
+    ``benchmarks/bench_modelform.py``."""
+
+    depth: int = 3
+    name = "prestress"
+
+    def __post_init__(self):
+        if isinstance(self.depth, bool) or not isinstance(self.depth, int) or not 1 <= self.depth <= 20:
+            raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
+
+    def bind(self, model, contact):
+        from .softening import _ModalResponse
+
+        friction = 0.0 if contact is None else contact.friction
+        key = ("prestress", self.depth, None if contact is None else id(contact.nodes), friction)
+        cache = model.__dict__.setdefault("_ritz_cache", {})
+        if key not in cache:  # the nodes are kept with the pairs: their id is never reused
+            cache[key] = (None if contact is None else contact.nodes,
+                          _prestress_pairs(PrestressedModel(model), contact, self.depth))
+        theta, Psi = cache[key][1]
+
+        class _Response(_ModalResponse):
+            def coefficients(self, omega: float) -> np.ndarray:
+                w2 = omega * omega
+                if self.omega_limit is not None and w2 >= self.omega_limit ** 2 * (1 - 1e-9):
+                    raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm reaches the divergence speed "
+                                      f"{rad_s_to_rpm(self.omega_limit):.0f} rpm of the prestressed free part")
+                return w2 * theta / (1.0 - w2 * theta)
+
+        r = _Response(model, contact, np.ones(len(theta)), Psi)
+        tmax = float(theta.max(initial=0.0))
+        r.omega_limit = 1.0 / math.sqrt(tmax) if tmax > 0 else None
+        r.linear = False
+        return r
+
+
+def _prestress_pairs(pm: PrestressedModel, contact, depth: int):
+    from .units import wrap_angle
+
+    seeds = [pm.f1]
+    if contact is not None:
+        nd = contact.nodes
+        for s_ in np.unique(nd.shoe):
+            sel = np.nonzero(nd.shoe == s_)[0]
+            a = wrap_angle(nd.angle[sel] - nd.angle[sel].mean())
+            for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
+                seeds.append(contact.load[:, sel] @ wgt)
+    Kr, Mr, T = pm.Kr, pm.Mr, pm.T
+    blocks: list[np.ndarray] = []
+
+    def k_orthonormal(X):
+        for _ in range(2):
+            for Vb in blocks:
+                X = X - Vb @ (Vb.T @ (Kr @ X))
+        G = X.T @ (Kr @ X)
+        d, Q = np.linalg.eigh((G + G.T) / 2)
+        keep = d > max(d.max(), 0.0) * 1e-12
+        return X @ (Q[:, keep] / np.sqrt(d[keep]))
+
+    X = pm.factor.solve(T.T @ np.column_stack(seeds))
+    for _ in range(depth):
+        X = k_orthonormal(X)
+        if X.shape[1] == 0:
+            break
+        blocks.append(X)
+        X = pm.factor.solve(Mr @ X)
+    V = np.hstack(blocks)
+    Mv = V.T @ (Mr @ V)
+    theta, Y = np.linalg.eigh((Mv + Mv.T) / 2)
+    return theta, T @ (V @ Y)

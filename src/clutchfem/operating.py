@@ -42,8 +42,10 @@ class OperatingPoint(ParamSet):
     thickness: float | None = param(None, "m", 0.5e-3, 0.2,
                                     "axial thickness of the part (default: the concept's; user mesh 11 mm)")
     material: Material = get_material("51CrV4")
-    softening: Literal["ritz", "modal", "exact", "off"] = choice(
-        "ritz", "spin softening: ritz (mode acceleration, default; alias modal), exact (reference), off")
+    softening: Literal["ritz", "modal", "exact", "off", "prestress"] = choice(
+        "ritz", "spin softening: ritz (mode acceleration, default; alias modal), exact (reference), off, "
+        "prestress (ritz plus the centrifugal pre-stress stiffness of the flexures: geometric non-linearity "
+        "to first order)")
     formulation: Literal["plane-stress", "plane-strain", "3d"] = choice(
         "plane-stress", "formulation: plane-stress (thin part), plane-strain (long part) or 3d "
         "(the 2-D mesh extruded through the thickness, P2 tetrahedra)")

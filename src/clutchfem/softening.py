@@ -109,12 +109,17 @@ SOFTENINGS = {"ritz": Ritz, "modal": Ritz, "exact": Exact, "off": Off}
 
 def get_softening(spec) -> Softening:
     """A strategy from an instance or a name ('ritz' (alias 'modal'), 'exact', 'off')."""
-    if isinstance(spec, (Off, Ritz, Exact)):
-        return spec
+    if isinstance(spec, (Off, Ritz, Exact)) or (callable(getattr(spec, "bind", None)) and hasattr(spec, "name")):
+        return spec  # (any strategy with bind(model, contact) and a name, e.g. nonlinear.PrestressRitz)
     if isinstance(spec, str) and spec.strip().lower() in SOFTENINGS:
         return SOFTENINGS[spec.strip().lower()]()
+    if isinstance(spec, str) and spec.strip().lower() == "prestress":
+        from .nonlinear import PrestressRitz  # softening + centrifugal pre-stress stiffness
+
+        return PrestressRitz()
     raise ParameterError("softening", spec, "'ritz' (mode acceleration, default; alias 'modal'), "
-                         "'exact' (per-speed factorisation, reference) or 'off'")
+                         "'exact' (per-speed factorisation, reference), 'off' or 'prestress' (ritz with the "
+                         "centrifugal pre-stress stiffness)")
 
 
 def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndarray, np.ndarray]:
