@@ -360,3 +360,32 @@ def test_3d_geometric_stiffness_matches_skfem_form(sectors):
     K2 = asm(kg, fe.basis, p=fe.basis.interpolate(u))
     K1 = geometric_stiffness(fe, u)
     assert abs(K1 - K2).max() < 1e-12 * abs(K2).max()
+
+
+def test_plane_stress_estimate_against_a_3d_flexure_and_concept4(tmp_path):
+    """The chi table of :mod:`clutchfem.modelerror` is reproduced by a 3-D clamped flexure
+    (h / L = 0.42, 3 layers) and brackets concept 4's measured engagement shift."""
+    from skfem import FacetBasis, LinearForm
+
+    from clutchfem.modelerror import plane_stress_estimate
+    from clutchfem.testshapes import load_cantilever
+
+    L, t, h = 19e-3, 1.75e-3, 8e-3
+    cm = load_cantilever(tmp_path / "flex.msh", L, t, t / 4, depth=1.0)
+    c = {}
+    for form in ("plane-stress", "plane-strain"):
+        fe = FEModel(cm, STEEL, h, formulation=form)
+        fb = FacetBasis(cm.mesh, fe.basis.elem, facets=cm.boundary("tip"), intorder=4)
+        F = asm(LinearForm(lambda v, w: v[1] / t), fb)
+        c[form] = F @ fe.solve(F)
+    fe3 = build_fe_model_3d(cm, STEEL, h, settings=ExtrusionSettings(layers=3))
+    fb3 = FacetBasis(fe3.em.mesh, fe3.basis.elem, facets=fe3.em.boundary("tip"), intorder=4)
+    F3 = asm(LinearForm(lambda v, w: v[1] / (t * h)), fb3)
+    c3 = 2 * F3 @ fe3.solve(F3)
+    chi = (c3 - c["plane-stress"]) / (c["plane-strain"] - c["plane-stress"])
+    est = plane_stress_estimate(h, L, STEEL.nu)
+    print(f"\nflexure h/L = {h / L:.3f}: chi 3-D {chi:.4f}, table {est.chi:.4f}; {est.note}")
+    assert chi == pytest.approx(est.chi, abs=0.02)
+    # concept 4 default (h = 11 mm, L_f = 19 mm): measured plane stress / 3-D - 1 = -2.2 %
+    e4 = plane_stress_estimate(11e-3, 19e-3, 0.3)
+    assert abs(4179.0 / 4275.0 - 1 - e4.engagement_error) <= e4.engagement_band
