@@ -42,7 +42,7 @@ def summary_rows(an) -> list[tuple[str, str]]:
          + (f" (polar angle {an.first_touch_angle_deg:.1f} deg)"
             if an.first_touch == "unknown" and getattr(an, "first_touch_angle_deg", None) is not None else "")),
     ]
-    if an.slip_status in ("never slips", "never engages"):
+    if an.slip_status in ("never holds", "never engages"):
         rows.append(("slip speed (drum held, full throttle)", an.slip_status.upper()))
     else:
         rows.append(("slip speed (drum held, full throttle)", _fmt(an.slip_rpm, ".0f", "rpm")))

@@ -97,10 +97,12 @@ class Requirements:
 class SlipAnswer:
     """Slip speed with the drum held and full throttle.
 
-    ``status``: 'slips' (clutch torque meets the engine curve at ``rpm``), 'holds at start'
-    (the clutch already holds the engine torque at the lowest speed of the engine curve),
-    'never slips' (clutch torque stays below the engine curve: the engine runs to its maximum
-    speed), 'never engages' (no contact within the engine's speed range).
+    ``status``: 'slips' (clutch torque meets the engine curve at ``rpm``: below it the clutch
+    slips, there it holds the engine), 'holds at start' (the clutch already holds the engine
+    torque at the lowest speed of the engine curve), 'never holds' (the clutch torque stays
+    below the engine torque at every speed: it slips all the way and the engine runs to its
+    maximum speed; mu = 0 or an engine far stronger than the clutch), 'never engages' (no
+    contact within the engine's speed range: no torque at all).
     """
 
     rpm: float | None
@@ -204,6 +206,10 @@ class Analysis:
     #: polar angle [deg] of the first contact node (drum frame); with a user mesh the shoe's
     #: root and tip are unknown, so ``first_touch`` is 'unknown' and this angle locates it
     first_touch_angle_deg: float | None = None
+    #: everything that defines the answers (clutchfem.traceability.design_inputs) and the
+    #: file-name stem that tells this design apart from others in one folder
+    inputs: dict = field(default_factory=dict)
+    label: str = ""
 
     def to_json(self) -> dict:
         from ..jsonio import clean
@@ -238,10 +244,13 @@ def slip_answer(engine: EngineCurve, clutch_torque_at_rpm, engagement_rpm: float
                  + ", ".join(f"{r:.0f} rpm {d}" for r, d in cross)
                  + "): the engine stops at the first upward crossing")
     if s is None:
-        return SlipAnswer(None, "never slips",
-                          f"never slips: the clutch torque stays below the engine torque up to "
-                          f"{hi:.0f} rpm, so with the drum held the engine runs to its maximum speed"
-                          + extra, cross)
+        t_max = float(np.max(np.asarray(clutch_torque_at_rpm(np.array([hi])), dtype=float)))
+        why = ("the clutch transmits no torque (mu = 0?)" if t_max <= 0 else
+               f"the clutch torque stays below the engine torque up to {hi:.0f} rpm "
+               f"({t_max:.3g} N m there against {float(engine.torque_at(hi)):.3g} N m)")
+        return SlipAnswer(None, "never holds",
+                          f"never holds: {why}; with the drum held the clutch slips at every speed and "
+                          f"the engine runs to its maximum speed" + extra, cross)
     if not ups or s <= lo * (1 + 1e-12):
         return SlipAnswer(float(s), "holds at start",
                           f"the clutch already holds the engine torque at {lo:.0f} rpm, the lowest "
@@ -505,6 +514,7 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curve's, else 2700 rpm, ASSUMED).  A user mesh (``design.params`` None) gets every FE
     answer; the analytical curves are then NaN and ``analytical_available`` is False."""
     from ..design import Design
+    from ..traceability import design_inputs, design_label
 
     if not isinstance(design, Design):
         raise ParameterError("design", type(design).__name__, "a clutchfem.design.Design (mesh + operating point)")
@@ -567,6 +577,12 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     for col in ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm"):
         models[col] = float(curves[col].iloc[k_nom])
     arc_probe = float(curves["contact_arc_deg"].iloc[k_nom])
+    # the sweep's own numerical and model-applicability warnings (stress is checked below
+    # at the engine's maximum speed)
+    from ..checks import model_warnings
+
+    warnings += list(res.warnings) + [w for w in model_warnings(res, material.yield_strength)
+                                      if not w.startswith("STRESS ABOVE YIELD")]
     # 7: stress at the engine's maximum speed
     st = stress_step(res, hi, material)
     fy = st.yield_strength_Pa
@@ -593,7 +609,8 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                         f"a x idle = {req.a:g} x {idle_rpm:.0f} = {checks['engagement_limit_rpm']:.0f} rpm "
                         "(chain may move at idle)")
     if not checks["slip_ok"]:
-        got = {"never slips": "never slips", "never engages": "never engages"}.get(
+        got = {"never holds": "the clutch never holds the engine (slips at every speed)",
+               "never engages": "never engages"}.get(
             slip.status, f"slip {slip.rpm:.0f} rpm" if slip.rpm is not None else "no slip speed")
         warnings.append(f"REQUIREMENT NOT MET: {got}; required slip below b x rpm(max torque) = "
                         f"{req.b:g} x {engine.rpm_max_torque:.0f} = {checks['slip_limit_rpm']:.0f} rpm")
@@ -618,7 +635,9 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                     mu=float(op.mu), mu_sensitivity=sens.as_dict(), torque_models_at_max_engine_torque_Nm=models,
                     contact_arc_at_max_engine_torque_deg=arc_probe, requirements=checks, engine=eng_info,
                     coupling=coupling, curves=curves, first_touch=res.first_touch, warnings=warnings, notes=notes,
-                    part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg)
+                    part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg,
+                    inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
+                    label=design_label(design))
 
 
 def mesh_mass_properties(cm, rho: float, thickness: float, basis=None) -> dict:

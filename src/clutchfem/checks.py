@@ -1,0 +1,159 @@
+"""Is the answer right, and does the model apply?  Checks every sweep runs on itself.
+
+* **Equilibrium residual** per speed: the discrete equations the load case claims to solve,
+  r = T' [(K - w^2 M) u - w^2 f1 - D lam] (without the M term when spin softening is off),
+  relative to the applied load T' [w^2 f1 + w^2 M u + D lam].  Exact solves (softening off or
+  exact) leave round-off times the conditioning; the Ritz mode acceleration leaves its
+  truncation error, so the residual is also that approximation's error indicator.
+* **Torque balance** per speed: the moment of the bore reactions about the axis balances the
+  moment of the applied loads (rigid rotations are in the null space of K, and on a
+  one-sector model the two cut lines' reactions cancel), a global check of the constraints
+  independent of the LCP.  Without spin softening the applied moment is the friction torque
+  alone (the centrifugal and normal contact loads have no moment about the axis).  With it,
+  the linearised softening load w^2 M u applied at the undeformed position has a moment
+  w^2 rho' M u about the axis that the real centrifugal load, acting at the deformed
+  position, does not have: a model-form artefact of linear spin softening without the
+  consistent stress-stiffening term (see BENCHMARKS.md, model-form error).
+* **Condition estimate** of the reduced stiffness T' K T: ||K||_1 ||K^-1||_1 with the second
+  factor from Hager/Higham's estimator (``scipy.sparse.linalg.onenormest``, a few solves
+  with the existing factorisation).
+* **Model applicability** (:func:`model_warnings`): stress above yield, displacement beyond the
+  clearance (something other than the shoes' contact surface would reach the drum, or the
+  small-displacement model is stretched), speeds near the divergence speed of the free part,
+  no drum at all.
+
+Past the thresholds below a sweep fails loudly (:class:`~clutchfem.errors.SolverError`)
+instead of returning a number nobody can trust.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.sparse.linalg as spla
+
+from .errors import SolverError
+
+#: relative equilibrium residual above which a sweep is refused
+RESIDUAL_FAIL = 1e-4
+#: condition estimate of T' K T above which the model is refused (double precision keeps
+#: ~16 digits: 1e14 leaves two) and above which a warning is given
+CONDITION_FAIL = 1e14
+CONDITION_WARN = 1e12
+#: share of the divergence speed above which a warning is given
+DIVERGENCE_WARN = 0.9
+#: max displacement / largest initial contact gap above which a warning is given
+DISPLACEMENT_WARN = 1.5
+
+
+def condition_estimate(model) -> float:
+    """1-norm condition estimate of the reduced stiffness (cached on the model)."""
+    if "_cond" not in model.__dict__:
+        Kr, f = model.Kr, model.factor
+        n1 = float(abs(Kr).sum(axis=0).max())
+        op = spla.LinearOperator(Kr.shape, matvec=f.solve, rmatvec=f.solve, matmat=f.solve, dtype=float)
+        model.__dict__["_cond"] = n1 * float(spla.onenormest(op))
+    return model.__dict__["_cond"]
+
+
+def rotation_field(basis) -> np.ndarray:
+    """rho (ndofs,): the displacement of a unit rigid rotation about the axis, (-y, x)."""
+    rho = np.zeros(basis.N)
+    for comp, sign in ((0, -1.0), (1, 1.0)):
+        d = np.concatenate([basis.nodal_dofs[comp], basis.facet_dofs[comp]])
+        rho[d] = sign * basis.doflocs[1 - comp, d]
+    return rho
+
+
+def equilibrium(model, contact, softened: bool, fields, omegas: np.ndarray, lam: np.ndarray,
+                chunk: int = 64) -> tuple[np.ndarray, np.ndarray]:
+    """(relative residual, torque-balance error) per state (see module docstring).  The
+    torque-balance error is |T_bore + T_applied| / (sum of |moments| of the applied loads).
+    Costs two sparse products with the sweep's reduced basis and small dense ones per speed."""
+    ns = len(omegas)
+    res = np.zeros(ns)
+    tq = np.zeros(ns)
+    if ns == 0:
+        return res, tq
+    K, T, f1 = model.K, model.T, model.f1
+    M = model.M if softened else None
+    D = None if contact is None else contact.load
+    rho = rotation_field(model.basis)
+    bore = np.unique(model.basis.get_dofs(model.cm.boundary("bore")).all())
+    if fields.U is None:
+        KB = K @ fields.basis
+        MB = M @ fields.basis if softened else None
+    for a in range(0, ns, chunk):
+        sl = slice(a, min(a + chunk, ns))
+        w2 = omegas[sl] ** 2
+        if fields.U is None:
+            C = fields.coef[:, sl]
+            Ku = KB @ C
+            Mu = MB @ C if softened else None
+        else:
+            U = fields.U[:, sl]
+            Ku = K @ U
+            Mu = M @ U if softened else None
+        load = f1[:, None] * w2[None, :]
+        if softened:
+            load = load + Mu * w2[None, :]
+        if D is not None:
+            load = load + D @ lam[sl].T
+        R = Ku - load  # all dofs: the reactions at the clamped ones
+        scale = np.linalg.norm(T.T @ load, axis=0)
+        res[sl] = np.linalg.norm(T.T @ R, axis=0) / np.maximum(scale, 1e-300)
+        t_bore = rho[bore] @ R[bore]
+        t_applied = rho @ load
+        tq[sl] = np.abs(t_bore + t_applied) / np.maximum(np.abs(rho) @ np.abs(load), 1e-300)
+    return res, tq
+
+
+def check_numerics(residual: np.ndarray, cond: float, rpm: np.ndarray) -> list[str]:
+    """Refuse (SolverError) past the thresholds; return warnings below them."""
+    warns = []
+    if not math.isfinite(cond) or cond > CONDITION_FAIL:
+        raise SolverError(f"the stiffness matrix is too ill-conditioned to trust (1-norm condition estimate "
+                          f"{cond:.2g} > {CONDITION_FAIL:.0e}): a flexure far too slender for its mesh, "
+                          "badly shaped elements or a part that is barely held; refine or thicken it")
+    if cond > CONDITION_WARN:
+        warns.append(f"ill-conditioned stiffness (condition estimate {cond:.2g}): results may carry "
+                     f"~{cond * 1e-16:.0e} relative round-off")
+    if residual.size:
+        k = int(np.argmax(residual))
+        if not np.all(np.isfinite(residual)) or residual[k] > RESIDUAL_FAIL:
+            raise SolverError(f"equilibrium residual {residual[k]:.2g} at {rpm[k]:.0f} rpm exceeds "
+                              f"{RESIDUAL_FAIL:g} of the applied load: the solution is not in equilibrium "
+                              "(spin softening near divergence? --spin-softening exact checks it)")
+    return warns
+
+
+def model_warnings(res, yield_strength: float) -> list[str]:
+    """Plain warnings where the model's answer is suspect or the design fails (module doc)."""
+    out = []
+    c = res.curve
+    if res.contact is None:
+        out.append("no drum: free spin only (no contact, no torque, no engagement speed); give the drum "
+                   "radius to analyse the clutch")
+    if "max_von_mises_Pa" in c and c["max_von_mises_Pa"].notna().any():
+        vm_all = c["max_von_mises_Pa"].to_numpy()
+        k = int(np.nanargmax(vm_all))
+        vm = float(vm_all[k])
+        if vm > yield_strength:
+            first = float(c["rpm"][c["max_von_mises_Pa"] > yield_strength].min())
+            out.append(f"STRESS ABOVE YIELD: peak von Mises {vm / 1e6:.0f} MPa at {c['rpm'].iloc[k]:.0f} rpm "
+                       f"exceeds the yield strength {yield_strength / 1e6:.0f} MPa (from {first:.0f} rpm on): "
+                       "a linear-elastic answer past yield is not physical")
+    if res.contact is not None and len(c):
+        gap = float(np.max(res.contact.nodes.gap0))
+        umax = float(c["max_displacement_m"].max())
+        if gap > 0 and umax > DISPLACEMENT_WARN * gap:
+            out.append(f"DISPLACEMENT BEYOND THE CLEARANCE: the part moves up to {umax * 1e3:.3g} mm, "
+                       f"{umax / gap:.1f} x the largest shoe-drum gap ({gap * 1e3:.3g} mm): something other "
+                       "than the shoes' contact surface may reach the drum (only the contact group is "
+                       "checked against it), and the small-displacement model is stretched")
+    if res.divergence_rpm is not None and len(res.rpm) and res.rpm.max() > DIVERGENCE_WARN * res.divergence_rpm:
+        out.append(f"speeds up to {res.rpm.max():.0f} rpm come within {100 * (1 - DIVERGENCE_WARN):.0f} % of the "
+                   f"divergence speed {res.divergence_rpm:.0f} rpm of the free part (spin softening): answers "
+                   "there are very sensitive to every input")
+    return out
