@@ -17,10 +17,10 @@
 * **Condition estimate** of the reduced stiffness T' K T: ||K||_1 ||K^-1||_1 with the second
   factor from Hager/Higham's estimator (``scipy.sparse.linalg.onenormest``, a few solves
   with the existing factorisation).
-* **Model applicability** (:func:`model_warnings`): stress above yield, displacement beyond the
-  clearance (something other than the shoes' contact surface would reach the drum, or the
-  small-displacement model is stretched), speeds near the divergence speed of the free part,
-  no drum at all.
+* **Model applicability** (:func:`model_warnings`): stress above yield, a node outside the
+  contact group passing the drum radius (only the contact surface is held by the drum),
+  displacements large against the part (the small-displacement model is stretched), speeds
+  near the divergence speed of the free part, no drum at all.
 
 Past the thresholds below a sweep fails loudly (:class:`~clutchfem.errors.SolverError`)
 instead of returning a number nobody can trust.
@@ -43,8 +43,9 @@ CONDITION_FAIL = 1e14
 CONDITION_WARN = 1e12
 #: share of the divergence speed above which a warning is given
 DIVERGENCE_WARN = 0.9
-#: max displacement / largest initial contact gap above which a warning is given
-DISPLACEMENT_WARN = 1.5
+#: max displacement / drum radius above which the small-displacement model is said to be
+#: stretched (the model-form error of geometric non-linearity: BENCHMARKS.md)
+DISPLACEMENT_WARN = 0.05
 
 
 def condition_estimate(model) -> float:
@@ -145,15 +146,44 @@ def model_warnings(res, yield_strength: float) -> list[str]:
                        f"exceeds the yield strength {yield_strength / 1e6:.0f} MPa (from {first:.0f} rpm on): "
                        "a linear-elastic answer past yield is not physical")
     if res.contact is not None and len(c):
-        gap = float(np.max(res.contact.nodes.gap0))
+        k, depth, where = drum_intrusion(res)
+        if depth > 0:
+            out.append(f"PART REACHES THE DRUM OUTSIDE THE CONTACT SURFACE: at {res.rpm[k]:.0f} rpm a node at "
+                       f"({where[0] * 1e3:.2f}, {where[1] * 1e3:.2f}) mm passes the drum radius by "
+                       f"{depth * 1e3:.3g} mm; only the contact group is held by the drum, so the answer "
+                       "there is not physical (add that surface to the contact group, or change the design)")
         umax = float(c["max_displacement_m"].max())
-        if gap > 0 and umax > DISPLACEMENT_WARN * gap:
-            out.append(f"DISPLACEMENT BEYOND THE CLEARANCE: the part moves up to {umax * 1e3:.3g} mm, "
-                       f"{umax / gap:.1f} x the largest shoe-drum gap ({gap * 1e3:.3g} mm): something other "
-                       "than the shoes' contact surface may reach the drum (only the contact group is "
-                       "checked against it), and the small-displacement model is stretched")
+        R = res.contact.drum_radius
+        if umax > DISPLACEMENT_WARN * R:
+            out.append(f"LARGE DISPLACEMENT: up to {umax * 1e3:.3g} mm, {100 * umax / R:.1f} % of the drum radius: "
+                       "the small-displacement (linear) model is stretched")
     if res.divergence_rpm is not None and len(res.rpm) and res.rpm.max() > DIVERGENCE_WARN * res.divergence_rpm:
         out.append(f"speeds up to {res.rpm.max():.0f} rpm come within {100 * (1 - DIVERGENCE_WARN):.0f} % of the "
                    f"divergence speed {res.divergence_rpm:.0f} rpm of the free part (spin softening): answers "
                    "there are very sensitive to every input")
     return out
+
+
+def drum_intrusion(res, chunk: int = 64) -> tuple[int, float, tuple[float, float]]:
+    """(state index, depth [m], node position) of the deepest pass of a node that is not a
+    contact node beyond the drum circle, |x + u| - R_d (depth <= 0: none passes)."""
+    b = res.fields.fe_basis
+    xd = b.nodal_dofs[0] if b.facet_dofs.size == 0 else np.concatenate([b.nodal_dofs[0], b.facet_dofs[0]])
+    yd = xd + 1
+    X = b.doflocs[:, xd]
+    nd = res.contact.nodes
+    keep = ~np.isin(xd, nd.dof_x)
+    # a one-sector model's cut_b copies of contact nodes are contact nodes too
+    r0 = np.hypot(X[0], X[1])
+    keep &= r0 < nd.drum_radius - 0.5 * float(np.min(nd.gap0, initial=0.0)) - 1e-12
+    xd, yd, X = xd[keep], yd[keep], X[:, keep]
+    best = (0, -np.inf, (math.nan, math.nan))
+    n = res.fields.n
+    for a in range(0, n, chunk):
+        sl = slice(a, min(a + chunk, n))
+        U = res.fields.block(sl)
+        r = np.hypot(X[0][:, None] + U[xd], X[1][:, None] + U[yd]) - nd.drum_radius
+        i, j = np.unravel_index(int(np.argmax(r)), r.shape)
+        if r[i, j] > best[1]:
+            best = (a + j, float(r[i, j]), (float(X[0, i]), float(X[1, i])))
+    return best

@@ -117,7 +117,15 @@ class LoadCase:
         if active0 is None or not active0.any():  # first contact: start from the deepest node
             active0 = np.zeros(len(q), dtype=bool)  # (every node with q < 0 would condense
             active0[int(np.argmin(q))] = True  # many columns the solution does not need)
-        lam, act = solve_lcp(self.response.columns(omega), q, active0)
+        try:
+            lam, act = solve_lcp(self.response.columns(omega), q, active0)
+        except SolverError as exc:
+            if self.contact.mu == 0.0:
+                raise
+            raise SolverError(f"no bounded contact solution at {rad_s_to_rpm(omega):.0f} rpm with mu = "
+                              f"{self.contact.mu:g}: friction wedges the shoe into the drum (a self-locking plus "
+                              "shoe: unbounded torque in the rigid-drum model, a grabbing clutch in reality); "
+                              f"lower mu or use the minus arrangement ({exc})") from None
         if len(self._memo) >= MEMO_STATES:
             self._memo.pop(next(iter(self._memo)))
         self._memo[key] = (lam.copy(), act.copy())

@@ -58,6 +58,9 @@ DEFAULT_IDLE_RPM = 2700.0
 #: Safety factor below which the report adds a fatigue caution (ASSUMED threshold; yield
 #: itself is the hard limit, sf < 1).
 FATIGUE_CAUTION_SF = 1.5
+#: normal force with / without friction above which a plus shoe is called strongly
+#: self-energising (near self-locking) in the warnings
+SELF_ENERGISING_WARN = 1.5
 #: Friction factors of the mu sensitivity study (mu +- 30 %).
 MU_FACTORS = (0.7, 1.3)
 #: spacing [rpm] of the internal grid on which clutch/engine crossings are bracketed (then
@@ -567,6 +570,12 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                      "every FE answer (engagement, slip, torque, stress, shoe character, mu sensitivity) "
                      "is given")
     part = mesh_mass_properties(design.cm, material.rho, design.thickness, design.model.basis)
+    strong = [p_ for p_ in ch.per_shoe if p_["normal_force_ratio"] > SELF_ENERGISING_WARN]
+    if strong:
+        r = max(p_["normal_force_ratio"] for p_ in strong)
+        warnings.append(f"STRONGLY SELF-ENERGISING (plus) shoe: friction multiplies the normal force by {r:.2f} "
+                        f"at {probe:.0f} rpm (mu = {op.mu:g}): the torque is very sensitive to mu and the clutch "
+                        "grabs, near self-locking; a minus arrangement or lower mu is the robust choice")
     if coupling.get("kind") and character in ("plus", "minus") and coupling["kind"] != character:
         warnings.append(f"the FE model behaves as a {character} shoe but the flexure arrangement "
                         f"suggests a {coupling['kind']} shoe: the analytical curves assume "
