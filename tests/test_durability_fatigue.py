@@ -298,6 +298,13 @@ def test_location_naming_concept1_and_concept2():
     cont_v = m.facets[0, cm.boundary("contact")[3]]
     loc = name_location(cm, m.p[:, cont_v])
     assert loc.boundary == "contact surface" and loc.zone == "shoe_0"
+    # a mid-edge P2 node of the (curved) contact surface counts as well
+    from skfem import Basis, ElementTriP2
+
+    b = Basis(m, ElementTriP2())
+    mid = b.facet_dofs[0, cm.boundary("contact")[3]]
+    assert name_location(cm, b.doflocs[:, mid]).boundary == "contact surface"
+    assert name_location(cm, b.doflocs[:, mid]).description.startswith("shoe 0, on the contact surface")
     # a free edge of the flexure: a boundary vertex of a flexure element not on a named group
     named = set(np.unique(m.facets[:, np.concatenate([np.asarray(v) for v in m.boundaries.values()])]).tolist())
     bnd = set(np.unique(m.facets[:, m.boundary_facets()]).tolist())

@@ -95,7 +95,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 from scipy.stats import norm
 
-from ..errors import InputError, MeshError, ParameterError
+from ..errors import InputError, ParameterError
 from ..mesh import ClutchMesh
 from ..params import ParamSet, choice, param
 
@@ -476,8 +476,8 @@ def fatigue_check(cycles: Sequence[LoadCycle], params: FatigueParams | None = No
                     "mean_Pa": float(sm[i, worst]), "reversed_equivalent_Pa": float(sar1[i]),
                     "allowed_cycles": float(N1[i]), "damage": float(D1[i, worst]),
                     "safety_factor_alone": float(Xi[0]),
-                    "damage_share_at_failure": float(share[i] / share.sum()) if np.isfinite(share).all() and share.sum() > 0
-                    else float(i == gov)})
+                    "damage_share_at_failure": (float(share[i] / share.sum())
+                                                if np.isfinite(share).all() and share.sum() > 0 else float(i == gov))})
     vmax = np.max(np.stack([np.maximum(von_mises(c.state_a), von_mises(c.state_b)) for c in cycles]), axis=0)
     with np.errstate(divide="ignore"):
         ny = np.where(vmax > 0, p.yield_strength / np.where(vmax > 0, vmax, 1.0), np.inf)
@@ -598,16 +598,18 @@ def name_location(cm: ClutchMesh, xy, element: int | None = None) -> Location:
     zname = str(zone[e]) or "part"
     kind = zname.split("_")[0]
     idx = int(zname.split("_")[1]) if "_" in zname and zname.split("_")[1].isdigit() else None
-    # boundary
+    # boundary: the point is one of the P2 nodes (corner or mid-edge) of a boundary facet
     bnd = None
+    nodes = _facet_nodes(cm)
     bfac = mesh.boundary_facets()
-    bverts = np.unique(mesh.facets[:, bfac])
-    dist, j = cKDTree(p[:, bverts].T).query(pt)
+    bnodes = np.unique(nodes[:, bfac])
+    xyn = _p2_nodes(cm)
+    dist, j = cKDTree(xyn[:, bnodes].T).query(pt)
     if dist <= 1e-9 * scale:
-        v = int(bverts[j])
+        v = int(bnodes[j])
         groups = mesh.boundaries or {}
         names = [g for g in ("bore", "contact", "cut_a", "cut_b")
-                 if g in groups and np.isin(v, mesh.facets[:, np.asarray(groups[g])]).any()]
+                 if g in groups and np.isin(v, nodes[:, np.asarray(groups[g])]).any()]
         bnd = {"bore": "bore", "contact": "contact surface", "cut_a": "sector cut", "cut_b": "sector cut"}.get(
             names[0], names[0]) if names else "free edge"
     position = ""
@@ -643,10 +645,27 @@ def name_location(cm: ClutchMesh, xy, element: int | None = None) -> Location:
             position = f"at flexure {j_} root" if kind == "hub" else f"at flexure {j_} joint"
         elif kind == "hub":
             position = "hub body"
-        else:
+        elif bnd != "contact surface":
             position = "shoe body"
     return Location(zone=zname, kind=kind, index=idx, position=position, boundary=bnd,
                     x_m=float(pt[0]), y_m=float(pt[1]))
+
+
+def _p2_basis(cm: ClutchMesh):
+    from skfem import Basis, ElementTriP2
+
+    return Basis(cm.mesh, ElementTriP2(), intorder=1)
+
+
+def _facet_nodes(cm: ClutchMesh) -> np.ndarray:
+    """(3, nfacets) P2 node ids of every facet: its two corners and its mid-edge node."""
+    b = _p2_basis(cm)
+    return np.vstack([cm.mesh.facets, b.facet_dofs[0]])
+
+
+def _p2_nodes(cm: ClutchMesh) -> np.ndarray:
+    """(2, n) positions of the P2 nodes (corners keep the mesh's vertex numbers)."""
+    return _p2_basis(cm).doflocs
 
 
 def _area(cm: ClutchMesh, elems: np.ndarray) -> float:

@@ -147,6 +147,7 @@ from typing import ClassVar, Literal
 
 import numpy as np
 import scipy.sparse as sp
+from pydantic import Field
 from scipy.spatial import cKDTree
 from scipy.special import erfc
 from skfem import Basis, BilinearForm, ElementTriP2, FacetBasis, LinearForm, asm
@@ -156,7 +157,6 @@ from ..errors import InputError, MeshError, ParameterError
 from ..linsolve import factorize
 from ..mesh import ClutchMesh
 from ..params import ParamSet, choice, param
-from pydantic import Field
 
 __all__ = [
     "ThermalMaterial", "DrumThermal", "ThermalEnvironment", "SlipScenario", "SlipHeatLoad",
@@ -198,7 +198,8 @@ class ThermalMaterial(ParamSet):
 
     context: ClassVar[str] = "thermal material"
     name: str = "51CrV4 (SS 2230) spring steel, hardened ~45 HRC"
-    conductivity: float = param(46.6, "W/(m K)", 0.1, 500.0, "thermal conductivity k (ASSUMED, 6150/51CrV4 handbook)", "k")
+    conductivity: float = param(46.6, "W/(m K)", 0.1, 500.0,
+                                "thermal conductivity k (ASSUMED, 6150/51CrV4 handbook)", "k")
     specific_heat: float = param(460.0, "J/(kg K)", 50.0, 5000.0, "specific heat c (ASSUMED)", "c")
     density: float = param(7850.0, "kg/m^3", 100.0, 25000.0, "density rho (thesis)", "rho")
     limit_temperature: float = param(400.0, "C", 50.0, 1200.0,
@@ -250,7 +251,8 @@ class ThermalEnvironment(ParamSet):
     face_htc: float = param(50.0, "W/(m^2 K)", 0.0, 1e4, "convection coefficient of each axial face", "h_f")
     edge_htc: float = param(0.0, "W/(m^2 K)", 0.0, 1e4, "convection coefficient of the free edges (not bore, "
                             "not the loaded contact patch)", "h_e")
-    bore_conductance: float = param(3000.0, "W/(m^2 K)", 0.0, 1e7, "conductance of the bore joint to the crankshaft", "h_b")
+    bore_conductance: float = param(3000.0, "W/(m^2 K)", 0.0, 1e7,
+                                    "conductance of the bore joint to the crankshaft", "h_b")
     crankshaft_temperature: float = param(60.0, "C", -60.0, 400.0, "crankshaft temperature at the bore", "T_crank")
     initial: Literal["steady", "ambient", "uniform"] = choice(
         "steady", "initial field: steady state without friction, ambient, or uniform initial_temperature")
@@ -829,7 +831,9 @@ def _steady(model: HeatModel) -> np.ndarray:
 # ---------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class SlipHeatResult:
-    """What :func:`slip_heat` returns.  Temperatures in C, energies in J for the whole part.
+    """What :func:`slip_heat` returns.  Temperatures in C, energies in J for the whole part;
+    ``peak_location`` / ``flexure_peak_location`` name the zone, the flexure end and the
+    boundary of the hottest points (e.g. concept 2's 'in-shoe flexure').
 
     Probes (time series over ``times_s``):
     * ``flexure_C``: the hottest node of all ``flexure_<i>`` zones at each time (None if the
@@ -850,9 +854,11 @@ class SlipHeatResult:
     peak_time_s: float
     peak_xy_m: tuple[float, float]
     peak_zone: str
+    peak_location: str
     flexure_peak_C: float | None
     flexure_peak_time_s: float | None
     flexure_peak_xy_m: tuple[float, float] | None
+    flexure_peak_location: str | None
     limit_temperature_C: float
     time_to_limit_s: float | None
     yield_ratio_at_limit: float
@@ -892,7 +898,9 @@ class SlipHeatResult:
             "heat_into_part_J": self.heat_into_part_J, "heat_fraction_part": self.partition.fraction_part,
             "flexure_temperature_C": self.flexure_peak_C, "flexure_peak_time_s": self.flexure_peak_time_s,
             "peak_temperature_C": self.peak_temperature_C, "peak_time_s": self.peak_time_s,
-            "peak_xy_m": list(self.peak_xy_m), "peak_zone": self.peak_zone,
+            "peak_xy_m": list(self.peak_xy_m), "peak_zone": self.peak_zone, "peak_location": self.peak_location,
+            "flexure_peak_xy_m": None if self.flexure_peak_xy_m is None else list(self.flexure_peak_xy_m),
+            "flexure_peak_location": self.flexure_peak_location,
             "ambient_temperature_C": self.ambient_temperature_C,
             "limit_temperature_C": self.limit_temperature_C, "time_to_limit_s": self.time_to_limit_s,
             "yield_strength_at_limit_Pa": self.yield_strength_at_limit_Pa,
@@ -940,6 +948,19 @@ def _zone_of_node(cm: ClutchMesh, basis: Basis, node: int) -> str:
         if hit:
             return hit[0]
     return names[0] if names else "part"
+
+
+def _describe(cm: ClutchMesh, basis: Basis, node: int) -> str:
+    """Zone, position and boundary of a P2 node (:func:`clutchfem.durability.fatigue.name_location`
+    with an element of the node's zone that holds it)."""
+    from .fatigue import name_location
+
+    elems = np.nonzero((basis.element_dofs == node).any(axis=0))[0]
+    zone = _zone_of_node(cm, basis, node)
+    sub = cm.mesh.subdomains or {}
+    if zone in sub:
+        elems = elems[np.isin(elems, sub[zone])]
+    return name_location(cm, basis.doflocs[:, node], element=int(elems[0])).description
 
 
 def slip_heat(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial | None,
@@ -1099,7 +1120,7 @@ def slip_heat(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial
     node = int(run.part_argmax[kpk])
     xy = basis.doflocs[:, node]
     flex = run.probes.get("flexure")
-    fpk = ftime = fxy = None
+    fpk = ftime = fxy = fn = None
     if flex is not None:
         kf = int(np.argmax(flex))
         fpk, ftime = float(flex[kf]), float(t[kf])
@@ -1134,12 +1155,15 @@ def slip_heat(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial
         part_max_C=run.part_max, probe_definitions=defs,
         peak_temperature_C=float(run.part_max[kpk]), peak_time_s=float(t[kpk]),
         peak_xy_m=(float(xy[0]), float(xy[1])), peak_zone=_zone_of_node(cm, basis, node),
+        peak_location=_describe(cm, basis, node),
         flexure_peak_C=fpk, flexure_peak_time_s=ftime, flexure_peak_xy_m=fxy,
+        flexure_peak_location=None if fn is None else _describe(cm, basis, fn),
         limit_temperature_C=float(lim),
         time_to_limit_s=None if flex is None else _first_crossing(t, flex, lim),
         yield_ratio_at_limit=float(ratio), yield_strength_at_limit_Pa=float(ratio * material.yield_strength),
         yield_strength_at_limit_bounds_Pa=(float(bounds[0]), float(bounds[1])),
-        yield_strength_at_flexure_peak_Pa=None if fpk is None else float(material.yield_ratio(fpk) * material.yield_strength),
+        yield_strength_at_flexure_peak_Pa=(None if fpk is None
+                                           else float(material.yield_ratio(fpk) * material.yield_strength)),
         slip_rpm=float(load.omega_rad_s * 60.0 / (2.0 * math.pi)), slip_power_W=P_model * s,
         friction_work_J=P_model * s * sc.seconds * sc.cycles, heat_into_part_J=E["input_J"],
         partition=part, energy=E, cycles=cyc, initial_field_C=T0, final_field_C=run.final, nodal_max_C=run.nodal_max,
