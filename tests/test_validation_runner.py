@@ -110,20 +110,6 @@ def test_rich_table_reads_at_80_columns():
     assert runner.rich_table is runner.render_table  # the name cli.py uses
 
 
-def test_options_reach_the_module(monkeypatch):
-    seen = {}
-    fake = types.ModuleType("clutchfem.validation._fake_opts")
-
-    def records(**kw):
-        seen.update(kw)
-        return [ValidationRecord("x.a", "x", "q", None, 1.0, "-")]
-
-    fake.records = records
-    monkeypatch.setitem(sys.modules, "clutchfem.validation._fake_opts", fake)
-    run = runner.collect(("_fake_opts",), options={"_fake_opts": {"concept": "concept1"}})
-    assert seen == {"concept": "concept1"} and len(run.records) == 1
-
-
 def test_report_run_does_not_run_modules_again(monkeypatch, tmp_path):
     calls = []
     fake = types.ModuleType("clutchfem.validation._fake_once")
@@ -155,15 +141,21 @@ def test_cli_validate_docs_collects_once(monkeypatch, tmp_path):
     real = runner.collect
 
     def counting(modules=runner.MODULE_NAMES, **kw):
-        calls.append(kw.get("options"))
+        calls.append(kw)
         return real(("chain",), **kw)
 
     monkeypatch.setattr(runner, "collect", counting)
     res = CliRunner().invoke(app, ["validate", "--docs", str(tmp_path / "v.md"), "--out",
-                                   str(tmp_path / "out"), "--concept", "concept1"])
+                                   str(tmp_path / "out")])
     assert res.exit_code == 0, res.output
-    assert calls == [{"shaft": {"concept": "concept1"}}]
+    assert calls == [{}]
     assert (tmp_path / "v.md").is_file() and (tmp_path / "out" / "validation.json").is_file()
     res = CliRunner().invoke(app, ["validate", "--json"])
     data = json.loads(res.stdout)
     assert {"id", "paper", "computed", "unit", "status", "note"} <= set(data[0])
+    # the crankshaft whirl left validation (clutch/whirl.py): --concept is gone, and an
+    # unknown option is refused with a non-zero exit before any module runs
+    calls.clear()
+    for bad in (["--concept", "concept1"], ["--no-such-option"]):
+        res = CliRunner().invoke(app, ["validate", *bad])
+        assert res.exit_code != 0 and calls == []

@@ -25,7 +25,7 @@ import sys
 import time
 import warnings
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -74,13 +74,9 @@ def load_module(name: str, *, strict: bool = False) -> tuple[ModuleType | None, 
         return None, f"module '{name}' failed to import: {type(exc).__name__}: {exc}"
 
 
-def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
-            options: Mapping[str, Mapping[str, object]] | None = None) -> ValidationRun:
-    """Import each module and call its ``records(**options[name])``; problems become
-    warnings.  ``options`` e.g. ``{"shaft": {"concept": "concept1"}}`` (the concept whose
-    clutch sits on the crankshaft in the whirl check)."""
+def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False) -> ValidationRun:
+    """Import each module and call its ``records()``; problems become warnings."""
     run = ValidationRun()
-    options = options or {}
     for name in modules:
         t0 = time.perf_counter()
         mod, warn = load_module(name, strict=strict)
@@ -88,7 +84,7 @@ def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
             run.warnings.append(warn or f"module '{name}' skipped")
             continue
         try:
-            recs = list(mod.records(**dict(options.get(name, {}))))
+            recs = list(mod.records())
         except Exception as exc:  # noqa: BLE001
             if strict:
                 raise
@@ -111,12 +107,11 @@ def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
     return run
 
 
-def run_all(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
-            options: Mapping[str, Mapping[str, object]] | None = None
+def run_all(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False
             ) -> list[ValidationRecord]:
     """All records of all available modules; skipped modules raise a
     :class:`ValidationModuleWarning` (see :func:`collect` for the details)."""
-    run = collect(modules, strict=strict, options=options)
+    run = collect(modules, strict=strict)
     for w in run.warnings:
         warnings.warn(w, ValidationModuleWarning, stacklevel=2)
     return run.records
@@ -207,10 +202,9 @@ def render_markdown(run: ValidationRun, figures: dict[str, list[Path]], docs_md:
 
 
 def write_report(out_dir: Path, docs_md: Path, modules: Sequence[str] = MODULE_NAMES, *,
-                 strict: bool = False,
-                 options: Mapping[str, Mapping[str, object]] | None = None) -> Path:
+                 strict: bool = False) -> Path:
     """Run everything (:func:`collect`) and :func:`report_run` it; returns ``docs_md``."""
-    run = collect(modules, strict=strict, options=options)
+    run = collect(modules, strict=strict)
     report_run(run, out_dir, docs_md, strict=strict)
     for w in run.warnings:
         warnings.warn(w, ValidationModuleWarning, stacklevel=2)
