@@ -51,6 +51,9 @@ from clutchfem.units import rad_s_to_rpm
 from clutchfem.validation.records import ValidationRecord
 
 MODULE = "shaft"
+#: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
+SOURCE = "seed 004: circular-saw shaft with an overhung disc (transverse vibration)"
+ORDER = 40
 
 DiscInertia = Literal["polar", "diametral", "forward_whirl", "none"]
 
