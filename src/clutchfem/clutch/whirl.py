@@ -64,7 +64,7 @@ class RigidPart:
     centre's distance from the clutch-side main bearing.  ``spins``: ``"crank"`` = always
     turns with the crankshaft (the clutch), ``"drum"`` = turns with it only while the
     clutch is engaged (drum, sprocket: they sit on a needle bearing).  ``source`` says where
-    the numbers come from (geometry module or ASSUMED).
+    the numbers come from (the design's mesh, the geometry module, or ASSUMED).
     """
 
     name: str
@@ -119,7 +119,8 @@ class ChainsawLayout:
     * drum end wall: steel disc r 8.0-36.0 mm, 1.5 mm thick, from z = 16 mm;
     * drum wall: steel tube from the drum's inner radius (34.4 mm, seed 000, or the
       concept's ``drum_radius``) to + 1.6 mm, as long as ``gap + clutch thickness + lip``;
-    * clutch: the concept's part (geometry module), ``gap`` = 1.5 mm from the end wall.
+    * clutch: the design's part (its mesh, or the geometry module's OCC values), ``gap`` =
+      1.5 mm from the end wall.
 
     The overhang of the whirl model ends at the composite centre of mass (all parts lumped
     into one rigid body there); the shaft beyond it carries no part.  Seed 000 gives the
@@ -347,9 +348,9 @@ def crankshaft_whirl(rotor: Rotor, layout: ChainsawLayout = CHAINSAW_LAYOUT, *,
                      gyroscopic: Gyro = "engaged") -> WhirlResult:
     """First critical speed of a crankshaft carrying ``rotor`` on its overhang.
 
-    Same model as the saw shaft: crankshaft pinned at the two main bearings (span
-    ``layout.bearing_span_m``), rotor lumped as one rigid body at its composite centre of
-    mass (overhang = :attr:`Rotor.cg_m`).  The critical speed is the lowest speed at which
+    Same model as the saw shaft of seed 004 (:mod:`clutchfem.shaft`): crankshaft pinned at
+    the two main bearings (span ``layout.bearing_span_m``), rotor lumped as one rigid body
+    at its composite centre of mass (overhang = :attr:`Rotor.cg_m`).  The critical speed is the lowest speed at which
     a natural whirl frequency equals the spin: unbalance excites *synchronous forward*
     whirl.  For a body spinning at Omega and whirling forward at omega = Omega the
     gyroscopic moment is ``I_p Omega omega theta``, so the tip moment condition carries
