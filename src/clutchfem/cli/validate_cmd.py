@@ -19,17 +19,14 @@ def validate(
     out: Path = typer.Option(Path("out/validation"), "--out",
                              help="folder for figures and validation.json (with --docs)"),
     docs: Optional[Path] = typer.Option(None, "--docs", help="write the Markdown report here (e.g. docs/validation.md)"),
-    concept: Optional[str] = typer.Option(None, "--concept",
-                                          help="concept whose clutch sits on the crankshaft in "
-                                               "the whirl check (default: the default design)"),
 ):
-    """Reproduce the source papers' numbers (spring clutch, chain impact, shaft whirl, thesis)."""
+    """Reproduce the source papers' numbers (spring clutch, chain impact, overhung-disc shaft,
+    thesis): every module of clutchfem.validation that defines records()."""
     from ..validation import runner
 
     t0 = time.perf_counter()
     try:
-        options = {"shaft": {"concept": concept}} if concept else None
-        run = runner.collect(options=options)  # every module runs once
+        run = runner.collect()  # every module runs once
         if docs is not None:
             runner.report_run(run, out, docs)
         if json_:
