@@ -155,14 +155,16 @@ def test_plus_shoe_at_high_mu_is_flagged(c1):
 # raw tracebacks: paths, files, caches, huge inputs, wrong types in the API
 # ---------------------------------------------------------------------------------------
 @pytest.mark.parametrize("cmd", [["geometry", "concept1"], ["solve", "--concept", "concept1"],
-                                 ["analyze", "--concept", "concept1"], ["demo"]])
+                                 ["analyze", "--concept", "concept1"], ["demo"],
+                                 ["validate", "--docs", "docs.md"]])
 @pytest.mark.parametrize("where", ["file", "inside-file"])
 def test_bad_out_folder_is_refused_before_any_work(tmp_path, cmd, where):
     f = tmp_path / "afile"
     f.write_text("x")
     out = f if where == "file" else f / "sub"
     t0 = time.perf_counter()
-    r = invoke(*cmd, *MESH[:0], "--out", str(out))
+    cmd = [str(tmp_path / c) if c == "docs.md" else c for c in cmd]
+    r = invoke(*cmd, "--out", str(out))
     assert r.exit_code == 2 and "--out" in r.output and "Traceback" not in r.output
     assert time.perf_counter() - t0 < 5.0  # refused before meshing or solving
 
@@ -277,3 +279,13 @@ def test_set_values_are_checked_for_units_and_repeats(sets, fragment):
     args = [a for s in sets for a in ("--set", s)]
     r = invoke("solve", "--concept", "concept1", *MESH, *args)
     assert r.exit_code == 2 and fragment in flat(r.output)
+
+
+def test_validate_docs_path_that_is_a_folder_is_refused(tmp_path):
+    r = invoke("validate", "--docs", str(tmp_path), "--out", str(tmp_path / "fig"))
+    assert r.exit_code == 2 and "--docs" in r.output and "folder" in r.output
+
+
+def test_validate_unknown_option_exits_nonzero():
+    r = CliRunner().invoke(app, ["validate", "--concept", "banana"])
+    assert r.exit_code != 0

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import time
 import warnings
 from pathlib import Path
@@ -10,8 +9,9 @@ from typing import Optional
 
 import typer
 
-from ..errors import ClutchfemError
-from .common import console, err, fail
+from ..errors import ClutchfemError, InputError
+from ..jsonio import dumps
+from .common import check_out_dir, console, err, fail
 
 
 def validate(
@@ -26,11 +26,17 @@ def validate(
 
     t0 = time.perf_counter()
     try:
+        if docs is not None:  # refused before any work: a folder, a file in a file, no permission
+            check_out_dir(out)
+            if docs.is_dir():
+                raise InputError(f"--docs {docs}: is a folder; give the Markdown file to write (e.g. "
+                                 "docs/validation.md)")
+            check_out_dir(docs.parent, "--docs")
         run = runner.collect()  # every module runs once
         if docs is not None:
             runner.report_run(run, out, docs)
         if json_:
-            print(json.dumps([r.to_json() for r in run.records]))
+            print(dumps([r.to_json() for r in run.records]))
         else:
             console.print(runner.rich_table(run.records))
         for w in run.warnings:

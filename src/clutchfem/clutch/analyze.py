@@ -15,7 +15,9 @@ factorisation for everything below):
 5. :func:`mu_sensitivity_step`: torque and slip speed at mu x 0.7 and x 1.3;
 6. :func:`coupling_step`: the analytical plus/minus shoe model fitted to the FE (below);
 7. :func:`stress_step`: peak stress and safety factor at the engine's maximum speed;
-8. :func:`requirements_step`: engagement > a x idle, slip < b x rpm of max engine torque.
+8. :func:`requirements_step`: engagement > a x idle, slip < b x rpm of max engine torque;
+9. :func:`whirl_step`: the crankshaft's first critical speed with this clutch on its
+   overhang (:mod:`clutchfem.clutch.whirl`) against the engine's maximum speed.
 
 Each returns a small frozen result; :class:`Analysis` collects the answers the report
 renders (:mod:`clutchfem.report`).
@@ -61,6 +63,9 @@ FATIGUE_CAUTION_SF = 1.5
 #: normal force with / without friction above which a plus shoe is called strongly
 #: self-energising (near self-locking) in the warnings
 SELF_ENERGISING_WARN = 1.5
+#: required margin of the first crankshaft critical speed over the engine's maximum speed
+#: (ASSUMED: the usual 20-30 % separation rule for rotors running below their first critical)
+WHIRL_MARGIN = 0.25
 #: Friction factors of the mu sensitivity study (mu +- 30 %).
 MU_FACTORS = (0.7, 1.3)
 #: spacing [rpm] of the internal grid on which clutch/engine crossings are bracketed (then
@@ -213,6 +218,8 @@ class Analysis:
     #: file-name stem that tells this design apart from others in one folder
     inputs: dict = field(default_factory=dict)
     label: str = ""
+    #: crankshaft whirl with this clutch on the overhang (clutchfem.clutch.whirl.WhirlAnswer.as_dict)
+    whirl: dict = field(default_factory=dict)
 
     def to_json(self) -> dict:
         from ..jsonio import clean
@@ -489,6 +496,14 @@ def stress_step(res, rpm: float, material) -> StressAnswer:
                         (float(row["max_vm_x_m"]), float(row["max_vm_y_m"])), float(material.yield_strength))
 
 
+def whirl_step(design, max_rpm: float):
+    """Step 9: the crankshaft's first critical (whirl) speed with this clutch, drum and
+    sprocket (ASSUMED layout) on its overhang, against the engine's maximum speed."""
+    from .whirl import whirl
+
+    return whirl(design, max_rpm=max_rpm)
+
+
 def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, eng: EngagementAnswer,
                       slip: SlipAnswer, in_range: bool) -> dict:
     """Step 8: the two requirement checks (with the values checked and the limits)."""
@@ -613,6 +628,12 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curves["arc_fraction"] = curves["contact_arc_deg"] / nominal if nominal and math.isfinite(nominal) else math.nan
     # 8: requirements
     checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)
+    # 9: crankshaft whirl
+    wh = whirl_step(design, hi)
+    if wh.margin < WHIRL_MARGIN:
+        warnings.append(f"CRANKSHAFT WHIRL: the first critical speed {wh.rpm_crit_lowest:,.0f} rpm is only "
+                        f"{100 * wh.margin:+.0f} % above the engine's maximum {hi:,.0f} rpm (wanted >= "
+                        f"{100 * WHIRL_MARGIN:.0f} %, ASSUMED); crankshaft, drum and sprocket are ASSUMED")
     if not checks["engagement_ok"]:
         warnings.append(f"REQUIREMENT NOT MET: engagement with ripple {eng.with_ripple_rpm:.0f} rpm is not above "
                         f"a x idle = {req.a:g} x {idle_rpm:.0f} = {checks['engagement_limit_rpm']:.0f} rpm "
@@ -646,7 +667,7 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                     coupling=coupling, curves=curves, first_touch=res.first_touch, warnings=warnings, notes=notes,
                     part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg,
                     inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
-                    label=design_label(design))
+                    label=design_label(design), whirl=wh.as_dict())
 
 
 def mesh_mass_properties(cm, rho: float, thickness: float, basis=None) -> dict:
