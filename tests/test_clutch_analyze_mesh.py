@@ -129,9 +129,12 @@ def test_mesh_table_and_out_files(c4_msh, c4, tmp_path):
     r = run("analyze", "--mesh", str(c4_msh), "--drum-radius", repr(p.drum_radius), "--rpm", "0:14000:1000",
             "--out", str(tmp_path))
     assert "not available" in r.stdout and "part mass" in r.stdout and "Traceback" not in r.stderr
-    for f in ("concept4_torque_rpm.png", "concept4_arc_stress_rpm.png", "concept4_curves.csv",
-              "concept4_analysis.json"):
-        assert (tmp_path / f).stat().st_size > 100, f
+    # a user mesh's files carry the design hash (traceable, distinct from other designs)
+    (js,) = tmp_path.glob("concept4-*_analysis.json")
+    label = js.name.removesuffix("_analysis.json")
+    assert json.loads(js.read_text())["inputs"]["mesh_sha256"]
+    for f in ("_torque_rpm.png", "_arc_stress_rpm.png", "_curves.csv", "_analysis.json"):
+        assert (tmp_path / (label + f)).stat().st_size > 100, f
 
 
 def test_thickness_scales_torque_not_speeds_or_stress(c4_msh, c4, concept_full):

@@ -30,10 +30,23 @@ def test_slip_answer_slips_at_the_hand_crossing():
     assert s.crossings[0][1] == "up" and s.crossings[0][0] == pytest.approx(5000.0, abs=1e-5)
 
 
-def test_slip_answer_never_slips():
+def test_slip_answer_never_holds():
     s = slip_answer(FLAT, ramp(2000.0, 1e-5), engagement_rpm=2000.0)  # max 0.08 N m < 3 N m
-    assert s.rpm is None and s.status == "never slips"
-    assert "never slips" in s.note and "10000 rpm" in s.note
+    assert s.rpm is None and s.status == "never holds"
+    assert "never holds" in s.note and "10000 rpm" in s.note and "slips at every speed" in s.note
+
+
+def test_no_friction_never_holds_and_says_why():
+    s = slip_answer(FLAT, lambda r: np.zeros_like(np.asarray(r, dtype=float)), engagement_rpm=2000.0)
+    assert s.status == "never holds" and "no torque" in s.note
+
+
+def test_zero_engine_torque_at_the_first_point_is_not_holding():
+    """A curve starting at 0 N m: 0 >= 0 is not 'holding' (issue 12: it said 'holds at
+    start, slip 500 rpm'); the slip speed is where the engaged clutch meets the curve."""
+    eng = EngineCurve((500.0, 1000.0, 10000.0), (0.0, 3.0, 3.0), source="starts at 0")
+    s = slip_answer(eng, ramp(2000.0, 0.001), engagement_rpm=2000.0)
+    assert s.status == "slips" and s.rpm == pytest.approx(5000.0, abs=1e-5)
 
 
 @pytest.mark.parametrize("eng", [None, 12000.0, math.inf])

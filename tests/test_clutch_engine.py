@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.clutch.engine import EngineCurve, slip_rpm
-from clutchfem.errors import InputError
+from clutchfem.clutch.engine import DEFAULT_CURVE_RPM, DEFAULT_CURVE_TORQUE, EngineCurve, slip_rpm
+from clutchfem.errors import InputError, ParameterError
 
 
 def test_default_curve_matches_seed000_anchors():
@@ -104,3 +104,35 @@ def test_slip_rpm_none_and_self_locking():
     # a self-locking clutch (inf above engagement at 4000 rpm) "slips" at engagement
     s = slip_rpm(c, lambda r: np.where(np.asarray(r) > 4000.0, np.inf, 0.0))
     assert s == pytest.approx(4000.0, abs=1e-3)
+
+
+# --- issue 12: curves the model would misread are refused, naming why ----------------------
+def test_all_zero_curve_is_refused():
+    with pytest.raises(InputError, match="every torque value is 0"):
+        EngineCurve((2000.0, 8000.0), (0.0, 0.0))
+
+
+def test_curve_in_rad_per_s_is_refused():
+    rad = tuple(r * 2 * np.pi / 60 for r in DEFAULT_CURVE_RPM)
+    with pytest.raises(InputError, match="rad/s") as ei:
+        EngineCurve(rad, DEFAULT_CURVE_TORQUE)
+    assert "14000 rpm" in str(ei.value)  # says what the table would be in rpm
+
+
+def test_idle_above_the_curve_is_refused():
+    with pytest.raises(ParameterError, match="idle_rpm"):
+        EngineCurve((2000.0, 3000.0), (1.0, 2.0), idle_rpm=2700.0 * 2)
+
+
+@pytest.mark.parametrize("payload", [bytes(range(256)) * 4, b"rpm,torque\n3000,2\x00\n4000,3\n",
+                                     b"PK\x03\x04\x14\x00\x06\x00"])
+def test_binary_csv_is_refused(tmp_path, payload):
+    f = tmp_path / "engine.csv"
+    f.write_bytes(payload)
+    with pytest.raises(InputError, match="engine curve file"):
+        EngineCurve.from_csv(f)
+
+
+def test_folder_as_csv_is_refused(tmp_path):
+    with pytest.raises(InputError, match="not a file"):
+        EngineCurve.from_csv(tmp_path)

@@ -113,10 +113,27 @@ def test_nominal_arc_overpredicts_where_contact_is_at_the_tip(c4):
 
 def test_out_writes_plots_and_tables(c4):
     _, out = c4
-    for f in ("concept4_torque_rpm.png", "concept4_arc_stress_rpm.png", "concept4_curves.csv",
-              "concept4_analysis.json"):
-        assert (out / f).stat().st_size > 1000, f
-    assert (out / "concept4_torque_rpm.png").read_bytes()[:4] == b"\x89PNG"
+    # not the default mesh size: the file names carry the design hash
+    (js,) = out.glob("concept4-*_analysis.json")
+    label = js.name.removesuffix("_analysis.json")
+    for f in ("_torque_rpm.png", "_arc_stress_rpm.png", "_curves.csv", "_analysis.json"):
+        assert (out / (label + f)).stat().st_size > 1000, f
+    assert (out / f"{label}_torque_rpm.png").read_bytes()[:4] == b"\x89PNG"
+    inp = json.loads(js.read_text())["inputs"]
+    assert inp["concept"] == "concept4" and inp["params"]["flexure_thickness"] > 0
+    assert inp["mesh_settings"]["size"] == pytest.approx(float(MESH[1]))
+    assert inp["operating_point"]["mu"] == 0.165 and inp["engine"]["max_torque_Nm"] == 3.4
+
+
+def test_two_designs_in_one_folder_are_told_apart(tmp_path):
+    for t in ("1.7mm", "1.8mm"):
+        r = invoke("analyze", "--concept", "concept4", *MESH, "--set", f"flexure_thickness={t}", "--out",
+                   str(tmp_path))
+        assert r.exit_code == 0, r.output
+    files = sorted(tmp_path.glob("concept4-*_analysis.json"))
+    assert len(files) == 2
+    th = sorted(json.loads(f.read_text())["inputs"]["params"]["flexure_thickness"] for f in files)
+    assert th == pytest.approx([1.7e-3, 1.8e-3])
 
 
 def test_terminal_table_has_units_and_warning(c4):
@@ -130,7 +147,7 @@ def test_terminal_table_has_units_and_warning(c4):
     assert ("WARNING: STRESS ABOVE YIELD" in t) == (d["safety_factor"] < 1)
 
 
-def test_summary_rows_say_never_slips_and_never_engages(c4, tmp_path):
+def test_summary_rows_say_never_holds_and_never_engages(c4, tmp_path):
     from clutchfem.report import summary_rows
 
     d, _ = c4
@@ -140,7 +157,7 @@ def test_summary_rows_say_never_slips_and_never_engages(c4, tmp_path):
 
     fields = {f.name for f in dataclasses.fields(Analysis)}
     an = Analysis(**{k: v for k, v in d.items() if k in fields and k != "curves"}, curves=pd.DataFrame(d["curves"]))
-    for status in ("never slips", "never engages"):
+    for status in ("never holds", "never engages"):
         rows = dict(summary_rows(dataclasses.replace(an, slip_rpm=None, slip_status=status, slip_power_W=None)))
         assert rows["slip speed (drum held, full throttle)"] == status.upper()
 
@@ -167,15 +184,18 @@ def test_engine_curve_below_engagement_never_engages(tmp_path):
     assert d["shoe_character"] == "never engages"
 
 
-def test_strong_engine_never_slips(tmp_path):
+def test_strong_engine_never_holds(tmp_path):
+    """An engine far stronger than the clutch: the clutch slips at every speed (issue 12: it
+    used to say 'never slips', the opposite)."""
     e = tmp_path / "big.csv"
     e.write_text("rpm,torque\n2000,100\n14000,100\n")
     r = invoke("analyze", "--concept", "concept4", *MESH, "--engine", str(e), "--json")
     assert r.exit_code == 0, r.output
     d = json.loads(r.output.strip().splitlines()[-1])
-    assert d["slip_status"] == "never slips" and d["slip_rpm"] is None
+    assert d["slip_status"] == "never holds" and d["slip_rpm"] is None
+    assert "slips at every speed" in d["slip_note"]
     assert d["requirements"]["slip_ok"] is False
-    assert any("never slips" in w for w in d["warnings"])
+    assert any("never holds" in w for w in d["warnings"])
     assert any("idle speed 2700 rpm ASSUMED" in n for n in d["notes"])  # CSV without idle
 
 

@@ -1,6 +1,11 @@
 """Concept geometries: every concept builds (sector/full, minus/plus, all profiles), its
 parameter space fails only with clear errors, the mesh is exact (area, cyclic cut), and the
-drawings are written.  Coarse meshes keep the whole file well under a minute on 2 cores."""
+drawings are written.  Coarse meshes keep the whole file well under a minute on 2 cores.
+
+The contract tests run over every *discovered* concept (``ALL = concepts()``): a file
+dropped into ``geometries/`` is tested without editing this file.  Tests that hold for
+particular concepts only (their inconsistent parameter sets, their engagement windows, the
+concepts whose hub reaches the contact circle by design) name them."""
 
 from __future__ import annotations
 
@@ -18,7 +23,10 @@ from clutchfem.geometry import MeshSettings, concepts, get_concept
 from clutchfem.geometry import sketch as K
 from clutchfem.mesh import mesh_concept
 
-NAMES = ["concept1", "concept2", "concept3", "concept3.1", "concept4", "concept5"]
+#: every discovered concept (geometries/ and $CLUTCHFEM_GEOMETRIES): the contract tests' set
+ALL = sorted(concepts())
+#: the concepts of the thesis shipped with clutchfem (none may disappear)
+KNOWN = ["concept1", "concept2", "concept3", "concept3.1", "concept4", "concept5"]
 COARSE = 3.0e-3  # element size for "does it build" checks
 CORNER = 6.0e-3  # coarser still for the many range-corner builds (gmsh still resolves fillets)
 FINE = MeshSettings(size=1.5e-3, fillet_factor=0.3)  # for the area checks (P2 arcs to < 1e-6)
@@ -46,19 +54,65 @@ def _area(cm) -> float:
 
 
 def test_all_concepts_registered():
-    assert set(NAMES) <= set(concepts())
-    for name in NAMES:
-        c = get_concept(name)
-        assert c.thesis and c.parametrisation and c.title
-        rows = c.Params.describe()
-        assert all(r["unit"] and r["allowed"] for r in rows)
+    assert set(KNOWN) <= set(ALL)
     assert get_concept("3.1").name == "concept3.1"
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_concept_is_documented(name):
+    """Title, the thesis's words, the parametrisation, and a unit and range for every
+    parameter (they feed the CLI, the docs and the drawings)."""
+    c = get_concept(name)
+    assert c.thesis and c.parametrisation and c.title
+    rows = c.Params.describe()
+    assert all(r["unit"] and r["allowed"] for r in rows)
+
+
+DROPPED_CONCEPT = '''"""A concept dropped into a geometries folder by the test (concept 4 renamed)."""
+from clutchfem.geometry.registry import _PKG, _load_file
+
+Base = type(_load_file(str(_PKG.parent.parent / "geometries" / "concept4.py")))
+
+
+class Dropped(Base):
+    name = "conceptzz"
+
+
+CONCEPT = Dropped()
+'''
+
+
+def test_a_dropped_concept_is_tested(tmp_path):
+    """A concept file in a geometries folder ($CLUTCHFEM_GEOMETRIES here) gets every
+    contract test of this file, and they run, without editing this file."""
+    import os
+    import subprocess
+    import sys
+
+    (tmp_path / "conceptzz.py").write_text(DROPPED_CONCEPT)
+    env = {**os.environ, "CLUTCHFEM_GEOMETRIES": str(tmp_path)}
+    cmd = [sys.executable, "-m", "pytest", "-p", "no:xdist", "-p", "no:cacheprovider", __file__]
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # PYTHONPATH=src is relative
+    got = subprocess.run([*cmd, "--collect-only", "-q"], env=env, capture_output=True, text=True, cwd=root)
+    assert got.returncode == 0, got.stdout + got.stderr
+    ids = {line.split("::", 1)[1] for line in got.stdout.splitlines() if "conceptzz" in line}
+    for test in ("test_concept_is_documented", "test_parameter_space_builds_or_fails_clearly",
+                 "test_range_corners_build_or_fail_clearly", "test_range_corners_are_checked_before_gmsh",
+                 "test_mesh_mass_properties_equal_occ", "test_order2_boundary_tags_on_the_exact_curves",
+                 "test_minus_mesh_is_mirror_of_plus", "test_only_shoes_reach_the_drum",
+                 "test_every_concept_draws"):
+        assert f"{test}[conceptzz]" in ids, test
+    assert {"test_defaults_build_sector_and_full[minus-conceptzz]",
+            "test_other_profiles_build[linear-conceptzz]"} <= ids
+    run = subprocess.run([*cmd, "-q", "-k", "conceptzz and (documented or checked_before_gmsh)"],
+                         env=env, capture_output=True, text=True, cwd=root)
+    assert run.returncode == 0 and "2 passed" in run.stdout, run.stdout + run.stderr
 
 
 # --------------------------------------------------------------------------------------
 # defaults: sector and full, minus and plus; groups; cyclic cut
 # --------------------------------------------------------------------------------------
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", ALL)
 @pytest.mark.parametrize("arrangement", ["minus", "plus"])
 def test_defaults_build_sector_and_full(name, arrangement):
     ms_s = MeshSettings(size=COARSE, model="sector")
@@ -103,7 +157,7 @@ def _check_cyclic(cm):
     assert np.min(np.hypot(*a)) == pytest.approx(r_bore, abs=1e-9)
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", ALL)
 @pytest.mark.parametrize("profile", ["eccentric", "linear"])
 def test_other_profiles_build(name, profile):
     extra = {"eccentric": dict(eccentricity=0.8e-3, eccentric_angle=30.0),
@@ -118,7 +172,7 @@ def _r2(w):
     return w.x[0] ** 2 + w.x[1] ** 2
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", ALL)
 def test_mesh_mass_properties_equal_occ(name):
     """Mass of the meshed part, of each shoe zone and the part's polar moment equal gmsh OCC's
     exact values to 1e-6 (mass = area x density x thickness, so the area is what is checked);
@@ -134,7 +188,7 @@ def test_mesh_mass_properties_equal_occ(name):
             assert float(_one.assemble(bi)) == pytest.approx(cm.mass[f"shoe_{i}"]["area"], rel=1e-6)
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", ALL)
 def test_order2_boundary_tags_on_the_exact_curves(name):
     """The named boundaries of an order-2 concept mesh survive the gmsh -> meshio -> skfem
     import: every P2 node (vertices and curved mid-edge nodes) of ``contact_i`` lies on the
@@ -155,9 +209,10 @@ def test_order2_boundary_tags_on_the_exact_curves(name):
     assert np.array_equal(np.sort(cm.boundary("contact")), np.unique(contact))
 
 
-def test_minus_mesh_is_mirror_of_plus():
+@pytest.mark.parametrize("name", ALL)
+def test_minus_mesh_is_mirror_of_plus(name):
     ms = MeshSettings(size=COARSE, model="sector")
-    minus, plus = _mesh("concept4", ms), _mesh("concept4", ms, arrangement="plus")
+    minus, plus = _mesh(name, ms), _mesh(name, ms, arrangement="plus")
     assert _area(minus) == pytest.approx(_area(plus), rel=1e-12)
     assert minus.mirrored and not plus.mirrored
     xm, xp = minus.mass["shoe_0"]["centroid"], plus.mass["shoe_0"]["centroid"]
@@ -192,7 +247,7 @@ def _param_strategy(name: str):
     return st.fixed_dictionaries(parts)
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", ALL)
 def test_parameter_space_builds_or_fails_clearly(name):
     """Hypothesis (derandomized, no example database: the same draws on every run) over the
     declared ranges, corners drawn often."""
@@ -235,7 +290,7 @@ def _build_or_refuse(name, values, model="sector", size=COARSE, geometry_error_o
     return True
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", ALL)
 def test_range_corners_build_or_fail_clearly(name):
     """Each numeric parameter at both ends of its declared range (the others at their
     defaults; profile parameters with their profile): the part meshes or is refused with a
@@ -254,7 +309,7 @@ def test_range_corners_build_or_fail_clearly(name):
     assert built >= tried // 3, f"only {built} of {tried} range corners build"
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", ALL)
 def test_range_corners_are_checked_before_gmsh(name):
     """Every declared range is enforced with a ParameterError naming the parameter."""
     P = get_concept(name).Params
@@ -349,9 +404,19 @@ def test_concept1_and_2_defaults_engage_in_window(name):
     assert r.first_touch == "tip"
 
 
-@pytest.mark.parametrize("name", ["concept3.1", "concept4", "concept5"])
+#: concepts whose non-shoe material reaches the contact circle by design (measured): the
+#: drum-clearance contract below does not apply to them; every other concept, a new file in
+#: geometries/ included, must keep everything but its shoes inside the contact circle
+REACH_THE_CONTACT_CIRCLE = {
+    "concept1": "its hub posts run at the part's full outer radius (thesis concept 1 layout)",
+    "concept2": "concept 1's hub posts, and its second flexure is a ligament at the outer surface",
+}
+
+
+@pytest.mark.parametrize("name", [n for n in ALL if n not in REACH_THE_CONTACT_CIRCLE])
 def test_only_shoes_reach_the_drum(name):
-    """Everything but the shoes' contact surfaces stays >= 0.3 mm inside the drum."""
+    """Everything but the shoes' contact surfaces stays >= 0.3 mm inside the drum's
+    contact circle (concept 5: half its arm recess, 0.4 mm at the defaults)."""
     c = get_concept(name)
     p = c.params()
     cm = _mesh(name, MeshSettings(size=COARSE, model="full"))
@@ -362,6 +427,17 @@ def test_only_shoes_reach_the_drum(name):
     r_other = r[np.unique(m.t[:, other])].max()
     margin = 0.5 * p.arm_recess if name == "concept5" else 0.3e-3  # concept 5: the hub arms' tips
     assert r_other < p.drum_radius - p.clearance - margin
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_every_concept_draws(name, tmp_path):
+    """The labelled drawing of the defaults (PNG and SVG) is written for every concept."""
+    from clutchfem.geometry.drawing import draw_concept
+
+    c = get_concept(name)
+    files = draw_concept(c, c.params(), tmp_path / name, dpi=60)
+    assert [f.name for f in files] == [f"{name}.png", f"{name}.svg"]
+    assert all(f.stat().st_size > 10_000 for f in files)
 
 
 # --------------------------------------------------------------------------------------

@@ -30,7 +30,87 @@ def report(tmp_path_factory):
 
 
 def test_default_modules():
-    assert runner.MODULE_NAMES == ("wiesik", "thesis", "chain", "shaft")
+    """Discovered, not listed: the four paper modules in their ORDER, with their SOURCE
+    headings; the package's helpers (records, runner) are not validation modules."""
+    names = runner.module_names()
+    assert [n for n in names if n in ("wiesik", "thesis", "chain", "shaft")] == [
+        "wiesik", "thesis", "chain", "shaft"]
+    assert "records" not in names and "runner" not in names
+    assert runner.source_of("shaft").startswith("seed 004: circular-saw shaft")
+    assert runner.source_of("wiesik").startswith("seed 000: spring-and-shoe clutch")
+    assert runner.discover()[1] == []  # every module has a SOURCE and a valid ORDER
+
+
+DROPPED = '''
+from clutchfem.validation.records import ValidationRecord
+
+SOURCE = "test: a module dropped into the package"
+{order}
+
+def records():
+    return [ValidationRecord("{name}.x", "{name}", "q", 2.0, 2.0, "-")]
+'''
+
+
+@pytest.fixture
+def dropped(tmp_path, monkeypatch):
+    """Files dropped into the validation package (a temporary folder appended to its
+    ``__path__``): ``zz_dropped`` (ORDER 25), ``aa_late`` (no ORDER), a helper without
+    records(), a private ``_hidden`` module and one that fails to import."""
+    import clutchfem.validation as pkg
+
+    d = tmp_path / "validation_extra"
+    d.mkdir()
+    (d / "zz_dropped.py").write_text(DROPPED.format(name="zz_dropped", order="ORDER = 25"))
+    (d / "aa_late.py").write_text(DROPPED.format(name="aa_late", order=""))
+    (d / "helper_only.py").write_text("X = 1\n")
+    (d / "_hidden.py").write_text(DROPPED.format(name="_hidden", order="ORDER = 1"))
+    (d / "broken_mod.py").write_text("raise RuntimeError('kaputt')\n")
+    monkeypatch.setattr(pkg, "__path__", [*pkg.__path__, str(d)])
+    for n in ("zz_dropped", "aa_late", "helper_only", "_hidden", "broken_mod"):
+        monkeypatch.delitem(sys.modules, f"clutchfem.validation.{n}", raising=False)
+    yield d
+    for n in ("zz_dropped", "aa_late", "helper_only", "_hidden", "broken_mod"):
+        sys.modules.pop(f"clutchfem.validation.{n}", None)
+
+
+def test_a_dropped_module_is_discovered_and_run(dropped, monkeypatch):
+    names, notes = runner.discover()
+    # ORDER 25 sits between thesis (20) and chain (30); no ORDER comes last
+    assert names.index("thesis") < names.index("zz_dropped") < names.index("chain")
+    assert names[-1] == "aa_late"
+    assert "helper_only" not in names and "_hidden" not in names
+    assert any("broken_mod" in w and "kaputt" in w for w in notes)
+    with pytest.raises(RuntimeError, match="kaputt"):
+        runner.discover(strict=True)
+    # a full run (the paper modules stubbed out: only discovery is under test here)
+    for n in ("wiesik", "thesis", "chain", "shaft"):
+        monkeypatch.setattr(sys.modules[f"clutchfem.validation.{n}"], "records", lambda: [])
+    run = runner.collect()
+    assert [r.id for r in run.records] == ["zz_dropped.x", "aa_late.x"]
+    assert any("broken_mod" in w for w in run.warnings)
+    md = runner.render_markdown(run, {}, dropped / "v.md")
+    assert "## zz_dropped\n\nSource: test: a module dropped into the package." in md
+    assert md.index("## zz_dropped") < md.index("## aa_late")
+
+
+def test_order_and_source_are_checked(tmp_path, monkeypatch):
+    import clutchfem.validation as pkg
+
+    d = tmp_path / "v2"
+    d.mkdir()
+    (d / "no_source.py").write_text(DROPPED.format(name="no_source", order="ORDER = 'first'")
+                                    .replace("SOURCE =", "NOT_SOURCE ="))
+    monkeypatch.setattr(pkg, "__path__", [*pkg.__path__, str(d)])
+    monkeypatch.delitem(sys.modules, "clutchfem.validation.no_source", raising=False)
+    try:
+        names, notes = runner.discover()
+        assert names[-1] == "no_source"  # an invalid ORDER counts as none
+        assert any("no_source" in w and "ORDER" in w for w in notes)
+        assert any("no_source" in w and "SOURCE" in w for w in notes)
+        assert runner.source_of("no_source") == "no_source"
+    finally:
+        sys.modules.pop("clutchfem.validation.no_source", None)
 
 
 def test_missing_module_is_skipped_with_a_warning():
@@ -110,20 +190,6 @@ def test_rich_table_reads_at_80_columns():
     assert runner.rich_table is runner.render_table  # the name cli.py uses
 
 
-def test_options_reach_the_module(monkeypatch):
-    seen = {}
-    fake = types.ModuleType("clutchfem.validation._fake_opts")
-
-    def records(**kw):
-        seen.update(kw)
-        return [ValidationRecord("x.a", "x", "q", None, 1.0, "-")]
-
-    fake.records = records
-    monkeypatch.setitem(sys.modules, "clutchfem.validation._fake_opts", fake)
-    run = runner.collect(("_fake_opts",), options={"_fake_opts": {"concept": "concept1"}})
-    assert seen == {"concept": "concept1"} and len(run.records) == 1
-
-
 def test_report_run_does_not_run_modules_again(monkeypatch, tmp_path):
     calls = []
     fake = types.ModuleType("clutchfem.validation._fake_once")
@@ -154,16 +220,22 @@ def test_cli_validate_docs_collects_once(monkeypatch, tmp_path):
     calls = []
     real = runner.collect
 
-    def counting(modules=runner.MODULE_NAMES, **kw):
-        calls.append(kw.get("options"))
+    def counting(modules=None, **kw):
+        calls.append(kw)
         return real(("chain",), **kw)
 
     monkeypatch.setattr(runner, "collect", counting)
     res = CliRunner().invoke(app, ["validate", "--docs", str(tmp_path / "v.md"), "--out",
-                                   str(tmp_path / "out"), "--concept", "concept1"])
+                                   str(tmp_path / "out")])
     assert res.exit_code == 0, res.output
-    assert calls == [{"shaft": {"concept": "concept1"}}]
+    assert calls == [{}]
     assert (tmp_path / "v.md").is_file() and (tmp_path / "out" / "validation.json").is_file()
     res = CliRunner().invoke(app, ["validate", "--json"])
     data = json.loads(res.stdout)
     assert {"id", "paper", "computed", "unit", "status", "note"} <= set(data[0])
+    # the crankshaft whirl left validation (clutch/whirl.py): --concept is gone, and an
+    # unknown option is refused with a non-zero exit before any module runs
+    calls.clear()
+    for bad in (["--concept", "concept1"], ["--no-such-option"]):
+        res = CliRunner().invoke(app, ["validate", *bad])
+        assert res.exit_code != 0 and calls == []

@@ -295,6 +295,10 @@ class FEModel3D:
     def symmetry_factor(self) -> float:
         return self.em.symmetry_factor
 
+    def boundary(self, name: str) -> np.ndarray:
+        """Facets of boundary group ``name`` of the extruded mesh (the 2-D groups' side faces)."""
+        return self.em.boundary(name)
+
     # -- operators ----------------------------------------------------------------------
     @property
     def ndofs(self) -> int:

@@ -21,6 +21,7 @@ import hashlib
 import inspect
 import io
 import json
+import logging
 import os
 import tempfile
 import time
@@ -230,16 +231,33 @@ def cache_key(concept: Concept, p: ConceptParams, ms: MeshSettings) -> str:
 
 
 def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = None, *,
-                 use_cache: bool = True) -> ClutchMesh:
-    """Build and mesh ``concept`` with parameters ``p`` (cached on disk)."""
+                 use_cache: bool = True, max_elements: int | None = None) -> ClutchMesh:
+    """Build and mesh ``concept`` with parameters ``p`` (cached on disk).
+
+    Before meshing, the element count is estimated from the areas and the local sizes
+    (:func:`estimate_elements`); above ``max_elements`` (default :data:`MAX_ELEMENTS`) the
+    mesh is refused with the estimate and a size that fits.  A cached file that cannot be
+    read (truncated, corrupted) is deleted, named in a warning, and rebuilt."""
     ms = ms or MeshSettings()
+    if not isinstance(ms, MeshSettings):
+        raise MeshError(f"mesh settings must be a MeshSettings, not {type(ms).__name__}")
     key = cache_key(concept, p, ms)
     d = cache_dir()
     msh, side = d / f"{concept.name}-{key}.msh", d / f"{concept.name}-{key}.json"
     cached = use_cache and msh.exists() and side.exists()
-    t0 = time.perf_counter()
+    if cached:
+        try:
+            meta = json.loads(side.read_text())
+            cm = _load_generated(msh, meta, concept.name)
+        except Exception as exc:  # noqa: BLE001 - a broken cache entry is rebuilt, not fatal
+            warnings.warn(f"mesh cache file {msh} is unreadable ({type(exc).__name__}: {exc}); "
+                          "deleted and rebuilt", stacklevel=2)
+            for f in (msh, side, groups_msh_path(msh)):
+                f.unlink(missing_ok=True)
+            cached = False
     if not cached:
-        built = _generate(concept, p, ms, msh)
+        t0 = time.perf_counter()
+        built = _generate(concept, p, ms, msh, max_elements)
         meta = {"entity_groups": built.entity_groups, "group_dims": built.group_dims,
                 "mass": built.mass, "pivots": built.pivots, "contact_arcs": built.contact_arcs,
                 "n_shoes_total": built.n_shoes_total, "n_shoes_model": built.n_shoes_model,
@@ -248,8 +266,7 @@ def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = N
         tmp = side.with_suffix(".json.tmp")
         tmp.write_text(json.dumps(meta))
         tmp.replace(side)
-    meta = json.loads(side.read_text())
-    cm = _load_generated(msh, meta, concept.name)
+        cm = _load_generated(msh, meta, concept.name)
     cm.params = p.model_dump()
     cm.mesh_settings = ms.model_dump()
     cm.drum_radius = p.drum_radius
@@ -259,12 +276,44 @@ def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = N
     return cm
 
 
-def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path) -> BuiltModel:
+#: meshes estimated above this many elements are refused (a one-sector default mesh has ~2-3
+#: thousand; 250 000 P2 triangles are ~1 M unknowns, minutes and GBs for one design)
+MAX_ELEMENTS = 250_000
+log = logging.getLogger("clutchfem")
+
+
+def estimate_elements(built: BuiltModel, p: ConceptParams, ms: MeshSettings) -> int:
+    """A lower estimate of the triangle count: ~2.3 equilateral-ish triangles per h^2 of area,
+    with the flexure zones at their own size (boundary refinement at fillets and on the
+    contact surface adds to it: the real count is 1-6x this, nearer 1x for fine meshes)."""
+    A = float(built.mass.get("solid", {}).get("area", 0.0))
+    Af = sum(float(v.get("area", 0.0)) for k, v in built.mass.items() if k.startswith("flexure"))
+    h = ms.size
+    ts = p.flexure_thicknesses()
+    hf = min(h, ms.flexure_factor * min(ts)) if ts else h
+    return int(2.3 * (max(A - Af, 0.0) / h ** 2 + Af / hf ** 2))
+
+
+def _check_size(name: str, n_est: int, ms: MeshSettings, max_elements: int | None) -> None:
+    limit = MAX_ELEMENTS if max_elements is None else max_elements
+    if n_est > limit:
+        fit = ms.size * (n_est / limit) ** 0.5
+        raise MeshError(f"{name}: mesh size {ms.size * 1e3:g} mm would give about {n_est:,} elements (estimate), "
+                        f"more than the limit {limit:,} (minutes of meshing and GBs of memory for one design); "
+                        f"use a mesh size of at least {fit * 1e3:.2g} mm, or raise the limit "
+                        "(max_elements=... in the API)")
+    if n_est > 20_000:
+        log.info("meshing %s: about %s elements (estimate)", name, f"{n_est:,}")
+
+
+def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
+              max_elements: int | None = None) -> BuiltModel:
     with gmsh_session(concept.name):
         gmsh.option.setNumber("Geometry.Tolerance", 1e-10)
         gmsh.option.setNumber("Geometry.ToleranceBoolean", 1e-10)
         try:
             built = build_model(concept, p, ms)
+            _check_size(concept.name, estimate_elements(built, p, ms), ms, max_elements)
             gmsh.option.setNumber("Mesh.Algorithm", 6)
             gmsh.option.setNumber("Mesh.ElementOrder", ms.order)
             gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
@@ -274,7 +323,7 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path) -
                 _fix_invalid_high_order()
             if built.mirrored:  # minus arrangement: reflect the canonical mesh, y -> -y
                 gmsh.model.mesh.affineTransform([1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0])
-        except GeometryError:
+        except (GeometryError, MeshError):
             raise
         except Exception as exc:  # gmsh raises bare Exceptions with its log message
             raise GeometryError(f"gmsh failed to build/mesh concept '{concept.name}': {exc}",
@@ -443,6 +492,12 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         if contact:
             gmsh.model.addPhysicalGroup(1, contact, name="contact")
         h = mesh_size or (R_out / 40.0)
+        area = sum(gmsh.model.occ.getMass(2, t) for t in surfaces)
+        n_est = int(2.3 * area / h ** 2)
+        if n_est > MAX_ELEMENTS:
+            raise MeshError(f"{path}: mesh size {h * 1e3:g} mm would give about {n_est:,} elements (estimate), "
+                            f"more than the limit {MAX_ELEMENTS:,}; use a mesh size of at least "
+                            f"{h * (n_est / MAX_ELEMENTS) ** 0.5 * 1e3:.2g} mm")
         gmsh.option.setNumber("Mesh.MeshSizeMax", h)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         try:

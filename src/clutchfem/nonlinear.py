@@ -569,6 +569,8 @@ class PrestressRitz:
                 return w2 * theta / (1.0 - w2 * theta)
 
         r = _Response(model, contact, np.ones(len(theta)), Psi)
+        r.check_model = PrestressedModel(model)  # the equilibrium check uses M - K_sigma1,
+        r.precondition_check = True  # measured as the displacement error the residual causes
         tmax = float(theta.max(initial=0.0))
         r.omega_limit = 1.0 / math.sqrt(tmax) if tmax > 0 else None
         r.linear = False

@@ -120,6 +120,8 @@ def parse_rpm(spec) -> np.ndarray:
                 vals = a + step * np.arange(n)
             else:
                 vals = np.array([float(x) for x in s.split(",") if x.strip()])
+        except InputError:
+            raise
         except ValueError:
             raise InputError(f"rpm spec '{spec}' is not understood: use 8000, 1000,2000,3000 or "
                              "0:14000:250 (rpm)") from None

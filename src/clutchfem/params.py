@@ -19,7 +19,7 @@ from typing import Any, ClassVar, Literal, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from .errors import ParameterError
+from .errors import ClutchfemError, ParameterError
 
 _SUFFIX = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "cm": 1e-2, "deg": 1.0, "Pa": 1.0,
            "MPa": 1e6, "GPa": 1e9, "rpm": 1.0}
@@ -54,6 +54,13 @@ class ParamSet(BaseModel):
     context: ClassVar[str] = ""
 
     def __init__(self, **values: Any):
+        for name, v in values.items():  # pydantic's lax mode would read True as 1
+            if isinstance(v, bool) and name in type(self).model_fields:
+                ann = type(self).model_fields[name].annotation
+                if ann in (int, float) or (get_args(ann) and all(a in (int, float, type(None))
+                                                                   for a in get_args(ann))):
+                    raise ParameterError(name, v, type(self).allowed(name) + " (a number, not True/False)",
+                                         type(self).context or type(self).__name__)
         try:
             super().__init__(**values)
         except ValidationError as exc:
@@ -65,6 +72,10 @@ class ParamSet(BaseModel):
     def _translate(cls, exc: ValidationError, values: dict) -> ParameterError:
         err = exc.errors()[0]
         name = str(err["loc"][0]) if err["loc"] else "?"
+        inner = (err.get("ctx") or {}).get("error")
+        if isinstance(inner, ClutchfemError):  # a validator's own message says it best
+            return ParameterError(name, values.get(name, err.get("input")), str(inner),
+                                  cls.context or cls.__name__)
         if err["type"] == "extra_forbidden":
             return ParameterError(name, values.get(name), "unknown parameter; known: "
                                   + ", ".join(cls.model_fields), cls.context or cls.__name__)

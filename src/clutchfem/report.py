@@ -42,7 +42,7 @@ def summary_rows(an) -> list[tuple[str, str]]:
          + (f" (polar angle {an.first_touch_angle_deg:.1f} deg)"
             if an.first_touch == "unknown" and getattr(an, "first_touch_angle_deg", None) is not None else "")),
     ]
-    if an.slip_status in ("never slips", "never engages"):
+    if an.slip_status in ("never holds", "never engages"):
         rows.append(("slip speed (drum held, full throttle)", an.slip_status.upper()))
     else:
         rows.append(("slip speed (drum held, full throttle)", _fmt(an.slip_rpm, ".0f", "rpm")))
@@ -97,6 +97,10 @@ def summary_rows(an) -> list[tuple[str, str]]:
             rows.append(("shoe zone mass / centre-of-mass radius (from the mesh)",
                          "; ".join(f"shoe {s_['shoe']}: {s_['mass_kg'] * 1e3:.2f} g / {s_['R_Tp_m'] * 1e3:.2f} mm"
                                    for s_ in part["shoes"])))
+    wh = getattr(an, "whirl", None) or {}
+    if wh:
+        rows.append(("crankshaft first critical speed (whirl; drum, sprocket, crankshaft ASSUMED)",
+                     f"{wh['rpm_crit_lowest']:,.0f} rpm ({100 * wh['margin']:+.0f} % over {wh['max_engine_rpm']:,.0f} rpm)"))
     eng_chk = req.get("engagement_checked_rpm")
     rows.append((f"requirement: engagement > a x idle = {req['a']:g} x {req['idle_rpm']:.0f} rpm",
                  ("PASS" if req["engagement_ok"] else "FAIL")

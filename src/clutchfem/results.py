@@ -14,7 +14,9 @@ Conventions of the tables (one meaning everywhere):
   contact has the width of one node spacing, not zero); the curve gives the mean over the
   modelled shoes;
 * ``max_von_mises_Pa``: raw (unaveraged) vertex stresses, the peak over the part;
-* angles: polar angles of the drum frame [deg].
+* angles: polar angles of the drum frame [deg];
+* ``residual``: relative equilibrium residual of the state, ``torque_balance_error``: bore
+  reaction moment against the applied moment (:mod:`clutchfem.checks`).
 """
 
 from __future__ import annotations
@@ -88,6 +90,10 @@ class SweepResult:
     curve: pd.DataFrame
     shoes: pd.DataFrame
     fields: Fields
+    #: 1-norm condition estimate of the reduced stiffness (clutchfem.checks)
+    condition: float = float("nan")
+    #: numerical warnings of the solve (model-applicability warnings: clutchfem.checks.model_warnings)
+    warnings: list = field(default_factory=list)
     timings: dict = field(default_factory=dict)
 
     @property
@@ -125,7 +131,9 @@ class SweepResult:
                 "max_displacement_m"]
         return {"engagement_rpm": self.engagement_rpm, "first_touch": self.first_touch,
                 "divergence_rpm": self.divergence_rpm, "mu": self.mu, "softening": self.softening,
-                "curve": records(self.curve), "required_columns": cols}
+                "condition_estimate": self.condition,
+                "max_residual": float(self.curve["residual"].max()) if "residual" in self.curve else None,
+                "warnings": list(self.warnings), "curve": records(self.curve), "required_columns": cols}
 
 
 def _speeds(rpm: np.ndarray) -> str:

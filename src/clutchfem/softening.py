@@ -53,12 +53,16 @@ __all__ = ["Off", "Ritz", "Exact", "Softening", "get_softening", "SOFTENINGS"]
 
 @dataclass(frozen=True)
 class Off:
-    """No spin softening: (K)^-1 only; u(w) = w^2 u1 without contact."""
+    """No spin softening: (K)^-1 only; u(w) = w^2 u1 without contact.  The divergence speed
+    of the real (softening) part is still computed (lowest Ritz pair) so that speeds past
+    it are refused: the model would answer where the part has flown apart."""
 
     name = "off"
 
     def bind(self, model, contact):
-        return _ModalResponse(model, contact, np.zeros(0), np.zeros((model.ndofs, 0)))
+        r = _ModalResponse(model, contact, np.zeros(0), np.zeros((model.ndofs, 0)))
+        r.omega_limit = divergence_omega(model, contact)
+        return r
 
 
 @dataclass(frozen=True)
@@ -242,10 +246,11 @@ class _ModalResponse:
 
 
 class _ExactResponse:
-    """K - w^2 M factorised per speed (the reference); fields kept explicitly per state."""
+    """K - w^2 M factorised per speed (the reference); fields kept explicitly per state.
+    A speed at which K - w^2 M is no longer positive definite (a negative pivot of its
+    symmetric, unpivoted LU: Sylvester's law of inertia) is past divergence: refused."""
 
     linear = False
-    omega_limit = None
 
     def __init__(self, model, contact):
         self.model = model
@@ -253,6 +258,11 @@ class _ExactResponse:
         self._omega = None
         self._f = None
         self._cols: dict[int, np.ndarray] = {}
+        self.omega_limit = divergence_omega(model, contact)
+
+    def coefficients(self, omega: float) -> np.ndarray:
+        self._factor(omega)  # refuses speeds past divergence
+        return np.zeros(0)
 
     def _factor(self, omega: float):
         if self._omega != omega:
@@ -261,9 +271,16 @@ class _ExactResponse:
             m = self.model
             A = (m.Kr - omega * omega * m.Mr).tocsc()
             try:
-                self._f = factorize(A, "superlu", kind="shifted")
+                f = factorize(A, "superlu", kind="shifted")
             except SolverError:
-                raise SolverError(f"K - w^2 M is singular at {rad_s_to_rpm(omega):.0f} rpm") from None
+                raise SolverError(f"K - w^2 M is singular at {rad_s_to_rpm(omega):.0f} rpm: the speed of a "
+                                  "natural mode of the free part (divergence)") from None
+            neg = int(np.count_nonzero(f._lu.U.diagonal() < 0)) if hasattr(f, "_lu") else 0
+            if neg:
+                raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is past the divergence speed of the free "
+                                  f"part (K - w^2 M has {neg} negative eigenvalue(s)): the shoes would fly out "
+                                  "(stiffer flexures or lower speed)")
+            self._f = f
             self._omega, self._cols = omega, {}
         return self._f
 
@@ -298,6 +315,18 @@ class _ExactResponse:
         U = np.column_stack([self.displacement(w, lam) for w, lam in zip(omegas, lams)]) if len(omegas) \
             else np.zeros((self.model.ndofs, 0))
         return None, None, U
+
+
+def divergence_omega(model, contact) -> float:
+    """Divergence speed [rad/s] of the free part: the lowest load-dependent Ritz frequency
+    (seeded by the centrifugal and both contact loads; cached on the model), i.e. where the
+    loaded deflection shapes lose their stiffness to spin softening."""
+    key = ("divergence", None if contact is None else id(contact.nodes))
+    cache = model.__dict__.setdefault("_ritz_cache", {})
+    if key not in cache:
+        cache[key] = (None if contact is None else contact.nodes,
+                      float(np.sqrt(ritz_pairs(model, contact, 3, "all")[0][0])))
+    return cache[key][1]
 
 
 def model_compliance(model, nodes):

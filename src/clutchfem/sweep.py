@@ -13,7 +13,9 @@ factorisation and its condensed contact columns).  It answers
   LCP of :mod:`clutchfem.lcp` with q = g0 - B u_free(w), warm-started from the previous speed.
 
 :func:`sweep` solves a list of speeds and returns a frozen :class:`~clutchfem.results.SweepResult`
-with the curve, per-shoe table and every state's displacement (reduced basis).
+with the curve, per-shoe table and every state's displacement (reduced basis), and checks
+itself (:mod:`clutchfem.checks`: equilibrium residual and torque balance at every speed,
+condition estimate; past their thresholds it refuses instead of answering).
 """
 
 from __future__ import annotations
@@ -25,7 +27,9 @@ from functools import cached_property
 import numpy as np
 from scipy.optimize import brentq
 
+from .checks import check_numerics, condition_estimate, equilibrium
 from .contact import DrumContact
+from .errors import SolverError
 from .lcp import lazy, solve_lcp
 from .operating import parse_rpm
 from .results import Fields, SweepResult, curve_table, first_touch, shoe_table
@@ -99,8 +103,11 @@ class LoadCase:
         """(nodal contact forces lam [N], active set) at speed ``omega`` [rad/s].  Solved states
         are memoised (a slip search and a sweep of the same case share their speeds)."""
         m = 0 if self.contact is None else self.contact.nodes.m
-        if self.response.omega_limit is not None:
-            self.response.coefficients(omega)  # refuses speeds at or beyond divergence
+        lim = self.response.omega_limit
+        if lim is not None and omega >= lim * (1 - 1e-9):
+            raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm reaches the spin-softening divergence speed "
+                              f"{rad_s_to_rpm(lim):.0f} rpm of the free part: the shoes would fly out (stiffer "
+                              "flexures or lower speed)")
         if self.contact is None or not self.engaged(omega):
             return np.zeros(m), None
         key = float(omega)
@@ -115,7 +122,15 @@ class LoadCase:
         Cd = self.contact.drum_compliance
         if Cd is not None:  # elastic drum: G + C_d
             G = lazy(lambda idx, G=G: G(idx) + Cd[:, idx])
-        lam, act = solve_lcp(G, q, active0)
+        try:
+            lam, act = solve_lcp(G, q, active0)
+        except SolverError as exc:
+            if self.contact.mu == 0.0:
+                raise
+            raise SolverError(f"no bounded contact solution at {rad_s_to_rpm(omega):.0f} rpm with mu = "
+                              f"{self.contact.mu:g}: friction wedges the shoe into the drum (a self-locking plus "
+                              "shoe: unbounded torque in the rigid-drum model, a grabbing clutch in reality); "
+                              f"lower mu or use the minus arrangement ({exc})") from None
         if len(self._memo) >= MEMO_STATES:
             self._memo.pop(next(iter(self._memo)))
         self._memo[key] = (lam.copy(), act.copy())
@@ -157,14 +172,25 @@ def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:
     curve = curve_table(rpm, omegas, lam, case.contact, case.scale, fields, stresses,
                         model.material.yield_strength)
     t3 = time.perf_counter()
+    # is it right? equilibrium residual and torque balance per speed, conditioning
+    # (a strategy that changes the softening operator, e.g. nonlinear.PrestressRitz, names the
+    # model whose M it solves with)
+    resid, torque_err = equilibrium(getattr(case.response, "check_model", model), case.contact,
+                                    case.softening.name != "off", fields, omegas, lam,
+                                    preconditioned=getattr(case.response, "precondition_check", False))
+    cond = condition_estimate(model)
+    warns = check_numerics(resid, cond, rpm)
+    curve["residual"] = resid
+    curve["torque_balance_error"] = torque_err
+    t4 = time.perf_counter()
     nominal = list(model.cm.contact_arcs)
     where, angle = first_touch(case.contact, i_eng, nominal)
     div = case.omega_limit
-    timings = {"engagement_s": t1 - t0, "contact_s": t2 - t1, "post_s": t3 - t2, "sweep_s": t3 - t0,
-               **model.timings, "case_setup_s": case.setup_s}
+    timings = {"engagement_s": t1 - t0, "contact_s": t2 - t1, "post_s": t3 - t2, "checks_s": t4 - t3,
+               "sweep_s": t4 - t0, **model.timings, "case_setup_s": case.setup_s}
     return SweepResult(rpm=rpm, omega=omegas, lam=lam, engagement_rpm=None if w_eng is None else rad_s_to_rpm(w_eng),
                        first_touch=where, first_touch_angle_deg=angle,
                        divergence_rpm=None if div is None else rad_s_to_rpm(div), contact=case.contact,
                        scale=case.scale, thickness=model.thickness, softening=case.softening.name,
                        curve=curve, shoes=shoe_table(rpm, lam, case.contact, nominal), fields=fields,
-                       timings=timings)
+                       condition=cond, warnings=warns, timings=timings)

@@ -19,8 +19,22 @@ for _cmd in (geometry, solve, analyze, validate, demo):
     app.command()(_cmd)
 
 
-def main() -> None:  # pragma: no cover
-    app()
+def main() -> None:
+    """Entry point: progress notes (clutchfem's INFO log) on stderr; Ctrl-C stops with exit
+    code 130 and one line, not a traceback (gmsh, while meshing, exits with 130 itself)."""
+    import logging
+    import sys
+
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("%(message)s"))
+    log = logging.getLogger("clutchfem")
+    log.addHandler(handler)
+    log.setLevel(logging.INFO)
+    try:
+        app()
+    except KeyboardInterrupt:
+        print("interrupted (Ctrl-C): nothing was written for the unfinished work", file=sys.stderr)
+        raise SystemExit(130) from None
 
 
 __all__ = ["app", "main"]

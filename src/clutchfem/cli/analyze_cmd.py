@@ -78,7 +78,7 @@ def analyze(
         if out is not None:
             from ..report import write_analysis
 
-            for f in write_analysis(an, eng, out, name):
+            for f in write_analysis(an, eng, out, an.label):
                 err.print(f"wrote {escape(str(f))}")
         if json_:
             from ..jsonio import dumps

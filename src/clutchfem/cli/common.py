@@ -66,9 +66,15 @@ def length_option(name: str, raw: Optional[str]):
     """A length option (``--mesh-size 0.8mm``) in m, or None."""
     if raw is None:
         return None
+    from ..errors import ParameterError
     from ..geometry import MeshSettings
 
-    return MeshSettings._parse_value(name, raw)
+    try:
+        value = MeshSettings._parse_value(name, raw)
+        MeshSettings(**{name: value})
+        return value
+    except ParameterError as exc:
+        raise ParameterError(exc.name, exc.value, exc.allowed, "option --mesh-size") from None
 
 
 def mesh_settings(size, model: str):

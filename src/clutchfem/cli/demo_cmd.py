@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import typer
 
 from ..errors import ClutchfemError
-from .common import console, fail
+from ..jsonio import write as write_json
+from .common import check_out_dir, console, fail
 from .geometry_cmd import _geometry_table, build_geometry
 
 
@@ -16,6 +16,10 @@ def demo(out: Path = typer.Option(Path("out/demo"), "--out", help="output folder
     """Build every concept at its defaults, then sweep the default design and plot torque vs rpm."""
     from ..geometry import concepts
 
+    try:
+        check_out_dir(out)
+    except ClutchfemError as exc:
+        fail(exc)
     rows = []
     for name, c in concepts().items():
         try:
@@ -23,7 +27,7 @@ def demo(out: Path = typer.Option(Path("out/demo"), "--out", help="output folder
         except ClutchfemError as exc:  # record and go on
             rows.append({"concept": name, "error": str(exc)})
     _geometry_table(rows)
-    (out / "geometry" / "summary.json").write_text(json.dumps(rows, indent=2, default=str))
+    write_json(out / "geometry" / "summary.json", rows, indent=2)
     from ..report import default_design_report
 
     try:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from pathlib import Path
@@ -13,7 +12,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..errors import ClutchfemError
-from .common import console, fail, mesh_settings
+from ..jsonio import write as write_json
+from .common import check_out_dir, console, fail, length_option, mesh_settings
 
 
 def geometry(
@@ -22,7 +22,7 @@ def geometry(
     out: Path = typer.Option(Path("out/geometry"), "--out", help="output folder"),
     list_: bool = typer.Option(False, "--list", help="print the concept names, one a line"),
     list_params: bool = typer.Option(False, "--list-params", help="show parameters: name, unit, default, range"),
-    mesh_size: Optional[float] = typer.Option(None, "--mesh-size", help="global element size [m]"),
+    mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm)"),
     model: str = typer.Option("full", "--model", help="sector or full"),
     no_drawing: bool = typer.Option(False, "--no-drawing", help="skip the PNG/SVG drawing"),
 ):
@@ -37,6 +37,8 @@ def geometry(
         if concept is None:
             fail(ClutchfemError("give a concept name (see --list)"))
         c = get_concept(concept)
+        if not list_params:
+            check_out_dir(out)
         if list_params:
             t = Table(title=f"{c.name}: parameters")
             for col in ("name", "unit", "default", "allowed", "description"):
@@ -47,7 +49,8 @@ def geometry(
                           row["allowed"], row["description"])
             console.print(t)
             return
-        info = build_geometry(c, c.Params.from_assignments(set_), out, mesh_size, model, not no_drawing)
+        info = build_geometry(c, c.Params.from_assignments(set_), out, length_option("size", mesh_size), model,
+                              not no_drawing)
         _geometry_table([info])
     except ClutchfemError as exc:
         fail(exc)
@@ -81,7 +84,7 @@ def build_geometry(c, p, out: Path, mesh_size, model: str, drawing: bool) -> dic
             "part_mass_kg": cm.mass["solid"]["area"] * rho * h * (cm.n_shoes_total if cm.sector_angle else 1),
             "mesh_time_s": cm.mesh_time_s, "cached": cm.cached, "wall_time_s": wall,
             "files": [str(f) for f in files]}
-    (out / f"{c.name}.json").write_text(json.dumps({**info, "params": p.model_dump(), "mass": cm.mass}, indent=2))
+    write_json(out / f"{c.name}.json", {**info, "params": p.model_dump(), "mass": cm.mass}, indent=2)
     return info
 
 

@@ -44,8 +44,10 @@ def solve(
     no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery"),
 ):
     """Speed sweep: engagement, contact forces and arc, friction torque (drum held), stresses."""
+    from ..checks import model_warnings
     from ..jsonio import dumps, write
     from ..operating import parse_rpm
+    from ..traceability import design_inputs
 
     try:
         check_out_dir(out)
@@ -64,11 +66,13 @@ def solve(
         size = length_option("size", mesh_size)
         design, c, p = load_design(concept, set_, mesh, size, model, op)
         res = design.sweep(speeds, stresses=not no_stress)
+        warns = list(res.warnings) + model_warnings(res, design.model.material.yield_strength)
+        doc = {**res.to_json(), "warnings": warns, "inputs": design_inputs(design)}
         if out is not None:
             res.curve.to_csv(out / "curve.csv", index=False)
             if not res.shoes.empty:
                 res.shoes.to_csv(out / "shoes.csv", index=False)
-            write(out / "result.json", res.to_json(), indent=2)
+            write(out / "result.json", doc, indent=2)
         if vtk:
             from ..output import write_vtk
 
@@ -78,17 +82,24 @@ def solve(
                 for f in files:
                     console.print(f"wrote {escape(str(f))}")
         if json_:
-            print(dumps(res.to_json()))
+            print(dumps(doc))
         else:
             _print_sweep(res, mat)
+            for w in warns:
+                console.print(f"[bold red]WARNING:[/] {escape(w)}")
     except ClutchfemError as exc:
         fail(exc)
 
 
 def _print_sweep(res, mat) -> None:
     eng = res.engagement_rpm
-    console.print(f"engagement speed: {eng:.0f} rpm (first touch at the shoe {res.first_touch})" if eng
-                  else "engagement speed: none in the speed range (never touches the drum)")
+    if res.contact is None:
+        console.print("engagement speed: not computed (no drum: free spin only)")
+    elif eng is not None:
+        console.print(f"engagement speed: {eng:.0f} rpm (first touch at the shoe {res.first_touch})")
+    else:
+        lim = f" below the divergence speed {res.divergence_rpm:.0f} rpm" if res.divergence_rpm else ""
+        console.print(f"engagement speed: none: the shoes never reach the drum{lim}")
     t = Table(title=f"speed sweep ({escape(mat.name)})")
     for col in ("rpm", "normal force [N]", "torque [N m]", "contact arc [deg]", "max von Mises [MPa]",
                 "safety factor [-]", "max displ. [mm]"):

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import time
 import warnings
 from pathlib import Path
@@ -10,8 +9,9 @@ from typing import Optional
 
 import typer
 
-from ..errors import ClutchfemError
-from .common import console, err, fail
+from ..errors import ClutchfemError, InputError
+from ..jsonio import dumps
+from .common import check_out_dir, console, err, fail
 
 
 def validate(
@@ -19,21 +19,24 @@ def validate(
     out: Path = typer.Option(Path("out/validation"), "--out",
                              help="folder for figures and validation.json (with --docs)"),
     docs: Optional[Path] = typer.Option(None, "--docs", help="write the Markdown report here (e.g. docs/validation.md)"),
-    concept: Optional[str] = typer.Option(None, "--concept",
-                                          help="concept whose clutch sits on the crankshaft in "
-                                               "the whirl check (default: the default design)"),
 ):
-    """Reproduce the source papers' numbers (spring clutch, chain impact, shaft whirl, thesis)."""
+    """Reproduce the source papers' numbers (spring clutch, chain impact, overhung-disc shaft,
+    thesis): every module of clutchfem.validation that defines records()."""
     from ..validation import runner
 
     t0 = time.perf_counter()
     try:
-        options = {"shaft": {"concept": concept}} if concept else None
-        run = runner.collect(options=options)  # every module runs once
+        if docs is not None:  # refused before any work: a folder, a file in a file, no permission
+            check_out_dir(out)
+            if docs.is_dir():
+                raise InputError(f"--docs {docs}: is a folder; give the Markdown file to write (e.g. "
+                                 "docs/validation.md)")
+            check_out_dir(docs.parent, "--docs")
+        run = runner.collect()  # every module runs once
         if docs is not None:
             runner.report_run(run, out, docs)
         if json_:
-            print(json.dumps([r.to_json() for r in run.records]))
+            print(dumps([r.to_json() for r in run.records]))
         else:
             console.print(runner.rich_table(run.records))
         for w in run.warnings:

@@ -15,7 +15,9 @@ factorisation for everything below):
 5. :func:`mu_sensitivity_step`: torque and slip speed at mu x 0.7 and x 1.3;
 6. :func:`coupling_step`: the analytical plus/minus shoe model fitted to the FE (below);
 7. :func:`stress_step`: peak stress and safety factor at the engine's maximum speed;
-8. :func:`requirements_step`: engagement > a x idle, slip < b x rpm of max engine torque.
+8. :func:`requirements_step`: engagement > a x idle, slip < b x rpm of max engine torque;
+9. :func:`whirl_step`: the crankshaft's first critical speed with this clutch on its
+   overhang (:mod:`clutchfem.clutch.whirl`) against the engine's maximum speed.
 
 Each returns a small frozen result; :class:`Analysis` collects the answers the report
 renders (:mod:`clutchfem.report`).
@@ -58,6 +60,12 @@ DEFAULT_IDLE_RPM = 2700.0
 #: Safety factor below which the report adds a fatigue caution (ASSUMED threshold; yield
 #: itself is the hard limit, sf < 1).
 FATIGUE_CAUTION_SF = 1.5
+#: normal force with / without friction above which a plus shoe is called strongly
+#: self-energising (near self-locking) in the warnings
+SELF_ENERGISING_WARN = 1.5
+#: required margin of the first crankshaft critical speed over the engine's maximum speed
+#: (ASSUMED: the usual 20-30 % separation rule for rotors running below their first critical)
+WHIRL_MARGIN = 0.25
 #: Friction factors of the mu sensitivity study (mu +- 30 %).
 MU_FACTORS = (0.7, 1.3)
 #: spacing [rpm] of the internal grid on which clutch/engine crossings are bracketed (then
@@ -97,10 +105,12 @@ class Requirements:
 class SlipAnswer:
     """Slip speed with the drum held and full throttle.
 
-    ``status``: 'slips' (clutch torque meets the engine curve at ``rpm``), 'holds at start'
-    (the clutch already holds the engine torque at the lowest speed of the engine curve),
-    'never slips' (clutch torque stays below the engine curve: the engine runs to its maximum
-    speed), 'never engages' (no contact within the engine's speed range).
+    ``status``: 'slips' (clutch torque meets the engine curve at ``rpm``: below it the clutch
+    slips, there it holds the engine), 'holds at start' (the clutch already holds the engine
+    torque at the lowest speed of the engine curve), 'never holds' (the clutch torque stays
+    below the engine torque at every speed: it slips all the way and the engine runs to its
+    maximum speed; mu = 0 or an engine far stronger than the clutch), 'never engages' (no
+    contact within the engine's speed range: no torque at all).
     """
 
     rpm: float | None
@@ -204,6 +214,12 @@ class Analysis:
     #: polar angle [deg] of the first contact node (drum frame); with a user mesh the shoe's
     #: root and tip are unknown, so ``first_touch`` is 'unknown' and this angle locates it
     first_touch_angle_deg: float | None = None
+    #: everything that defines the answers (clutchfem.traceability.design_inputs) and the
+    #: file-name stem that tells this design apart from others in one folder
+    inputs: dict = field(default_factory=dict)
+    label: str = ""
+    #: crankshaft whirl with this clutch on the overhang (clutchfem.clutch.whirl.WhirlAnswer.as_dict)
+    whirl: dict = field(default_factory=dict)
 
     def to_json(self) -> dict:
         from ..jsonio import clean
@@ -238,10 +254,13 @@ def slip_answer(engine: EngineCurve, clutch_torque_at_rpm, engagement_rpm: float
                  + ", ".join(f"{r:.0f} rpm {d}" for r, d in cross)
                  + "): the engine stops at the first upward crossing")
     if s is None:
-        return SlipAnswer(None, "never slips",
-                          f"never slips: the clutch torque stays below the engine torque up to "
-                          f"{hi:.0f} rpm, so with the drum held the engine runs to its maximum speed"
-                          + extra, cross)
+        t_max = float(np.max(np.asarray(clutch_torque_at_rpm(np.array([hi])), dtype=float)))
+        why = ("the clutch transmits no torque (mu = 0?)" if t_max <= 0 else
+               f"the clutch torque stays below the engine torque up to {hi:.0f} rpm "
+               f"({t_max:.3g} N m there against {float(engine.torque_at(hi)):.3g} N m)")
+        return SlipAnswer(None, "never holds",
+                          f"never holds: {why}; with the drum held the clutch slips at every speed and "
+                          f"the engine runs to its maximum speed" + extra, cross)
     if not ups or s <= lo * (1 + 1e-12):
         return SlipAnswer(float(s), "holds at start",
                           f"the clutch already holds the engine torque at {lo:.0f} rpm, the lowest "
@@ -477,6 +496,14 @@ def stress_step(res, rpm: float, material) -> StressAnswer:
                         (float(row["max_vm_x_m"]), float(row["max_vm_y_m"])), float(material.yield_strength))
 
 
+def whirl_step(design, max_rpm: float):
+    """Step 9: the crankshaft's first critical (whirl) speed with this clutch, drum and
+    sprocket (ASSUMED layout) on its overhang, against the engine's maximum speed."""
+    from .whirl import whirl
+
+    return whirl(design, max_rpm=max_rpm)
+
+
 def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, eng: EngagementAnswer,
                       slip: SlipAnswer, in_range: bool) -> dict:
     """Step 8: the two requirement checks (with the values checked and the limits)."""
@@ -505,6 +532,7 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curve's, else 2700 rpm, ASSUMED).  A user mesh (``design.params`` None) gets every FE
     answer; the analytical curves are then NaN and ``analytical_available`` is False."""
     from ..design import Design
+    from ..traceability import design_inputs, design_label
 
     if not isinstance(design, Design):
         raise ParameterError("design", type(design).__name__, "a clutchfem.design.Design (mesh + operating point)")
@@ -558,6 +586,12 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                      "is given")
     basis = design.model.basis if design.model.basis.mesh is design.cm.mesh else None  # 3-D: its own
     part = mesh_mass_properties(design.cm, material.rho, design.thickness, basis)
+    strong = [p_ for p_ in ch.per_shoe if p_["normal_force_ratio"] > SELF_ENERGISING_WARN]
+    if strong:
+        r = max(p_["normal_force_ratio"] for p_ in strong)
+        warnings.append(f"STRONGLY SELF-ENERGISING (plus) shoe: friction multiplies the normal force by {r:.2f} "
+                        f"at {probe:.0f} rpm (mu = {op.mu:g}): the torque is very sensitive to mu and the clutch "
+                        "grabs, near self-locking; a minus arrangement or lower mu is the robust choice")
     if coupling.get("kind") and character in ("plus", "minus") and coupling["kind"] != character:
         warnings.append(f"the FE model behaves as a {character} shoe but the flexure arrangement "
                         f"suggests a {coupling['kind']} shoe: the analytical curves assume "
@@ -568,6 +602,12 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     for col in ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm"):
         models[col] = float(curves[col].iloc[k_nom])
     arc_probe = float(curves["contact_arc_deg"].iloc[k_nom])
+    # the sweep's own numerical and model-applicability warnings (stress is checked below
+    # at the engine's maximum speed)
+    from ..checks import model_warnings
+
+    warnings += list(res.warnings) + [w for w in model_warnings(res, material.yield_strength)
+                                      if not w.startswith("STRESS ABOVE YIELD")]
     # 7: stress at the engine's maximum speed
     st = stress_step(res, hi, material)
     fy = st.yield_strength_Pa
@@ -589,12 +629,19 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curves["arc_fraction"] = curves["contact_arc_deg"] / nominal if nominal and math.isfinite(nominal) else math.nan
     # 8: requirements
     checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)
+    # 9: crankshaft whirl
+    wh = whirl_step(design, hi)
+    if wh.margin < WHIRL_MARGIN:
+        warnings.append(f"CRANKSHAFT WHIRL: the first critical speed {wh.rpm_crit_lowest:,.0f} rpm is only "
+                        f"{100 * wh.margin:+.0f} % above the engine's maximum {hi:,.0f} rpm (wanted >= "
+                        f"{100 * WHIRL_MARGIN:.0f} %, ASSUMED); crankshaft, drum and sprocket are ASSUMED")
     if not checks["engagement_ok"]:
         warnings.append(f"REQUIREMENT NOT MET: engagement with ripple {eng.with_ripple_rpm:.0f} rpm is not above "
                         f"a x idle = {req.a:g} x {idle_rpm:.0f} = {checks['engagement_limit_rpm']:.0f} rpm "
                         "(chain may move at idle)")
     if not checks["slip_ok"]:
-        got = {"never slips": "never slips", "never engages": "never engages"}.get(
+        got = {"never holds": "the clutch never holds the engine (slips at every speed)",
+               "never engages": "never engages"}.get(
             slip.status, f"slip {slip.rpm:.0f} rpm" if slip.rpm is not None else "no slip speed")
         warnings.append(f"REQUIREMENT NOT MET: {got}; required slip below b x rpm(max torque) = "
                         f"{req.b:g} x {engine.rpm_max_torque:.0f} = {checks['slip_limit_rpm']:.0f} rpm")
@@ -619,7 +666,9 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                     mu=float(op.mu), mu_sensitivity=sens.as_dict(), torque_models_at_max_engine_torque_Nm=models,
                     contact_arc_at_max_engine_torque_deg=arc_probe, requirements=checks, engine=eng_info,
                     coupling=coupling, curves=curves, first_touch=res.first_touch, warnings=warnings, notes=notes,
-                    part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg)
+                    part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg,
+                    inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
+                    label=design_label(design), whirl=wh.as_dict())
 
 
 def mesh_mass_properties(cm, rho: float, thickness: float, basis=None) -> dict:

@@ -28,6 +28,11 @@ from clutchfem.errors import InputError, ParameterError
 
 __all__ = ["EngineCurve", "DEFAULT_CURVE_RPM", "DEFAULT_CURVE_TORQUE", "slip_rpm", "torque_crossings"]
 
+#: a full-throttle curve whose top speed is below this [rpm] is refused as a likely rad/s
+#: table (the default saw curve in rad/s ends at 1466; real small-engine curves reach
+#: several thousand rpm)
+MIN_TOP_RPM = 1500.0
+
 #: ASSUMED default full-throttle curve, 56.5 cc saw (see module docstring).  Anchors from
 #: seed 000: max 3.40 N m at 8000 rpm, 3.20 N m at 950 rad/s (9072 rpm).
 DEFAULT_CURVE_RPM = (2500.0, 3000.0, 4000.0, 5000.0, 6000.0, 7000.0, 8000.0, 9000.0,
@@ -78,8 +83,19 @@ class EngineCurve:
             raise InputError(
                 f"{where}: torque must be >= 0 N m; got {tq[i]:g} at {rpm[i]:g} rpm"
             )
+        if not np.any(tq > 0.0):
+            raise InputError(f"{where}: every torque value is 0 N m; a full-throttle curve must deliver "
+                             "torque somewhere")
+        if rpm.max() < MIN_TOP_RPM:
+            raise InputError(
+                f"{where}: the speeds end at {rpm.max():g}, but a full-throttle curve of a small engine "
+                f"reaches several thousand rpm (saws 10 000-15 000): are they in rad/s? "
+                f"(rpm = rad/s x 60 / (2 pi): {rpm.max():g} rad/s = {rpm.max() * 60 / (2 * np.pi):.0f} rpm)")
         if self.idle_rpm is not None and not (float(self.idle_rpm) > 0.0):
             raise ParameterError("idle_rpm", self.idle_rpm, "> 0 rpm")
+        if self.idle_rpm is not None and float(self.idle_rpm) >= rpm.max():
+            raise ParameterError("idle_rpm", self.idle_rpm, f"an idle speed below the curve's top speed "
+                                 f"{rpm.max():g} rpm (is the curve or the idle speed in other units?)")
         object.__setattr__(self, "rpm", tuple(rpm.tolist()))
         object.__setattr__(self, "torque", tuple(tq.tolist()))
         object.__setattr__(self, "_interp", PchipInterpolator(rpm, tq, extrapolate=False))
@@ -106,10 +122,17 @@ class EngineCurve:
         """
         path = Path(path)
         if not path.is_file():
-            raise InputError(f"engine curve file not found: {path}")
-        with path.open(newline="", encoding="utf-8") as fh:
-            reader = csv.reader(fh)
-            rows = [r for r in reader if r and any(c.strip() for c in r)]
+            raise InputError(f"engine curve file not found (or not a file): {path}")
+        try:
+            with path.open(newline="", encoding="utf-8") as fh:
+                rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
+        except UnicodeDecodeError:
+            raise InputError(f"engine curve file {path} is not a text CSV (not UTF-8 text: a binary "
+                             "or spreadsheet file?); save it as CSV with columns rpm, torque") from None
+        except (OSError, csv.Error) as exc:
+            raise InputError(f"engine curve file {path} cannot be read: {exc}") from None
+        if any("\x00" in c for r in rows for c in r):
+            raise InputError(f"engine curve file {path} is not a text CSV (it holds NUL bytes)")
         if not rows:
             raise InputError(f"engine curve file {path} is empty")
         header = [c.strip().lower() for c in rows[0]]

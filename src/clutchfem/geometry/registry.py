@@ -59,6 +59,8 @@ def concepts() -> dict[str, Concept]:
 def get_concept(name: str) -> Concept:
     """Concept by name (``concept4``, ``4``, ``concept3.1``, ``3.1`` all work)."""
     allc = concepts()
+    if not isinstance(name, str):
+        raise ParameterError("concept", name, "a concept name (text), one of " + ", ".join(allc))
     key = name.strip().lower()
     for cand in (key, f"concept{key}", key.replace("_", ".")):
         if cand in allc:

@@ -19,7 +19,9 @@ _GMSH_LOCK = threading.Lock()
 def gmsh_session(name: str = "clutchfem"):
     """Initialise gmsh quietly for one model; always finalise."""
     with _GMSH_LOCK:
-        gmsh.initialize(interruptible=False)
+        # Ctrl-C stops a long meshing run (gmsh installs its SIGINT handler: possible only in
+        # the main thread; worker threads run uninterruptible, their process can be stopped)
+        gmsh.initialize(interruptible=threading.current_thread() is threading.main_thread())
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.option.setNumber("General.Verbosity", 1)

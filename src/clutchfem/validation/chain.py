@@ -58,6 +58,9 @@ from clutchfem.errors import ParameterError
 from clutchfem.validation.records import ValidationRecord
 
 MODULE = "chain"
+#: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
+SOURCE = "seed 002: Rynik & Dolipski, impact tension of a round-link chain on a pocket wheel"
+ORDER = 30
 
 #: Mass share factor of Rjabow [1]: the equivalent impacting mass is twice the link mass.
 K_MASS_SHARE = 2.0

@@ -1,10 +1,24 @@
 """Run every validation module, write the figures and a Markdown report, show a table.
 
-Each module ``clutchfem.validation.<name>`` offers ``records() -> list[ValidationRecord]``
-and ``figures(out_dir) -> list[Path]``.  Modules are imported lazily: one that is not there
-yet (or whose own clutchfem dependencies are not there yet) is skipped with a recorded
-warning; one that fails is reported the same way (``strict=True`` re-raises instead), so a
-single broken module never hides the others.
+Validation modules are discovered as concepts are: every module of the
+``clutchfem.validation`` package (every ``*.py`` on the package's ``__path__``) that
+defines a callable ``records() -> list[ValidationRecord]`` is run; dropping a file into
+``src/clutchfem/validation/`` adds it to ``clutchfem validate`` and the report, with no
+list to edit.  A module's optional attributes:
+
+* ``SOURCE``: one line naming the source paper, the heading of the module's report section
+  (a module without it is run, headed by its name, and a warning asks for it);
+* ``ORDER``: a number, the module's place in the report and the table (ascending); modules
+  without one follow, at :data:`DEFAULT_ORDER`; ties are broken by module name, so the
+  order is stable;
+* ``figures(out_dir) -> list[Path]`` and ``report_notes(records) -> str`` (Markdown).
+
+Modules whose name starts with ``_`` are private helpers and are not discovered (as for
+concepts); nor is a module without ``records`` (``records.py``, this runner).  A module
+that fails to import is reported as a warning, since it may well be a validation module
+(``strict=True`` re-raises instead), so a single broken module never hides the others.
+Explicit module names (``collect(("chain",))``) are imported lazily the same way: one that
+is not there yet is skipped with a recorded warning.
 
 Usage::
 
@@ -20,28 +34,23 @@ from __future__ import annotations
 import importlib
 import json
 import math
+import numbers
 import os
+import pkgutil
 import sys
 import time
 import warnings
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
 
 from clutchfem.validation.records import ValidationRecord
 
-#: Validation modules, in report order.
-MODULE_NAMES: tuple[str, ...] = ("wiesik", "thesis", "chain", "shaft")
-
-#: Source paper of each module (for the report headings).
-SOURCES: dict[str, str] = {
-    "wiesik": "seed 000: spring-and-shoe clutch and its instantaneous load (Husqvarna 357 XP)",
-    "thesis": "seed 003: Chalmers thesis, one-piece compliant clutch",
-    "chain": "seed 002: Rynik & Dolipski, impact tension of a round-link chain on a pocket wheel",
-    "shaft": "seed 004: circular-saw shaft with an overhung disc (transverse vibration)",
-}
+PACKAGE = "clutchfem.validation"
+#: report position of a module that sets no ``ORDER`` (after those that do)
+DEFAULT_ORDER = 1000
 
 
 class ValidationModuleWarning(UserWarning):
@@ -74,13 +83,60 @@ def load_module(name: str, *, strict: bool = False) -> tuple[ModuleType | None, 
         return None, f"module '{name}' failed to import: {type(exc).__name__}: {exc}"
 
 
-def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
-            options: Mapping[str, Mapping[str, object]] | None = None) -> ValidationRun:
-    """Import each module and call its ``records(**options[name])``; problems become
-    warnings.  ``options`` e.g. ``{"shaft": {"concept": "concept1"}}`` (the concept whose
-    clutch sits on the crankshaft in the whirl check)."""
+def module_order(mod: ModuleType) -> float:
+    """A module's ``ORDER`` (a real number), else :data:`DEFAULT_ORDER`."""
+    order = getattr(mod, "ORDER", DEFAULT_ORDER)
+    ok = isinstance(order, numbers.Real) and not isinstance(order, bool) and math.isfinite(order)
+    return float(order) if ok else float(DEFAULT_ORDER)
+
+
+def discover(*, strict: bool = False) -> tuple[list[str], list[str]]:
+    """(names of the validation modules in report order, warnings): see the module
+    docstring for the rules.  Every public module of the package is imported."""
+    pkg = importlib.import_module(PACKAGE)
+    found: list[tuple[float, str]] = []
+    notes: list[str] = []
+    seen: set[str] = set()
+    for info in pkgutil.iter_modules(pkg.__path__):
+        name = info.name
+        if name.startswith("_") or name in seen:  # private helper; first path entry wins
+            continue
+        seen.add(name)
+        mod, warn = load_module(name, strict=strict)
+        if mod is None:
+            notes.append(warn or f"module '{name}' skipped")
+            continue
+        if not callable(getattr(mod, "records", None)):
+            continue  # a helper of the package, not a validation module
+        order = getattr(mod, "ORDER", DEFAULT_ORDER)
+        if module_order(mod) != order:
+            notes.append(f"module '{name}': ORDER = {order!r} is not a finite number; "
+                         f"placed at {DEFAULT_ORDER}")
+        if not isinstance(getattr(mod, "SOURCE", None), str):
+            notes.append(f"module '{name}' has no SOURCE string (its report heading): "
+                         "add SOURCE = \"seed ...: the paper\"")
+        found.append((module_order(mod), name))
+    return [n for _, n in sorted(found)], notes
+
+
+def module_names(*, strict: bool = False) -> tuple[str, ...]:
+    """Names of the discovered validation modules, in report order (:func:`discover`)."""
+    return tuple(discover(strict=strict)[0])
+
+
+def source_of(name: str, module: ModuleType | None = None) -> str:
+    """The report heading of module ``name``: its ``SOURCE``, else its name."""
+    mod = module if module is not None else sys.modules.get(f"{PACKAGE}.{name}")
+    src = getattr(mod, "SOURCE", None)
+    return src if isinstance(src, str) else name
+
+
+def collect(modules: Sequence[str] | None = None, *, strict: bool = False) -> ValidationRun:
+    """Import each module (default: every discovered one, :func:`discover`) and call its
+    ``records()``; problems become warnings."""
     run = ValidationRun()
-    options = options or {}
+    if modules is None:
+        modules, run.warnings = discover(strict=strict)
     for name in modules:
         t0 = time.perf_counter()
         mod, warn = load_module(name, strict=strict)
@@ -88,7 +144,7 @@ def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
             run.warnings.append(warn or f"module '{name}' skipped")
             continue
         try:
-            recs = list(mod.records(**dict(options.get(name, {}))))
+            recs = list(mod.records())
         except Exception as exc:  # noqa: BLE001
             if strict:
                 raise
@@ -111,12 +167,11 @@ def collect(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
     return run
 
 
-def run_all(modules: Sequence[str] = MODULE_NAMES, *, strict: bool = False,
-            options: Mapping[str, Mapping[str, object]] | None = None
+def run_all(modules: Sequence[str] | None = None, *, strict: bool = False
             ) -> list[ValidationRecord]:
     """All records of all available modules; skipped modules raise a
     :class:`ValidationModuleWarning` (see :func:`collect` for the details)."""
-    run = collect(modules, strict=strict, options=options)
+    run = collect(modules, strict=strict)
     for w in run.warnings:
         warnings.warn(w, ValidationModuleWarning, stacklevel=2)
     return run.records
@@ -174,7 +229,7 @@ def render_markdown(run: ValidationRun, figures: dict[str, list[Path]], docs_md:
     base = docs_md.parent
     for name in names:
         recs = [r for r in run.records if r.module == name]
-        lines += [f"## {name}", "", f"Source: {SOURCES.get(name, name)}.", ""]
+        lines += [f"## {name}", "", f"Source: {source_of(name, run.modules.get(name))}.", ""]
         extra = getattr(run.modules.get(name), "report_notes", None)
         if callable(extra):  # optional module hook: Markdown paragraphs on its method
             lines += [extra(recs).strip(), ""]
@@ -206,11 +261,10 @@ def render_markdown(run: ValidationRun, figures: dict[str, list[Path]], docs_md:
     return "\n".join(lines).rstrip() + "\n"
 
 
-def write_report(out_dir: Path, docs_md: Path, modules: Sequence[str] = MODULE_NAMES, *,
-                 strict: bool = False,
-                 options: Mapping[str, Mapping[str, object]] | None = None) -> Path:
+def write_report(out_dir: Path, docs_md: Path, modules: Sequence[str] | None = None, *,
+                 strict: bool = False) -> Path:
     """Run everything (:func:`collect`) and :func:`report_run` it; returns ``docs_md``."""
-    run = collect(modules, strict=strict, options=options)
+    run = collect(modules, strict=strict)
     report_run(run, out_dir, docs_md, strict=strict)
     for w in run.warnings:
         warnings.warn(w, ValidationModuleWarning, stacklevel=2)
@@ -263,7 +317,7 @@ def render_table(records: Sequence[ValidationRecord], *, title: str = "clutchfem
     for name in dict.fromkeys(r.module for r in records):
         recs = [r for r in records if r.module == name]
         c = _status_counts(recs)
-        table = Table(title=f"{name}: {SOURCES.get(name, name)}", title_justify="left",
+        table = Table(title=f"{name}: {source_of(name)}", title_justify="left",
                       box=box.SIMPLE_HEAD, padding=(0, 1), pad_edge=False, expand=False,
                       caption=(f"{name}: {len(recs)} records, {c['reproduced']} reproduced, "
                                f"{c['differs']} differs, {c['computed']} computed"),

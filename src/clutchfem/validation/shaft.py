@@ -1,34 +1,11 @@
 """Shaft with an overhung disc: transverse vibration and critical speed (seed ``004``).
 
 Validation module for the Ukrainian paper *Modelling of transverse oscillations of the
-cutting mechanism of a circular-saw machine* (OCR'd) and its chainsaw application: the
-crankshaft carrying the clutch and drum on its overhang has the same layout.
-
-Model (paper eqs 1-13).  Uniform Euler-Bernoulli shaft (mass per length ``mu = rho A``,
-bending stiffness ``EI``), pinned at ``x = 0`` and ``x = l1``, free end at ``x = l1 + l2``
-carrying a rigid disc of mass ``M`` and rotary inertia ``J`` about a diameter.  With
-``w(x, t) = W(x) cos(omega t)`` and ``beta^4 = omega^2 mu / EI`` (4) each span has
-``W = C1 sin + C2 cos + C3 sinh + C4 cosh (beta x)`` (6) and eight conditions (7)-(9)::
-
-    W1(0) = 0, W1''(0) = 0                     pin at x = 0
-    W1(l1) = 0, W2(l1) = 0                     pin at x = l1 (both sides)
-    W1'(l1) = W2'(l1), W1''(l1) = W2''(l1)     slope and moment continuous
-    EI W2''(L) =  J omega^2 W2'(L)             disc rotary inertia (tip moment)
-    EI W2'''(L) = -M omega^2 W2(L)             disc inertia force (tip shear)
-
-The shear jumps at ``x = l1`` by the unknown support reaction, so shear continuity is *not*
-a condition.  Frequency equation: ``det A(beta) = 0`` (11); ``omega = beta^2 sqrt(EI/mu)``
-(13).  Note that ``beta`` depends only on ``mu, M, J, l1, l2``: the choice of ``I_z`` only
-enters (13).
-
-Well-conditioned form (ours, not the paper's): each span uses its local coordinate
-``xi`` in ``[0, l]`` and the bounded basis ``sin(b xi), cos(b xi), exp(-b xi),
-exp(-b (l - xi))`` (same span as sin/cos/sinh/cosh), each condition is written on
-``W, W'/b, W''/b^2, W'''/b^3`` and the two tip rows are divided by ``1 + |coefficient|``.
-The determinant is then an entire, O(1) function of ``beta``: no overflow of ``cosh`` and
-no poles.  Roots are bracketed by a sign-change scan and refined with ``brentq``; a sign
-change across which ``|det|`` does not drop (a pole, should a caller pass a meromorphic
-form) is rejected.
+cutting mechanism of a circular-saw machine* (OCR'd): its tables and conclusions against
+the overhung-shaft mechanics of :mod:`clutchfem.shaft` (model, equations and the
+well-conditioned determinant are documented there).  The chainsaw application of the same
+mechanics, the crankshaft whirl with a design's clutch on the overhang, is a design
+analysis: :mod:`clutchfem.clutch.whirl`.
 
 What the paper printed, and how we read it (all checked against Tables 1-2):
 
@@ -46,9 +23,9 @@ What the paper printed, and how we read it (all checked against Tables 1-2):
   ``I_p``, ``I_p/2``, 0, ``-I_p/2``; either printed error alone) reproduces any column.
 * The physical model (``model="physical"``) with the diametral inertia ``J = I_d = I_p/2``
   (thin disc at rest) is cross-checked by an independent Hermite beam FE model
-  (:func:`fe_frequency_coefficients`).  For a spinning disc in synchronous forward whirl
-  (critical speed) the gyroscopic moment turns ``J`` into ``I_d - I_p`` (negative for a
-  disc): see :func:`crankshaft_whirl`.
+  (:func:`clutchfem.shaft.fe_frequency_coefficients`).  For a spinning disc in synchronous
+  forward whirl (critical speed) the gyroscopic moment turns ``J`` into ``I_d - I_p``
+  (negative for a disc): the ``forward_whirl`` reading of :class:`Disc`.
 * ``I_z = pi d^4/32`` written in the paper is the polar second moment; bending needs
   ``pi d^4/64``.  It does not change ``beta`` but makes the paper's ``omega`` (13) too high
   by ``sqrt(2)``.
@@ -56,253 +33,29 @@ What the paper printed, and how we read it (all checked against Tables 1-2):
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
-from scipy.linalg import eigh
-from scipy.optimize import brentq
 
 from clutchfem.errors import ParameterError, SolverError
+from clutchfem.shaft import (
+    Model,
+    OverhungShaft,
+    fe_frequency_coefficients,
+    frequency_coefficients,
+)
 from clutchfem.units import rad_s_to_rpm
 from clutchfem.validation.records import ValidationRecord
 
 MODULE = "shaft"
+#: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
+SOURCE = "seed 004: circular-saw shaft with an overhung disc (transverse vibration)"
+ORDER = 40
 
-Model = Literal["physical", "as_printed"]
 DiscInertia = Literal["polar", "diametral", "forward_whirl", "none"]
-
-
-# --------------------------------------------------------------------------------------
-# System definition
-# --------------------------------------------------------------------------------------
-
-
-def _finite(name: str, value: float, *, positive: bool = True, allow_zero: bool = False,
-            unit: str = "") -> float:
-    v = float(value)
-    if not math.isfinite(v):
-        raise ParameterError(name, value, f"finite number {unit}".strip())
-    if positive and (v < 0 or (v == 0 and not allow_zero)):
-        rel = ">= 0" if allow_zero else "> 0"
-        raise ParameterError(name, value, f"{rel} {unit}, finite".strip())
-    return v
-
-
-@dataclass(frozen=True)
-class OverhungShaft:
-    """Uniform shaft pinned at x = 0 and x = l1 with a rigid disc at the free end l1 + l2.
-
-    ``tip_rotary_inertia_kg_m2`` is the disc's rotary inertia *about a diameter* as it
-    enters the tip-moment condition; it may be negative (``I_d - I_p`` for synchronous
-    forward whirl of a spinning disc).  SI units throughout.
-    """
-
-    span_m: float  # l1, bearing span
-    overhang_m: float  # l2
-    mass_per_length_kg_m: float  # mu = rho A
-    bending_stiffness_N_m2: float  # E I
-    tip_mass_kg: float = 0.0  # M
-    tip_rotary_inertia_kg_m2: float = 0.0  # J
-
-    def __post_init__(self):
-        _finite("span_m", self.span_m, unit="m")
-        _finite("overhang_m", self.overhang_m, unit="m")
-        _finite("mass_per_length_kg_m", self.mass_per_length_kg_m, unit="kg/m")
-        _finite("bending_stiffness_N_m2", self.bending_stiffness_N_m2, unit="N m^2")
-        _finite("tip_mass_kg", self.tip_mass_kg, allow_zero=True, unit="kg")
-        _finite("tip_rotary_inertia_kg_m2", self.tip_rotary_inertia_kg_m2, positive=False,
-                unit="kg m^2")
-
-    @classmethod
-    def round_shaft(cls, *, diameter_m: float, E: float, rho: float, span_m: float,
-                    overhang_m: float, tip_mass_kg: float = 0.0,
-                    tip_rotary_inertia_kg_m2: float = 0.0,
-                    second_moment: Literal["diametral", "polar"] = "diametral") -> OverhungShaft:
-        """Solid round shaft: ``A = pi d^2/4``, ``I = pi d^4/64`` (``"polar"``: the paper's
-        ``pi d^4/32``, wrong for bending; kept to reproduce eq 13)."""
-        d = _finite("diameter_m", diameter_m, unit="m")
-        _finite("E", E, unit="Pa")
-        _finite("rho", rho, unit="kg/m^3")
-        if second_moment not in ("diametral", "polar"):
-            raise ParameterError("second_moment", second_moment, "'diametral' or 'polar'")
-        i = math.pi * d**4 / (64 if second_moment == "diametral" else 32)
-        return cls(span_m, overhang_m, rho * math.pi * d**2 / 4, E * i, tip_mass_kg,
-                   tip_rotary_inertia_kg_m2)
-
-    @property
-    def length_m(self) -> float:
-        return self.span_m + self.overhang_m
-
-    def omega(self, beta):
-        """Natural circular frequency [rad/s] from beta [1/m]: beta^2 sqrt(EI/mu), eq (13)."""
-        return np.asarray(beta) ** 2 * math.sqrt(self.bending_stiffness_N_m2
-                                                 / self.mass_per_length_kg_m)
-
-
-# --------------------------------------------------------------------------------------
-# (a) Exact frequency equation: 8x8 determinant
-# --------------------------------------------------------------------------------------
-
-
-def _basis(b: np.ndarray, xi: float, length: float) -> np.ndarray:
-    """Rows W, W'/b, W''/b^2, W'''/b^3 of the bounded basis at local coordinate xi.
-
-    Basis: sin(b xi), cos(b xi), exp(-b xi), exp(-b (l - xi)).  Shape (n, 4, 4)."""
-    s, c = np.sin(b * xi), np.cos(b * xi)
-    e1, e2 = np.exp(-b * xi), np.exp(-b * (length - xi))
-    return np.stack([
-        np.stack([s, c, e1, e2], -1),
-        np.stack([c, -s, -e1, e2], -1),
-        np.stack([-s, -c, e1, e2], -1),
-        np.stack([-c, s, -e1, e2], -1),
-    ], -2)
-
-
-def frequency_matrix(beta, shaft: OverhungShaft, model: Model = "physical") -> np.ndarray:
-    """Scaled 8x8 matrix of the boundary/continuity conditions, shape (n, 8, 8).
-
-    Unknowns: the four basis amplitudes of span 1 then of span 2.  ``model="physical"`` is
-    the correct system (module docstring); ``"as_printed"`` is the paper's system (10):
-    shear continuity at x = l1 instead of ``W2(l1) = 0`` and ``+M omega^2`` at the tip.
-    """
-    if model not in ("physical", "as_printed"):
-        raise ParameterError("model", model, "'physical' or 'as_printed'")
-    b = np.atleast_1d(np.asarray(beta, dtype=float))
-    l1, l2, mu = shaft.span_m, shaft.overhang_m, shaft.mass_per_length_kg_m
-    n = b.size
-    A = np.zeros((n, 8, 8))
-    s10, s1l = _basis(b, 0.0, l1), _basis(b, l1, l1)
-    s20, s2l = _basis(b, 0.0, l2), _basis(b, l2, l2)
-    A[:, 0, :4] = s10[:, 0]  # W1(0) = 0
-    A[:, 1, :4] = s10[:, 2]  # W1''(0) = 0
-    A[:, 2, :4] = s1l[:, 0]  # W1(l1) = 0
-    if model == "physical":
-        A[:, 3, 4:] = s20[:, 0]  # W2(l1) = 0
-    else:  # paper (10): shear continuity (the static reaction term drops from det)
-        A[:, 3, :4] = s1l[:, 3]
-        A[:, 3, 4:] = -s20[:, 3]
-    A[:, 4, :4], A[:, 4, 4:] = s1l[:, 1], -s20[:, 1]  # slope continuity
-    A[:, 5, :4], A[:, 5, 4:] = s1l[:, 2], -s20[:, 2]  # moment continuity
-    cj = shaft.tip_rotary_inertia_kg_m2 * b**3 / mu  # J omega^2/(EI beta)
-    cm = shaft.tip_mass_kg * b / mu  # M omega^2/(EI beta^3)
-    sign_m = 1.0 if model == "physical" else -1.0
-    A[:, 6, 4:] = (s2l[:, 2] - cj[:, None] * s2l[:, 1]) / (1 + np.abs(cj))[:, None]
-    A[:, 7, 4:] = (s2l[:, 3] + sign_m * cm[:, None] * s2l[:, 0]) / (1 + np.abs(cm))[:, None]
-    return A
-
-
-def frequency_determinant(beta, shaft: OverhungShaft, model: Model = "physical") -> np.ndarray:
-    """det of :func:`frequency_matrix` (entire, O(1) function of beta), shape (n,)."""
-    return np.linalg.det(frequency_matrix(beta, shaft, model))
-
-
-def bracket_roots(f, grid: np.ndarray, values: np.ndarray | None = None,
-                  max_roots: int | None = None) -> list[float]:
-    """Roots of a scalar function from sign changes on ``grid``, refined by brentq.
-
-    A sign change where ``|f|`` at the refined point is not far below its values at the
-    bracket ends is a pole or a jump, not a root, and is skipped.
-    """
-    v = np.array([f(x) for x in grid]) if values is None else np.asarray(values)
-    out: list[float] = []
-    for i in np.nonzero(np.sign(v[:-1]) * np.sign(v[1:]) < 0)[0]:
-        a, b = float(grid[i]), float(grid[i + 1])
-        r = brentq(f, a, b, xtol=1e-14, rtol=1e-13, maxiter=200)
-        if abs(f(r)) <= 1e-3 * max(abs(v[i]), abs(v[i + 1])):
-            out.append(r)
-            if max_roots is not None and len(out) >= max_roots:
-                break
-    return out
-
-
-def frequency_coefficients(shaft: OverhungShaft, n_roots: int = 2,
-                           model: Model = "physical", points_per_pi: int = 64) -> np.ndarray:
-    """First ``n_roots`` frequency coefficients beta_i [1/m] from det A(beta) = 0.
-
-    The scan runs geometrically from ``1e-4 pi/L`` to ``pi/(points_per_pi L)`` (``L = l1 +
-    l2``), then with the step ``pi/(points_per_pi L)`` (root spacing is about ``pi/L``),
-    chunk by chunk until enough roots are found.
-    Two roots closer than a step (possible only in the as-printed system near its lost
-    root) can be missed; the physical model is cross-checked against FE in the tests.
-    """
-    if n_roots < 1:
-        raise ParameterError("n_roots", n_roots, "integer >= 1")
-
-    def f(x: float) -> float:
-        return float(frequency_determinant(x, shaft, model)[0])
-
-    scale = math.pi / shaft.length_m
-    step = scale / points_per_pi
-    # Geometric part first: a heavy disc on a light shaft puts beta_1 far below pi/L (the
-    # determinant behaves like beta^p there, smooth and without spurious sign changes).
-    grids = [scale * np.geomspace(1e-4, 1.0 / points_per_pi, 8 * 20 + 1)]
-    roots: list[float] = []
-    chunk = 8 * points_per_pi
-    for _ in range(400):
-        grid = grids.pop() if grids else start + step * np.arange(chunk + 1)
-        vals = frequency_determinant(grid, shaft, model)
-        roots += bracket_roots(f, grid, vals, max_roots=n_roots - len(roots))
-        if len(roots) >= n_roots:
-            return np.array(roots[:n_roots])
-        start = float(grid[-1])
-    raise SolverError(f"found only {len(roots)} of {n_roots} roots of the frequency equation "
-                      f"below beta = {start:.4g} 1/m for {shaft}")
-
-
-# --------------------------------------------------------------------------------------
-# (b) Independent check: Hermite cubic beam finite elements
-# --------------------------------------------------------------------------------------
-
-
-def _beam_matrices(h: float, EI: float, mu: float) -> tuple[np.ndarray, np.ndarray]:
-    k = EI / h**3 * np.array([[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h],
-                              [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
-    m = mu * h / 420 * np.array([[156, 22 * h, 54, -13 * h],
-                                 [22 * h, 4 * h * h, 13 * h, -3 * h * h],
-                                 [54, 13 * h, 156, -22 * h],
-                                 [-13 * h, -3 * h * h, -22 * h, 4 * h * h]])
-    return k, m
-
-
-def fe_frequency_coefficients(shaft: OverhungShaft, n_modes: int = 2, elements: int = 24,
-                              richardson: bool = True) -> np.ndarray:
-    """beta_i [1/m] from an Euler-Bernoulli FE model (Hermite cubics, consistent mass).
-
-    ``elements`` are shared between the spans in proportion to length (at least 4 each);
-    the disc adds ``M`` to the tip deflection and ``J`` to the tip rotation.  The
-    generalised problem is solved as ``M x = (1/omega^2) K x`` (``K`` is positive definite
-    with the two pins; ``M`` may be indefinite when ``J < 0``).  With ``richardson`` the
-    O(h^4) eigenvalue error is extrapolated from ``elements`` and ``2 elements``.
-    """
-    if elements < 2:
-        raise ParameterError("elements", elements, "integer >= 2")
-    if richardson:
-        c = fe_frequency_coefficients(shaft, n_modes, elements, False)
-        f = fe_frequency_coefficients(shaft, n_modes, 2 * elements, False)
-        return f + (f - c) / 15.0
-    l1, l2 = shaft.span_m, shaft.overhang_m
-    n1 = max(4, round(elements * l1 / shaft.length_m))
-    n2 = max(4, elements - n1)
-    x = np.concatenate([np.linspace(0.0, l1, n1 + 1), l1 + np.linspace(0.0, l2, n2 + 1)[1:]])
-    nn = x.size
-    K = np.zeros((2 * nn, 2 * nn))
-    M = np.zeros((2 * nn, 2 * nn))
-    EI, mu = shaft.bending_stiffness_N_m2, shaft.mass_per_length_kg_m
-    for e in range(nn - 1):
-        k, m = _beam_matrices(x[e + 1] - x[e], EI, mu)
-        s = slice(2 * e, 2 * e + 4)
-        K[s, s] += k
-        M[s, s] += m
-    M[2 * (nn - 1), 2 * (nn - 1)] += shaft.tip_mass_kg
-    M[2 * nn - 1, 2 * nn - 1] += shaft.tip_rotary_inertia_kg_m2
-    free = np.setdiff1d(np.arange(2 * nn), [0, 2 * n1])
-    lam = eigh(M[np.ix_(free, free)], K[np.ix_(free, free)], eigvals_only=True)
-    lam = np.sort(lam[lam > 0])[::-1][:n_modes]  # 1/omega^2, largest first
-    return (mu / (EI * lam)) ** 0.25
 
 
 # --------------------------------------------------------------------------------------
@@ -408,312 +161,6 @@ def lost_root_overhang(l1: float, disc: str = "D500", lo: float = 0.18, hi: floa
 
 
 # --------------------------------------------------------------------------------------
-# Chainsaw application: crankshaft whirl with clutch + drum + sprocket on the overhang
-# --------------------------------------------------------------------------------------
-
-Spin = Literal["crank", "drum"]
-Gyro = Literal["engaged", "drum_held", "none"]
-
-
-@dataclass(frozen=True)
-class RigidPart:
-    """One rigid body on the crankshaft overhang (axisymmetric in the whirl model).
-
-    ``polar_inertia_kg_m2`` about the spin axis and ``diametral_inertia_kg_m2`` about a
-    diameter, both through the part's own centre of mass; ``axial_position_m`` is that
-    centre's distance from the clutch-side main bearing.  ``spins``: ``"crank"`` = always
-    turns with the crankshaft (the clutch), ``"drum"`` = turns with it only while the
-    clutch is engaged (drum, sprocket: they sit on a needle bearing).  ``source`` says where
-    the numbers come from (geometry module or ASSUMED).
-    """
-
-    name: str
-    mass_kg: float
-    polar_inertia_kg_m2: float
-    diametral_inertia_kg_m2: float
-    axial_position_m: float
-    spins: Spin
-    source: str
-
-    def __post_init__(self):
-        _finite("mass_kg", self.mass_kg, unit="kg")
-        _finite("polar_inertia_kg_m2", self.polar_inertia_kg_m2, allow_zero=True, unit="kg m^2")
-        _finite("diametral_inertia_kg_m2", self.diametral_inertia_kg_m2, allow_zero=True,
-                unit="kg m^2")
-        _finite("axial_position_m", self.axial_position_m, allow_zero=True, unit="m")
-        if self.polar_inertia_kg_m2 > 2 * self.diametral_inertia_kg_m2 * (1 + 1e-9):
-            raise ParameterError("polar_inertia_kg_m2", self.polar_inertia_kg_m2,
-                                 f"<= 2 x diametral inertia = {2 * self.diametral_inertia_kg_m2:g}"
-                                 " kg m^2 (a rigid body has I_p <= 2 I_d about its centre)")
-        if self.spins not in ("crank", "drum"):
-            raise ParameterError("spins", self.spins, "'crank' or 'drum'")
-
-    @classmethod
-    def ring(cls, name: str, r_in_m: float, r_out_m: float, length_m: float, rho: float,
-             axial_position_m: float, spins: Spin, source: str) -> RigidPart:
-        """Solid ring (annulus x axial length): I_p = m (a^2 + b^2)/2,
-        I_d = m ((a^2 + b^2)/4 + L^2/12)."""
-        a = _finite("r_in_m", r_in_m, allow_zero=True, unit="m")
-        b = _finite("r_out_m", r_out_m, unit="m")
-        length = _finite("length_m", length_m, unit="m")
-        if b <= a:
-            raise ParameterError("r_out_m", r_out_m, f"> r_in_m = {a} m")
-        m = rho * math.pi * (b * b - a * a) * length
-        s = a * a + b * b
-        return cls(name, m, m * s / 2, m * (s / 4 + length**2 / 12), axial_position_m, spins,
-                   source)
-
-
-@dataclass(frozen=True)
-class ChainsawLayout:
-    """ASSUMED crankshaft, drum and sprocket of a 60 cc saw (not in the sources; change freely).
-
-    Crankshaft: d = 13 mm at the clutch side (12-15 mm on 50-90 cc saws), pinned at the two
-    main bearings 50 mm apart; the crank throw between them is stiffer and heavier than a
-    plain shaft: modelling it as the 13 mm shaft is conservative for stiffness.  Axial stack
-    outward from the clutch-side main bearing (Husqvarna order: sprocket inboard, drum open
-    side outward, clutch screwed on the shaft end inside the drum):
-
-    * sprocket (rim sprocket + its hub): steel ring r 9.0-21.0 mm (r_k = 21.2 mm pitch
-      radius, seed 000), 8 mm wide, centre ``sprocket_z_m`` = 12 mm;
-    * drum end wall: steel disc r 8.0-36.0 mm, 1.5 mm thick, from z = 16 mm;
-    * drum wall: steel tube from the drum's inner radius (34.4 mm, seed 000, or the
-      concept's ``drum_radius``) to + 1.6 mm, as long as ``gap + clutch thickness + lip``;
-    * clutch: the concept's part (geometry module), ``gap`` = 1.5 mm from the end wall.
-
-    The overhang of the whirl model ends at the composite centre of mass (all parts lumped
-    into one rigid body there); the shaft beyond it carries no part.  Seed 000 gives the
-    drum + sprocket (+ nose sprocket) inertia J_b = 85.10e-6 kg m^2 of its 56.5 cc saw: the
-    assumed drum + sprocket is checked against it in the records.
-    """
-
-    shaft_diameter_m: float = 0.013
-    bearing_span_m: float = 0.050
-    sprocket_r_in_m: float = 0.009
-    sprocket_r_out_m: float = 0.021
-    sprocket_width_m: float = 0.008
-    sprocket_z_m: float = 0.012
-    drum_end_z_m: float = 0.016  # inner (bearing-side) face of the drum end wall
-    drum_end_thickness_m: float = 0.0015
-    drum_end_r_in_m: float = 0.008
-    drum_wall_m: float = 0.0016
-    drum_gap_m: float = 0.0015  # end wall to clutch face
-    drum_lip_m: float = 0.0015  # drum wall beyond the clutch's outer face
-    E: float = 210e9
-    rho: float = 7850.0  # drum, sprocket and crankshaft steel
-    max_rpm: float = 15000.0  # seed 000: saw engines run up to ~15 000 rpm
-
-
-CHAINSAW_LAYOUT = ChainsawLayout()
-#: Seed 000's drum + sprockets inertia (56.5 cc Husqvarna 357 XP) [kg m^2].
-SEED000_J_B_KG_M2 = 85.10e-6
-
-
-def clutch_part_from_mass_properties(mass: dict, thickness_m: float, rho: float,
-                                     axial_position_m: float, source: str) -> RigidPart:
-    """Rigid body of a one-piece clutch from the geometry module's OCC-exact area properties.
-
-    ``mass["solid"]`` holds, per unit density and thickness, the area A [m^2], centroid
-    (x, y) [m], ``J_origin`` = int (x^2 + y^2) dA and ``Ixx_origin`` = int y^2 dA,
-    ``Iyy_origin`` = int x^2 dA [m^4] of the *whole* part (full model).  For the plate of
-    thickness h: m = rho h A, I_p = rho h J_c (about the centre of mass), I_d about the
-    in-plane axes through the centre of mass: rho h (Ixx - A y_c^2) + m h^2/12 (and the
-    same with x); the whirl model is axisymmetric, so the mean of the two is used (equal
-    for n >= 3 identical shoes).
-    """
-    s = mass["solid"]
-    area = float(s["area"])
-    h = _finite("thickness_m", thickness_m, unit="m")
-    rh = _finite("rho", rho, unit="kg/m^3") * h
-    cx, cy = (float(c) for c in s["centroid"])
-    m = rh * area
-    ip = rh * float(s["J_centroid"])
-    ixx = rh * (float(s["Ixx_origin"]) - area * cy * cy) + m * h * h / 12
-    iyy = rh * (float(s["Iyy_origin"]) - area * cx * cx) + m * h * h / 12
-    return RigidPart("clutch", m, ip, 0.5 * (ixx + iyy), axial_position_m, "crank", source)
-
-
-@dataclass(frozen=True)
-class Rotor:
-    """Rigid parts on the overhang, lumped at their composite centre of mass."""
-
-    parts: tuple[RigidPart, ...]
-
-    @property
-    def mass_kg(self) -> float:
-        return sum(p.mass_kg for p in self.parts)
-
-    @property
-    def cg_m(self) -> float:
-        """Composite centre of mass: distance from the main bearing [m] (= model overhang)."""
-        return sum(p.mass_kg * p.axial_position_m for p in self.parts) / self.mass_kg
-
-    @property
-    def diametral_inertia_kg_m2(self) -> float:
-        """I_d about a diameter through the composite centre (parallel-axis terms included)."""
-        zc = self.cg_m
-        return sum(p.diametral_inertia_kg_m2 + p.mass_kg * (p.axial_position_m - zc) ** 2
-                   for p in self.parts)
-
-    def polar_inertia_kg_m2(self, spinning: Gyro = "engaged") -> float:
-        """Sum of I_p over the parts that spin at crank speed: all (clutch engaged), the
-        crank-bound ones only (``drum_held``: chain brake on, clutch slipping) or none."""
-        if spinning not in ("engaged", "drum_held", "none"):
-            raise ParameterError("gyroscopic", spinning, "'engaged', 'drum_held' or 'none'")
-        if spinning == "none":
-            return 0.0
-        return sum(p.polar_inertia_kg_m2 for p in self.parts
-                   if spinning == "engaged" or p.spins == "crank")
-
-
-def concept_rotor(concept: str | None = None, params=None, rho: float | None = None,
-                  layout: ChainsawLayout = CHAINSAW_LAYOUT) -> tuple[str, Rotor]:
-    """(concept name, rotor) for a concept: the clutch from its geometry module, drum and
-    sprocket ASSUMED (:class:`ChainsawLayout`).
-
-    ``concept`` defaults to the default design (``concept4``, else ``concept1``: the rule of
-    :func:`clutchfem.report.default_design_report`); ``params`` to the concept's defaults
-    (its ``thickness`` and ``drum_radius`` are used); ``rho`` to the 51CrV4 steel of the
-    thesis.  The geometry is built once (full 360 degree model) and cached on disk by
-    :func:`clutchfem.mesh.mesh_concept`.
-    """
-    from clutchfem.geometry import MeshSettings, concepts, get_concept
-    from clutchfem.materials import get_material
-    from clutchfem.mesh import mesh_concept
-
-    if concept is None:
-        concept = "concept4" if "concept4" in concepts() else "concept1"
-    c = get_concept(concept)
-    p = params if params is not None else c.params()
-    rho = get_material("51CrV4").rho if rho is None else rho
-    cm = mesh_concept(c, p, MeshSettings(model="full"))
-    h, rd, L = float(p.thickness), float(p.drum_radius), layout
-    wall_z0 = L.drum_end_z_m + L.drum_end_thickness_m
-    clutch = clutch_part_from_mass_properties(
-        cm.mass, h, rho, wall_z0 + L.drum_gap_m + h / 2,
-        f"{c.name} geometry (OCC exact area properties x rho {rho:g} kg/m^3 x h "
-        f"{1e3 * h:g} mm)")
-    wall_len = L.drum_gap_m + h + L.drum_lip_m
-    assumed = "ASSUMED (ChainsawLayout)"
-    parts = (
-        clutch,
-        RigidPart.ring("drum wall", rd, rd + L.drum_wall_m, wall_len, L.rho,
-                       wall_z0 + wall_len / 2, "drum", assumed),
-        RigidPart.ring("drum end wall", L.drum_end_r_in_m, rd + L.drum_wall_m,
-                       L.drum_end_thickness_m, L.rho, L.drum_end_z_m + L.drum_end_thickness_m / 2,
-                       "drum", assumed),
-        RigidPart.ring("sprocket", L.sprocket_r_in_m, L.sprocket_r_out_m, L.sprocket_width_m,
-                       L.rho, L.sprocket_z_m, "drum", assumed),
-    )
-    return c.name, Rotor(parts)
-
-
-@dataclass(frozen=True)
-class WhirlResult:
-    """First critical (synchronous forward whirl) speed of the crankshaft with its rotor."""
-
-    omega_crit_rad_s: float
-    rpm_crit: float
-    max_rpm: float
-    margin: float  # rpm_crit / max_rpm - 1 (0.25 = 25 % above the maximum engine speed)
-    beta1_per_m: float
-    overhang_m: float
-    rotor_mass_kg: float
-    effective_rotary_inertia_kg_m2: float
-    gyroscopic: Gyro
-    fe_rpm_crit: float  # independent FE value (Richardson), a check on rpm_crit
-
-    def summary(self) -> str:
-        g = {"engaged": "gyroscopic: all parts spinning", "drum_held": "gyroscopic: clutch "
-             "only, drum held", "none": "no gyroscopic effect"}[self.gyroscopic]
-        return (f"first critical speed {self.rpm_crit:,.0f} rpm "
-                f"({self.omega_crit_rad_s:,.0f} rad/s, {g}); max engine speed "
-                f"{self.max_rpm:,.0f} rpm; margin {100 * self.margin:+.0f} %")
-
-
-def crankshaft_whirl(rotor: Rotor, layout: ChainsawLayout = CHAINSAW_LAYOUT, *,
-                     gyroscopic: Gyro = "engaged") -> WhirlResult:
-    """First critical speed of a crankshaft carrying ``rotor`` on its overhang.
-
-    Same model as the saw shaft: crankshaft pinned at the two main bearings (span
-    ``layout.bearing_span_m``), rotor lumped as one rigid body at its composite centre of
-    mass (overhang = :attr:`Rotor.cg_m`).  The critical speed is the lowest speed at which
-    a natural whirl frequency equals the spin: unbalance excites *synchronous forward*
-    whirl.  For a body spinning at Omega and whirling forward at omega = Omega the
-    gyroscopic moment is ``I_p Omega omega theta``, so the tip moment condition carries
-    ``(I_d - I_p) omega^2`` instead of ``I_d omega^2``: the effective rotary inertia is
-    ``I_d - I_p`` (negative for disc-like bodies: the gyroscopic effect stiffens and raises
-    the critical speed).  ``gyroscopic``: ``"engaged"`` (all parts spin), ``"drum_held"``
-    (only the clutch spins: chain brake on) or ``"none"`` (non-spinning natural frequency,
-    the most conservative).  The exact determinant root is checked against the FE model.
-    """
-    L = layout
-    _finite("max_rpm", L.max_rpm, unit="rpm")
-    j = rotor.diametral_inertia_kg_m2 - rotor.polar_inertia_kg_m2(gyroscopic)
-    shaft = OverhungShaft.round_shaft(diameter_m=L.shaft_diameter_m, E=L.E, rho=L.rho,
-                                      span_m=L.bearing_span_m, overhang_m=rotor.cg_m,
-                                      tip_mass_kg=rotor.mass_kg, tip_rotary_inertia_kg_m2=j)
-    beta1 = float(frequency_coefficients(shaft, 1)[0])
-    w = float(shaft.omega(beta1))
-    w_fe = float(shaft.omega(fe_frequency_coefficients(shaft, 1, elements=24)[0]))
-    if abs(w_fe - w) > 1e-4 * w:  # a root missed by the scan would show up here
-        raise SolverError(f"critical speed: determinant {w:.6g} rad/s and FE {w_fe:.6g} rad/s "
-                          f"disagree for {shaft}")
-    rpm = rad_s_to_rpm(w)
-    return WhirlResult(w, rpm, float(L.max_rpm), rpm / float(L.max_rpm) - 1.0, beta1,
-                       rotor.cg_m, rotor.mass_kg, j, gyroscopic, rad_s_to_rpm(w_fe))
-
-
-def whirl_records(concept: str | None = None) -> list[ValidationRecord]:
-    """``computed`` records of the crankshaft whirl check for ``concept`` (default design)."""
-    name, rotor = concept_rotor(concept)
-    L = CHAINSAW_LAYOUT
-    clutch = rotor.parts[0]
-    ds = [p for p in rotor.parts if p.spins == "drum"]
-    pre = f"shaft.whirl.{name}"
-    res = {g: crankshaft_whirl(rotor, gyroscopic=g) for g in ("engaged", "drum_held", "none")}
-    shaft_txt = (f"ASSUMED crankshaft d {1e3 * L.shaft_diameter_m:g} mm, bearing span "
-                 f"{1e3 * L.bearing_span_m:g} mm, pinned")
-
-    def rec(key, quantity, value, unit, note):
-        return ValidationRecord(f"{pre}.{key}", MODULE, quantity, None, float(value), unit,
-                                note=note)
-
-    out = [
-        rec("clutch_mass", f"{name} clutch mass (geometry module)", clutch.mass_kg, "kg",
-            clutch.source),
-        rec("clutch_Ip", f"{name} clutch polar inertia I_p", clutch.polar_inertia_kg_m2,
-            "kg m^2", "about the spin axis through the centre of mass; " + clutch.source),
-        rec("clutch_Id", f"{name} clutch diametral inertia I_d", clutch.diametral_inertia_kg_m2,
-            "kg m^2", "about a diameter through the centre of mass, incl. m h^2/12"),
-        rec("drum_sprocket_mass", "drum + sprocket mass (ASSUMED parts)",
-            sum(p.mass_kg for p in ds), "kg",
-            "steel rings: drum wall, drum end wall, sprocket (ChainsawLayout dimensions)"),
-        rec("drum_sprocket_Ip", "drum + sprocket polar inertia (ASSUMED parts)",
-            sum(p.polar_inertia_kg_m2 for p in ds), "kg m^2",
-            f"order-of-magnitude check: seed 000's J_b = {1e6 * SEED000_J_B_KG_M2:.2f}e-6 "
-            "kg m^2 (its drum + sprockets)"),
-        rec("overhang", "rotor centre of mass from the main bearing (model overhang)",
-            1e3 * rotor.cg_m, "mm", f"rotor mass {rotor.mass_kg:.4f} kg, composite I_d "
-            f"{rotor.diametral_inertia_kg_m2:.4g} kg m^2"),
-    ]
-    for g, key, what in (("engaged", "rpm_crit", "clutch engaged, all parts spinning"),
-                         ("drum_held", "rpm_crit_drum_held", "drum held, clutch spinning"),
-                         ("none", "rpm_crit_no_gyro", "no gyroscopic effect (at rest)")):
-        r = res[g]
-        out.append(rec(key, f"first critical speed, {what}", r.rpm_crit, "rpm",
-                       f"forward whirl, J_eff = I_d - I_p(spinning) = "
-                       f"{r.effective_rotary_inertia_kg_m2:.3g} kg m^2; {shaft_txt}; "
-                       f"FE check {r.fe_rpm_crit:,.0f} rpm"))
-    worst = min(res.values(), key=lambda r: r.rpm_crit)
-    out.append(rec("margin", f"margin of the lowest critical speed over {L.max_rpm:,.0f} rpm",
-                   100 * worst.margin, "%",
-                   f"lowest of the three readings ({worst.gyroscopic}: {worst.rpm_crit:,.0f} "
-                   f"rpm); max engine speed {L.max_rpm:,.0f} rpm (seed 000: up to ~15 000 rpm)"))
-    return out
-
-
-# --------------------------------------------------------------------------------------
 # Validation records and figures
 # --------------------------------------------------------------------------------------
 
@@ -739,9 +186,10 @@ def _rid(kind: str, l1: float, l2: float, disc: str) -> str:
     return f"shaft.{kind}.l1_{l1:.2f}.l2_{l2:.2f}.{disc}"
 
 
-def records(concept: str | None = None) -> list[ValidationRecord]:
-    """Tables 1 and 2 (as-printed system), the physical model on a subset, conclusion 4, and
-    the crankshaft whirl check with ``concept``'s clutch (default design when None)."""
+def records() -> list[ValidationRecord]:
+    """Tables 1 and 2 (as-printed system), the physical model on a subset, conclusion 4 and
+    the saw shaft's omega_1 under each reading (the chainsaw crankshaft whirl of a design is
+    :func:`clutchfem.clutch.whirl.whirl`, not a paper comparison)."""
     out: list[ValidationRecord] = []
     lost = {l1: lost_root_overhang(l1) for l1 in TABLE1}
     cells: list[tuple[float, str, int, float]] = []  # (l1, disc, mode index, l2) -> paper
@@ -832,9 +280,6 @@ def records(concept: str | None = None) -> list[ValidationRecord]:
     ):
         out.append(ValidationRecord(rid, MODULE, f"omega_1 [{rad_s_to_rpm(val):,.0f} rpm]", None,
                                     val, "rad/s", note=note))
-
-    # Chainsaw application: crankshaft whirl with a concept's clutch on the overhang.
-    out += whirl_records(concept)
     return out
 
 
@@ -903,36 +348,12 @@ def figures(out_dir: Path) -> list[Path]:
 
 def report_notes(recs: list[ValidationRecord]) -> str:
     """Markdown for the validation report: how to read this module's rows."""
-    by = {r.id: r for r in recs}
-    w = sorted({r.id.split(".")[2] for r in recs if r.id.startswith("shaft.whirl.")})
-    lines = [
+    return (
         "Tables 1-2 are compared with the paper's system (10) *as printed* (shear continuity "
         "at the bearing instead of zero deflection, tip inertia force with the wrong sign, "
         "polar I of the disc): that is what reproduces them; `tol` is half a unit of the "
         "printed beta, and each `differs` note says whether rounding of the printed M and I "
         "can account for the gap. The `physical` rows show the correct model (cross-checked "
-        "by a Hermite beam FE model to 1e-5) against the same printed numbers."]
-    for name in w:
-        pre = f"shaft.whirl.{name}."
-        if pre + "rpm_crit" not in by:
-            continue
-        g = lambda k: by[pre + k].computed  # noqa: E731
-        L = CHAINSAW_LAYOUT
-        lines.append(
-            f"**Crankshaft whirl, {name}.** The clutch's mass and inertia come from the "
-            f"{name} geometry (OCC-exact area properties x 7850 kg/m^3 x its thickness): "
-            f"{g('clutch_mass'):.4f} kg, I_p {g('clutch_Ip'):.3g} kg m^2. Drum and sprocket "
-            f"are ASSUMED steel rings (`ChainsawLayout`: drum wall 1.6 mm on the drum radius, "
-            f"end wall 1.5 mm, sprocket r 9-21 mm x 8 mm; {g('drum_sprocket_mass'):.3f} kg, "
-            f"I_p {g('drum_sprocket_Ip'):.3g} kg m^2 against seed 000's J_b = 85.1e-6 kg m^2), "
-            f"so is the crankshaft (d {1e3 * L.shaft_diameter_m:g} mm, rigid pinned main "
-            f"bearings {1e3 * L.bearing_span_m:g} mm apart). All parts are lumped at their "
-            f"centre of mass, {g('overhang'):.1f} mm outboard of the bearing. First critical "
-            f"speed (synchronous forward whirl, J_eff = I_d - I_p of the spinning parts): "
-            f"{g('rpm_crit'):,.0f} rpm with the clutch engaged, {g('rpm_crit_drum_held'):,.0f} "
-            f"rpm with the drum held (chain brake), {g('rpm_crit_no_gyro'):,.0f} rpm without "
-            f"the gyroscopic effect; the lowest is {g('margin'):+.0f} % above the "
-            f"{L.max_rpm:,.0f} rpm maximum engine speed. Bearing and crankcase compliance is "
-            "not modelled and would lower these speeds: the margin is an upper estimate. "
-            "Select another concept with `clutchfem validate --concept NAME`.")
-    return "\n\n".join(lines)
+        "by a Hermite beam FE model to 1e-5) against the same printed numbers. The chainsaw "
+        "crankshaft whirl with a design's clutch on the overhang (same mechanics) is a design "
+        "analysis, not a paper comparison: `clutchfem.clutch.whirl`.")

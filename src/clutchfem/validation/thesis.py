@@ -41,6 +41,9 @@ from clutchfem.units import rad_s_to_rpm, rpm_to_rad_s
 from clutchfem.validation.records import ValidationRecord
 
 MODULE = "thesis"
+#: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
+SOURCE = "seed 003: Chalmers thesis, one-piece compliant clutch"
+ORDER = 20
 
 __all__ = [
     "ROD",

@@ -76,6 +76,9 @@ from clutchfem.units import rpm_to_rad_s
 from clutchfem.validation.records import ValidationRecord
 
 MODULE = "wiesik"
+#: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
+SOURCE = "seed 000: spring-and-shoe clutch and its instantaneous load (Husqvarna 357 XP)"
+ORDER = 10
 
 __all__ = [
     "DriveData",

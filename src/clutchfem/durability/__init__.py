@@ -1,0 +1,25 @@
+"""Durability of a compliant clutch (issue 14): slip heat and fatigue.
+
+* :mod:`clutchfem.durability.heat` -- transient heat conduction in the part (scikit-fem P2
+  on the clutch mesh, the axial thickness as a plate) during slip with the drum held, the
+  shoe/drum heat partition, repeated slip events with cooling pauses, .vtu and PNG output.
+* :mod:`clutchfem.durability.fatigue` -- stress amplitude and mean from the extreme states
+  of load cycles, Haigh (Goodman/Gerber) check with a Marin-corrected endurance limit,
+  Basquin S-N curve with its knee, Miner's sum over cycle types, and the location of the
+  worst point named from the mesh zones.
+
+Both modules take plain arrays (contact forces, stress states) and a
+:class:`~clutchfem.mesh.ClutchMesh`; they never run the elastic FE solver themselves.
+"""
+
+from .fatigue import (FatigueParams, FatigueResult, LoadCycle, Location, fatigue_check,
+                      name_location)
+from .heat import (DrumThermal, HeatPartition, SlipHeatLoad, SlipHeatResult, SlipScenario,
+                   ThermalEnvironment, ThermalMaterial, heat_partition, slip_heat,
+                   slip_heat_load)
+
+__all__ = [
+    "DrumThermal", "HeatPartition", "SlipHeatLoad", "SlipHeatResult", "SlipScenario",
+    "ThermalEnvironment", "ThermalMaterial", "heat_partition", "slip_heat", "slip_heat_load",
+    "FatigueParams", "FatigueResult", "LoadCycle", "Location", "fatigue_check", "name_location",
+]
