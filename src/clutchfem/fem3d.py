@@ -45,8 +45,9 @@ s_xz = s_yz = 0 on z = 0.  Modelling 0 <= z <= h/2 with u_z = 0 on z = 0 (the sh
 tractions vanish there naturally) is therefore exact, not an approximation; the contact LCP
 keeps a unique solution and so inherits the symmetry.  Operators are those of the physical
 half: totals (forces, torques, mass) are ``symmetry_factor`` = 2 times the model's.  The
-saving is half the unknowns (a factor ~2.5-3 in factorisation time, measured in
-``tests/test_fem3d.py`` and the benchmark).
+saving, measured on concept 4 (2 layers in the half, 4 in the full thickness, same mesh):
+55725 vs 100305 unknowns, factorisation 1.6 s vs 6.7 s (CHOLMOD), assembly 2.0 s vs 4.1 s,
+and the same centrifugal compliance to 2e-11 (``tests/test_fem3d.py`` checks the fields).
 
 Operators (the 3-D twins of :mod:`clutchfem.fem`)
 ------------------------------------------------
