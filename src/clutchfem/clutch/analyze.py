@@ -71,6 +71,9 @@ MU_FACTORS = (0.7, 1.3)
 #: spacing [rpm] of the internal grid on which clutch/engine crossings are bracketed (then
 #: refined by bisection with exact FE solves); also the default output spacing
 GRID_RPM = 125.0
+#: the same for the mu +-30 % sensitivity cases (two crossings closer than this could merge
+#: there; the answer itself is refined to 1e-9 like the main one)
+GRID_RPM_SENSITIVITY = 250.0
 
 
 @dataclass
@@ -292,12 +295,12 @@ def check_speeds(rpm, engine: EngineCurve) -> np.ndarray:
     return np.union1d(r, [hi, float(engine.rpm_max_torque)])
 
 
-def bracket_grid(engine: EngineCurve) -> np.ndarray:
+def bracket_grid(engine: EngineCurve, step: float = GRID_RPM) -> np.ndarray:
     """The internal grid on which crossings with the engine curve are bracketed: the engine
-    range in GRID_RPM steps plus the engine table's own speeds (fixed: independent of the
+    range in ``step`` rpm steps plus the engine table's own speeds (fixed: independent of the
     speeds the user tabulates)."""
     lo, hi = engine.rpm_range
-    return np.union1d(np.append(np.arange(lo, hi, GRID_RPM), hi), engine.rpm)
+    return np.union1d(np.append(np.arange(lo, hi, step), hi), engine.rpm)
 
 
 def _character(n_mu0: float, n_mu: float) -> str:
@@ -355,9 +358,10 @@ def engagement_step(res, ripple_model, in_range: bool, slip: SlipAnswer) -> Enga
         "growth with rpm ASSUMED proportional")
 
 
-def slip_step(case, engine: EngineCurve) -> SlipAnswer:
-    """Step 3: slip speed from the exact FE torque (see module docstring)."""
-    return slip_answer(engine, FETorque(case), case.engagement_rpm, grid=bracket_grid(engine))
+def slip_step(case, engine: EngineCurve, step: float = GRID_RPM) -> SlipAnswer:
+    """Step 3: slip speed from the exact FE torque (see module docstring); crossings are
+    bracketed every ``step`` rpm and then refined to 1e-9."""
+    return slip_answer(engine, FETorque(case), case.engagement_rpm, grid=bracket_grid(engine, step))
 
 
 def secondary_case(design, mu: float):
@@ -414,7 +418,7 @@ def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAns
             continue
         case = secondary_case(design, mu * f)
         torque[key] = float(FETorque(case)(probe)[0])
-        slips[key] = slip_step(case, engine).rpm
+        slips[key] = slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm
     if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
         t_lo, t_hi = torque["x0.7"], torque["x1.3"]
         pct = {"x0.7": 100 * (t_lo / t_probe - 1), "x1.3": 100 * (t_hi / t_probe - 1)}
