@@ -523,6 +523,14 @@ class PrestressedModel:
         return d["_Mr"]
 
 
+def prestressed(model) -> PrestressedModel:
+    """The :class:`PrestressedModel` of ``model``, built once (K_sigma1 is one assembly)."""
+    d = model.__dict__
+    if "_prestressed" not in d:
+        d["_prestressed"] = PrestressedModel(model)
+    return d["_prestressed"]
+
+
 @dataclass(frozen=True)
 class PrestressRitz:
     """Spin softening *and* centrifugal pre-stress stiffening on the one factorisation of K:
@@ -557,7 +565,7 @@ class PrestressRitz:
         cache = model.__dict__.setdefault("_ritz_cache", {})
         if key not in cache:  # the nodes are kept with the pairs: their id is never reused
             cache[key] = (None if contact is None else contact.nodes,
-                          _prestress_pairs(PrestressedModel(model), contact, self.depth))
+                          _prestress_pairs(prestressed(model), contact, self.depth))
         theta, Psi = cache[key][1]
 
         class _Response(_ModalResponse):
@@ -569,7 +577,7 @@ class PrestressRitz:
                 return w2 * theta / (1.0 - w2 * theta)
 
         r = _Response(model, contact, np.ones(len(theta)), Psi)
-        r.check_model = PrestressedModel(model)  # the equilibrium check uses M - K_sigma1,
+        r.check_model = prestressed(model)  # the equilibrium check uses M - K_sigma1,
         r.precondition_check = True  # measured as the displacement error the residual causes
         tmax = float(theta.max(initial=0.0))
         r.omega_limit = 1.0 / math.sqrt(tmax) if tmax > 0 else None
