@@ -38,8 +38,11 @@ from . import occ as G
 occ = gmsh.model.occ
 Profile = Literal["concentric", "eccentric", "linear", "table"]
 
-#: number of clearance control values of the ``table`` profile (equally spaced along the shoe)
-TABLE_N = 9
+#: number of clearance control values of the ``table`` profile (equally spaced along the shoe;
+#: 17: the contact pressure on a rigid drum moves by MPa per micrometre of profile, and 9
+#: values left a 0.3-10 um misfit near the ends of an 80 % target arc, 17 values 0.2-2 nm;
+#: see clutchfem.targets.compensate)
+TABLE_N = 17
 #: names of the table profile's control values, root (s = 0) to tip (s = 1)
 TABLE_FIELDS = tuple(f"table_c{k}" for k in range(TABLE_N))
 #: smallest clearance [m] a profile may leave anywhere along the shoe (a rest gap below this
@@ -68,7 +71,7 @@ class ConceptParams(ParamSet):
     clearance: float = param(0.6e-3, "m", 0.05e-3, 3e-3,
                              "radial shoe-drum clearance at rest (at the root end for a linear profile)", "c")
     profile: Literal["concentric", "eccentric", "linear", "table"] = choice(
-        "concentric", "shoe outer profile (morphological row D); 'table': clearances table_c0..table_c8 "
+        "concentric", "shoe outer profile (morphological row D); 'table': clearances table_c0..table_c16 "
                       "along the shoe, joined by a cubic spline")
     clearance_tip: float = param(0.6e-3, "m", 0.05e-3, 3e-3,
                                  "clearance at the shoe tip (linear profile only)", "c_tip")
@@ -90,6 +93,14 @@ class ConceptParams(ParamSet):
     table_c6: float = _table_param(6)
     table_c7: float = _table_param(7)
     table_c8: float = _table_param(8)
+    table_c9: float = _table_param(9)
+    table_c10: float = _table_param(10)
+    table_c11: float = _table_param(11)
+    table_c12: float = _table_param(12)
+    table_c13: float = _table_param(13)
+    table_c14: float = _table_param(14)
+    table_c15: float = _table_param(15)
+    table_c16: float = _table_param(16)
 
     @model_serializer(mode="wrap")
     def _dump_without_inert_table(self, handler):
