@@ -159,25 +159,41 @@ def tolerance_histograms(res, path) -> Path:
         y = np.array([r[key] for r in ok if r.get(key) is not None], dtype=float) * sc
         if y.size:
             ax.hist(y, bins=max(6, min(30, int(math.sqrt(y.size)) * 2)), color="tab:blue", alpha=0.75)
+        lines = []
         if st["nominal"] is not None:
-            ax.axvline(st["nominal"] * sc, color="k", lw=1.2, label=f"nominal {st['nominal'] * sc:.0f} {st['unit']}")
+            lines.append((st["nominal"] * sc, "k", "-", f"nominal {st['nominal'] * sc:.0f} {st['unit']}"))
         if key in limits:
             lim, sense = limits[key]
-            ax.axvline(lim * sc, color="tab:red", ls="--", lw=1.2, label=f"spec {sense} {lim * sc:.0f} {st['unit']}")
+            lines.append((lim * sc, "tab:red", "--", f"spec {sense} {lim * sc:.0f} {st['unit']}"))
         if key == "max_von_mises_Pa":
             sf = limits.get("safety_factor")
             ys = ok[0].get("yield_strength_Pa") if ok else None
             if sf and ys:
-                ax.axvline(ys / sf[0] * sc, color="tab:red", ls="--", lw=1.2,
-                           label=f"spec (safety factor {sf[0]:g}): {ys / sf[0] * sc:.0f} MPa")
+                lines.append((ys / sf[0] * sc, "tab:red", "--",
+                              f"spec (safety factor >= {sf[0]:g}): <= {ys / sf[0] * sc:.0f} MPa"))
+        if y.size:  # the data set the scale; a limit far off is named at the edge
+            lo_, hi_ = float(y.min()), float(y.max())
+            pad = 0.15 * max(hi_ - lo_, 1e-3 * max(abs(hi_), 1.0))
+            x0, x1 = lo_ - pad, hi_ + pad
+            near = [v for v, *_ in lines if lo_ - 4 * pad <= v <= hi_ + 4 * pad]
+            x0, x1 = min([x0] + near), max([x1] + near)
+            ax.set_xlim(x0, x1)
+            for v, c, ls, lab in lines:
+                if x0 <= v <= x1:
+                    ax.axvline(v, color=c, ls=ls, lw=1.2, label=lab)
+                else:
+                    ax.plot([], [], color=c, ls=ls, label=lab + (" (off the left)" if v < x0 else " (off the right)"))
         sd = st["sd"]
         ax.set_title(f"{st['label']}: sd {sd * sc:.3g} {st['unit']}" if sd is not None else st["label"], fontsize=9)
         ax.set_xlabel(f"{st['label']} [{st['unit']}]", fontsize=8)
         ax.set_ylabel("parts")
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3)
-    fig.suptitle(f"{res.concept}: {res.n} parts ({res.dist}), tolerances "
-                 + ", ".join(f"{k} +-{_tol_text(res, k)}" for k in res.tolerances), fontsize=9)
+    import textwrap
+
+    fig.suptitle("\n".join(textwrap.wrap(f"{res.concept}: {res.n} parts ({res.dist}), tolerances "
+                                          + ", ".join(f"{k} +-{_tol_text(res, k)}" for k in res.tolerances), 110)),
+                 fontsize=9)
     return _save(fig, path)
 
 

@@ -95,7 +95,9 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
     den = 1 + z * z / n
     centre = (p + z * z / (2 * n)) / den
     half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / den
-    return (max(0.0, centre - half), min(1.0, centre + half))
+    lo, hi = max(0.0, centre - half), min(1.0, centre + half)
+    # exact ends (k = 0 gives lo = 0, k = n gives hi = 1 in exact arithmetic; rounding may not)
+    return (0.0 if k == 0 else min(lo, p), 1.0 if k == n else max(hi, p))
 
 
 def src(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
@@ -277,8 +279,9 @@ def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: st
             items.append({"name": name, "src": float(s_[j]), "ci95": [float(lo[j]), float(hi[j])],
                           "slope": float(b[j] * per * sc), "slope_unit": f"{unit} per {per_u}"})
         items.sort(key=lambda it: -abs(it["src"]))
+        resid_sd = float(np.std(y[sel], ddof=1) * math.sqrt(max(0.0, 1.0 - r2)))
         ranking[key] = {"label": label, "r2": r2, "r2_ci95": [r2lo, r2hi], "n": int(sel.sum()), "items": items,
-                        "linear_enough": bool(r2 >= 0.9)}
+                        "linear_enough": bool(r2 >= 0.9), "unexplained_sd": resid_sd, "unit": unit, "scale": sc}
     shift_rows = []
     e0 = nom.get("engagement_rpm")
     for (name, s, _), r in zip(shift_pts, srows):
@@ -294,8 +297,10 @@ def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: st
                      "left out of the shares and the ranking; 'any_counting_unbuildable' counts them as out of spec")
     for key, rk in ranking.items():
         if not rk["linear_enough"]:
-            notes.append(f"{rk['label']}: R^2 = {rk['r2']:.2f} < 0.9: the response is not linear over the band, the "
-                         "SRC ranking is indicative only (Sobol indices would be the tool)")
+            notes.append(f"{rk['label']}: R^2 = {rk['r2']:.2f} < 0.9: {100 * (1 - rk['r2']):.0f} % of its variance (sd "
+                         f"{rk['unexplained_sd'] * rk['scale']:.3g} {rk['unit']}) is not linear in the dimensions: mesh "
+                         "noise (the mesh changes with every part) or a non-linear response; the SRC ranking is "
+                         "indicative only (a finer --mesh-size, or Sobol indices for a non-linear response)")
     return ToleranceResult(concept=settings.concept, tolerances=dict(tolerances), dist=dist, n=n, seed=seed,
                            nominal=nom, rows=rows, spec=spec, out_of_spec=out, statuses=statuses, stats=stats,
                            ranking=ranking, shifts=shift_rows, seconds=time.perf_counter() - t0, notes=notes,
