@@ -11,11 +11,12 @@ from .analyze_cmd import analyze
 from .demo_cmd import demo
 from .geometry_cmd import geometry
 from .solve_cmd import solve
+from .sweep_cmd import guidelines, sweep
 from .validate_cmd import validate
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
-for _cmd in (geometry, solve, analyze, validate, demo):
+for _cmd in (geometry, solve, analyze, validate, demo, sweep, guidelines):
     app.command()(_cmd)
 
 

@@ -1,0 +1,360 @@
+"""Running a study's points on Dask, with resume, progress and a summary.
+
+:func:`run_points` is the sweep engine (the ``sweep`` and ``guidelines`` commands both run
+on it):
+
+1. every point gets its design hash (:mod:`.hashing`) and the run its model version
+   (:func:`~.point.model_version`); the store (:mod:`.store`) says which (hash, version)
+   pairs are finished: those are skipped (``retry_failed`` recomputes the *failed* ones);
+2. the rest run on ``dask.distributed``: by default a private ``LocalCluster`` of
+   ``workers`` **process** workers with one thread each (gmsh is a process-global C++
+   library and not thread-safe; one thread per process also keeps BLAS single-threaded,
+   the nannies set ``OMP/MKL/OPENBLAS_NUM_THREADS=1``), or an existing cluster at
+   ``scheduler`` (``tcp://HOST:PORT``) through exactly the same code (``Client.submit``,
+   ``as_completed``).  ``workers=0`` runs in this process, without Dask (examples, tests,
+   debugging; a crash of gmsh then ends the run);
+3. each finished point's row is committed to the store *by this process* as it arrives
+   (workers never touch the store, so remote workers need no shared disk);
+4. a progress bar (tqdm: rate, ETA and the ok/refused/failed counts) runs on stderr.
+
+Worker processes are reused for every point (imports, the concept's code and the
+process's gmsh library are loaded once: a warm-up runs on every worker before the first
+point); meshes go through the mesh cache (content hash), so a rerun of a design with other
+settings does not mesh again.
+
+Crashes: if a worker process dies while computing a design (gmsh segfault, out of memory),
+its nanny restarts it and the point is stored as *failed* with the scheduler's message.  On
+the private local cluster the scheduler marks the task failed at the first death
+(``allowed_failures=0``) and sends each worker one task at a time (``worker-saturation``
+1.0), so a crash can only take its own design with it.  A remote scheduler keeps its own
+policy (by default a task is retried on 3 more workers before it is declared failed).
+
+Ctrl-C: the pending tasks are cancelled, the cluster is shut down (its worker processes
+ignore SIGINT, so that the client, not a signal race, stops them) and
+:class:`SweepInterrupted` is raised with the counts; every finished row is already
+committed, and running the same spec again resumes.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import signal
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import ClutchfemError, InputError
+from .hashing import design_hash
+from .point import COLUMNS, Settings, evaluate, failed_row, model_version, warm_up
+from .store import STORE_NAME, ResultStore
+
+log = logging.getLogger("clutchfem")
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """What :func:`run_points` did.  points: distinct designs asked for; done: those with a
+    stored row now (any status); computed: rows written by this run; skipped: finished
+    before this run; wall_s: this run's wall time (cluster start-up included); compute_s:
+    from the first submitted point to the last finished one."""
+
+    points: int
+    done: int
+    ok: int
+    refused: int
+    failed: int
+    computed: int
+    skipped: int
+    store: Path
+    model_version: str
+    wall_s: float
+    compute_s: float
+    workers: int
+    scheduler: str
+    keys: tuple[str, ...] = field(repr=False, default=())
+    interrupted: bool = False
+
+    @property
+    def designs_per_min(self) -> float | None:
+        """Designs computed per minute (start-up excluded), or None if none were computed."""
+        return 60.0 * self.computed / self.compute_s if self.computed and self.compute_s > 0 else None
+
+    def as_dict(self) -> dict:
+        return {"points": self.points, "done": self.done, "ok": self.ok, "refused": self.refused,
+                "failed": self.failed, "computed": self.computed, "skipped": self.skipped,
+                "store": str(self.store), "model_version": self.model_version, "wall_s": self.wall_s,
+                "compute_s": self.compute_s, "designs_per_min": self.designs_per_min, "workers": self.workers,
+                "scheduler": self.scheduler, "interrupted": self.interrupted}
+
+
+class SweepInterrupted(ClutchfemError):
+    """Ctrl-C during a run: finished rows are stored; ``result`` has the counts."""
+
+    def __init__(self, result: RunResult):
+        self.result = result
+        super().__init__(f"interrupted (Ctrl-C): {result.done} of {result.points} points are finished and stored "
+                         f"in {result.store} ({result.computed} in this run); run the same command again to "
+                         "compute the rest")
+
+
+def _counts(store: ResultStore, version: str, keys: list[str]) -> dict:
+    st = store.finished(version, keys)
+    vals = list(st.values())
+    return {"done": len(st), "ok": vals.count("ok"), "refused": vals.count("refused"),
+            "failed": vals.count("failed")}
+
+
+def run_points(points: list[dict], settings: Settings, store_path: str | Path, *, workers: int | None = None,
+               scheduler: str | None = None, retry_failed: bool = False, progress: bool = True,
+               source: str = "", spec_text: str = "", desc: str = "sweep") -> RunResult:
+    """Compute the rows of ``points`` not yet in the store (see module docstring)."""
+    t_start = time.perf_counter()
+    if scheduler is not None and workers is not None:
+        raise InputError("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
+        raise InputError(f"workers = {workers!r} is not allowed: an integer >= 0 (0: in this process, no Dask)")
+    version = model_version(settings.concept)
+    keys, tasks = [], {}
+    for p in points:
+        h = design_hash(p, settings)
+        if h not in tasks:
+            keys.append(h)
+            tasks[h] = p
+    store = ResultStore(store_path, COLUMNS)
+    try:
+        finished = store.finished(version, keys)
+        todo = [h for h in keys if h not in finished or (retry_failed and finished[h] == "failed")]
+        run = store.start_run(source, version, len(keys), len(todo), spec_text)
+        n_workers = 0 if workers == 0 else (workers or _default_workers())
+        label = scheduler or (f"local cluster, {n_workers} process workers" if n_workers else "in process")
+        computed, interrupted, t_first, t_last = 0, False, None, None
+        bar = None
+        tally = {"ok": 0, "refused": 0, "failed": 0}
+        try:
+            if todo:
+                rows = (_in_process(todo, tasks, settings) if n_workers == 0 and scheduler is None
+                        else _on_dask(todo, tasks, settings, version, n_workers, scheduler))
+                for row in rows:
+                    if row is None:  # the back-end is up and the points are submitted
+                        t_first = time.perf_counter()
+                        bar = _bar(len(todo), desc, progress)
+                        continue
+                    if row.get("model_version") != version:
+                        row = failed_row(tasks[row["design_hash"]], settings, row["design_hash"], version,
+                                         f"the worker {row.get('worker')} runs model version "
+                                         f"{row.get('model_version')}, this client {version}: install the same "
+                                         "clutchfem on every worker")
+                    store.put(row)
+                    computed += 1
+                    tally[row["status"]] = tally.get(row["status"], 0) + 1
+                    t_last = time.perf_counter()
+                    if bar is not None:
+                        el = max(t_last - (t_first or t_last), 1e-9)
+                        bar.set_postfix_str(f"ok {tally['ok']}, refused {tally['refused']}, failed {tally['failed']}"
+                                            f"; {60 * computed / el:.0f} designs/min", refresh=False)
+                        bar.update(1)
+        except KeyboardInterrupt:
+            interrupted = True
+        finally:
+            if bar is not None:
+                bar.close()
+        c = _counts(store, version, keys)
+        store.end_run(run, computed, "interrupted" if interrupted else "finished")
+    finally:
+        store.close()
+    compute_s = (t_last - t_first) if (t_first is not None and t_last is not None) else 0.0
+    res = RunResult(points=len(keys), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
+                    model_version=version, wall_s=time.perf_counter() - t_start, compute_s=compute_s,
+                    workers=n_workers, scheduler=label, keys=tuple(keys), interrupted=interrupted, **c)
+    if interrupted:
+        raise SweepInterrupted(res)
+    return res
+
+
+def _default_workers() -> int:
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _bar(total: int, desc: str, progress: bool):
+    if not progress or total == 0:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit="design", file=sys.stderr, dynamic_ncols=True, mininterval=0.5,
+                smoothing=0.1)
+
+
+# ---------------------------------------------------------------------------------------
+# back-ends: in this process, or on dask.distributed
+# ---------------------------------------------------------------------------------------
+def _in_process(todo: list[str], tasks: dict, settings: Settings):
+    yield None
+    for h in todo:
+        yield evaluate(tasks[h], settings, h)
+
+
+class _WorkerSetup:
+    """Worker plugin of the private local cluster: ignore SIGINT (the client stops the
+    cluster on Ctrl-C) and import the analysis stack once, on every worker, also on one a
+    nanny restarts after a crash."""
+
+    name = "clutchfem-study-setup"
+
+    def __init__(self, concept: str | None):
+        self.concept = concept
+
+    def setup(self, worker=None):
+        if threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+        warm_up(self.concept)
+
+    def teardown(self, worker=None):
+        pass
+
+
+def _killed_message(exc: BaseException) -> str:
+    name = type(exc).__name__
+    if name == "KilledWorker":
+        return ("the worker process died while computing this design (a crash in gmsh or the solver, or out of "
+                f"memory); its nanny restarted it and the sweep went on ({exc})")
+    return f"{name}: {exc}"
+
+
+def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_workers: int,
+             scheduler: str | None):
+    """Rows as they finish, computed on a dask.distributed cluster (see module docstring)."""
+    import dask
+    from distributed import Client, LocalCluster, as_completed
+
+    cluster = client = None
+    futures: dict = {}
+    try:
+        if scheduler is not None:
+            try:
+                client = Client(scheduler, timeout="30s")
+            except (OSError, TimeoutError) as exc:
+                raise InputError(f"--scheduler {scheduler}: no dask scheduler answers there ({exc}); start one "
+                                 "with `dask scheduler` and workers with `dask worker ADDRESS --nthreads 1`") from None
+        else:
+            with dask.config.set({"distributed.scheduler.worker-saturation": 1.0,
+                                  "distributed.worker.daemon": False}):
+                cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                       dashboard_address=None, scheduler_kwargs={"allowed_failures": 0},
+                                       silence_logs=logging.CRITICAL)
+            client = Client(cluster)
+            client.register_plugin(_as_worker_plugin(_WorkerSetup(settings.concept)))
+        versions = client.run(warm_up, settings.concept)
+        if not versions:
+            client.wait_for_workers(1, timeout=60)
+            versions = client.run(warm_up, settings.concept)
+        odd = {w: v for w, v in versions.items() if v != version}
+        if odd:
+            w, v = next(iter(odd.items()))
+            raise InputError(f"worker {w} runs clutchfem model version {v}, this client {version}: the workers "
+                             "must run the same clutchfem (same source, gmsh and scikit-fem versions)")
+        tag = version.rsplit("+", 1)[-1]
+        for h in todo:
+            fut = client.submit(evaluate, tasks[h], settings, h, key=f"clutchfem-point-{h}-{tag}")
+            futures[fut] = h
+        yield None
+        for fut in as_completed(list(futures)):
+            h = futures.pop(fut)
+            if fut.status == "finished":
+                row = fut.result()
+            else:
+                try:
+                    exc = fut.exception()
+                except Exception as e:  # noqa: BLE001 - cancelled by the scheduler, lost
+                    exc = e
+                row = failed_row(tasks[h], settings, h, version, _killed_message(exc))
+            fut.release()
+            yield row
+    finally:
+        if client is not None:
+            try:
+                if futures:
+                    client.cancel(list(futures), force=True)
+            except Exception:  # noqa: BLE001 - shutting down anyway
+                pass
+            client.close(timeout=10)
+        if cluster is not None:
+            cluster.close(timeout=10)
+
+
+def _as_worker_plugin(obj):
+    """Wrap :class:`_WorkerSetup` as a ``distributed`` WorkerPlugin (imported lazily, so the
+    module imports without distributed)."""
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    class Setup(WorkerPlugin):
+        name = obj.name
+
+        def __init__(self, concept):
+            self.concept = concept
+
+        def setup(self, worker):
+            _WorkerSetup(self.concept).setup(worker)
+
+    return Setup(obj.concept)
+
+
+# ---------------------------------------------------------------------------------------
+# a whole sweep: run, export, charts, summary
+# ---------------------------------------------------------------------------------------
+def default_out(spec_source: str) -> Path:
+    """Default output folder of a spec: ``<spec stem>-sweep`` beside the current folder."""
+    return Path(f"{Path(spec_source).stem}-sweep")
+
+
+def run_sweep(spec, out: str | Path, *, workers: int | None = None, scheduler: str | None = None,
+              retry_failed: bool = False, progress: bool = True, charts: bool = True) -> dict:
+    """Run ``spec`` (:class:`~.spec.SweepSpec`) into ``out``: the store, ``results.csv`` (this
+    spec's rows, inputs in designers' units), the charts and ``summary.json``.  Returns the
+    summary (also on :class:`SweepInterrupted`, via its ``result``)."""
+    from ..jsonio import write
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    points = spec.points()
+    res = run_points(points, spec.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
+                     retry_failed=retry_failed, progress=progress, source=spec.source, spec_text=spec.text)
+    summary = res.as_dict()
+    frame = table(spec, res)
+    csv = out / "results.csv"
+    frame.to_csv(csv, index=False)
+    files = [csv]
+    if charts:
+        from .charts import answers_vs_inputs, parallel_coordinates
+
+        files += answers_vs_inputs(frame, spec, out / "charts")
+        files.append(parallel_coordinates(frame, spec, out / "charts" / "parallel_coordinates.png"))
+    summary.update(design=spec.design, method=spec.method, spec=spec.source, out=str(out),
+                   feasible=int(frame["feasible"].fillna(0).astype(int).sum()) if len(frame) else 0,
+                   files=[str(f) for f in files])
+    write(out / "summary.json", summary, indent=1)
+    summary["files"].append(str(out / "summary.json"))
+    return summary
+
+
+def table(spec, res: RunResult):
+    """This spec's rows (point order) with one column per varied input, in the units of the
+    charts (lengths in mm: ``flexure_thickness [mm]``), before the answers."""
+    import json
+
+    import pandas as pd
+
+    from .spec import display_value
+
+    with ResultStore(res.store, COLUMNS) as st:
+        df = st.frame(res.model_version, res.keys)
+    cols = {}
+    for a in spec.axes:
+        cols[a.label()] = [display_value(json.loads(p).get(a.name), a.unit) for p in df["point_json"]]
+    front = pd.DataFrame(cols, index=df.index)
+    return pd.concat([front, df], axis=1)
