@@ -358,3 +358,38 @@ def table(spec, res: RunResult):
         cols[a.label()] = [display_value(json.loads(p).get(a.name), a.unit) for p in df["point_json"]]
     front = pd.DataFrame(cols, index=df.index)
     return pd.concat([front, df], axis=1)
+
+
+def run_grid(concept: str, vary: dict, *, fixed: dict | None = None, mesh_size: float | None = None, op=None,
+             store: str | Path, workers: int | None = None, scheduler: str | None = None, progress: bool = False,
+             engine=None, a: float = 1.3, b: float = 1.0, min_safety_factor: float = 1.0):
+    """The API form of a grid sweep (no TOML): every combination of ``vary`` ({name: values}
+    in the parameters' units) of ``concept`` around ``fixed``, on the sweep engine, stored in
+    ``store``.  Returns a DataFrame: one row per point in grid order, the varied values in
+    columns named as the parameters (their own units) before the answers."""
+    import itertools
+    import json
+
+    import pandas as pd
+
+    from ..geometry import MeshSettings, get_concept
+    from ..operating import OperatingPoint
+
+    c = get_concept(concept)
+    P = c.Params
+    for name, value in (fixed or {}).items():
+        if name not in P.model_fields:
+            raise InputError(f"fixed parameter {name!r} is not a parameter of {c.name}")
+    settings = Settings(concept=c.name, fixed=tuple(sorted((fixed or {}).items())), op=op or OperatingPoint(),
+                        mesh=MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size), engine=engine,
+                        a=a, b=b, min_safety_factor=min_safety_factor)
+    names = list(vary)
+    points = [dict(zip(names, combo)) for combo in itertools.product(*(list(vary[n]) for n in names))]
+    res = run_points(points, settings, store, workers=workers, scheduler=scheduler, progress=progress,
+                     source=f"run_grid {c.name}")
+    with ResultStore(store, COLUMNS) as st:
+        df = st.frame(res.model_version, res.keys)
+    keyed = [design_hash(p, settings) for p in points]
+    df = df.set_index("design_hash").loc[keyed].reset_index()
+    front = pd.DataFrame([{n: json.loads(pj).get(n) for n in names} for pj in df["point_json"]])
+    return pd.concat([front, df], axis=1)
