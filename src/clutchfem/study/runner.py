@@ -25,8 +25,10 @@ settings does not mesh again.
 Crashes: if a worker process dies while computing a design (gmsh segfault, out of memory),
 its nanny restarts it and the point is stored as *failed* with the scheduler's message.  On
 the private local cluster the scheduler marks the task failed at the first death
-(``allowed_failures=0``) and sends each worker one task at a time (``worker-saturation``
-1.0), so a crash can only take its own design with it.  A remote scheduler keeps its own
+(``allowed_failures=0``).  The client keeps only as many points in flight as the cluster
+has worker threads (the next is submitted when one finishes), so each worker holds one
+design at a time and a crash can only take its own design with it; the cost is one round
+trip (a few ms) per design, measured in the benchmark as scheduling time.  A remote scheduler keeps its own
 policy (by default a task is retried on 3 more workers before it is declared failed).
 
 Ctrl-C: the pending tasks are cancelled, the cluster is shut down (its worker processes
@@ -72,7 +74,7 @@ class RunResult:
     model_version: str
     wall_s: float
     compute_s: float
-    workers: int
+    workers: int | None
     scheduler: str
     keys: tuple[str, ...] = field(repr=False, default=())
     interrupted: bool = False
@@ -128,7 +130,7 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         finished = store.finished(version, keys)
         todo = [h for h in keys if h not in finished or (retry_failed and finished[h] == "failed")]
         run = store.start_run(source, version, len(keys), len(todo), spec_text)
-        n_workers = 0 if workers == 0 else (workers or _default_workers())
+        n_workers = None if scheduler else (0 if workers == 0 else (workers or _default_workers()))
         label = scheduler or (f"local cluster, {n_workers} process workers" if n_workers else "in process")
         computed, interrupted, t_first, t_last = 0, False, None, None
         bar = None
@@ -138,7 +140,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
                 rows = (_in_process(todo, tasks, settings) if n_workers == 0 and scheduler is None
                         else _on_dask(todo, tasks, settings, version, n_workers, scheduler))
                 for row in rows:
-                    if row is None:  # the back-end is up and the points are submitted
+                    if "__start__" in row:  # the back-end is up and the points are submitted
+                        n_workers = row["__start__"]
                         t_first = time.perf_counter()
                         bar = _bar(len(todo), desc, progress)
                         continue
@@ -194,7 +197,7 @@ def _bar(total: int, desc: str, progress: bool):
 # back-ends: in this process, or on dask.distributed
 # ---------------------------------------------------------------------------------------
 def _in_process(todo: list[str], tasks: dict, settings: Settings):
-    yield None
+    yield {"__start__": 0}
     for h in todo:
         yield evaluate(tasks[h], settings, h)
 
@@ -229,7 +232,6 @@ def _killed_message(exc: BaseException) -> str:
 def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_workers: int,
              scheduler: str | None):
     """Rows as they finish, computed on a dask.distributed cluster (see module docstring)."""
-    import dask
     from distributed import Client, LocalCluster, as_completed
 
     cluster = client = None
@@ -242,11 +244,9 @@ def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_w
                 raise InputError(f"--scheduler {scheduler}: no dask scheduler answers there ({exc}); start one "
                                  "with `dask scheduler` and workers with `dask worker ADDRESS --nthreads 1`") from None
         else:
-            with dask.config.set({"distributed.scheduler.worker-saturation": 1.0,
-                                  "distributed.worker.daemon": False}):
-                cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                       dashboard_address=None, scheduler_kwargs={"allowed_failures": 0},
-                                       silence_logs=logging.CRITICAL)
+            cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                   dashboard_address=None, scheduler_kwargs={"allowed_failures": 0},
+                                   silence_logs=logging.CRITICAL)
             client = Client(cluster)
             client.register_plugin(_as_worker_plugin(_WorkerSetup(settings.concept)))
         versions = client.run(warm_up, settings.concept)
@@ -259,11 +259,25 @@ def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_w
             raise InputError(f"worker {w} runs clutchfem model version {v}, this client {version}: the workers "
                              "must run the same clutchfem (same source, gmsh and scikit-fem versions)")
         tag = version.rsplit("+", 1)[-1]
-        for h in todo:
-            fut = client.submit(evaluate, tasks[h], settings, h, key=f"clutchfem-point-{h}-{tag}")
-            futures[fut] = h
-        yield None
-        for fut in as_completed(list(futures)):
+        pending = iter(todo)
+        done = as_completed()
+
+        def window() -> int:  # one task per worker thread: a crash takes only its own design
+            return max(1, sum(client.nthreads().values()))
+
+        def submit_more() -> None:
+            n = window()
+            while len(futures) < n:
+                h = next(pending, None)
+                if h is None:
+                    return
+                fut = client.submit(evaluate, tasks[h], settings, h, key=f"clutchfem-point-{h}-{tag}")
+                futures[fut] = h
+                done.add(fut)
+
+        submit_more()
+        yield {"__start__": len(client.nthreads())}
+        for fut in done:
             h = futures.pop(fut)
             if fut.status == "finished":
                 row = fut.result()
@@ -274,6 +288,7 @@ def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_w
                     exc = e
                 row = failed_row(tasks[h], settings, h, version, _killed_message(exc))
             fut.release()
+            submit_more()
             yield row
     finally:
         if client is not None:

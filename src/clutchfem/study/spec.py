@@ -154,6 +154,12 @@ def _translate(exc: ValidationError, raw: dict, source: str) -> SpecError:
     if kind == "literal_error":
         return SpecError(key, err.get("input"), "one of " + str(err["ctx"]["expected"]).replace(" or ", ", "), source)
     allowed = err["msg"].replace("Input should be ", "")
+    for words, sym in (("greater than or equal to ", ">= "), ("less than or equal to ", "<= "),
+                       ("greater than ", "> "), ("less than ", "< ")):
+        allowed = allowed.replace(words, sym)
+    if kind in ("greater_than_equal", "less_than_equal", "greater_than", "less_than") and key.endswith(
+            ("steps", "samples")):
+        allowed = "an integer " + allowed
     if kind in ("float_type", "int_type", "string_type", "dict_type", "list_type", "model_type"):
         allowed = {"float_type": "a number", "int_type": "an integer (no quotes, no decimals)",
                    "string_type": "a text in quotes", "dict_type": "a table",
@@ -441,7 +447,7 @@ def _value(cls, name: str, raw: Any, key: str, source: str):
     lo, hi = _bounds(cls, name)
     if (lo is not None and v < lo) or (hi is not None and v > hi):
         raise SpecError(key, raw, cls.allowed(name) + _unit_hint(cls, name), source)
-    return v
+    return v if integer else _clean(v)  # "1.8mm" is 0.0018, not 0.0018000000000000002
 
 
 def _bounds(cls, name: str) -> tuple[float | None, float | None]:
@@ -460,7 +466,7 @@ def _axis(cls, name: str, ax: _AxisT, method: str, key: str, source: str, target
         if not ax.values:
             raise SpecError(f"{key}.values", [], "at least one value", source)
         vals = tuple(_value(cls, name, v, f"{key}.values[{i}]", source) for i, v in enumerate(ax.values))
-        if len(set(vals)) != len(vals):
+        if method != "list" and len(set(vals)) != len(vals):
             raise SpecError(f"{key}.values", ax.values, "distinct values (a repeated value is the same design)", source)
         return Axis(name, unit, target, values=vals)
     for which in ("min", "max"):
