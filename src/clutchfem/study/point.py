@@ -25,7 +25,9 @@ Timings (s): ``t_mesh_s`` geometry + gmsh + reading the mesh (or a cache hit),
 ``t_assembly_s`` stiffness, load, constraints and mass matrix, ``t_solve_s`` the
 factorisation, the unit-load solve and the spin-softening (Ritz) set-up of every load case,
 ``t_analysis_s`` the rest of ``analyze`` (contact solves, slip bracketing, stresses, shoe
-model, whirl), ``t_total_s`` the wall time of :func:`evaluate`.
+model, whirl), ``t_total_s`` the wall time of :func:`evaluate` and ``t_cpu_s`` the CPU time
+of the worker process meanwhile (on a shared machine the difference is time spent waiting
+for a core).
 """
 
 from __future__ import annotations
@@ -89,6 +91,7 @@ COLUMNS: tuple[tuple[str, str, str], ...] = (
     ("t_solve_s", "REAL", "factorisation, unit-load solve, softening set-up [s]"),
     ("t_analysis_s", "REAL", "analysis steps (contact, slip, stress, shoe model, whirl) [s]"),
     ("t_total_s", "REAL", "wall time of the point on its worker [s]"),
+    ("t_cpu_s", "REAL", "CPU time of the worker process during the point [s] (< t_total_s: waiting for a core)"),
     ("worker", "TEXT", "host:pid of the process that computed it"),
     ("finished_at", "REAL", "when it finished (Unix time) [s]"),
     ("warnings", "TEXT", "the analysis warnings, one per line"),
@@ -261,7 +264,7 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "") -> dict:
     from ..geometry import get_concept
     from ..mesh import load_user_geometry, mesh_concept
 
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     version = model_version(settings.concept)
     row = _base_row(point, settings, design_hash, version)
     try:
@@ -309,6 +312,7 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "") -> dict:
         row.update(status="ok", message=None, t_mesh_s=t_mesh, t_assembly_s=assembly, t_solve_s=solve,
                    t_analysis_s=max(t_an - tm.get("mass_s", 0.0) - solve, 0.0))
     row["t_total_s"] = time.perf_counter() - t0
+    row["t_cpu_s"] = time.process_time() - c0
     row["finished_at"] = time.time()
     return row
 
