@@ -375,10 +375,10 @@ def secondary_case(design, mu: float):
     parts, :class:`~clutchfem.softening.Ritz` ``seeds='all'``) instead of one each."""
     from dataclasses import replace
 
-    from ..softening import Ritz, get_softening
+    from ..softening import get_softening
 
     soft = get_softening(design.op.softening)
-    if isinstance(soft, Ritz):
+    if hasattr(soft, "seeds"):  # Ritz and PrestressRitz
         soft = replace(soft, seeds="all")
     return design.case(mu=mu, softening=soft)
 
