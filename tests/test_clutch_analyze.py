@@ -22,7 +22,10 @@ def analyses():
     for arr in ("minus", "plus"):
         p = c.params(arrangement=arr)
         cm = mesh_concept(c, p, MeshSettings(size=2.0e-3))
-        out[arr] = analyze(Design(cm, OperatingPoint(material="51CrV4", rpm=np.arange(0, 14001, 500.0)), params=p))
+        # spin softening only ('ritz'): its Ritz space gives mirror designs the same engagement
+        # to 1e-9 (the pre-stress space to ~1e-8, its truncation error)
+        out[arr] = analyze(Design(cm, OperatingPoint(material="51CrV4", rpm=np.arange(0, 14001, 500.0),
+                                                     softening="ritz"), params=p))
     return out
 
 

@@ -48,10 +48,17 @@ def test_analyze_assembles_and_factorises_once(monkeypatch):
 
     d = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2e-3))
     before = COUNTS.copy()
-    an = analyze(d)
+    an = analyze(d, errors=False)
     assert an.slip_rpm is not None and an.mu_sensitivity["slip_rpm"]["x1.3"] is not None
     used = COUNTS - before
     # the design's model was assembled when the design was built; analyze adds nothing
     assert used.get("assemble", 0) == 0
     assert used.get("K", 0) == 1  # one factorisation for the sweep, friction off and mu +-30 %
     assert used.get("shifted", 0) == 0
+    # the error estimate adds exactly one more design: the same one on a mesh twice as fine
+    d2 = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2e-3))
+    before = COUNTS.copy()
+    an2 = analyze(d2)
+    used = COUNTS - before
+    assert used.get("assemble", 0) == 1 and used.get("K", 0) == 2
+    assert an2.slip_rpm == an.slip_rpm and an2.errors["slip_rpm"]["discretisation"] is not None

@@ -523,6 +523,14 @@ class PrestressedModel:
         return d["_Mr"]
 
 
+def prestressed(model) -> PrestressedModel:
+    """The :class:`PrestressedModel` of ``model``, built once (K_sigma1 is one assembly)."""
+    d = model.__dict__
+    if "_prestressed" not in d:
+        d["_prestressed"] = PrestressedModel(model)
+    return d["_prestressed"]
+
+
 @dataclass(frozen=True)
 class PrestressRitz:
     """Spin softening *and* centrifugal pre-stress stiffening on the one factorisation of K:
@@ -543,21 +551,24 @@ class PrestressRitz:
     ``benchmarks/bench_modelform.py``."""
 
     depth: int = 3
+    seeds: str = "load"
     name = "prestress"
 
     def __post_init__(self):
         if isinstance(self.depth, bool) or not isinstance(self.depth, int) or not 1 <= self.depth <= 20:
             raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
+        if self.seeds not in ("load", "all"):
+            raise ParameterError("ritz seeds", self.seeds, "'load' or 'all'")
 
     def bind(self, model, contact):
         from .softening import _ModalResponse
 
-        friction = 0.0 if contact is None else contact.friction
-        key = ("prestress", self.depth, None if contact is None else id(contact.nodes), friction)
+        friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
+        key = ("prestress", self.depth, self.seeds, None if contact is None else id(contact.nodes), friction)
         cache = model.__dict__.setdefault("_ritz_cache", {})
         if key not in cache:  # the nodes are kept with the pairs: their id is never reused
             cache[key] = (None if contact is None else contact.nodes,
-                          _prestress_pairs(PrestressedModel(model), contact, self.depth))
+                          _prestress_pairs(prestressed(model), contact, self.depth, self.seeds))
         theta, Psi = cache[key][1]
 
         class _Response(_ModalResponse):
@@ -569,7 +580,7 @@ class PrestressRitz:
                 return w2 * theta / (1.0 - w2 * theta)
 
         r = _Response(model, contact, np.ones(len(theta)), Psi)
-        r.check_model = PrestressedModel(model)  # the equilibrium check uses M - K_sigma1,
+        r.check_model = prestressed(model)  # the equilibrium check uses M - K_sigma1,
         r.precondition_check = True  # measured as the displacement error the residual causes
         tmax = float(theta.max(initial=0.0))
         r.omega_limit = 1.0 / math.sqrt(tmax) if tmax > 0 else None
@@ -577,17 +588,21 @@ class PrestressRitz:
         return r
 
 
-def _prestress_pairs(pm: PrestressedModel, contact, depth: int):
+def _prestress_pairs(pm: PrestressedModel, contact, depth: int, which: str = "load"):
+    """Seeds as :func:`clutchfem.softening.ritz_pairs`: D(mu) ("load") or both N and Tt ("all",
+    one space for every friction coefficient of a design)."""
     from .units import wrap_angle
 
     seeds = [pm.f1]
     if contact is not None:
         nd = contact.nodes
+        loads = [contact.load] if which == "load" else [nd.normal_load, nd.tangent_load]
         for s_ in np.unique(nd.shoe):
             sel = np.nonzero(nd.shoe == s_)[0]
             a = wrap_angle(nd.angle[sel] - nd.angle[sel].mean())
-            for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
-                seeds.append(contact.load[:, sel] @ wgt)
+            for D in loads:
+                for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
+                    seeds.append(D[:, sel] @ wgt)
     Kr, Mr, T = pm.Kr, pm.Mr, pm.T
     blocks: list[np.ndarray] = []
 

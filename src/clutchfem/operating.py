@@ -43,9 +43,10 @@ class OperatingPoint(ParamSet):
                                     "axial thickness of the part (default: the concept's; user mesh 11 mm)")
     material: Material = get_material("51CrV4")
     softening: Literal["ritz", "modal", "exact", "off", "prestress"] = choice(
-        "ritz", "spin softening: ritz (mode acceleration, default; alias modal), exact (reference), off, "
-        "prestress (ritz plus the centrifugal pre-stress stiffness of the flexures: geometric non-linearity "
-        "to first order)")
+        "prestress", "spin softening and stiffening: prestress (default: mode acceleration on Ritz pairs with "
+        "the spin softening and the centrifugal pre-stress stiffness of the flexures, 0.1 % from the "
+        "geometrically non-linear reference), ritz (spin softening only, alias modal: 1.3-3 % model-form "
+        "error), exact (per-speed reference of ritz), off")
     formulation: Literal["plane-stress", "plane-strain", "3d"] = choice(
         "plane-stress", "formulation: plane-stress (thin part), plane-strain (long part) or 3d "
         "(the 2-D mesh extruded through the thickness, P2 tetrahedra)")

@@ -28,11 +28,22 @@ def _fmt(v, f: str, unit: str) -> str:
     return f"{v:{f}} {unit}".rstrip()
 
 
+def _err(an, key: str, scale: float = 1.0, unit: str | None = None, fmt: str = ".0f") -> str:
+    """' (+- x unit: discretisation d, model form m)' for an answer with an error estimate."""
+    e = (getattr(an, "errors", None) or {}).get(key)
+    if not e or e.get("total") is None or e.get("value") is None:
+        return ""
+    u = unit or e["unit"]
+    d = "n/a" if e["discretisation"] is None else f"{e['discretisation'] * scale:{fmt}}"
+    return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}})"
+
+
 def summary_rows(an) -> list[tuple[str, str]]:
-    """(quantity, value with unit) rows of the answers for one design (terminal and Markdown)."""
+    """(quantity, value with unit) rows of the answers for one design (terminal and Markdown);
+    the main answers carry their error estimate (discretisation and model form)."""
     req = an.requirements
     rows = [
-        ("engagement speed (static, FE)", _fmt(an.engagement_rpm, ".0f", "rpm")
+        ("engagement speed (static, FE)", _fmt(an.engagement_rpm, ".0f", "rpm") + _err(an, "engagement_rpm")
          if an.engagement_rpm is not None else "never engages"),
         ("engagement speed with 2-stroke ripple (3 sigma cycle / typical cycle)",
          f"{_fmt(an.engagement_rpm_with_ripple, '.0f', 'rpm')} / "
@@ -45,17 +56,19 @@ def summary_rows(an) -> list[tuple[str, str]]:
     if an.slip_status in ("never holds", "never engages"):
         rows.append(("slip speed (drum held, full throttle)", an.slip_status.upper()))
     else:
-        rows.append(("slip speed (drum held, full throttle)", _fmt(an.slip_rpm, ".0f", "rpm")))
+        rows.append(("slip speed (drum held, full throttle)", _fmt(an.slip_rpm, ".0f", "rpm") + _err(an, "slip_rpm")))
     if len(an.slip_crossings_rpm) > 1:
         rows.append(("clutch/engine torque crossings",
                      ", ".join(f"{c['rpm']:.0f} rpm ({c['direction']})" for c in an.slip_crossings_rpm)))
     rows += [
         (f"clutch torque at {an.rpm_max_engine_torque:.0f} rpm (max engine torque "
-         f"{an.max_engine_torque_Nm:.2f} N m)", _fmt(an.torque_at_max_engine_torque_Nm, ".2f", "N m")),
+         f"{an.max_engine_torque_Nm:.2f} N m)", _fmt(an.torque_at_max_engine_torque_Nm, ".2f", "N m")
+         + _err(an, "torque_at_max_engine_torque_Nm", fmt=".2f")),
         ("torque margin over max engine torque", _fmt(an.torque_margin_Nm, "+.2f", "N m")),
         ("slip power (heat) at slip speed", _fmt(an.slip_power_W, ".0f", "W") if an.slip_power_W is not None
          else f"- ({an.slip_status})"),
-        (f"max von Mises at {an.max_stress_rpm:.0f} rpm (engine max)", _fmt(an.max_von_mises_Pa / 1e6, ".0f", "MPa")),
+        (f"max von Mises at {an.max_stress_rpm:.0f} rpm (engine max)", _fmt(an.max_von_mises_Pa / 1e6, ".0f", "MPa")
+         + _err(an, "max_von_mises_Pa", 1e-6, "MPa")),
         (f"safety factor against yield ({an.yield_strength_Pa / 1e6:.0f} MPa)",
          _fmt(an.safety_factor, ".2f", "(-)") + ("  ABOVE YIELD" if an.safety_factor < 1 else "")),
     ]

@@ -42,9 +42,11 @@ def solve(
     drum_wall: Optional[str] = typer.Option(None, "--drum-wall", help=_OP.help("drum_wall")),
     drum_state: Optional[str] = typer.Option(None, "--drum-state", help=_OP.help("drum_state")),
     no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery"),
+    no_errors: bool = typer.Option(False, "--no-errors", help="skip the error estimate (a mesh twice as fine)"),
 ):
     """Speed sweep: engagement, contact forces and arc, friction torque (drum held), stresses."""
     from ..checks import model_warnings
+    from ..errorest import sweep_errors
     from ..jsonio import dumps, write
     from ..operating import parse_rpm
     from ..traceability import design_inputs
@@ -67,7 +69,8 @@ def solve(
         design, c, p = load_design(concept, set_, mesh, size, model, op)
         res = design.sweep(speeds, stresses=not no_stress)
         warns = list(res.warnings) + model_warnings(res, design.model.material.yield_strength)
-        doc = {**res.to_json(), "warnings": warns, "inputs": design_inputs(design)}
+        errs = sweep_errors(design, res) if not no_errors and res.contact is not None else {}
+        doc = {**res.to_json(), "warnings": warns, "errors": errs, "inputs": design_inputs(design)}
         if out is not None:
             res.curve.to_csv(out / "curve.csv", index=False)
             if not res.shoes.empty:
@@ -85,6 +88,7 @@ def solve(
             print(dumps(doc))
         else:
             _print_sweep(res, mat)
+            _print_errors(errs)
             for w in warns:
                 console.print(f"[bold red]WARNING:[/] {escape(w)}")
     except ClutchfemError as exc:
@@ -116,3 +120,19 @@ def _print_sweep(res, mat) -> None:
     console.print(f"wall time: model {tm.get('assemble_s', 0) + tm.get('factorize_s', 0):.2f} s, "
                   f"sweep {tm['sweep_s']:.2f} s")
 
+
+
+def _print_errors(errs: dict) -> None:
+    if not errs:
+        return
+    labels = {"engagement_rpm": ("engagement speed", 1.0, "rpm", ".0f"),
+              "torque_Nm": (f"torque at {errs.get('at_rpm', 0):.0f} rpm", 1.0, "N m", ".3f"),
+              "max_von_mises_Pa": (f"peak von Mises at {errs.get('at_rpm', 0):.0f} rpm", 1e-6, "MPa", ".0f")}
+    for k, (lab, sc, u, f) in labels.items():
+        e = errs.get(k)
+        if not e or e["value"] is None:
+            continue
+        d = "n/a" if e["discretisation"] is None else f"{e['discretisation'] * sc:{f}}"
+        console.print(f"{lab}: {e['value'] * sc:{f}} {u} +- {e['total'] * sc:{f}} {u} (mesh {d}, model form "
+                      f"{e['model_form'] * sc:{f}}: " + ", ".join(f"{t} {100 * v:+.1f} %" for t, v in
+                                                                 e["model_form_relative"].items()) + ")")

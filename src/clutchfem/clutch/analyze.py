@@ -17,7 +17,9 @@ factorisation for everything below):
 7. :func:`stress_step`: peak stress and safety factor at the engine's maximum speed;
 8. :func:`requirements_step`: engagement > a x idle, slip < b x rpm of max engine torque;
 9. :func:`whirl_step`: the crankshaft's first critical speed with this clutch on its
-   overhang (:mod:`clutchfem.clutch.whirl`) against the engine's maximum speed.
+   overhang (:mod:`clutchfem.clutch.whirl`) against the engine's maximum speed;
+10. :func:`error_step`: the error of engagement, slip, torque and peak stress
+    (:mod:`clutchfem.errorest`: a mesh twice as fine, measured model-form terms).
 
 Each returns a small frozen result; :class:`Analysis` collects the answers the report
 renders (:mod:`clutchfem.report`).
@@ -71,6 +73,9 @@ MU_FACTORS = (0.7, 1.3)
 #: spacing [rpm] of the internal grid on which clutch/engine crossings are bracketed (then
 #: refined by bisection with exact FE solves); also the default output spacing
 GRID_RPM = 125.0
+#: the same for the mu +-30 % sensitivity cases (two crossings closer than this could merge
+#: there; the answer itself is refined to 1e-9 like the main one)
+GRID_RPM_SENSITIVITY = 250.0
 
 
 @dataclass
@@ -220,6 +225,9 @@ class Analysis:
     label: str = ""
     #: crankshaft whirl with this clutch on the overhang (clutchfem.clutch.whirl.WhirlAnswer.as_dict)
     whirl: dict = field(default_factory=dict)
+    #: error estimate of the main answers (clutchfem.errorest): per answer the discretisation
+    #: (two mesh levels), the model-form terms and their total band
+    errors: dict = field(default_factory=dict)
 
     def to_json(self) -> dict:
         from ..jsonio import clean
@@ -292,12 +300,12 @@ def check_speeds(rpm, engine: EngineCurve) -> np.ndarray:
     return np.union1d(r, [hi, float(engine.rpm_max_torque)])
 
 
-def bracket_grid(engine: EngineCurve) -> np.ndarray:
+def bracket_grid(engine: EngineCurve, step: float = GRID_RPM) -> np.ndarray:
     """The internal grid on which crossings with the engine curve are bracketed: the engine
-    range in GRID_RPM steps plus the engine table's own speeds (fixed: independent of the
+    range in ``step`` rpm steps plus the engine table's own speeds (fixed: independent of the
     speeds the user tabulates)."""
     lo, hi = engine.rpm_range
-    return np.union1d(np.append(np.arange(lo, hi, GRID_RPM), hi), engine.rpm)
+    return np.union1d(np.append(np.arange(lo, hi, step), hi), engine.rpm)
 
 
 def _character(n_mu0: float, n_mu: float) -> str:
@@ -355,9 +363,10 @@ def engagement_step(res, ripple_model, in_range: bool, slip: SlipAnswer) -> Enga
         "growth with rpm ASSUMED proportional")
 
 
-def slip_step(case, engine: EngineCurve) -> SlipAnswer:
-    """Step 3: slip speed from the exact FE torque (see module docstring)."""
-    return slip_answer(engine, FETorque(case), case.engagement_rpm, grid=bracket_grid(engine))
+def slip_step(case, engine: EngineCurve, step: float = GRID_RPM) -> SlipAnswer:
+    """Step 3: slip speed from the exact FE torque (see module docstring); crossings are
+    bracketed every ``step`` rpm and then refined to 1e-9."""
+    return slip_answer(engine, FETorque(case), case.engagement_rpm, grid=bracket_grid(engine, step))
 
 
 def secondary_case(design, mu: float):
@@ -366,10 +375,10 @@ def secondary_case(design, mu: float):
     parts, :class:`~clutchfem.softening.Ritz` ``seeds='all'``) instead of one each."""
     from dataclasses import replace
 
-    from ..softening import Ritz, get_softening
+    from ..softening import get_softening
 
     soft = get_softening(design.op.softening)
-    if isinstance(soft, Ritz):
+    if hasattr(soft, "seeds"):  # Ritz and PrestressRitz
         soft = replace(soft, seeds="all")
     return design.case(mu=mu, softening=soft)
 
@@ -414,7 +423,7 @@ def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAns
             continue
         case = secondary_case(design, mu * f)
         torque[key] = float(FETorque(case)(probe)[0])
-        slips[key] = slip_step(case, engine).rpm
+        slips[key] = slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm
     if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
         t_lo, t_hi = torque["x0.7"], torque["x1.3"]
         pct = {"x0.7": 100 * (t_lo / t_probe - 1), "x1.3": 100 * (t_hi / t_probe - 1)}
@@ -504,6 +513,36 @@ def whirl_step(design, max_rpm: float):
     return whirl(design, max_rpm=max_rpm)
 
 
+def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
+               slip_rpm_value: float | None) -> dict:
+    """Step 10: the error of the main answers (:mod:`clutchfem.errorest`): the same answers on
+    a mesh twice as fine (discretisation) and the measured model-form terms."""
+    from ..errorest import _NOT_ESTIMATED, ANSWERS, AnswerError, discretisation, model_form, refined_design
+
+    lo, hi = engine.rpm_range
+    coarse = {}
+    cd = refined_design(design)
+    if cd is not None:
+        case = cd.case()
+        coarse["engagement_rpm"] = case.engagement_rpm
+        coarse["slip_rpm"] = slip_step(case, engine).rpm
+        coarse["torque_at_max_engine_torque_Nm"] = float(FETorque(case)(float(engine.rpm_max_torque))[0])
+        coarse["max_von_mises_Pa"] = float(cd.sweep([hi]).curve["max_von_mises_Pa"].iloc[0])
+    out = {}
+    for q, unit in ANSWERS.items():
+        v = values.get(q)
+        w = {"slip_rpm": slip_rpm_value, "torque_at_max_engine_torque_Nm": float(engine.rpm_max_torque)}.get(q)
+        terms, notes = model_form(design, q, v, w0=w0_rpm, w=w)
+        d = discretisation(v, coarse.get(q)) if cd is not None else None
+        if cd is None:
+            notes = notes + (_NOT_ESTIMATED[design.op.formulation == "3d"],)
+        out[q] = AnswerError(q, v, unit, d, terms, notes).as_dict()
+    out["method"] = ("discretisation: 2 |a_h - a_h/2| (Richardson, p = 1) against the same design on a mesh twice "
+                     "as fine; model form: measured terms (axial thickness 2-D vs 3-D, geometric non-linearity of "
+                     "the softening model, rigid vs 2 mm steel drum), relative; total = sum of magnitudes")
+    return out
+
+
 def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, eng: EngagementAnswer,
                       slip: SlipAnswer, in_range: bool) -> dict:
     """Step 8: the two requirement checks (with the values checked and the limits)."""
@@ -524,13 +563,17 @@ def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, e
 # the sequence
 # ---------------------------------------------------------------------------------------
 def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirements | None = None,
-            idle_rpm: float | None = None, ripple_model: ripple_mod.RippleModel | None = None) -> Analysis:
+            idle_rpm: float | None = None, ripple_model: ripple_mod.RippleModel | None = None,
+            errors: bool = True) -> Analysis:
     """Run the steps (module docstring) on ``design`` (a :class:`~clutchfem.design.Design`:
     mesh, parameters, material, mu, rotation, drum, thickness, softening and output speeds in
     its operating point).  engine: full-throttle curve (default: the ASSUMED 56.5 cc saw
     curve); requirements: factors a, b; idle_rpm: overrides the engine's idle speed (else the
-    curve's, else 2700 rpm, ASSUMED).  A user mesh (``design.params`` None) gets every FE
-    answer; the analytical curves are then NaN and ``analytical_available`` is False."""
+    curve's, else 2700 rpm, ASSUMED); errors: estimate the error of the main answers (step
+    10: a mesh twice as fine and its solves, ~3x the time; off for bulk studies that rank
+    designs, whose error the study states from a sample).
+    A user mesh (``design.params`` None) gets every FE answer; the analytical curves are then
+    NaN and ``analytical_available`` is False."""
     from ..design import Design
     from ..traceability import design_inputs, design_label
 
@@ -629,6 +672,13 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curves["arc_fraction"] = curves["contact_arc_deg"] / nominal if nominal and math.isfinite(nominal) else math.nan
     # 8: requirements
     checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)
+    # 10: error of the main answers
+    err = {}
+    if errors:
+        err = error_step(design, engine, {"engagement_rpm": eng.static_rpm, "slip_rpm": slip.rpm,
+                                          "torque_at_max_engine_torque_Nm": t_nom,
+                                          "max_von_mises_Pa": st.max_von_mises_Pa},
+                         eng.static_rpm, slip.rpm)
     # 9: crankshaft whirl
     wh = whirl_step(design, hi)
     if wh.margin < WHIRL_MARGIN:
@@ -668,7 +718,7 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                     coupling=coupling, curves=curves, first_touch=res.first_touch, warnings=warnings, notes=notes,
                     part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg,
                     inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
-                    label=design_label(design), whirl=wh.as_dict())
+                    label=design_label(design), whirl=wh.as_dict(), errors=err)
 
 
 def mesh_mass_properties(cm, rho: float, thickness: float, basis=None) -> dict:

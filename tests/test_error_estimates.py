@@ -1,0 +1,58 @@
+"""Every answer carries its error (issue 13): the discretisation estimate (a mesh twice as
+fine) must bound the true discretisation error, measured against a mesh four times as fine,
+and the model-form terms must follow the measured comparisons."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from typer.testing import CliRunner
+
+from clutchfem.cli import app
+from clutchfem.clutch.analyze import analyze
+from clutchfem.design import Design
+from clutchfem.errorest import model_form, refined_design
+from clutchfem.geometry import MeshSettings
+
+
+@pytest.mark.slow
+def test_discretisation_estimate_bounds_the_error_against_a_finer_mesh():
+    d = Design.from_concept("concept4")
+    an = analyze(d)
+    ref_ms = MeshSettings(size=0.3e-3, flexure_factor=0.1, fillet_factor=0.125)  # 1/4 of the default
+    ref = analyze(Design.from_concept("concept4", mesh_settings=ref_ms), errors=False)
+    for key in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
+        e = an.errors[key]
+        true = abs(getattr(an, key) - getattr(ref, key))
+        print(f"\n{key}: estimate {e['discretisation']:.4g}, |a_h - a_h/4| {true:.4g}")
+        assert e["discretisation"] >= true, key
+        assert e["discretisation"] <= 20 * max(true, 1e-9 * abs(getattr(an, key))), key  # not absurdly loose
+
+
+def test_model_form_terms_follow_the_measurements():
+    d = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2.5e-3))
+    t, _ = model_form(d, "engagement_rpm", 4200.0)
+    assert -0.035 < t["thickness_3d"] < -0.01  # plane stress engages early (3-D measured +2.2 %)
+    assert abs(t["geometric_nonlinearity"]) <= 0.001  # prestress: 0.1 % from the non-linear reference
+    d_ps = Design(d.cm, d.op.replace(softening="ritz"), params=d.params, name=d.name)
+    t2, _ = model_form(d_ps, "engagement_rpm", 4200.0)
+    assert t2["geometric_nonlinearity"] < -0.005  # spin softening alone engages early
+    d_pe = Design(d.cm, d.op.replace(formulation="plane-strain"), params=d.params, name=d.name)
+    t3, _ = model_form(d_pe, "engagement_rpm", 4200.0)
+    assert t3["thickness_3d"] > 0  # plane strain engages late
+    assert refined_design(d).cm.n_elements > 2 * d.cm.n_elements
+
+
+def test_analyze_and_solve_report_errors(tmp_path):
+    r = CliRunner().invoke(app, ["analyze", "--concept", "concept1", "--mesh-size", "2.5mm", "--json"])
+    doc = json.loads(r.output.strip().splitlines()[-1])
+    for key in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
+        e = doc["errors"][key]
+        assert e["total"] > 0 and e["discretisation"] is not None and e["model_form_relative"]
+    r = CliRunner().invoke(app, ["analyze", "--concept", "concept1", "--mesh-size", "2.5mm"])
+    assert "+-" in r.output and "mesh" in r.output
+    r = CliRunner().invoke(app, ["solve", "--concept", "concept1", "--mesh-size", "2.5mm", "--rpm", "0:14000:7000",
+                                 "--json"])
+    doc = json.loads(r.output)
+    assert doc["errors"]["engagement_rpm"]["total"] > 0 and doc["errors"]["at_rpm"] == 14000
