@@ -63,6 +63,8 @@ def test_guideline_elasticities_equal_finite_differences_of_single_design_analys
     eng = table["engagement_rpm"]
     assert eng["stable"] and 0.5 < eng["E"] < 1.6, eng
     assert eng["E_fit"] == pytest.approx(eng["E"], abs=0.05 + 0.1 * abs(eng["E"]))
+    err = doc["design_point_errors"]["engagement_rpm"]  # the design point carries its error estimate
+    assert err["band"] > err["discretisation"] >= 0 and err["unit"] == "rpm"
     for name in ("guidelines.csv", "one_at_a_time.csv", "one_at_a_time.png", "elasticities.png", "guidelines.json"):
         assert (tmp_path / "g" / name).stat().st_size > 0
 

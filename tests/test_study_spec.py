@@ -40,6 +40,7 @@ def test_example_spec_is_valid_and_has_about_12_points():
     assert ft == pytest.approx([1.6e-3, 1.8e-3, 2.0e-3, 2.2e-3], rel=1e-12)
     assert sorted({p["shoe_thickness"] for p in pts}) == pytest.approx([5e-3, 6e-3, 7e-3], rel=1e-12)
     assert dict(spec.settings.fixed) == {"shoe_arc": 90.0}
+    assert spec.error_sample == 3 and spec.error_points() == [0, 6, 11]  # evenly spaced, ends included
 
 
 def _with(replace: dict[str, str] | None = None, add: str = "") -> str:

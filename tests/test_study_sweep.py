@@ -290,6 +290,9 @@ def test_example_spec_runs_as_it_is(tmp_path):
         path = tmp_path / f
         assert path.is_file() and path.stat().st_size > 0, f
     assert any(f.endswith("parallel_coordinates.png") for f in s["files"])
+    e = s["errors"]  # the study's error from its sample (example: 3 designs, some may be refused)
+    assert 1 <= e["sampled"] <= 3
+    assert 0 < e["engagement_rpm"]["discretisation_median_pct"] <= e["engagement_rpm"]["band_median_pct"]
 
 
 def test_user_mesh_spec_varies_the_operating_point(tmp_path):

@@ -88,6 +88,16 @@ def _print_summary(s: dict) -> None:
             ("wall time", f"{s['wall_s']:.1f} s"),
             ("rate", f"{rate:.0f} designs/min" if rate else "-"),
             ("ran on", s["scheduler"]), ("store", s["store"])]
+    e = s.get("errors") or {}
+    if e.get("sampled"):
+        names = {"engagement_rpm": "engagement", "slip_rpm": "slip rpm", "torque_at_max_engine_torque_Nm": "torque",
+                 "max_von_mises_MPa": "peak stress"}
+        for ans, label in names.items():
+            x = e.get(ans) or {}
+            if x.get("band_median_pct") is not None:
+                rows.append((f"error of {label} ({e['sampled']} sampled designs)",
+                             f"+- {x['band_median_pct']:.1f} % median, {x['band_max_pct']:.1f} % max "
+                             f"(mesh {x['discretisation_median_pct']:.1f} %)"))
     for q, v in rows:
         t.add_row(escape(q), escape(v))
     console.print(t)

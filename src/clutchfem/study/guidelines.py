@@ -72,6 +72,7 @@ class GuidelineSettings:
     points: int = 7
     span: float = 0.5
     notes: tuple[str, ...] = ()
+    errors: bool = True
 
     @property
     def base(self) -> dict:
@@ -273,6 +274,7 @@ class GuidelineResult:
     files: list[Path] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     run: Any = None
+    base_errors: dict = field(default_factory=dict)
 
     def as_json(self) -> dict:
         from ..jsonio import clean
@@ -280,6 +282,7 @@ class GuidelineResult:
         return clean({"concept": self.concept, "design_point": self.base, "step": self.step,
                       "stability_rule": f"E_h/2, E_2h and E_fit within {STABLE_ABS} + {STABLE_REL:.0%} of |E_h|",
                       "ranking": self.ranking, "elasticities": self.table, "notes": self.notes,
+                      "design_point_errors": self.base_errors,
                       "run": self.run.as_dict() if self.run is not None else None,
                       "files": [str(f) for f in self.files]})
 
@@ -299,7 +302,8 @@ def run_guidelines(gs: GuidelineSettings, out: str | Path, *, workers: int | Non
     out.mkdir(parents=True, exist_ok=True)
     points, per = plan(gs)
     run = run_points(points, gs.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
-                     progress=progress, source=f"guidelines {gs.concept}", desc="guidelines")
+                     progress=progress, source=f"guidelines {gs.concept}", desc="guidelines",
+                     error_points=[0] if gs.errors else [])
     with ResultStore(out / STORE_NAME, COLUMNS) as st:
         df = st.frame(run.model_version, run.keys)
     by_hash = {r["design_hash"]: r for r in df.to_dict("records")}
@@ -308,6 +312,17 @@ def run_guidelines(gs: GuidelineSettings, out: str | Path, *, workers: int | Non
     if base_row is None or base_row["status"] != "ok":
         msg = base_row["message"] if base_row is not None else "not computed"
         raise InputError(f"guidelines {gs.concept}: the design point itself has no answer ({msg})")
+    base_errors = {}
+    if base_row.get("errors_estimated") == 1:
+        from .runner import ERROR_COLUMNS
+
+        for ans, tot, disc, unit in ERROR_COLUMNS:
+            base_errors[ans] = {"value": base_row[ans], "band": base_row[tot], "discretisation": base_row[disc],
+                                "unit": unit}
+            if base_row[tot] is not None and base_row[ans]:
+                notes.append(f"design point: {ans} = {base_row[ans]:.4g} +- {base_row[tot]:.3g} {unit} (mesh "
+                             f"+- {base_row[disc]:.3g} {unit}, the rest model form): an elasticity says how an answer "
+                             "moves, this band how far its value may be off")
 
     def row_at(name, x):
         if x == per[name]["x0"]:
@@ -359,7 +374,7 @@ def run_guidelines(gs: GuidelineSettings, out: str | Path, *, workers: int | Non
     oat.to_csv(opath, index=False)
     files += [tpath, opath]
     res = GuidelineResult(concept=gs.concept, base=gs.base, step=gs.step, table=table, ranking=ranking, oat=oat,
-                          files=files, notes=notes, run=run)
+                          files=files, notes=notes, run=run, base_errors=base_errors)
     if charts:
         files.append(oat_chart(res, out / "one_at_a_time.png"))
         files.append(elasticity_chart(res, out / "elasticities.png"))

@@ -84,6 +84,15 @@ COLUMNS: tuple[tuple[str, str, str], ...] = (
     ("engagement_limit_rpm", "REAL", "a x idle rpm [rpm]"),
     ("slip_limit_rpm", "REAL", "b x rpm of max engine torque [rpm]"),
     ("min_safety_factor", "REAL", "required safety factor at the engine's maximum speed [-]"),
+    ("errors_estimated", "INTEGER", "1: the error bands below were computed (the design again on a mesh twice as fine)"),
+    ("engagement_err_rpm", "REAL", "error band of engagement_rpm: discretisation + model form [rpm]"),
+    ("engagement_disc_rpm", "REAL", "its discretisation part 2|a_h - a_h/2| [rpm]"),
+    ("slip_err_rpm", "REAL", "error band of slip_rpm [rpm]"),
+    ("slip_disc_rpm", "REAL", "its discretisation part [rpm]"),
+    ("torque_err_Nm", "REAL", "error band of torque_at_max_engine_torque_Nm [N m]"),
+    ("torque_disc_Nm", "REAL", "its discretisation part [N m]"),
+    ("stress_err_MPa", "REAL", "error band of max_von_mises_MPa [MPa]"),
+    ("stress_disc_MPa", "REAL", "its discretisation part [MPa]"),
     ("n_elements", "INTEGER", "triangles in the mesh"),
     ("mesh_cached", "INTEGER", "mesh read from the content-hash cache (1/0)"),
     ("t_mesh_s", "REAL", "geometry + meshing (or cache read) [s]"),
@@ -255,9 +264,11 @@ def _num(x) -> float | None:
     return x if math.isfinite(x) else None
 
 
-def evaluate(point: dict, settings: Settings, design_hash: str = "") -> dict:
+def evaluate(point: dict, settings: Settings, design_hash: str = "", errors: bool = False) -> dict:
     """Build, mesh and analyse one design; return its row (see module docstring).  Never
-    raises for a bad design: the status and message say what happened."""
+    raises for a bad design: the status and message say what happened.  ``errors``: also
+    estimate the error of the main answers (analyze's step 10: the design again on a mesh
+    twice as fine, about 3x the time; a study does it for a sample of its points)."""
     from ..clutch.analyze import Requirements, analyze
     from ..clutch.engine import EngineCurve
     from ..design import Design
@@ -293,7 +304,7 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "") -> dict:
         engine = settings.engine if settings.engine is not None else EngineCurve.default()
         t = time.perf_counter()
         an = analyze(design, engine=engine, requirements=Requirements(a=settings.a, b=settings.b),
-                     idle_rpm=settings.idle_rpm)
+                     idle_rpm=settings.idle_rpm, errors=errors)
         t_an = time.perf_counter() - t
     except (ParameterError, InputError, GeometryError, MeshError) as exc:
         row.update(status="refused", message=str(exc))
@@ -350,6 +361,18 @@ def _fill(row: dict, an, design, settings: Settings, cm) -> None:
         n_elements=cm.n_elements, mesh_cached=int(bool(cm.cached)),
         warnings="\n".join(an.warnings) or None,
     )
+    err = getattr(an, "errors", None) or {}
+    if err:
+        row["errors_estimated"] = 1
+        for q, name, scale in (("engagement_rpm", "engagement", 1.0), ("slip_rpm", "slip", 1.0),
+                               ("torque_at_max_engine_torque_Nm", "torque", 1.0), ("max_von_mises_Pa", "stress", 1e-6)):
+            e = err.get(q) or {}
+            unit = {"engagement": "rpm", "slip": "rpm", "torque": "Nm", "stress": "MPa"}[name]
+            row[f"{name}_err_{unit}"] = _num(e["total"] * scale) if e.get("total") is not None else None
+            row[f"{name}_disc_{unit}"] = (_num(e["discretisation"] * scale) if e.get("discretisation") is not None
+                                          else None)
+    else:
+        row["errors_estimated"] = 0
 
 
 def warm_up(concept: str | None = None) -> str:

@@ -85,6 +85,7 @@ class RunResult:
     scheduler: str
     keys: tuple[str, ...] = field(repr=False, default=())
     interrupted: bool = False
+    error_keys: tuple[str, ...] = field(repr=False, default=())
 
     @property
     def designs_per_min(self) -> float | None:
@@ -118,24 +119,29 @@ def _counts(store: ResultStore, version: str, keys: list[str]) -> dict:
 
 def run_points(points: list[dict], settings: Settings, store_path: str | Path, *, workers: int | None = None,
                scheduler: str | None = None, retry_failed: bool = False, progress: bool = True,
-               source: str = "", spec_text: str = "", desc: str = "sweep") -> RunResult:
-    """Compute the rows of ``points`` not yet in the store (see module docstring)."""
+               source: str = "", spec_text: str = "", desc: str = "sweep", error_points=()) -> RunResult:
+    """Compute the rows of ``points`` not yet in the store (see module docstring).
+    ``error_points``: indices of the points whose answers also get their error estimate (a
+    finished row of such a point without one is computed again, with it)."""
     t_start = time.perf_counter()
     if scheduler is not None and workers is not None:
         raise InputError("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise InputError(f"workers = {workers!r} is not allowed: an integer >= 0 (0: in this process, no Dask)")
     version = model_version(settings.concept)
-    keys, tasks = [], {}
+    keys, tasks, hashes = [], {}, []
     for p in points:
         h = design_hash(p, settings)
+        hashes.append(h)
         if h not in tasks:
             keys.append(h)
             tasks[h] = p
+    want_errors = {hashes[i] for i in error_points}
     store = ResultStore(store_path, COLUMNS)
     try:
-        finished = store.finished(version, keys)
-        todo = [h for h in keys if h not in finished or (retry_failed and finished[h] == "failed")]
+        finished = store.select(version, keys, ["status", "errors_estimated"])
+        todo = [h for h in keys if h not in finished or (retry_failed and finished[h][0] == "failed")
+                or (h in want_errors and finished[h][0] == "ok" and finished[h][1] != 1)]
         run = store.start_run(source, version, len(keys), len(todo), spec_text)
         n_workers = None if scheduler else (0 if workers == 0 else (workers or _default_workers()))
         label = scheduler or (f"local cluster, {n_workers} process workers" if n_workers else "in process")
@@ -144,8 +150,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         tally = {"ok": 0, "refused": 0, "failed": 0}
         try:
             if todo:
-                rows = (_in_process(todo, tasks, settings) if n_workers == 0 and scheduler is None
-                        else _on_dask(todo, tasks, settings, version, n_workers, scheduler))
+                rows = (_in_process(todo, tasks, settings, want_errors) if n_workers == 0 and scheduler is None
+                        else _on_dask(todo, tasks, settings, version, n_workers, scheduler, want_errors))
                 for row in rows:
                     if "__start__" in row:  # the back-end is up and the points are submitted
                         n_workers = row["__start__"]
@@ -178,7 +184,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
     compute_s = (t_last - t_first) if (t_first is not None and t_last is not None) else 0.0
     res = RunResult(points=len(keys), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
                     model_version=version, wall_s=time.perf_counter() - t_start, compute_s=compute_s,
-                    workers=n_workers, scheduler=label, keys=tuple(keys), interrupted=interrupted, **c)
+                    workers=n_workers, scheduler=label, keys=tuple(keys), interrupted=interrupted,
+                    error_keys=tuple(h for h in keys if h in want_errors), **c)
     if interrupted:
         raise SweepInterrupted(res)
     return res
@@ -203,10 +210,10 @@ def _bar(total: int, desc: str, progress: bool):
 # ---------------------------------------------------------------------------------------
 # back-ends: in this process, or on dask.distributed
 # ---------------------------------------------------------------------------------------
-def _in_process(todo: list[str], tasks: dict, settings: Settings):
+def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=frozenset()):
     yield {"__start__": 0}
     for h in todo:
-        yield evaluate(tasks[h], settings, h)
+        yield evaluate(tasks[h], settings, h, h in want_errors)
 
 
 class _WorkerSetup:
@@ -237,7 +244,7 @@ def _killed_message(exc: BaseException) -> str:
 
 
 def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_workers: int,
-             scheduler: str | None):
+             scheduler: str | None, want_errors=frozenset()):
     """Rows as they finish, computed on a dask.distributed cluster (see module docstring)."""
     import dask
     from distributed import Client, LocalCluster, as_completed
@@ -287,7 +294,8 @@ def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_w
                 h = next(pending, None)
                 if h is None:
                     return
-                fut = client.submit(evaluate, tasks[h], settings, h, key=f"clutchfem-point-{h}-{tag}")
+                e = h in want_errors
+                fut = client.submit(evaluate, tasks[h], settings, h, e, key=f"clutchfem-point-{h}-{tag}{'-e' * e}")
                 futures[fut] = h
                 done.add(fut)
 
@@ -354,9 +362,11 @@ def run_sweep(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     out.mkdir(parents=True, exist_ok=True)
     points = spec.points()
     res = run_points(points, spec.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
-                     retry_failed=retry_failed, progress=progress, source=spec.source, spec_text=spec.text)
+                     retry_failed=retry_failed, progress=progress, source=spec.source, spec_text=spec.text,
+                     error_points=spec.error_points(len(points)))
     summary = res.as_dict()
     frame = table(spec, res)
+    summary["errors"] = error_summary(frame)
     csv = out / "results.csv"
     frame.to_csv(csv, index=False)
     files = [csv]
@@ -371,6 +381,33 @@ def run_sweep(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     write(out / "summary.json", summary, indent=1)
     summary["files"].append(str(out / "summary.json"))
     return summary
+
+
+#: error columns of a row: (answer, total band, discretisation part, unit)
+ERROR_COLUMNS = (("engagement_rpm", "engagement_err_rpm", "engagement_disc_rpm", "rpm"),
+                 ("slip_rpm", "slip_err_rpm", "slip_disc_rpm", "rpm"),
+                 ("torque_at_max_engine_torque_Nm", "torque_err_Nm", "torque_disc_Nm", "N m"),
+                 ("max_von_mises_MPa", "stress_err_MPa", "stress_disc_MPa", "MPa"))
+
+
+def error_summary(frame) -> dict:
+    """The study's error from its sampled designs: per answer, the median and largest band
+    (discretisation + model form) relative to the answer [%], and the discretisation part."""
+    import numpy as np
+
+    sel = frame[(frame["status"] == "ok") & (frame["errors_estimated"].fillna(0) == 1)]
+    out: dict = {"sampled": int(len(sel)),
+                 "method": "designs evenly spaced in the spec, analysed again on a mesh twice as fine "
+                           "(discretisation 2|a_h - a_h/2|) plus the measured model-form terms (clutchfem.errorest)"}
+    for ans, tot, disc, unit in ERROR_COLUMNS:
+        v = sel[ans].astype(float).abs()
+        rel_t = (sel[tot].astype(float) / v * 100).replace([np.inf, -np.inf], np.nan).dropna()
+        rel_d = (sel[disc].astype(float) / v * 100).replace([np.inf, -np.inf], np.nan).dropna()
+        out[ans] = {"band_median_pct": float(rel_t.median()) if len(rel_t) else None,
+                    "band_max_pct": float(rel_t.max()) if len(rel_t) else None,
+                    "discretisation_median_pct": float(rel_d.median()) if len(rel_d) else None,
+                    "discretisation_max_pct": float(rel_d.max()) if len(rel_d) else None}
+    return out
 
 
 def table(spec, res: RunResult):

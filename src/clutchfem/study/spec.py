@@ -19,6 +19,9 @@ shares, the requirement factors, and the varied parameters::
     b = 1.0                           # slip rpm < b x rpm of the engine's maximum torque
     min_safety_factor = 1.0           # yield safety factor at the engine's maximum speed
 
+    [errors]
+    sample = 3                        # designs that also get their error estimate
+
     [vary]
     method = "grid"                   # grid | list | lhs | sobol
     [vary.params]
@@ -31,6 +34,13 @@ value of each: explicit designs); ``lhs`` and ``sobol`` draw ``samples`` seeded
 space-filling points (``scipy.stats.qmc``, ``seed``) over the ranges jointly, crossed with
 any lists (e.g. a profile choice).  Sobol wants a power of 2 samples (its balance
 properties hold only then).  Integer parameters (``n_shoes``) take integer values.
+
+The study states its error from a sample (``[errors] sample``, default 3 designs evenly
+spaced in point order): those designs are also analysed on a mesh twice as fine, and their
+rows carry the error bands of engagement, slip, torque and peak stress (discretisation plus
+the measured model-form terms, :mod:`clutchfem.errorest`); every other point is analysed
+without (the error estimate triples a design's time).  The sample is not part of a
+design's hash: changing it recomputes only the newly sampled points.
 
 Validation happens here, before any worker starts: an error (:class:`SpecError`) names the
 key (``vary.params.flexure_thickness.min``), its value and what is allowed.  Values are read
@@ -120,14 +130,20 @@ class _VaryT(_Table):
     params: dict[str, _AxisT]
 
 
+class _ErrorsT(_Table):
+    sample: Annotated[Int, Field(ge=0, le=1000)] = 3
+
+
 class _SpecT(_Table):
     design: _DesignT
     settings: dict[str, Any] = {}
     requirements: _RequirementsT = _RequirementsT()
+    errors: _ErrorsT = _ErrorsT()
     vary: _VaryT
 
 
-_TABLES = {(): _SpecT, ("design",): _DesignT, ("requirements",): _RequirementsT, ("vary",): _VaryT}
+_TABLES = {(): _SpecT, ("design",): _DesignT, ("requirements",): _RequirementsT, ("vary",): _VaryT,
+           ("errors",): _ErrorsT}
 
 
 def _translate(exc: ValidationError, raw: dict, source: str) -> SpecError:
@@ -218,6 +234,7 @@ class SweepSpec:
     samples: int | None = None
     seed: int = 0
     text: str = ""
+    error_sample: int = 3
 
     @property
     def design(self) -> str:
@@ -230,6 +247,15 @@ class SweepSpec:
         if self.method == "list":
             return lists[0] if lists else 0
         return (self.samples or 0) * math.prod(lists)
+
+    def error_points(self, n: int | None = None) -> list[int]:
+        """Indices of the ``error_sample`` points (evenly spaced in point order, ends
+        included) whose answers also get their error estimate."""
+        n = self.count() if n is None else n
+        k = min(self.error_sample, n)
+        if k <= 0:
+            return []
+        return sorted({int(round(x)) for x in np.linspace(0, n - 1, k)})
 
     def points(self) -> list[dict]:
         """The points, in a reproducible order (``seed`` fixes the samples)."""
@@ -384,7 +410,7 @@ def parse_spec(text: str, source: str = "<text>", base: Path | None = None) -> S
                         a=t.requirements.a, b=t.requirements.b,
                         min_safety_factor=t.requirements.min_safety_factor)
     spec = SweepSpec(source=source, settings=settings, axes=tuple(axes), method=method, samples=samples,
-                     seed=vary.seed, text=text)
+                     seed=vary.seed, text=text, error_sample=t.errors.sample)
     n = spec.count()
     if n > MAX_POINTS:
         raise SpecError("vary", f"{n} points", f"at most {MAX_POINTS} points in one spec (split the study)", source)
@@ -617,6 +643,9 @@ mesh_size = "2mm"             # coarse, for a first look (the default 1.2mm for 
 a = 1.3                       # engagement (with speed ripple) > a x idle rpm
 b = 1.0                       # slip rpm < b x rpm of the engine's maximum torque
 min_safety_factor = 1.0       # peak von Mises at the engine's maximum speed <= yield / this
+
+[errors]                      # the study's error, from a sample of its designs: each analysed again on
+sample = 3                    # a mesh twice as fine (3x its time) plus the measured model-form terms
 
 [vary]
 method = "grid"               # grid | list | lhs | sobol (lhs, sobol: samples = N, seed = S)

@@ -92,6 +92,13 @@ class ResultStore:
             return got
         return {k: got[k] for k in keys if k in got}
 
+    def select(self, model_version: str, keys: Iterable[str], columns: list[str]) -> dict[str, tuple]:
+        """{design_hash: (values of ``columns``)} of the stored rows of ``model_version`` among ``keys``."""
+        cols = ", ".join(f'"{c}"' for c in columns)
+        cur = self.db.execute(f"SELECT design_hash, {cols} FROM results WHERE model_version = ?", (model_version,))
+        got = {r[0]: tuple(r[1:]) for r in cur}
+        return {k: got[k] for k in keys if k in got}
+
     def frame(self, model_version: str | None = None, keys: Iterable[str] | None = None):
         """The rows as a pandas DataFrame (of one model version, and only ``keys`` if given,
         in the order of ``keys``)."""
