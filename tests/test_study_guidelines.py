@@ -95,4 +95,10 @@ def test_step_check_accepts_a_power_law_and_flags_mesh_noise():
         return None if x > x0 * 1.03 else power(x)
 
     m = elasticity(x0, h, missing)  # no answer at x0 (1 + 2h): no verdict of stability
-    assert m["E"] == pytest.approx(1.5, rel=1e-9) and not m["stable"] and math.isnan(m["E_double_step"])
+    assert m["E"] == pytest.approx(1.5, rel=1e-9) and m["verdict"] == "unchecked" and math.isnan(m["E_double_step"])
+
+    def edge(x):  # x0 on the edge of the feasible set: nothing answered above it
+        return None if x > x0 else power(x)
+
+    o = elasticity(x0, h, edge)
+    assert o["method"] == "one-sided (-)" and o["E"] == pytest.approx(1.5, rel=1e-9) and o["verdict"] == "stable"

@@ -26,7 +26,10 @@ and it is called **stable** when E_h/2, E_2h and E_fit all agree with it within
 0.05 + 10 % of |E_h| (0.05: below it a parameter has no influence worth a guideline; 10 %:
 the precision a guideline needs).  An unstable derivative is reported as such, with its
 spread, never silently: typically the contact arc, which moves in steps of one contact
-node, or an answer whose mechanism changes at x0 (first contact moving from tip to root).
+node, or the peak stress, which sits on one node of a fillet.  Where the concept refuses
+the design on one side of x0 (x0 on the edge of its feasible set), the differences are
+one-sided on the other side, marked; where a step has no answer the verdict is
+'unchecked'.  Parameters are ranked by their largest |E| that is not unstable.
 """
 
 from __future__ import annotations
@@ -219,42 +222,74 @@ def plan(gs: GuidelineSettings) -> tuple[list[dict], dict]:
 # ---------------------------------------------------------------------------------------
 def central(a_minus: float, a_plus: float, r: float) -> float:
     """E_r: the central difference of ln A in ln x at relative step r (module docstring)."""
-    if not (a_minus and a_plus) or a_minus <= 0 or a_plus <= 0 or not (math.isfinite(a_minus) and math.isfinite(a_plus)):
+    if not (_pos(a_minus) and _pos(a_plus)):
         return math.nan
     return (math.log(a_plus) - math.log(a_minus)) / (math.log1p(r) - math.log1p(-r))
 
 
+def one_sided(a0: float, a: float, r: float) -> float:
+    """The one-sided difference of ln A in ln x from x0 to x0 (1 + r) (r < 0: downwards)."""
+    if not (_pos(a0) and _pos(a)):
+        return math.nan
+    return (math.log(a) - math.log(a0)) / math.log1p(r)
+
+
+def _pos(a) -> bool:
+    return a is not None and math.isfinite(a) and a > 0
+
+
 def elasticity(x0: float, h: float, value_at) -> dict:
     """E_h, E_h/2, E_2h, E_fit, the noise estimate and the verdict for one answer;
-    ``value_at(x)`` the answer at parameter value x (NaN/None if not answered)."""
+    ``value_at(x)`` the answer at parameter value x (NaN/None if not answered).
+
+    Central differences where both sides are answered; where a side is not (x0 at the edge
+    of the concept's feasible set: a refused design on one side), one-sided differences on
+    the other, marked.  The fit is a quadratic in ln x through every answered point (a line
+    if only four are).  Verdict: 'stable' (E_h/2, E_2h and E_fit within 0.05 + 10 % of E_h),
+    'unstable', 'unchecked' (a comparison is missing: a step was not answered) or
+    'no answer'."""
     def v(x):
         y = value_at(x)
         return math.nan if y is None else float(y)
 
     a0 = v(x0)
-    est = {}
-    for f in STEP_FACTORS:
-        r = f * h
-        est[f] = central(v(_clean(x0 * (1 - r))), v(_clean(x0 * (1 + r))), r)
-    xs = fd_values(x0, h)
-    ys = np.array([v(x) for x in xs])
-    ok = np.isfinite(ys) & (ys > 0)
+    ys = {x: v(x) for x in fd_values(x0, h)}
+
+    def at(f):
+        return ys.get(_clean(x0 * (1 + f * h)), math.nan)
+
+    est = {f: central(at(-f), at(f), f * h) for f in STEP_FACTORS}
+    method = "central"
+    if not math.isfinite(est[1.0]):
+        for side in (1, -1):
+            one = {f: one_sided(a0, at(side * f), side * f * h) for f in STEP_FACTORS}
+            if math.isfinite(one[1.0]):
+                est, method = one, f"one-sided ({'+' if side > 0 else '-'})"
+                break
+    pts = [(math.log(x / x0), math.log(y)) for x, y in ys.items() if _pos(y)]
     e_fit = noise = math.nan
-    if ok.sum() >= 5:
-        lx = np.log(np.asarray(xs)[ok] / x0)
-        ly = np.log(ys[ok])
-        c, res, *_ = np.polyfit(lx, ly, 2, full=True)
-        e_fit = float(c[1])
-        dof = int(ok.sum()) - 3
+    if len(pts) >= 4:
+        lx, ly = (np.array(c) for c in zip(*pts))
+        deg = 2 if len(pts) >= 5 else 1
+        c, res, *_ = np.polyfit(lx, ly, deg, full=True)
+        e_fit = float(c[-2])
+        dof = len(pts) - (deg + 1)
         noise = float(math.sqrt(res[0] / dof)) if len(res) and dof > 0 else math.nan
     e_h = est[1.0]
     others = [est[0.5], est[2.0], e_fit]
-    spread = max((abs(e - e_h) for e in others), default=math.nan) if all(map(math.isfinite, others + [e_h])) \
-        else math.nan
-    stable = bool(math.isfinite(spread) and spread <= STABLE_ABS + STABLE_REL * abs(e_h))
-    return {"value_at_x0": a0, "E": e_h, "E_half_step": est[0.5], "E_double_step": est[2.0], "E_fit": e_fit,
-            "spread": spread, "noise_rel": noise,
-            "noise_error": (noise / (math.sqrt(2) * h)) if math.isfinite(noise) else math.nan, "stable": stable}
+    have = [e for e in others if math.isfinite(e)]
+    spread = max((abs(e - e_h) for e in have), default=math.nan) if math.isfinite(e_h) else math.nan
+    if not math.isfinite(e_h):
+        verdict = "no answer"
+    elif len(have) < len(others):
+        verdict = "unchecked" if not (math.isfinite(spread) and spread > STABLE_ABS + STABLE_REL * abs(e_h)) \
+            else "unstable"
+    else:
+        verdict = "stable" if spread <= STABLE_ABS + STABLE_REL * abs(e_h) else "unstable"
+    return {"value_at_x0": a0, "E": e_h, "method": method, "E_half_step": est[0.5], "E_double_step": est[2.0],
+            "E_fit": e_fit, "spread": spread, "noise_rel": noise,
+            "noise_error": (noise / (math.sqrt(2) * h)) if math.isfinite(noise) else math.nan,
+            "verdict": verdict, "stable": verdict == "stable"}
 
 
 # ---------------------------------------------------------------------------------------
@@ -280,7 +315,8 @@ class GuidelineResult:
         from ..jsonio import clean
 
         return clean({"concept": self.concept, "design_point": self.base, "step": self.step,
-                      "stability_rule": f"E_h/2, E_2h and E_fit within {STABLE_ABS} + {STABLE_REL:.0%} of |E_h|",
+                      "stability_rule": f"E_h/2, E_2h and E_fit within {STABLE_ABS} + {STABLE_REL:.0%} of |E_h| "
+                                        "(verdicts: stable, unstable, unchecked, no answer)",
                       "ranking": self.ranking, "elasticities": self.table, "notes": self.notes,
                       "design_point_errors": self.base_errors,
                       "run": self.run.as_dict() if self.run is not None else None,
@@ -350,10 +386,11 @@ def run_guidelines(gs: GuidelineSettings, out: str | Path, *, workers: int | Non
             slope = e["E"] * a0 / x0 * du if math.isfinite(e["E"]) and a0 else math.nan
             table.append({"parameter": n, "unit": unit, "x0": x0, "answer": col, "label": label, **e,
                           f"change_per_{per_unit.replace(' ', '_')}": slope, "per": per_unit})
-    # ranking: largest stable |E| over the answers
+    # ranking: largest |E| over the answers whose derivative is not unstable
     score = {}
     for n in gs.params:
-        es = [abs(t["E"]) for t in table if t["parameter"] == n and t["stable"] and math.isfinite(t["E"])]
+        es = [abs(t["E"]) for t in table if t["parameter"] == n and t["verdict"] in ("stable", "unchecked")
+              and math.isfinite(t["E"])]
         score[n] = max(es) if es else 0.0
     ranking = sorted(gs.params, key=lambda n: -score[n])
     # one-at-a-time table
@@ -400,7 +437,8 @@ def summary_table(res: GuidelineResult):
               caption=escape(f"engage: engagement rpm; slip: slip rpm; torque: at the rpm of max engine torque; "
                              f"stress: peak von Mises at max rpm; shoe m: shoe mass; arc: contact arc.  "
                              f"Step h = {res.step:.0%}; ~: unstable (E at h/2, 2h or the fit differs from E at h "
-                             f"by more than {STABLE_ABS} + {STABLE_REL:.0%})"))
+                             f"by more than {STABLE_ABS} + {STABLE_REL:.0%}); ?: unchecked (a step has no answer); "
+                             "1: one-sided (one side refused); -: no answer"))
     t.add_column("rank")
     t.add_column("parameter", no_wrap=True)
     t.add_column("value", justify="right")
@@ -413,7 +451,9 @@ def summary_table(res: GuidelineResult):
             e = next(r for r in res.table if r["parameter"] == n and r["answer"] == col)
             unit, x0 = e["unit"], e["x0"]
             v = e["E"]
-            cells.append("-" if not math.isfinite(v) else (f"{v:+.2f}" if e["stable"] else f"~{v:+.2f}"))
+            mark = {"stable": "", "unchecked": "?", "unstable": "~"}.get(e["verdict"], "")
+            side = "" if e["method"] == "central" else "1"
+            cells.append("-" if not math.isfinite(v) else f"{mark}{v:+.2f}{side}")
         shown = {"m": "mm", "-": ""}.get(unit, unit)
         t.add_row(str(k), escape(n), escape(f"{display_value(x0, unit):.4g} {shown}".strip()), *cells)
     return t
@@ -421,10 +461,13 @@ def summary_table(res: GuidelineResult):
 
 def oat_chart(res: GuidelineResult, path: str | Path) -> Path:
     """Small multiples, one panel per answer: the answer against x / x0 for every parameter."""
+    from matplotlib import colormaps
+
     from ..plotting import figure
 
     path = Path(path)
     oat = res.oat
+    cmap = colormaps["tab20"]
     fig, axes = figure(2, 3, figsize=(14.0, 7.5), squeeze=False)
     for k, (col, label) in enumerate(ANSWERS):
         ax = axes.flat[k]
@@ -432,11 +475,12 @@ def oat_chart(res: GuidelineResult, path: str | Path) -> Path:
             d = oat[oat["parameter"] == n]
             okd = d[d["status"] == "ok"]
             y = okd[col].astype(float)
-            ax.plot(okd["relative"], y, "-o", ms=3, lw=1.1, color=f"C{j % 10}", label=n if k == 0 else None)
+            colour = cmap((2 * j) % 20 + (j // 10) % 2)
+            ax.plot(okd["relative"], y, "-o", ms=3, lw=1.1, color=colour, label=n if k == 0 else None)
             bad = d[d["status"] != "ok"]
             if len(bad):
                 for xr in bad["relative"]:
-                    ax.axvline(xr, color=f"C{j % 10}", lw=0.5, ls=":", alpha=0.6)
+                    ax.axvline(xr, color=colour, lw=0.5, ls=":", alpha=0.6)
         ax.axvline(1.0, color="0.3", lw=0.8)
         ax.set_title(label, fontsize=9)
         ax.set_xlabel("parameter / design value [-]", fontsize=8)
@@ -464,7 +508,7 @@ def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
         e = np.array([r["E"] for r in rows], dtype=float)
         sp = np.array([r["spread"] for r in rows], dtype=float)
         y = np.arange(len(names))
-        colours = ["C0" if r["stable"] else "0.7" for r in rows]
+        colours = [{"stable": "C0", "unchecked": "C1"}.get(r["verdict"], "0.7") for r in rows]
         ax.barh(y, np.nan_to_num(e), xerr=np.nan_to_num(sp), color=colours, ecolor="0.3", capsize=2,
                 hatch=None)
         ax.set_yticks(y, names, fontsize=7)
@@ -473,8 +517,9 @@ def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
         ax.set_title(f"{label}: d ln A / d ln x", fontsize=9)
         ax.grid(alpha=0.3, axis="x")
         ax.tick_params(labelsize=7)
-    fig.suptitle(f"{res.concept}: elasticities at the design point (grey: unstable against mesh noise; "
-                 f"error bar: spread of E over steps h/2, 2h and the fit)", fontsize=10)
+    fig.suptitle(f"{res.concept}: elasticities at the design point (blue: stable; orange: unchecked, a step "
+                 f"refused; grey: unstable against mesh noise; error bar: spread of E over h/2, 2h and the fit)",
+                 fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     return path
