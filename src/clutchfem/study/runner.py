@@ -174,6 +174,9 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
                         bar.update(1)
         except KeyboardInterrupt:
             interrupted = True
+        except BaseException as exc:
+            store.end_run(run, computed, f"error: {type(exc).__name__}: {exc}"[:500])
+            raise
         finally:
             if bar is not None:
                 bar.close()
@@ -254,7 +257,7 @@ def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_w
     try:
         if scheduler is not None:
             try:
-                client = Client(scheduler, timeout="30s")
+                client = Client(scheduler, timeout="15s")
             except (OSError, TimeoutError) as exc:
                 raise InputError(f"--scheduler {scheduler}: no dask scheduler answers there ({exc}); start one "
                                  "with `dask scheduler` and workers with `dask worker ADDRESS --nthreads 1`") from None
