@@ -165,6 +165,11 @@ __all__ = [
     "write_vtu", "render_png", "hot_yield_ratio", "HOT_YIELD_TABLE", "PERIODIC_PASSES",
 ]
 
+#: Time steps of one run (every event and pause; the 2 dt error estimate adds half, the
+#: partition pre-run one event) above which a scenario is refused: ~0.1 ms per step on a
+#: 5k-node sector, so 2e5 steps are tens of seconds, 1e8 would be hours
+MAX_TIME_STEPS = 200_000
+
 #: Passes of a drum point under the patches by t_ref above which the drum flash is taken in
 #: its steady-periodic form (Fourier series); below, every pass is superposed (Duhamel).
 PERIODIC_PASSES = 1000
@@ -274,6 +279,24 @@ class SlipScenario(ParamSet):
     def check(self) -> None:
         if self.cycles > 1 and self.pause <= 0.0:
             self.fail("pause", "a pause > 0 s between repeated slip events (cycles > 1)")
+        n_slip, n_pause = self.steps()
+        total = self.cycles * (n_slip + n_pause)
+        if total > MAX_TIME_STEPS:
+            name = "pause" if n_pause > n_slip else ("cycles" if self.cycles > 1 else "steps_per_event")
+            self.fail(name, f"a run of at most {MAX_TIME_STEPS} time steps; cycles x (steps per event + pause / "
+                      f"dt) = {self.cycles} x ({n_slip} + {n_pause}) = {total} (dt = seconds / steps_per_event = "
+                      f"{self.seconds / n_slip:.3g} s): fewer cycles, a shorter pause or fewer steps per event")
+
+    def steps(self) -> tuple[int, int]:
+        """(steps per slip event, steps per pause): equal steps dt = seconds / n_slip (n_slip
+        even, for the 2 dt error estimate), the pause with the nearest even number of steps
+        of about dt (at least 2; 0 without a pause)."""
+        n_slip = self.steps_per_event + (self.steps_per_event % 2)
+        n_pause = 0
+        if self.pause > 0:
+            n_pause = max(2, int(round(self.pause / (self.seconds / n_slip))))
+            n_pause += n_pause % 2
+        return n_slip, n_pause
 
 
 
@@ -1046,12 +1069,8 @@ def slip_heat(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial
     probes.append(_Probe("hub", weights=wh / wh.sum()))
 
     # steps: equal steps per slip event (even, for the 2 dt error estimate), pause likewise
-    n_slip = sc.steps_per_event + (sc.steps_per_event % 2)
+    n_slip, n_pause = sc.steps()
     dt = sc.seconds / n_slip
-    n_pause = 0
-    if sc.pause > 0:
-        n_pause = max(2, int(round(sc.pause / dt)))
-        n_pause += n_pause % 2
 
     def segments(factor=1):
         segs = []
