@@ -551,45 +551,32 @@ def _case_torque(case, lam: np.ndarray, mu: float) -> float:
     return float(mu * case.contact.drum_radius * lam.sum() * case.scale)
 
 
-def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
-                 ripple_model: ripple_mod.RippleModel | None = None) -> FatigueAnswer:
-    """Step 10: fatigue safety factor under the service cycles of
-    :mod:`clutchfem.durability.cycles` (start-stop to the engine's maximum speed; running
-    revolutions at the operating speed with the 2-stroke ripple and the load torque of seed
-    000 carried by static friction), checked by :func:`clutchfem.durability.fatigue.fatigue_check`
-    (Goodman, Marin-corrected endurance limit, Basquin + Miner) at every element vertex.
+def fatigue_cycles(design, res, engine: EngineCurve, loads=None,
+                   ripple_model: ripple_mod.RippleModel | None = None):
+    """The service cycles of :mod:`clutchfem.durability.cycles` for ``design`` (a
+    :class:`~clutchfem.durability.cycles.CycleSet`): start-stop to the speed each start
+    reaches (default the engine's maximum), running revolutions at the operating speed with
+    the 2-stroke ripple and seed 000's load torque carried by static friction.
 
-    States: the frictionless case (mu = 0, the secondary cases' Ritz space) at w_o (1 -+
-    delta_max), w_o and the engine's maximum speed; the design's full-slip case at w_o (and
-    the sweep ``res``'s state at the maximum speed): a handful of memoised contact solves,
-    no factorisation.  ``loads``: :class:`~clutchfem.durability.cycles.FatigueLoads`;
-    ``params``: :class:`~clutchfem.durability.fatigue.FatigueParams` (default: 51CrV4 with
-    the design material's yield strength; another material needs its own, else the answer
-    is 'not available')."""
-    import time
-
+    States: the design's full-slip case at w_o (1 -+ delta_max) and w_o (its state at w_o
+    and at the maximum speed taken from the sweep ``res`` when solved there), and the
+    frictionless case (mu = 0, the secondary cases' Ritz space) at the same speeds,
+    warm-started from the slip state's contact nodes: a handful of memoised contact solves,
+    no factorisation.  ``loads``: :class:`~clutchfem.durability.cycles.FatigueLoads`."""
     from ..durability.cycles import FatigueLoads, ServiceStates, ripple_classes, service_cycles
-    from ..durability.fatigue import FatigueParams, LoadCycle, candidate_points, fatigue_check, von_mises
 
-    t0 = time.perf_counter()
     loads = loads if loads is not None else FatigueLoads()
     if not isinstance(loads, FatigueLoads):
         raise ParameterError("fatigue loads", type(loads).__name__, "a clutchfem.durability.cycles.FatigueLoads")
-    model = design.model
-    material = model.material
-    if params is None:
-        if not material.name.startswith("51CrV4"):
-            return FatigueAnswer(None, None, None, {
-                "available": False, "reason": f"no fatigue strength data for {material.name}: the defaults are "
-                "for hardened 51CrV4; give FatigueParams (S_ut, endurance limit, surface finish) for it"})
-        params = FatigueParams(yield_strength=min(material.yield_strength, FatigueParams().ultimate_strength))
-    if not isinstance(params, FatigueParams):
-        raise ParameterError("fatigue params", type(params).__name__, "a clutchfem.durability.fatigue.FatigueParams")
+    if design.nodes is None:
+        raise ParameterError("drum_radius", None, "a drum: the fatigue loads act through the shoes' contact")
     lo, hi = engine.rpm_range
     rpm_o = float(loads.operating_rpm if loads.operating_rpm is not None else engine.rpm_max_torque)
-    if not lo <= rpm_o <= hi:
-        raise ParameterError("operating_rpm", rpm_o, f"a speed within the engine curve's range {lo:g}..{hi:g} rpm",
-                             context="fatigue loads")
+    rpm_max = float(loads.max_rpm if loads.max_rpm is not None else hi)
+    for name, v in (("operating_rpm", rpm_o), ("max_rpm", rpm_max)):
+        if not lo <= v <= hi:
+            raise ParameterError(name, v, f"a speed within the engine curve's range {lo:g}..{hi:g} rpm",
+                                 context="fatigue loads")
     m_o = float(loads.cutting_torque if loads.cutting_torque is not None else engine.torque_at(rpm_o))
     rm = ripple_model or ripple_mod.RippleModel()
     classes = ripple_classes(rm, rpm_o, loads.revolutions)
@@ -597,26 +584,18 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
     if d_max <= 0:
         d_max = 1e-3  # no ripple: any bracket of w_o serves the interpolation
     mu = design.op.mu
-    rpm_max = float(loads.max_rpm if loads.max_rpm is not None else hi)
-    if not lo <= rpm_max <= hi:
-        raise ParameterError("max_rpm", rpm_max, f"a speed within the engine curve's range {lo:g}..{hi:g} rpm",
-                             context="fatigue loads")
     w = rpm_to_rad_s(rpm_o * np.array([1.0 - d_max, 1.0, 1.0 + d_max]))
     w_max = rpm_to_rad_s(rpm_max)
     c0, cf = secondary_case(design, 0.0), design.case()
     # full slip at the three operating speeds (torques; the stress at w_o from the sweep when
     # it was solved there), then frictionless states warm-started from the slip state's
     # contact nodes (one blocked condensation instead of a pivot-by-pivot one)
-    lamf, actf = [], []
-    for x in w:
-        lam, act = cf.solve(float(x))
-        lamf.append(lam)
-        actf.append(lam > 0)
+    lamf = [cf.solve(float(x))[0] for x in w]
     Mf = np.array([_case_torque(cf, lam, mu) for lam in lamf])
     k_max = _sweep_index(res, rpm_max)
     lam_fmax = res.lam[k_max] if k_max is not None else cf.solve(float(w_max))[0]
-    lam0 = [c0.solve(float(x), a if a.any() else None)[0] for x, a in zip(np.append(w, w_max),
-                                                                        actf + [lam_fmax > 0])]
+    lam0 = [c0.solve(float(x), a if a.any() else None)[0]
+            for x, a in zip(np.append(w, w_max), [lam > 0 for lam in lamf] + [lam_fmax > 0])]
     M0 = np.array([_case_torque(c0, lam, mu) for lam in lam0])
     S0 = _stresses(c0, np.append(w, w_max), np.vstack(lam0))
     k_o = _sweep_index(res, rpm_o)
@@ -633,6 +612,38 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
     cs = service_cycles(st, delta_classes=classes, cutting_torque=m_o, inertia=loads.drive_inertia,
                         max_speed_torque=float(engine.torque_at(rpm_max)), start_stops=loads.start_stops,
                         samples=loads.samples)
+    cs.info["ripple"] = {"delta_mean": float(rm.delta_mean(rpm_o)), "delta_std": float(rm.delta_std(rpm_o)),
+                         "assumed": list(rm.assumed)}
+    return cs
+
+
+def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
+                 ripple_model: ripple_mod.RippleModel | None = None) -> FatigueAnswer:
+    """Step 10: fatigue safety factor under the service cycles of :func:`fatigue_cycles`,
+    checked by :func:`clutchfem.durability.fatigue.fatigue_check` (Goodman, Marin-corrected
+    endurance limit, Basquin + Miner) at every element vertex (bisection on the points a
+    closed-form screen leaves, :func:`~clutchfem.durability.fatigue.candidate_points`; the
+    same worst point as checking all).  ``params``:
+    :class:`~clutchfem.durability.fatigue.FatigueParams` (default: 51CrV4 with the design
+    material's yield strength; another material needs its own, else the answer is 'not
+    available')."""
+    import time
+
+    from ..durability.cycles import FatigueLoads
+    from ..durability.fatigue import FatigueParams, LoadCycle, candidate_points, fatigue_check, von_mises
+
+    t0 = time.perf_counter()
+    model = design.model
+    material = model.material
+    if params is None:
+        if not material.name.startswith("51CrV4"):
+            return FatigueAnswer(None, None, None, {
+                "available": False, "reason": f"no fatigue strength data for {material.name}: the defaults are "
+                "for hardened 51CrV4; give FatigueParams (S_ut, endurance limit, surface finish) for it"})
+        params = FatigueParams(yield_strength=min(material.yield_strength, FatigueParams().ultimate_strength))
+    if not isinstance(params, FatigueParams):
+        raise ParameterError("fatigue params", type(params).__name__, "a clutchfem.durability.fatigue.FatigueParams")
+    cs = fatigue_cycles(design, res, engine, loads, ripple_model)
     t1 = time.perf_counter()
     # exact check on the points that can be the worst (closed-form bounds), Langer's first
     # yield over all points
@@ -643,13 +654,16 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
     fr = fatigue_check(sub, params, xy=pts[:, cand], cm=design.cm, element=elem[cand])
     vmax = np.max([np.maximum(von_mises(c.state_a), von_mises(c.state_b)).max() for c in cs.cycles])
     t2 = time.perf_counter()
+    info = cs.info
     notes = []
-    if not cs.info["engaged_at_operating_speed"]:
+    rpm_o = info["operating_rpm"]
+    if not info["engaged_at_operating_speed"]:
         notes.append(f"the shoes do not touch the drum at the operating speed {rpm_o:.0f} rpm: no load torque is "
                      "carried (running cycles: speed ripple only)")
-    elif m_o > Mf[1]:
-        notes.append(f"the mean cutting torque {m_o:.2f} N m exceeds the clutch's capacity {Mf[1]:.2f} N m at the "
-                     f"operating speed {rpm_o:.0f} rpm: it slips continuously there (running cycles at capacity)")
+    elif info["cutting_torque_Nm"] > info["capacity_forward_Nm"][1]:
+        notes.append(f"the mean cutting torque {info['cutting_torque_Nm']:.2f} N m exceeds the clutch's capacity "
+                     f"{info['capacity_forward_Nm'][1]:.2f} N m at the operating speed {rpm_o:.0f} rpm: it slips "
+                     "continuously there (running cycles at capacity)")
     if model.szz_factor:
         notes.append("plane strain: the fatigue check uses the in-plane stresses (s_zz left out)")
     details = {
@@ -658,10 +672,9 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
         "damage_at_worst": fr.damage_at_worst, "per_cycle": [dict(c) for c in fr.per_cycle],
         "yield_safety_factor_over_cycles": params.yield_strength / vmax if vmax > 0 else math.inf,
         "points_checked": int(len(cand)), "points": int(pts.shape[1]), "endurance_limit_Pa": fr.endurance_limit_Pa,
-        "marin_factors": dict(fr.factors), "params": dict(fr.params), "loads": loads.model_dump(),
-        "ripple": {"delta_mean": float(rm.delta_mean(rpm_o)), "delta_std": float(rm.delta_std(rpm_o)),
-                   "assumed": list(rm.assumed)},
-        "cycles": cs.info, "notes": notes,
+        "marin_factors": dict(fr.factors), "params": dict(fr.params),
+        "loads": (loads if loads is not None else FatigueLoads()).model_dump(),
+        "ripple": info.pop("ripple"), "cycles": info, "notes": notes,
         "approximations": [
             "holding state at load torque M: the straight line through the frictionless and the full-slip "
             "state at that speed (exact for one contact node; traction distributed like the slip state's)",
