@@ -201,3 +201,25 @@ def test_ctrl_c_stops_cleanly_and_writes_nothing(tmp_path):
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
     assert not list(out.iterdir())  # no file, no half file
+
+
+def test_part_mean_temperature_is_the_heat_content():
+    """The whole-part mean probe: (mean at the end - at the start) x rho c h A x (n_total /
+    n_model) equals the stored energy of the independent energy tally (1e-9)."""
+    from skfem import Basis, ElementTriP2, Functional
+
+    from clutchfem.cli.slip_heat_cmd import run_slip_heat
+    from clutchfem.clutch.engine import EngineCurve
+    from clutchfem.durability.heat import SlipScenario, ThermalMaterial
+    from clutchfem.geometry import MeshSettings, get_concept
+    from clutchfem.operating import OperatingPoint
+
+    c = get_concept("concept4")
+    doc, r, d = run_slip_heat(c, c.params(), OperatingPoint(), MeshSettings(size=2.5e-3), EngineCurve.default(),
+                              scenario=SlipScenario(seconds=2.0, cycles=2, pause=2.0, steps_per_event=20))
+    m = ThermalMaterial()
+    area = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(Basis(d.cm.mesh, ElementTriP2(), intorder=4))
+    n = d.cm.n_shoes_total / d.cm.n_shoes_model
+    heat = (r.part_mean_C[-1] - r.part_mean_C[0]) * m.density * m.specific_heat * d.thickness * area * n
+    assert heat == pytest.approx(r.energy["stored_J"], rel=1e-9)
+    assert doc["series"]["part_mean_C"][-1] == r.part_mean_C[-1]

@@ -281,6 +281,8 @@ def print_table(doc: dict) -> None:
                 else doc["yield_strength_at_flexure_peak_Pa"] / 1e6, ".0f", "MPa")),
             ("shoe face, hottest point, peak", _f(max(doc["series"]["shoe_face_C"]), ".0f", "C")),
             ("hub (mean) at the end", _f(doc["series"]["hub_C"][-1], ".0f", "C")),
+            ("whole part (mean) at the start / peak", f"{doc['series']['part_mean_C'][0]:.0f} C / "
+             f"{max(doc['series']['part_mean_C']):.0f} C"),
             ("peak temperature anywhere", f"{doc['peak_temperature_C']:.0f} C at {doc['peak_time_s']:.1f} s "
              f"({doc['peak_location']})"),
             ("ambient / initial state", f"{doc['ambient_temperature_C']:.0f} C / {doc['initial_state']}"),
