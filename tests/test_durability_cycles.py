@@ -314,3 +314,34 @@ def test_material_without_fatigue_data_is_not_available():
     res = d.sweep([8000.0, 14000.0])
     fa = fatigue_step(d, res, ENGINE)
     assert fa.safety_factor is None and "7075" in fa.details["reason"]
+
+
+def test_analyze_cli_json_has_fatigue_keys_and_settings_act():
+    """analyze --json (coarse concept 4): the fatigue keys with a named location; --fatigue
+    settings reach the step (wire-EDM edges: S_e 373 MPa); bad settings are refused before
+    any meshing, naming the option; --list-fatigue lists them."""
+    import time
+
+    from typer.testing import CliRunner
+
+    from clutchfem.cli import app
+
+    def inv(*a):
+        return CliRunner().invoke(app, list(a), catch_exceptions=False)
+
+    r = inv("analyze", "--concept", "concept4", "--mesh-size", "2.5mm", "--json", "--fatigue", "edge_finish=wire_edm")
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["fatigue_safety_factor"] > 0
+    assert d["fatigue_location"].startswith("flexure 0")
+    assert d["fatigue_governing_cycle"] in [c["name"] for c in d["fatigue"]["per_cycle"]]
+    assert d["fatigue"]["params"]["edge_finish"] == "wire_edm"
+    assert d["fatigue"]["endurance_limit_Pa"] == pytest.approx(373.3e6, rel=2e-3)
+    for bad, word in (("bogus=1", "unknown"), ("start_stops=0", "start_stops"), ("samples=10", "multiple of 4"),
+                      ("operating_rpm=20000", "engine curve"), ("miner=never", "haibach")):
+        t0 = time.perf_counter()
+        r = inv("analyze", "--concept", "concept4", "--fatigue", bad)
+        assert r.exit_code == 2 and "--fatigue" in r.output and word in r.output, (bad, r.output)
+        assert time.perf_counter() - t0 < 3.0
+    r = inv("analyze", "--list-fatigue")
+    assert r.exit_code == 0 and "start_stops" in r.output and "edge_finish" in r.output
