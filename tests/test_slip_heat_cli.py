@@ -223,3 +223,11 @@ def test_part_mean_temperature_is_the_heat_content():
     heat = (r.part_mean_C[-1] - r.part_mean_C[0]) * m.density * m.specific_heat * d.thickness * area * n
     assert heat == pytest.approx(r.energy["stored_J"], rel=1e-9)
     assert doc["series"]["part_mean_C"][-1] == r.part_mean_C[-1]
+
+
+def test_a_folder_in_the_way_of_an_output_is_refused_and_nothing_written(tmp_path):
+    out = tmp_path / "o"
+    (out / "concept4_slip_heat.png").mkdir(parents=True)
+    r = invoke("slip-heat", "concept4", "--seconds", "1", "--thermal", "steps_per_event=10", "--out", str(out))
+    assert r.exit_code == 2 and "not a file" in flat(r.output) and "Traceback" not in r.output
+    assert sorted(p.name for p in out.iterdir()) == ["concept4_slip_heat.png"]

@@ -228,6 +228,13 @@ def write_outputs(doc: dict, result, design, out: Path) -> list[Path]:
         jobs.append((".vtu", lambda p: write_vtu(design.cm, result, p)))
         jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title)))
     jobs.append((".json", lambda p: write(p, doc, indent=2)))
+    from ..errors import InputError
+
+    for suffix, _ in jobs:  # a folder (or anything but a file) in the way: refuse before writing any
+        final = out / f"{stem}{suffix}"
+        if final.exists() and not final.is_file():
+            raise InputError(f"--out {out}: {final.name} exists and is not a file (a folder?): cannot write the "
+                             "result there; remove it or choose another --out")
     done = []
     try:
         for suffix, job in jobs:
@@ -236,6 +243,8 @@ def write_outputs(doc: dict, result, design, out: Path) -> list[Path]:
             job(tmp)
         for tmp, final in done:
             os.replace(tmp, final)
+    except OSError as exc:
+        raise InputError(f"--out {out}: cannot write {Path(exc.filename or out).name} ({exc.strerror})") from None
     finally:
         for tmp, _ in done:
             if tmp.exists():
