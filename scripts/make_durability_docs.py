@@ -452,7 +452,7 @@ def page(runs, fat, engine, size, seconds) -> str:
     A("")
     A("What is approximate, measured in the tests (`tests/test_durability_cycles.py`): the holding-state line "
       "gives the reverse capacity within 0.03-1.1 % of a solved reversed-friction state and its stress field "
-      "within 0.6-1.2 % of the peak farther than 2 mm from the contact surface (the contact node moves with the "
+      "within 0.05-1.2 % of the peak farther than 2 mm from the contact surface (the contact node moves with the "
       "friction direction, so the patch's own stresses differ more); static friction's real traction "
       "distribution within the ~1 mm patch is not modelled.  Cycle counts, the operating speed and the mean "
       "cutting torque are ASSUMED service data: change them with `--fatigue`.")

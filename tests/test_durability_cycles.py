@@ -6,7 +6,6 @@ analyze's JSON/table/report carrying the answer with a named location."""
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import replace
 
 import numpy as np

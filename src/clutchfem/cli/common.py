@@ -135,7 +135,8 @@ def grouped_assignments(items, groups: dict, option: str) -> dict:
     for prefix, cls in groups.items():
         for name in cls.model_fields:
             owners.setdefault(name, []).append(prefix)
-    known = ", ".join(sorted(f"{p}.{n}" if len(owners[n]) > 1 else n for p, c in groups.items() for n in c.model_fields))
+    known = ", ".join(sorted(f"{p}.{n}" if len(owners[n]) > 1 else n
+                             for p, c in groups.items() for n in c.model_fields))
     raw: dict[str, list[str]] = {p: [] for p in groups}
     for item in items:
         if "=" not in item:

@@ -262,7 +262,8 @@ def print_table(doc: dict) -> None:
     t = Table(title=escape(f"{doc['design']}: slip heat, drum held, full throttle (mu = {doc['mu']:g})"))
     t.add_column("quantity")
     t.add_column("value", justify="right")
-    rows = [("slip speed", _f(doc.get("slip_rpm"), ".0f", "rpm") if doc.get("slip_rpm") else doc["slip_status"].upper())]
+    rpm = doc.get("slip_rpm")
+    rows = [("slip speed", _f(rpm, ".0f", "rpm") if rpm else doc["slip_status"].upper())]
     if not doc["heat"]:
         rows += [("slip power", "0 W"), ("heat into the part", "0 J")]
     else:
@@ -276,7 +277,8 @@ def print_table(doc: dict) -> None:
                                                                           if doc["cycles"] > 1 else "")),
             ("friction work", _f(doc["friction_work_J"], ".0f", "J")),
             ("heat into the part (share)", f"{doc['heat_into_part_J']:.0f} J ({100 * part['fraction_part']:.1f} %)"),
-            ("flexure: hottest point, peak", f"{doc['flexure_temperature_C']:.0f} C at {doc['flexure_peak_time_s']:.1f} s"
+            ("flexure: hottest point, peak",
+             f"{doc['flexure_temperature_C']:.0f} C at {doc['flexure_peak_time_s']:.1f} s"
              if doc.get("flexure_temperature_C") is not None else "- (no flexure zone)"),
             ("flexure: where", str(doc.get("flexure_peak_location") or "-")),
             (f"time until the flexure reaches {lim:.0f} C (limit)",

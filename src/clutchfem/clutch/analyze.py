@@ -720,7 +720,8 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curve); requirements: factors a, b; idle_rpm: overrides the engine's idle speed (else the
     curve's, else 2700 rpm, ASSUMED); fatigue_loads, fatigue_params: the service loads
     (:class:`~clutchfem.durability.cycles.FatigueLoads`) and fatigue strength
-    (:class:`~clutchfem.durability.fatigue.FatigueParams`) of step 10.  A user mesh (``design.params`` None) gets every FE
+    (:class:`~clutchfem.durability.fatigue.FatigueParams`) of step 10.  A user mesh
+    (``design.params`` None) gets every FE
     answer; the analytical curves are then NaN and ``analytical_available`` is False."""
     from ..design import Design
     from ..traceability import design_inputs, design_label

@@ -54,11 +54,12 @@ T = -mu N, i.e.
 
 checked against solved reversed-friction states (tests; measured at 8000 and 9072 rpm,
 default meshes): the reverse capacity within 0.03-1.1 % (concepts 4, 1, 2); the stress
-field on the line vs the solved one within 0.7-1.2 % of the peak von Mises farther than 2
+field on the line vs the solved one within 0.05-1.2 % of the peak von Mises farther than 2
 mm from the contact surface (1.5-4.5 % beyond 1 mm, concept 2's in-shoe flexure being the
 closest), up to ~12 % at the contact patch itself, where the contact node moves by one
-node with the friction direction (a local contact stress, not a flexure stress).  Beyond the capacity the clutch slips for that part of the revolution
-and carries M_f (or -M_r): M is clipped (seed 000 eq 13).  Speeds between the solved ones
+node with the friction direction (a local contact stress, not a flexure stress).  Beyond
+the capacity the clutch slips for that part of the revolution and carries M_f (or -M_r):
+M is clipped (seed 000 eq 13).  Speeds between the solved ones
 (w_o (1 -+ delta_max), w_o) are interpolated piecewise linearly in w^2 (exact for a field
 linear in w^2, e.g. before engagement); capacities likewise.
 
