@@ -10,6 +10,7 @@ import typer
 from .analyze_cmd import analyze
 from .demo_cmd import demo
 from .geometry_cmd import geometry
+from .slip_heat_cmd import slip_heat
 from .solve_cmd import solve
 from .validate_cmd import validate
 
@@ -17,6 +18,7 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=N
                   help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
 for _cmd in (geometry, solve, analyze, validate, demo):
     app.command()(_cmd)
+app.command("slip-heat")(slip_heat)
 
 
 def main() -> None:
