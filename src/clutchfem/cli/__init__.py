@@ -32,11 +32,14 @@ def main() -> None:
     log = logging.getLogger("clutchfem")
     log.addHandler(handler)
     log.setLevel(logging.INFO)
-    try:
-        app()
-    except KeyboardInterrupt:
-        print("interrupted (Ctrl-C): nothing was written for the unfinished work", file=sys.stderr)
-        raise SystemExit(130) from None
+    import signal
+
+    def interrupted(signum, frame):  # one line, exit 130, finally-blocks still run
+        print("\ninterrupted (Ctrl-C): unfinished work is not written", file=sys.stderr)
+        raise SystemExit(130)
+
+    signal.signal(signal.SIGINT, interrupted)
+    app()
 
 
 __all__ = ["app", "main"]
