@@ -3,7 +3,10 @@
 
 from __future__ import annotations
 
+import contextlib
+import signal
 import sys
+import threading
 from pathlib import Path
 from typing import List, Optional
 
@@ -13,6 +16,21 @@ from rich.table import Table
 
 from ..errors import ClutchfemError
 from .common import check_out_dir, console, err, fail
+
+@contextlib.contextmanager
+def _ctrl_c_as_keyboard_interrupt():
+    """During a study, Ctrl-C raises KeyboardInterrupt (the CLI's own handler exits at once
+    with "unfinished work is not written"): the runner then cancels the pending points,
+    shuts its cluster down and says how many finished points are stored."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
 
 _WORKERS_HELP = "local cluster of N process workers (default: one per core; 0: in this process, no Dask)"
 _SCHED_HELP = "address of an existing dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of --workers)"
@@ -51,8 +69,9 @@ def sweep(
         sp = load_spec(spec)
         out = check_out_dir(out if out is not None else default_out(str(spec)))
         try:
-            summary = run_sweep(sp, out, workers=workers, scheduler=scheduler, retry_failed=retry_failed,
-                                progress=True, charts=charts)
+            with _ctrl_c_as_keyboard_interrupt():
+                summary = run_sweep(sp, out, workers=workers, scheduler=scheduler, retry_failed=retry_failed,
+                                    progress=True, charts=charts)
         except SweepInterrupted as exc:
             err.print(f"[yellow]{escape(str(exc))}[/]")
             if json_:
@@ -107,7 +126,8 @@ def _print_summary(s: dict) -> None:
 
 def guidelines(
     concept: str = typer.Argument(..., help="concept name (concept4, 4, ...)"),
-    set_: List[str] = typer.Option([], "--set", help="design point: concept parameter name=value (unit suffix: mm, deg)"),
+    set_: List[str] = typer.Option([], "--set", help="design point: concept parameter name=value "
+                                   "(unit suffix: mm, deg)"),
     params: Optional[str] = typer.Option(None, "--params", help="parameters to study, comma separated (default: "
                                          "every continuous parameter with a non-zero value)"),
     step: float = typer.Option(0.02, "--step", help="relative finite-difference step h [-]: central differences at "
@@ -140,7 +160,8 @@ def guidelines(
                                         mesh_size=mesh_size, mu=mu, material=material, engine=engine)
         out = check_out_dir(out if out is not None else Path(f"{gs.concept}-guidelines"))
         try:
-            res = run_guidelines(gs, out, workers=workers, scheduler=scheduler, progress=True)
+            with _ctrl_c_as_keyboard_interrupt():
+                res = run_guidelines(gs, out, workers=workers, scheduler=scheduler, progress=True)
         except SweepInterrupted as exc:
             err.print(f"[yellow]{escape(str(exc))}[/]")
             raise typer.Exit(code=130) from None

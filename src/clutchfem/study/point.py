@@ -33,7 +33,6 @@ for a core).
 from __future__ import annotations
 
 import hashlib
-import json
 import math
 import os
 import socket
@@ -84,7 +83,7 @@ COLUMNS: tuple[tuple[str, str, str], ...] = (
     ("engagement_limit_rpm", "REAL", "a x idle rpm [rpm]"),
     ("slip_limit_rpm", "REAL", "b x rpm of max engine torque [rpm]"),
     ("min_safety_factor", "REAL", "required safety factor at the engine's maximum speed [-]"),
-    ("errors_estimated", "INTEGER", "1: the error bands below were computed (the design again on a mesh twice as fine)"),
+    ("errors_estimated", "INTEGER", "1: the error bands below were computed (the design on a mesh twice as fine)"),
     ("engagement_err_rpm", "REAL", "error band of engagement_rpm: discretisation + model form [rpm]"),
     ("engagement_disc_rpm", "REAL", "its discretisation part 2|a_h - a_h/2| [rpm]"),
     ("slip_err_rpm", "REAL", "error band of slip_rpm [rpm]"),
@@ -387,7 +386,3 @@ def warm_up(concept: str | None = None) -> str:
 
         get_concept(concept)
     return model_version(concept)
-
-
-def row_json(row: dict) -> str:
-    return json.dumps(row, sort_keys=True, default=str)
