@@ -573,11 +573,17 @@ class PrestressRitz:
 
         class _Response(_ModalResponse):
             def coefficients(self, omega: float) -> np.ndarray:
+                from .softening import POLE_BAND
+
                 w2 = omega * omega
-                if self.omega_limit is not None and w2 >= self.omega_limit ** 2 * (1 - 1e-9):
-                    raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm reaches the divergence speed "
-                                      f"{rad_s_to_rpm(self.omega_limit):.0f} rpm of the prestressed free part")
+                if np.any(np.abs(1.0 - w2 * theta) < POLE_BAND):
+                    raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is a natural speed of the "
+                                      "prestressed free part: K - w^2 (M - K_sigma1) is singular there; solve a "
+                                      "speed next to it")
                 return w2 * theta / (1.0 - w2 * theta)
+
+            def unstable_count(self, omega: float) -> int:
+                return int(np.count_nonzero(omega * omega * theta > 1.0))
 
         r = _Response(model, contact, np.ones(len(theta)), Psi)
         r.check_model = prestressed(model)  # the equilibrium check uses M - K_sigma1,
