@@ -114,13 +114,39 @@ def test_no_friction_never_holds_and_says_so(c1):
 # ---------------------------------------------------------------------------------------
 # answers where the model does not apply
 # ---------------------------------------------------------------------------------------
-def test_speed_past_divergence_is_refused_for_every_softening(c1):
+def test_speed_past_divergence_is_refused_for_a_free_part(c1):
+    """Without the drum to hold it, a speed past the divergence speed is refused for every
+    softening strategy (the shoes would fly out)."""
+    from clutchfem.sweep import LoadCase, sweep
+
     cm, p = c1
     d = Design(cm, OperatingPoint(), params=p)
     lim = d.case().omega_limit * 60 / (2 * math.pi)
-    for soft in ("ritz", "off", "exact"):
+    for soft in ("ritz", "off", "exact", "prestress"):
+        case = LoadCase(d.model, None, soft)
+        lim_s = (case.omega_limit or d.case(softening="ritz").omega_limit) * 60 / (2 * math.pi)
         with pytest.raises(SolverError, match="divergence"):
-            d.sweep([0.0, 1.2 * lim], softening=soft)
+            sweep(case, [0.0, 1.2 * max(lim, lim_s)])
+
+
+def test_past_divergence_the_drum_holds_the_shoe():
+    """A slender flexure (L/t = 100) diverges at ~1000 rpm, after its shoe touched the drum:
+    past it the held state is answered (found by continuation, its stability checked by the
+    inertia count), the same with the Ritz and the exact softening; a sweep that jumps far
+    past it without continuation is refused clearly, not answered wrongly."""
+    c = get_concept("concept1")
+    p = c.params(n_shoes=2, shoe_arc=60.0, flexure_length=0.030, flexure_thickness=0.3e-3)
+    cm = mesh_concept(c, p, MeshSettings(size=2.4e-3))
+    d = Design(cm, OperatingPoint(softening="ritz"), params=p)
+    lim = d.case().omega_limit * 60 / (2 * math.pi)
+    speeds = np.array([0.5, 0.9, 0.99, 1.01, 1.1, 1.3, 1.5, 2.0]) * lim
+    r = d.sweep(speeds)
+    ex = d.sweep(speeds, softening="exact")
+    assert r.engagement_rpm < lim
+    n = r.curve["normal_force_N"].to_numpy()
+    assert np.all(np.diff(n) > 0) and np.all(r.lam >= 0)
+    assert np.allclose(n, ex.curve["normal_force_N"], rtol=1e-6)
+    assert r.curve["residual"].max() < 1e-3
 
 
 def test_solve_without_drum_says_free_spin(tmp_path):

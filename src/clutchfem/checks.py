@@ -189,9 +189,12 @@ def model_warnings(res, yield_strength: float) -> list[str]:
             out.append(f"LARGE DISPLACEMENT: up to {umax * 1e3:.3g} mm, {100 * umax / R:.1f} % of the drum radius: "
                        "the small-displacement (linear) model is stretched")
     if res.divergence_rpm is not None and len(res.rpm) and res.rpm.max() > DIVERGENCE_WARN * res.divergence_rpm:
-        out.append(f"speeds up to {res.rpm.max():.0f} rpm come within {100 * (1 - DIVERGENCE_WARN):.0f} % of the "
-                   f"divergence speed {res.divergence_rpm:.0f} rpm of the free part (spin softening): answers "
-                   "there are very sensitive to every input")
+        past = res.rpm.max() >= res.divergence_rpm
+        out.append(f"speeds up to {res.rpm.max():.0f} rpm come "
+                   + ("past" if past else f"within {100 * (1 - DIVERGENCE_WARN):.0f} % of")
+                   + f" the divergence speed {res.divergence_rpm:.0f} rpm of the free part (spin softening)"
+                   + (": only the drum holds the shoes there (stability checked)" if past else "")
+                   + "; answers there are very sensitive to every input")
     return out
 
 

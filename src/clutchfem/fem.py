@@ -44,7 +44,45 @@ Formulation = Literal["plane-stress", "plane-strain"]
 FORMULATIONS: tuple[str, ...] = ("plane-stress", "plane-strain")
 
 
-class FEModel:
+class ConstrainedOperators:
+    """What every FE model (2-D :class:`FEModel`, 3-D :class:`clutchfem.fem3d.FEModel3D`)
+    derives the same way from its ``K``, ``M``, ``f1``, constraint map ``T``, ``basis`` and
+    injected ``solver``: the reduced operators, the one factorisation, solves and u1."""
+
+    @property
+    def ndofs(self) -> int:
+        return self.basis.N
+
+    @cached_property
+    def Kr(self) -> sp.csc_matrix:
+        return (self.T.T @ self.K @ self.T).tocsc()
+
+    @cached_property
+    def Mr(self) -> sp.csc_matrix:
+        return (self.T.T @ self.M @ self.T).tocsc()
+
+    @cached_property
+    def factor(self):
+        """Factorisation of T' K T by the injected solver (computed on first use)."""
+        t0 = time.perf_counter()
+        f = factorize(self.Kr, self.solver)
+        self.timings["factorize_s"] = time.perf_counter() - t0
+        return f
+
+    def solve(self, F: np.ndarray) -> np.ndarray:
+        """Displacements (all dofs) for load(s) F (N or N x k), no contact, no softening."""
+        return self.T @ self.factor.solve(self.T.T @ F)
+
+    @cached_property
+    def u1(self) -> np.ndarray:
+        """Free displacement at w = 1 rad/s (no contact, no softening): u(w) = w^2 u1."""
+        t0 = time.perf_counter()
+        u = self.solve(self.f1)
+        self.timings["solve_u1_s"] = time.perf_counter() - t0
+        return u
+
+
+class FEModel(ConstrainedOperators):
     """Assembled operators of one meshed part, material, thickness and formulation.
 
     ``solver``: the sparse direct solver back-end (a name or a factory ``A -> .solve(B)``;
@@ -103,10 +141,6 @@ class FEModel:
         return self.material.nu if self.formulation == "plane-strain" else 0.0
 
     # -- operators ----------------------------------------------------------------------
-    @property
-    def ndofs(self) -> int:
-        return self.basis.N
-
     @cached_property
     def M(self) -> sp.csr_matrix:
         """Mass matrix rho h int u.v (spin softening); assembled on first use."""
@@ -127,33 +161,6 @@ class FEModel:
         self.timings["mass_s"] = time.perf_counter() - t0
         return M
 
-    @cached_property
-    def Kr(self) -> sp.csc_matrix:
-        return (self.T.T @ self.K @ self.T).tocsc()
-
-    @cached_property
-    def Mr(self) -> sp.csc_matrix:
-        return (self.T.T @ self.M @ self.T).tocsc()
-
-    @cached_property
-    def factor(self):
-        """Factorisation of T' K T by the injected solver (computed on first use)."""
-        t0 = time.perf_counter()
-        f = factorize(self.Kr, self.solver)
-        self.timings["factorize_s"] = time.perf_counter() - t0
-        return f
-
-    def solve(self, F: np.ndarray) -> np.ndarray:
-        """Displacements (all dofs) for load(s) F (N or N x k), no contact, no softening."""
-        return self.T @ self.factor.solve(self.T.T @ F)
-
-    @cached_property
-    def u1(self) -> np.ndarray:
-        """Free displacement at w = 1 rad/s (no contact, no softening): u(w) = w^2 u1."""
-        t0 = time.perf_counter()
-        u = self.solve(self.f1)
-        self.timings["solve_u1_s"] = time.perf_counter() - t0
-        return u
 
     # -- post-processing ----------------------------------------------------------------
     @cached_property

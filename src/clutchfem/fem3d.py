@@ -78,7 +78,7 @@ from skfem import (Basis, BilinearForm, ElementTetP2, ElementVector, FacetBasis,
                    MeshTet1, MeshTet2, asm)
 
 from .errors import MeshError, SolverError
-from .linsolve import factorize
+from .fem import ConstrainedOperators
 from .materials import Material
 from .mesh import ClutchMesh
 from .params import ParamSet, param
@@ -243,7 +243,7 @@ def lame_3d(material: Material) -> tuple[float, float]:
     return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
 
 
-class FEModel3D:
+class FEModel3D(ConstrainedOperators):
     """Assembled 3-D operators of one extruded part (module docstring).  The same interface
     as the 2-D :class:`clutchfem.fem.FEModel` (``cm, material, thickness, formulation,
     basis, K, f1, T, M, Kr, Mr, factor, solve, u1, stress, ndofs, timings``), so the contact,
@@ -301,10 +301,6 @@ class FEModel3D:
         return self.em.boundary(name)
 
     # -- operators ----------------------------------------------------------------------
-    @property
-    def ndofs(self) -> int:
-        return self.basis.N
-
     @cached_property
     def M(self) -> sp.csr_matrix:
         """In-plane mass rho int (u_x v_x + u_y v_y) (spin softening); on first use."""
@@ -319,32 +315,6 @@ class FEModel3D:
         M.eliminate_zeros()
         self.timings["mass_s"] = time.perf_counter() - t0
         return M
-
-    @cached_property
-    def Kr(self) -> sp.csc_matrix:
-        return (self.T.T @ self.K @ self.T).tocsc()
-
-    @cached_property
-    def Mr(self) -> sp.csc_matrix:
-        return (self.T.T @ self.M @ self.T).tocsc()
-
-    @cached_property
-    def factor(self):
-        t0 = time.perf_counter()
-        f = factorize(self.Kr, self.solver)
-        self.timings["factorize_s"] = time.perf_counter() - t0
-        return f
-
-    def solve(self, F: np.ndarray) -> np.ndarray:
-        """Displacements (all dofs) for load(s) F, no contact, no softening."""
-        return self.T @ self.factor.solve(self.T.T @ F)
-
-    @cached_property
-    def u1(self) -> np.ndarray:
-        t0 = time.perf_counter()
-        u = self.solve(self.f1)
-        self.timings["solve_u1_s"] = time.perf_counter() - t0
-        return u
 
     # -- post-processing ----------------------------------------------------------------
     @cached_property

@@ -551,30 +551,39 @@ class PrestressRitz:
     ``benchmarks/bench_modelform.py``."""
 
     depth: int = 3
+    seeds: str = "load"
     name = "prestress"
 
     def __post_init__(self):
         if isinstance(self.depth, bool) or not isinstance(self.depth, int) or not 1 <= self.depth <= 20:
             raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
+        if self.seeds not in ("load", "all"):
+            raise ParameterError("ritz seeds", self.seeds, "'load' or 'all'")
 
     def bind(self, model, contact):
         from .softening import _ModalResponse
 
-        friction = 0.0 if contact is None else contact.friction
-        key = ("prestress", self.depth, None if contact is None else id(contact.nodes), friction)
+        friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
+        key = ("prestress", self.depth, self.seeds, None if contact is None else id(contact.nodes), friction)
         cache = model.__dict__.setdefault("_ritz_cache", {})
         if key not in cache:  # the nodes are kept with the pairs: their id is never reused
             cache[key] = (None if contact is None else contact.nodes,
-                          _prestress_pairs(prestressed(model), contact, self.depth))
+                          _prestress_pairs(prestressed(model), contact, self.depth, self.seeds))
         theta, Psi = cache[key][1]
 
         class _Response(_ModalResponse):
             def coefficients(self, omega: float) -> np.ndarray:
+                from .softening import POLE_BAND
+
                 w2 = omega * omega
-                if self.omega_limit is not None and w2 >= self.omega_limit ** 2 * (1 - 1e-9):
-                    raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm reaches the divergence speed "
-                                      f"{rad_s_to_rpm(self.omega_limit):.0f} rpm of the prestressed free part")
+                if np.any(np.abs(1.0 - w2 * theta) < POLE_BAND):
+                    raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is a natural speed of the "
+                                      "prestressed free part: K - w^2 (M - K_sigma1) is singular there; solve a "
+                                      "speed next to it")
                 return w2 * theta / (1.0 - w2 * theta)
+
+            def unstable_count(self, omega: float) -> int:
+                return int(np.count_nonzero(omega * omega * theta > 1.0))
 
         r = _Response(model, contact, np.ones(len(theta)), Psi)
         r.check_model = prestressed(model)  # the equilibrium check uses M - K_sigma1,
@@ -585,17 +594,21 @@ class PrestressRitz:
         return r
 
 
-def _prestress_pairs(pm: PrestressedModel, contact, depth: int):
+def _prestress_pairs(pm: PrestressedModel, contact, depth: int, which: str = "load"):
+    """Seeds as :func:`clutchfem.softening.ritz_pairs`: D(mu) ("load") or both N and Tt ("all",
+    one space for every friction coefficient of a design)."""
     from .units import wrap_angle
 
     seeds = [pm.f1]
     if contact is not None:
         nd = contact.nodes
+        loads = [contact.load] if which == "load" else [nd.normal_load, nd.tangent_load]
         for s_ in np.unique(nd.shoe):
             sel = np.nonzero(nd.shoe == s_)[0]
             a = wrap_angle(nd.angle[sel] - nd.angle[sel].mean())
-            for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
-                seeds.append(contact.load[:, sel] @ wgt)
+            for D in loads:
+                for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
+                    seeds.append(D[:, sel] @ wgt)
     Kr, Mr, T = pm.Kr, pm.Mr, pm.T
     blocks: list[np.ndarray] = []
 

@@ -91,6 +91,8 @@ class ParamSet(BaseModel):
         ann = f.annotation
         if get_origin(ann) is Literal:
             return "one of " + ", ".join(repr(a) for a in get_args(ann))
+        if ann is bool:
+            return "true or false"
         lo = hi = None
         for m in f.metadata:
             lo = getattr(m, "ge", lo) if getattr(m, "ge", None) is not None else lo

@@ -72,6 +72,7 @@ def summary_rows(an) -> list[tuple[str, str]]:
         (f"safety factor against yield ({an.yield_strength_Pa / 1e6:.0f} MPa)",
          _fmt(an.safety_factor, ".2f", "(-)") + ("  ABOVE YIELD" if an.safety_factor < 1 else "")),
     ]
+    rows += fatigue_rows(an)
     per = an.shoe_character_per_shoe
     if per:
         rows.append((f"shoe character (FE: normal force with/without friction at {per[0]['rpm']:.0f} rpm)",
@@ -122,6 +123,30 @@ def summary_rows(an) -> list[tuple[str, str]]:
                  ("PASS" if req["slip_ok"] else "FAIL")
                  + (f" ({an.slip_rpm:.0f} rpm vs {req['slip_limit_rpm']:.0f} rpm)" if an.slip_rpm is not None
                     else f" ({an.slip_status})")))
+    return rows
+
+
+def fatigue_rows(an) -> list[tuple[str, str]]:
+    """Rows of the fatigue check (analyze step 10): the safety factor with where and what
+    governs, and the cycles counted (every number with its unit)."""
+    f = getattr(an, "fatigue", None) or {}
+    if not f:
+        return []
+    if not f.get("available", True):
+        return [("fatigue safety factor", "not available: " + f.get("reason", ""))]
+    sf = an.fatigue_safety_factor
+    val = "infinite (no stress changes)" if sf is None or not math.isfinite(sf) else f"{sf:.2f} (-)"
+    if sf is not None and sf < 1:
+        val += "  BELOW 1"
+    rows = [("fatigue safety factor (load multiplier to Miner sum 1; Goodman, S_e "
+             f"{f['endurance_limit_Pa'] / 1e6:.0f} MPa, {f['params']['edge_finish']} edges)", val),
+            ("fatigue: worst point", str(an.fatigue_location)),
+            ("fatigue: governing cycle", str(an.fatigue_governing_cycle))]
+    cyc = f.get("cycles", {})
+    if cyc:
+        rows.append(("fatigue cycles counted", f"{cyc['start_stops']:.3g} start-stops (0 -> {cyc['max_speed_rpm']:.0f} rpm "
+                     f"-> 0), {cyc['revolutions']:.3g} revolutions at {cyc['operating_rpm']:.0f} rpm (ripple + load "
+                     f"torque, mean {cyc['cutting_torque_Nm']:.2f} N m)"))
     return rows
 
 

@@ -50,6 +50,10 @@ from .units import rad_s_to_rpm, wrap_angle
 
 __all__ = ["Off", "Ritz", "Exact", "Softening", "get_softening", "SOFTENINGS"]
 
+#: relative distance |w^2 - w_j^2| / w_j^2 to a natural speed of the free part within which a
+#: speed is refused (K - w^2 M singular there)
+POLE_BAND = 1e-6
+
 
 @dataclass(frozen=True)
 class Off:
@@ -197,11 +201,17 @@ class _ModalResponse:
         if self.linear:
             return np.zeros(0)
         w2 = omega * omega
-        if w2 >= self.w2[0] * (1 - 1e-9):
-            raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm reaches the spin-softening divergence "
-                              f"speed {rad_s_to_rpm(math.sqrt(self.w2[0])):.0f} rpm of the free part: the "
-                              "shoes would fly out (stiffer flexures or lower speed)")
+        j = int(np.argmin(np.abs(self.w2 - w2)))
+        if abs(self.w2[j] - w2) < POLE_BAND * self.w2[j]:
+            raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is a natural speed "
+                              f"({rad_s_to_rpm(math.sqrt(self.w2[j])):.0f} rpm) of the free part: K - w^2 M is "
+                              "singular there; solve a speed next to it")
         return w2 / (self.w2 * (self.w2 - w2))
+
+    def unstable_count(self, omega: float) -> int:
+        """Negative eigenvalues of K - w^2 M in the Ritz space: the free part's modes past
+        their divergence speed (the drum must hold them)."""
+        return int(np.count_nonzero(self.w2 < omega * omega)) if not self.linear else 0
 
     def free_normal(self, omega: float) -> np.ndarray:
         c = self.coefficients(omega)
@@ -261,8 +271,12 @@ class _ExactResponse:
         self.omega_limit = divergence_omega(model, contact)
 
     def coefficients(self, omega: float) -> np.ndarray:
-        self._factor(omega)  # refuses speeds past divergence
+        self._factor(omega)  # refuses a singular K - w^2 M
         return np.zeros(0)
+
+    def unstable_count(self, omega: float) -> int:
+        self._factor(omega)
+        return self._neg
 
     def _factor(self, omega: float):
         if self._omega != omega:
@@ -275,11 +289,9 @@ class _ExactResponse:
             except SolverError:
                 raise SolverError(f"K - w^2 M is singular at {rad_s_to_rpm(omega):.0f} rpm: the speed of a "
                                   "natural mode of the free part (divergence)") from None
-            neg = int(np.count_nonzero(f._lu.U.diagonal() < 0)) if hasattr(f, "_lu") else 0
-            if neg:
-                raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is past the divergence speed of the free "
-                                  f"part (K - w^2 M has {neg} negative eigenvalue(s)): the shoes would fly out "
-                                  "(stiffer flexures or lower speed)")
+            # Sylvester's law of inertia: negative pivots of the symmetric, unpivoted LU = negative
+            # eigenvalues of K - w^2 M (the free part's modes past divergence)
+            self._neg = int(np.count_nonzero(f._lu.U.diagonal() < 0)) if hasattr(f, "_lu") else 0
             self._f = f
             self._omega, self._cols = omega, {}
         return self._f

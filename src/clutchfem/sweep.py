@@ -104,10 +104,11 @@ class LoadCase:
         are memoised (a slip search and a sweep of the same case share their speeds)."""
         m = 0 if self.contact is None else self.contact.nodes.m
         lim = self.response.omega_limit
-        if lim is not None and omega >= lim * (1 - 1e-9):
+        beyond = lim is not None and omega >= lim * (1 - 1e-9)
+        if beyond and (self.contact is None or not self.engaged(omega)):
             raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm reaches the spin-softening divergence speed "
-                              f"{rad_s_to_rpm(lim):.0f} rpm of the free part: the shoes would fly out (stiffer "
-                              "flexures or lower speed)")
+                              f"{rad_s_to_rpm(lim):.0f} rpm of the free part before its shoes touch the drum: the "
+                              "shoes would fly out (stiffer flexures or lower speed)")
         if self.contact is None or not self.engaged(omega):
             return np.zeros(m), None
         key = float(omega)
@@ -123,18 +124,99 @@ class LoadCase:
         if Cd is not None:  # elastic drum: G + C_d
             G = lazy(lambda idx, G=G: G(idx) + Cd[:, idx])
         try:
-            lam, act = solve_lcp(G, q, active0)
+            if beyond:  # several complementary solutions: the one the drum holds (see _check_held)
+                self._omega_now = omega
+                lam, act = self._held_state(G, q, active0)
+            else:
+                lam, act = solve_lcp(G, q, active0)
         except SolverError as exc:
+            if beyond:
+                raise
             if self.contact.mu == 0.0:
                 raise
             raise SolverError(f"no bounded contact solution at {rad_s_to_rpm(omega):.0f} rpm with mu = "
                               f"{self.contact.mu:g}: friction wedges the shoe into the drum (a self-locking plus "
                               "shoe: unbounded torque in the rigid-drum model, a grabbing clutch in reality); "
                               f"lower mu or use the minus arrangement ({exc})") from None
+        if beyond:
+            self._check_held(omega, G, act)
         if len(self._memo) >= MEMO_STATES:
             self._memo.pop(next(iter(self._memo)))
         self._memo[key] = (lam.copy(), act.copy())
         return lam, act
+
+    def _held_state(self, G, q: np.ndarray, active0: np.ndarray):
+        """Past divergence the LCP is not a P-matrix problem: besides the state the drum holds
+        it has the free (lam = 0, unstable) one.  The active-set iteration from the contact
+        set of the speed before (continuation) finds the held one; its complementarity is
+        checked as usual and its stability by :meth:`_check_held`."""
+        m = len(q)
+        act = active0.copy() if active0 is not None and active0.any() else np.eye(m, dtype=bool)[int(np.argmin(q))]
+        tol = 1e-9 * max(float(np.max(np.abs(q))), 1e-300)  # q grows large near a pole: its round-off
+        k = self.response.unstable_count(self._omega_now) if hasattr(self.response, "unstable_count") else 0
+
+        def trial(A):
+            GA = np.asarray(G(A))
+            lam = np.zeros(m)
+            if len(A):
+                lam[A] = np.linalg.solve(GA[A], -q[A])
+            return lam, q + (GA @ lam[A] if len(A) else 0.0), GA
+
+        def held(A, lam, w, GA) -> bool:
+            if np.any(lam < 0) or np.any(np.delete(w, A) < -tol):
+                return False
+            S = 0.5 * (GA[A] + GA[A].T)
+            return int(np.count_nonzero(np.linalg.eigvalsh(S) < 0)) == k if len(A) else k == 0
+
+        seen, visited = set(), set(np.nonzero(act)[0].tolist())
+        for _ in range(4 * m + 20):  # one node in or out per step (a principal-pivoting walk)
+            A = np.nonzero(act)[0]
+            lam, w, GA = trial(A)
+            bad_lam = np.nonzero(lam < 0)[0]
+            bad_w = np.nonzero((w < -tol) & ~act)[0]
+            if not len(bad_lam) and not len(bad_w):
+                return lam, act
+            key = act.tobytes()
+            if key in seen:
+                break  # cycling (the matrix is not a P-matrix): search the nodes the walk visited
+            seen.add(key)
+            if len(bad_lam):
+                act[bad_lam[np.argmin(lam[bad_lam])]] = False
+            else:
+                act[bad_w[np.argmin(w[bad_w])]] = True
+                visited.add(int(bad_w[np.argmin(w[bad_w])]))
+        from itertools import combinations
+
+        U = sorted(visited)
+        if len(U) > 12:
+            raise SolverError("the contact state past the divergence speed did not converge")
+        for r in range(1, len(U) + 1):
+            for A in combinations(U, r):
+                A = np.array(A)
+                lam, w, GA = trial(A)
+                if held(A, lam, w, GA):
+                    act = np.zeros(m, dtype=bool)
+                    act[A] = True
+                    return lam, act
+        raise SolverError("no contact state past the divergence speed in which the drum holds the part")
+
+    def _check_held(self, omega: float, G, active: np.ndarray) -> None:
+        """Past the free part's divergence speed the drum must hold the diverging modes: the
+        equilibrium is stable iff K - w^2 M is positive definite on the displacements that keep
+        the active gaps closed, i.e. (Haynsworth inertia additivity) iff the condensed
+        compliance of the active nodes G_AA has as many negative eigenvalues as K - w^2 M has
+        (the symmetric part of G_AA with friction)."""
+        k = self.response.unstable_count(omega) if hasattr(self.response, "unstable_count") else 0
+        if k == 0:
+            return
+        A = np.nonzero(active)[0]
+        GA = np.asarray(G(A))[A] if len(A) else np.zeros((0, 0))
+        n_neg = int(np.count_nonzero(np.linalg.eigvalsh(0.5 * (GA + GA.T)) < 0)) if len(A) else 0
+        if n_neg != k:
+            raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is past the divergence speed "
+                              f"{rad_s_to_rpm(self.response.omega_limit):.0f} rpm of the free part and the drum does "
+                              f"not hold it there ({k} diverging mode(s), {n_neg} held by the {len(A)} contact "
+                              "nodes): the equilibrium is unstable (stiffer flexures or lower speed)")
 
     def torque(self, omega: float, active0=None) -> float:
         """Friction torque [N m] of the whole clutch at speed ``omega`` (drum held)."""

@@ -10,14 +10,17 @@ import typer
 from .analyze_cmd import analyze
 from .demo_cmd import demo
 from .geometry_cmd import geometry
+from .slip_heat_cmd import slip_heat
 from .solve_cmd import solve
+from .sweep_cmd import guidelines, sweep
 from .targets_cmd import compensate, optimize, report, tolerance
 from .validate_cmd import validate
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
-for _cmd in (geometry, solve, analyze, validate, demo, optimize, tolerance, compensate, report):
+for _cmd in (geometry, solve, analyze, validate, demo, sweep, guidelines, optimize, tolerance, compensate, report):
     app.command()(_cmd)
+app.command("slip-heat")(slip_heat)
 
 
 def main() -> None:
@@ -31,11 +34,14 @@ def main() -> None:
     log = logging.getLogger("clutchfem")
     log.addHandler(handler)
     log.setLevel(logging.INFO)
-    try:
-        app()
-    except KeyboardInterrupt:
-        print("interrupted (Ctrl-C): nothing was written for the unfinished work", file=sys.stderr)
-        raise SystemExit(130) from None
+    import signal
+
+    def interrupted(signum, frame):  # one line, exit 130, finally-blocks still run
+        print("\ninterrupted (Ctrl-C): unfinished work is not written", file=sys.stderr)
+        raise SystemExit(130)
+
+    signal.signal(signal.SIGINT, interrupted)
+    app()
 
 
 __all__ = ["app", "main"]

@@ -11,8 +11,25 @@ from rich.table import Table
 
 from ..errors import ClutchfemError
 from ..operating import OperatingPoint as _OP
-from .common import (check_out_dir, console, err, fail, length_option, load_design, material_from,
-                     operating_point)
+from .common import (build_params, check_out_dir, console, describe_groups, err, fail, grouped_assignments,
+                     length_option, load_design, material_from, operating_point)
+
+
+def fatigue_groups() -> dict:
+    """The parameter sets --fatigue writes into: service loads and fatigue strength."""
+    from ..durability.cycles import FatigueLoads
+    from ..durability.fatigue import FatigueParams
+
+    return {"loads": FatigueLoads, "strength": FatigueParams}
+
+
+def _print_settings(groups, option: str) -> None:
+    t = Table(title=f"{option} settings (name=value; ASSUMED defaults, sources in the docs)")
+    for col in ("name", "unit", "default", "allowed: meaning"):
+        t.add_column(col)
+    for row in describe_groups(groups):
+        t.add_row(*(escape(x) for x in row))
+    console.print(t)
 
 
 def analyze(
@@ -40,6 +57,11 @@ def analyze(
     json_: bool = typer.Option(False, "--json", help="print the JSON document"),
     out: Optional[Path] = typer.Option(None, "--out", help="folder for plots and tables"),
     mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm)"),
+    fatigue: List[str] = typer.Option([], "--fatigue", help="fatigue setting name=value (service loads: start_stops, "
+                                      "revolutions, operating_rpm, cutting_torque, drive_inertia, max_rpm, samples; "
+                                      "strength: ultimate_strength, edge_finish, reliability, ...); --list-fatigue "
+                                      "lists them with units and defaults (all ASSUMED)"),
+    list_fatigue: bool = typer.Option(False, "--list-fatigue", help="list the --fatigue settings and exit"),
 ):
     """Engagement (static, with ripple), slip rpm, torque margin, stress, plus/minus character."""
     from ..clutch.analyze import Requirements, analyze as run, check_speeds
@@ -47,7 +69,14 @@ def analyze(
     from ..errors import InputError, ParameterError
 
     try:
+        if list_fatigue:
+            _print_settings(fatigue_groups(), "--fatigue")
+            return
         check_out_dir(out)
+        groups = fatigue_groups()
+        fat = grouped_assignments(fatigue, groups, "--fatigue")
+        fat_loads = build_params(groups["loads"], fat["loads"], "--fatigue")
+        fat_params = build_params(groups["strength"], fat["strength"], "--fatigue") if fat["strength"] else None
         if (concept is None) == (mesh is None):
             raise InputError("give exactly one of --concept NAME or --mesh FILE")
         if concept is not None and (drum_radius is not None or thickness is not None):
@@ -62,6 +91,12 @@ def analyze(
         if idle_rpm is not None and not (idle_rpm > 0 and idle_rpm < 1e6):
             raise ParameterError("idle_rpm", idle_rpm, "an idle speed > 0 rpm")
         eng = EngineCurve.from_csv(engine, idle_rpm=idle_rpm) if engine else EngineCurve.default()
+        lo_, hi_ = eng.rpm_range
+        for nm in ("operating_rpm", "max_rpm"):
+            v = getattr(fat_loads, nm)
+            if v is not None and not lo_ <= v <= hi_:
+                raise ParameterError(nm, v, f"a speed within the engine curve's range {lo_:g}..{hi_:g} rpm",
+                                     "option --fatigue (fatigue loads)")
         mat = material_from(material, None, None, None)
         op = operating_point(mat, drum_radius=drum_radius, mu=mu, rotation=rotation, thickness=thickness,
                              softening=softening, formulation=formulation, rpm=rpm,
@@ -73,7 +108,8 @@ def analyze(
         if c is None and "contact" not in (design.cm.mesh.boundaries or {}):
             raise InputError(f"{mesh}: analyze needs a physical curve group 'contact' (the shoe surfaces "
                              f"facing the drum); groups found: {sorted(design.cm.mesh.boundaries or {})}")
-        an = run(design, engine=eng, requirements=req, idle_rpm=idle_rpm)
+        an = run(design, engine=eng, requirements=req, idle_rpm=idle_rpm, fatigue_loads=fat_loads,
+                 fatigue_params=fat_params)
         name = design.name
         if out is not None:
             from ..report import write_analysis

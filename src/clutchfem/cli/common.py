@@ -120,3 +120,69 @@ def load_design(concept, set_, mesh, mesh_size, model, op, solver=None):
         op = op.replace(thickness=USER_THICKNESS)
     cm = load_user_geometry(mesh, mesh_size=mesh_size, thickness=op.thickness, drum_radius=op.drum_radius)
     return Design(cm, op, solver=solver, name=Path(mesh).name.rsplit(".", 1)[0]), None, None
+
+
+def grouped_assignments(items, groups: dict, option: str) -> dict:
+    """``name=value`` strings (``option``, e.g. ``--thermal``) spread over several parameter
+    sets: ``groups`` maps a prefix to a :class:`~clutchfem.params.ParamSet` class.  A name
+    may be written plain when exactly one set has it (``face_htc=80``) and must carry its
+    prefix when several do (``drum.conductivity=16``); units as in ``--set``.  Returns
+    {prefix: {name: value}}; unknown, ambiguous or repeated names are refused, naming the
+    option and every known name."""
+    from ..errors import ParameterError
+
+    owners: dict[str, list[str]] = {}
+    for prefix, cls in groups.items():
+        for name in cls.model_fields:
+            owners.setdefault(name, []).append(prefix)
+    known = ", ".join(sorted(f"{p}.{n}" if len(owners[n]) > 1 else n
+                             for p, c in groups.items() for n in c.model_fields))
+    raw: dict[str, list[str]] = {p: [] for p in groups}
+    for item in items:
+        if "=" not in item:
+            raise ParameterError(item, None, "expected the form name=value", f"option {option}")
+        name, value = (s.strip() for s in item.split("=", 1))
+        prefix, _, bare = name.rpartition(".")
+        if prefix:
+            if prefix not in groups or bare not in groups[prefix].model_fields:
+                raise ParameterError(name, value, f"unknown parameter; known: {known}", f"option {option}")
+        else:
+            where = owners.get(bare)
+            if not where:
+                raise ParameterError(name, value, f"unknown parameter; known: {known}", f"option {option}")
+            if len(where) > 1:
+                raise ParameterError(name, value, "ambiguous: write " + " or ".join(f"{p}.{bare}" for p in where),
+                                     f"option {option}")
+            prefix = where[0]
+        raw[prefix].append(f"{bare}={value}")
+    out = {}
+    for prefix, cls in groups.items():
+        try:
+            out[prefix] = cls.parse_assignments(raw[prefix])
+        except ParameterError as exc:
+            raise ParameterError(exc.name, exc.value, exc.allowed, f"option {option} ({cls.context})") from None
+    return out
+
+
+def build_params(cls, values: dict, option: str):
+    """``cls(**values)``, its errors naming the option the user typed."""
+    from ..errors import ParameterError
+
+    try:
+        return cls(**values)
+    except ParameterError as exc:
+        raise ParameterError(exc.name, exc.value, exc.allowed, f"option {option} ({cls.context})") from None
+
+
+def describe_groups(groups: dict) -> list[tuple[str, str, str, str]]:
+    """(name as typed, unit, default, allowed and meaning) of every parameter of ``groups``."""
+    owners: dict[str, int] = {}
+    for cls in groups.values():
+        for n in cls.model_fields:
+            owners[n] = owners.get(n, 0) + 1
+    rows = []
+    for prefix, cls in groups.items():
+        for r in cls.describe():
+            name = f"{prefix}.{r['name']}" if owners[r["name"]] > 1 else r["name"]
+            rows.append((name, r["unit"], str(r["default"]), f"{r['allowed']}: {r['description']}"))
+    return rows

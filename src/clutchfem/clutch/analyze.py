@@ -18,7 +18,10 @@ factorisation for everything below):
 8. :func:`requirements_step`: engagement > a x idle, slip < b x rpm of max engine torque;
 9. :func:`whirl_step`: the crankshaft's first critical speed with this clutch on its
    overhang (:mod:`clutchfem.clutch.whirl`) against the engine's maximum speed;
-10. :func:`error_step`: the error of engagement, slip, torque and peak stress
+10. :func:`fatigue_step`: the fatigue safety factor (Goodman, Miner) at the worst point,
+    named, under start-stop and running-revolution cycles built from solved states
+    (:mod:`clutchfem.durability.cycles`, :mod:`clutchfem.durability.fatigue`).
+11. :func:`error_step`: the error of engagement, slip, torque and peak stress
     (:mod:`clutchfem.errorest`: a mesh twice as fine, measured model-form terms).
 
 Each returns a small frozen result; :class:`Analysis` collects the answers the report
@@ -59,9 +62,6 @@ DEFAULT_A = 1.3
 DEFAULT_B = 1.0
 #: Idle speed used when the engine curve carries none (typical saw idle): ASSUMED.
 DEFAULT_IDLE_RPM = 2700.0
-#: Safety factor below which the report adds a fatigue caution (ASSUMED threshold; yield
-#: itself is the hard limit, sf < 1).
-FATIGUE_CAUTION_SF = 1.5
 #: normal force with / without friction above which a plus shoe is called strongly
 #: self-energising (near self-locking) in the warnings
 SELF_ENERGISING_WARN = 1.5
@@ -174,6 +174,24 @@ class StressAnswer:
 
 
 @dataclass(frozen=True)
+class FatigueAnswer:
+    """Fatigue check of the part (step 10): ``safety_factor`` the load multiplier at which
+    Miner's sum reaches 1 at the worst point (None: not available, ``details['reason']``;
+    inf: no stress changes), ``location`` that point named (zone, flexure end, boundary),
+    ``governing_cycle`` the cycle type with the largest damage share there, ``details`` the
+    rest (JSON-ready: per-cycle amplitude/mean/damage, loads, counts, ASSUMED values)."""
+
+    safety_factor: float | None
+    location: str | None
+    governing_cycle: str | None
+    details: dict
+
+    def as_dict(self) -> dict:
+        return {"safety_factor": self.safety_factor, "location": self.location,
+                "governing_cycle": self.governing_cycle, **self.details}
+
+
+@dataclass(frozen=True)
 class Analysis:
     """Answers for one design (see :func:`analyze`); units in the field names or docstrings."""
 
@@ -228,13 +246,21 @@ class Analysis:
     #: error estimate of the main answers (clutchfem.errorest): per answer the discretisation
     #: (two mesh levels), the model-form terms and their total band
     errors: dict = field(default_factory=dict)
+    #: fatigue (step 10): load multiplier at which Miner's sum reaches 1 at the worst point
+    #: (None: not available, see ``fatigue['reason']``), where that point is, which cycle
+    #: type governs there, and the details (:meth:`FatigueAnswer.as_dict`)
+    fatigue_safety_factor: float | None = None
+    fatigue_location: str | None = None
+    fatigue_governing_cycle: str | None = None
+    fatigue: dict = field(default_factory=dict)
 
     def to_json(self) -> dict:
         from ..jsonio import clean
 
         d = {k: v for k, v in self.__dict__.items() if k != "curves"}
         d["units"] = {"rpm": "1/min", "torque": "N m", "stress": "Pa", "power": "W",
-                      "safety_factor": "- (yield strength / max von Mises)", "angles": "deg",
+                      "safety_factor": "- (yield strength / max von Mises)",
+                      "fatigue_safety_factor": "- (load multiplier at which Miner's sum reaches 1)", "angles": "deg",
                       "lengths": "m", "mass": "kg", "force": "N"}
         d["curves"] = self.curves.to_dict("records")
         return clean(d)
@@ -375,10 +401,10 @@ def secondary_case(design, mu: float):
     parts, :class:`~clutchfem.softening.Ritz` ``seeds='all'``) instead of one each."""
     from dataclasses import replace
 
-    from ..softening import Ritz, get_softening
+    from ..softening import get_softening
 
     soft = get_softening(design.op.softening)
-    if isinstance(soft, Ritz):
+    if hasattr(soft, "seeds"):  # Ritz and PrestressRitz
         soft = replace(soft, seeds="all")
     return design.case(mu=mu, softening=soft)
 
@@ -515,7 +541,7 @@ def whirl_step(design, max_rpm: float):
 
 def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
                slip_rpm_value: float | None) -> dict:
-    """Step 10: the error of the main answers (:mod:`clutchfem.errorest`): the same answers on
+    """Step 11: the error of the main answers (:mod:`clutchfem.errorest`): the same answers on
     a mesh twice as fine (discretisation) and the measured model-form terms."""
     from ..errorest import _NOT_ESTIMATED, ANSWERS, AnswerError, discretisation, model_form, refined_design
 
@@ -543,6 +569,168 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
     return out
 
 
+def _stresses(case, omegas, lams) -> np.ndarray:
+    """Vertex stresses (3, npts, n) of ``case``'s solved contact states (speeds ``omegas``
+    [rad/s], nodal forces ``lams`` (n, m)) from the case's reduced-basis fields: no new
+    factorisation."""
+    om = np.atleast_1d(np.asarray(omegas, dtype=float))
+    basis, coef, U = case.response.fields(om, np.asarray(lams))
+    u = U if U is not None else basis @ coef
+    return case.model.stress(u).reshape(3, -1, len(om))
+
+
+def _sweep_index(res, rpm: float) -> int | None:
+    k = int(np.argmin(np.abs(res.rpm - rpm)))
+    return k if abs(res.rpm[k] - rpm) <= 1e-9 * max(1.0, rpm) else None
+
+
+def _case_torque(case, lam: np.ndarray, mu: float) -> float:
+    """mu R_d sum(lam) x (n_total / n_model) [N m] (``mu``: the friction coefficient the
+    torque is meant with; the frictionless case's forces give M_0 = mu R_d N_0)."""
+    return float(mu * case.contact.drum_radius * lam.sum() * case.scale)
+
+
+def fatigue_cycles(design, res, engine: EngineCurve, loads=None,
+                   ripple_model: ripple_mod.RippleModel | None = None):
+    """The service cycles of :mod:`clutchfem.durability.cycles` for ``design`` (a
+    :class:`~clutchfem.durability.cycles.CycleSet`): start-stop to the speed each start
+    reaches (default the engine's maximum), running revolutions at the operating speed with
+    the 2-stroke ripple and seed 000's load torque carried by static friction.
+
+    States: the design's full-slip case at w_o (1 -+ delta_max) and w_o (its state at w_o
+    and at the maximum speed taken from the sweep ``res`` when solved there), and the
+    frictionless case (mu = 0, the secondary cases' Ritz space) at the same speeds,
+    warm-started from the slip state's contact nodes: a handful of memoised contact solves,
+    no factorisation.  ``loads``: :class:`~clutchfem.durability.cycles.FatigueLoads`."""
+    from ..durability.cycles import FatigueLoads, ServiceStates, ripple_classes, service_cycles
+
+    loads = loads if loads is not None else FatigueLoads()
+    if not isinstance(loads, FatigueLoads):
+        raise ParameterError("fatigue loads", type(loads).__name__, "a clutchfem.durability.cycles.FatigueLoads")
+    if design.nodes is None:
+        raise ParameterError("drum_radius", None, "a drum: the fatigue loads act through the shoes' contact")
+    lo, hi = engine.rpm_range
+    rpm_o = float(loads.operating_rpm if loads.operating_rpm is not None else engine.rpm_max_torque)
+    rpm_max = float(loads.max_rpm if loads.max_rpm is not None else hi)
+    for name, v in (("operating_rpm", rpm_o), ("max_rpm", rpm_max)):
+        if not lo <= v <= hi:
+            raise ParameterError(name, v, f"a speed within the engine curve's range {lo:g}..{hi:g} rpm",
+                                 context="fatigue loads")
+    m_o = float(loads.cutting_torque if loads.cutting_torque is not None else engine.torque_at(rpm_o))
+    rm = ripple_model or ripple_mod.RippleModel()
+    classes = ripple_classes(rm, rpm_o, loads.revolutions)
+    d_max = max(c["delta"] for c in classes)
+    if d_max <= 0:
+        d_max = 1e-3  # no ripple: any bracket of w_o serves the interpolation
+    mu = design.op.mu
+    w = rpm_to_rad_s(rpm_o * np.array([1.0 - d_max, 1.0, 1.0 + d_max]))
+    w_max = rpm_to_rad_s(rpm_max)
+    c0, cf = secondary_case(design, 0.0), design.case()
+    # full slip at the three operating speeds (torques; the stress at w_o from the sweep when
+    # it was solved there), then frictionless states warm-started from the slip state's
+    # contact nodes (one blocked condensation instead of a pivot-by-pivot one)
+    lamf = [cf.solve(float(x))[0] for x in w]
+    Mf = np.array([_case_torque(cf, lam, mu) for lam in lamf])
+    k_max = _sweep_index(res, rpm_max)
+    lam_fmax = res.lam[k_max] if k_max is not None else cf.solve(float(w_max))[0]
+    lam0 = [c0.solve(float(x), a if a.any() else None)[0]
+            for x, a in zip(np.append(w, w_max), [lam > 0 for lam in lamf] + [lam_fmax > 0])]
+    M0 = np.array([_case_torque(c0, lam, mu) for lam in lam0])
+    S0 = _stresses(c0, np.append(w, w_max), np.vstack(lam0))
+    k_o = _sweep_index(res, rpm_o)
+    Sf_o = (res.fields.stresses(slice(k_o, k_o + 1))[..., 0] if k_o is not None
+            else _stresses(cf, w[1:2], lamf[1][None])[..., 0])
+    if k_max is not None:
+        Sf_max = res.fields.stresses(slice(k_max, k_max + 1))[..., 0]
+        Mf_max = float(res.curve["torque_Nm"].iloc[k_max])
+    else:
+        Sf_max = _stresses(cf, [w_max], lam_fmax[None])[..., 0]
+        Mf_max = _case_torque(cf, lam_fmax, mu)
+    st = ServiceStates(omegas=w, S0=np.moveaxis(S0[..., :3], 2, 0), Sf_o=Sf_o, Mf=Mf, M0=M0[:3],
+                       omega_max=w_max, S0_max=S0[..., 3], Sf_max=Sf_max, Mf_max=Mf_max, M0_max=float(M0[3]))
+    cs = service_cycles(st, delta_classes=classes, cutting_torque=m_o, inertia=loads.drive_inertia,
+                        max_speed_torque=float(engine.torque_at(rpm_max)), start_stops=loads.start_stops,
+                        samples=loads.samples)
+    cs.info["ripple"] = {"delta_mean": float(rm.delta_mean(rpm_o)), "delta_std": float(rm.delta_std(rpm_o)),
+                         "assumed": list(rm.assumed)}
+    return cs
+
+
+def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
+                 ripple_model: ripple_mod.RippleModel | None = None) -> FatigueAnswer:
+    """Step 10: fatigue safety factor under the service cycles of :func:`fatigue_cycles`,
+    checked by :func:`clutchfem.durability.fatigue.fatigue_check` (Goodman, Marin-corrected
+    endurance limit, Basquin + Miner) at every element vertex (bisection on the points a
+    closed-form screen leaves, :func:`~clutchfem.durability.fatigue.candidate_points`; the
+    same worst point as checking all).  ``params``:
+    :class:`~clutchfem.durability.fatigue.FatigueParams` (default: 51CrV4 with the design
+    material's yield strength; another material needs its own, else the answer is 'not
+    available')."""
+    import time
+
+    from ..durability.cycles import FatigueLoads
+    from ..durability.fatigue import FatigueParams, LoadCycle, candidate_points, fatigue_check, von_mises
+
+    t0 = time.perf_counter()
+    model = design.model
+    material = model.material
+    if params is None:
+        if not material.name.startswith("51CrV4"):
+            return FatigueAnswer(None, None, None, {
+                "available": False, "reason": f"no fatigue strength data for {material.name}: the defaults are "
+                "for hardened 51CrV4; give FatigueParams (S_ut, endurance limit, surface finish) for it"})
+        params = FatigueParams(yield_strength=min(material.yield_strength, FatigueParams().ultimate_strength))
+    if not isinstance(params, FatigueParams):
+        raise ParameterError("fatigue params", type(params).__name__, "a clutchfem.durability.fatigue.FatigueParams")
+    cs = fatigue_cycles(design, res, engine, loads, ripple_model)
+    t1 = time.perf_counter()
+    # exact check on the points that can be the worst (closed-form bounds), Langer's first
+    # yield over all points
+    pts = model.stress.points
+    elem = np.arange(design.cm.n_elements).repeat(3)
+    cand = candidate_points(cs.cycles, params)
+    sub = [LoadCycle(c.name, c.state_a[:, cand], c.state_b[:, cand], c.count) for c in cs.cycles]
+    fr = fatigue_check(sub, params, xy=pts[:, cand], cm=design.cm, element=elem[cand])
+    vmax = np.max([np.maximum(von_mises(c.state_a), von_mises(c.state_b)).max() for c in cs.cycles])
+    t2 = time.perf_counter()
+    info = cs.info
+    notes = []
+    rpm_o = info["operating_rpm"]
+    if not info["engaged_at_operating_speed"]:
+        notes.append(f"the shoes do not touch the drum at the operating speed {rpm_o:.0f} rpm: no load torque is "
+                     "carried (running cycles: speed ripple only)")
+    elif info["cutting_torque_Nm"] > info["capacity_forward_Nm"][1]:
+        notes.append(f"the mean cutting torque {info['cutting_torque_Nm']:.2f} N m exceeds the clutch's capacity "
+                     f"{info['capacity_forward_Nm'][1]:.2f} N m at the operating speed {rpm_o:.0f} rpm: it slips "
+                     "continuously there (running cycles at capacity)")
+    if model.szz_factor:
+        notes.append("plane strain: the fatigue check uses the in-plane stresses (s_zz left out)")
+    details = {
+        "available": True, "location_detail": None if fr.location is None else fr.location.to_json(),
+        "worst_xy_m": None if fr.worst_xy_m is None else list(fr.worst_xy_m),
+        "damage_at_worst": fr.damage_at_worst, "per_cycle": [dict(c) for c in fr.per_cycle],
+        "yield_safety_factor_over_cycles": params.yield_strength / vmax if vmax > 0 else math.inf,
+        "points_checked": int(len(cand)), "points": int(pts.shape[1]), "endurance_limit_Pa": fr.endurance_limit_Pa,
+        "marin_factors": dict(fr.factors), "params": dict(fr.params),
+        "loads": (loads if loads is not None else FatigueLoads()).model_dump(),
+        "ripple": info.pop("ripple"), "cycles": info, "notes": notes,
+        "approximations": [
+            "holding state at load torque M: the straight line through the frictionless and the full-slip "
+            "state at that speed (exact for one contact node; traction distributed like the slip state's)",
+            "reverse torque (drum overrunning the crank) on the same line; slip (torque clipped) beyond the "
+            "forward / reverse capacity",
+            "states between the solved speeds w_o (1 -+ delta_max), w_o: piecewise linear in w^2",
+            "non-proportional revolution cycle: amplitude and mean from the longest von Mises chord of the "
+            "sampled stress path",
+        ],
+        "assumed": list(fr.assumed) + ["service loads: start-stop count, revolutions, operating speed, cutting "
+                                       "torque and drive inertia (FatigueLoads), ripple law (RippleModel)"],
+        "time_s": {"states_s": t1 - t0, "check_s": t2 - t1},
+    }
+    loc = None if fr.location is None else fr.location.description
+    return FatigueAnswer(fr.safety_factor, loc, fr.governing_cycle, details)
+
+
 def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, eng: EngagementAnswer,
                       slip: SlipAnswer, in_range: bool) -> dict:
     """Step 8: the two requirement checks (with the values checked and the limits)."""
@@ -564,16 +752,18 @@ def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, e
 # ---------------------------------------------------------------------------------------
 def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirements | None = None,
             idle_rpm: float | None = None, ripple_model: ripple_mod.RippleModel | None = None,
-            errors: bool = True) -> Analysis:
+            errors: bool = True, fatigue_loads=None, fatigue_params=None) -> Analysis:
     """Run the steps (module docstring) on ``design`` (a :class:`~clutchfem.design.Design`:
     mesh, parameters, material, mu, rotation, drum, thickness, softening and output speeds in
     its operating point).  engine: full-throttle curve (default: the ASSUMED 56.5 cc saw
     curve); requirements: factors a, b; idle_rpm: overrides the engine's idle speed (else the
     curve's, else 2700 rpm, ASSUMED); errors: estimate the error of the main answers (step
-    10: a mesh twice as fine and its solves, ~3x the time; off for bulk studies that rank
-    designs, whose error the study states from a sample).
-    A user mesh (``design.params`` None) gets every FE answer; the analytical curves are then
-    NaN and ``analytical_available`` is False."""
+    11: a mesh twice as fine and its solves, ~3x the time; off for bulk studies that rank
+    designs, whose error the study states from a sample); fatigue_loads, fatigue_params: the
+    service loads (:class:`~clutchfem.durability.cycles.FatigueLoads`) and fatigue strength
+    (:class:`~clutchfem.durability.fatigue.FatigueParams`) of step 10.  A user mesh
+    (``design.params`` None) gets every FE answer; the analytical curves are then NaN and
+    ``analytical_available`` is False."""
     from ..design import Design
     from ..traceability import design_inputs, design_label
 
@@ -658,9 +848,6 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
         warnings.append(f"STRESS ABOVE YIELD: peak von Mises {st.max_von_mises_Pa / 1e6:.0f} MPa at {hi:.0f} rpm "
                         f"(engine maximum) exceeds the yield strength {fy / 1e6:.0f} MPa of {material.name} "
                         f"(safety factor {st.safety_factor:.2f} < 1): this design would yield at full speed")
-    elif st.safety_factor < FATIGUE_CAUTION_SF:
-        warnings.append(f"low stress margin: safety factor {st.safety_factor:.2f} at {hi:.0f} rpm (below "
-                        f"{FATIGUE_CAUTION_SF}, an ASSUMED minimum with fatigue in mind)")
     slip_power = None
     if slip.rpm is not None:
         slip_power = float(engine.torque_at(slip.rpm) * rpm_to_rad_s(slip.rpm))
@@ -672,7 +859,7 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curves["arc_fraction"] = curves["contact_arc_deg"] / nominal if nominal and math.isfinite(nominal) else math.nan
     # 8: requirements
     checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)
-    # 10: error of the main answers
+    # 11: error of the main answers
     err = {}
     if errors:
         err = error_step(design, engine, {"engagement_rpm": eng.static_rpm, "slip_rpm": slip.rpm,
@@ -685,6 +872,15 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
         warnings.append(f"CRANKSHAFT WHIRL: the first critical speed {wh.rpm_crit_lowest:,.0f} rpm is only "
                         f"{100 * wh.margin:+.0f} % above the engine's maximum {hi:,.0f} rpm (wanted >= "
                         f"{100 * WHIRL_MARGIN:.0f} %, ASSUMED); crankshaft, drum and sprocket are ASSUMED")
+    # 10: fatigue
+    fat = fatigue_step(design, res, engine, loads=fatigue_loads, params=fatigue_params, ripple_model=ripple_model)
+    if fat.safety_factor is not None and fat.safety_factor < 1.0:
+        warnings.append(f"FATIGUE: safety factor {fat.safety_factor:.2f} < 1 at {fat.location}, governed by "
+                        f"{fat.governing_cycle}: the part is expected to crack within the ASSUMED service life "
+                        "(start-stop and running cycles, Goodman, Miner; see fatigue details)")
+    if not fat.details.get("available", True):
+        notes.append("fatigue: " + fat.details["reason"])
+    notes += ["fatigue: " + n_ for n_ in fat.details.get("notes", [])]
     if not checks["engagement_ok"]:
         warnings.append(f"REQUIREMENT NOT MET: engagement with ripple {eng.with_ripple_rpm:.0f} rpm is not above "
                         f"a x idle = {req.a:g} x {idle_rpm:.0f} = {checks['engagement_limit_rpm']:.0f} rpm "
@@ -718,7 +914,9 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
                     coupling=coupling, curves=curves, first_touch=res.first_touch, warnings=warnings, notes=notes,
                     part=part, analytical_available=analytical, first_touch_angle_deg=res.first_touch_angle_deg,
                     inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
-                    label=design_label(design), whirl=wh.as_dict(), errors=err)
+                    label=design_label(design), whirl=wh.as_dict(), fatigue_safety_factor=fat.safety_factor,
+                    fatigue_location=fat.location, fatigue_governing_cycle=fat.governing_cycle,
+                    fatigue=fat.as_dict(), errors=err)
 
 
 def mesh_mass_properties(cm, rho: float, thickness: float, basis=None) -> dict:

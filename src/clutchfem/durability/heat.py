@@ -165,6 +165,11 @@ __all__ = [
     "write_vtu", "render_png", "hot_yield_ratio", "HOT_YIELD_TABLE", "PERIODIC_PASSES",
 ]
 
+#: Time steps of one run (every event and pause; the 2 dt error estimate adds half, the
+#: partition pre-run one event) above which a scenario is refused: ~0.1 ms per step on a
+#: 5k-node sector, so 2e5 steps are tens of seconds, 1e8 would be hours
+MAX_TIME_STEPS = 200_000
+
 #: Passes of a drum point under the patches by t_ref above which the drum flash is taken in
 #: its steady-periodic form (Fourier series); below, every pass is superposed (Duhamel).
 PERIODIC_PASSES = 1000
@@ -274,6 +279,24 @@ class SlipScenario(ParamSet):
     def check(self) -> None:
         if self.cycles > 1 and self.pause <= 0.0:
             self.fail("pause", "a pause > 0 s between repeated slip events (cycles > 1)")
+        n_slip, n_pause = self.steps()
+        total = self.cycles * (n_slip + n_pause)
+        if total > MAX_TIME_STEPS:
+            name = "pause" if n_pause > n_slip else ("cycles" if self.cycles > 1 else "steps_per_event")
+            self.fail(name, f"a run of at most {MAX_TIME_STEPS} time steps; cycles x (steps per event + pause / "
+                      f"dt) = {self.cycles} x ({n_slip} + {n_pause}) = {total} (dt = seconds / steps_per_event = "
+                      f"{self.seconds / n_slip:.3g} s): fewer cycles, a shorter pause or fewer steps per event")
+
+    def steps(self) -> tuple[int, int]:
+        """(steps per slip event, steps per pause): equal steps dt = seconds / n_slip (n_slip
+        even, for the 2 dt error estimate), the pause with the nearest even number of steps
+        of about dt (at least 2; 0 without a pause)."""
+        n_slip = self.steps_per_event + (self.steps_per_event % 2)
+        n_pause = 0
+        if self.pause > 0:
+            n_pause = max(2, int(round(self.pause / (self.seconds / n_slip))))
+            n_pause += n_pause % 2
+        return n_slip, n_pause
 
 
 
@@ -841,7 +864,8 @@ class SlipHeatResult:
     * ``shoe_face_C``: the hottest node of the ``contact`` surface (the shoes' friction face);
     * ``hub_C``: the area-weighted mean temperature of the ``hub`` zone (of the bore edge if
       the mesh has no hub zone: see ``probe_definitions``);
-    * ``part_max_C``: the hottest node anywhere.
+    * ``part_max_C``: the hottest node anywhere;
+    * ``part_mean_C``: the area-weighted mean temperature of the part (its heat content).
     """
 
     times_s: np.ndarray
@@ -883,6 +907,9 @@ class SlipHeatResult:
     scenario: dict
     timings: dict
     assumed: tuple[str, ...]
+    #: area-weighted mean temperature of the part over ``times_s`` (its heat content): what
+    #: a thermometer on the whole clutch would read after the heat has spread
+    part_mean_C: np.ndarray | None = None
 
     @property
     def seconds(self) -> float:
@@ -911,6 +938,7 @@ class SlipHeatResult:
             "initial_state": self.initial_state, "probe_definitions": dict(self.probe_definitions),
             "series": {"times_s": r(self.times_s), "flexure_C": r(self.flexure_C),
                        "shoe_face_C": r(self.shoe_face_C), "hub_C": r(self.hub_C),
+                       "part_mean_C": r(self.part_mean_C),
                        "part_max_C": r(self.part_max_C)},
             "timings_s": dict(self.timings), "assumed": list(self.assumed),
         }
@@ -1044,14 +1072,13 @@ def slip_heat(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial
         wh = asm(LinearForm(lambda v, w: v), FacetBasis(mesh, ElementTriP2(), facets=cm.boundary("bore"), intorder=5))
         defs["hub_C"] = "length-weighted mean temperature of the bore edge (the mesh has no 'hub' zone)"
     probes.append(_Probe("hub", weights=wh / wh.sum()))
+    wa = asm(LinearForm(lambda v, w: v), basis)  # int phi_i dA: area (= mass) weights
+    probes.append(_Probe("part_mean", weights=wa / wa.sum()))
+    defs["part_mean_C"] = "area-weighted mean temperature of the part (its heat content / (rho c h A))"
 
     # steps: equal steps per slip event (even, for the 2 dt error estimate), pause likewise
-    n_slip = sc.steps_per_event + (sc.steps_per_event % 2)
+    n_slip, n_pause = sc.steps()
     dt = sc.seconds / n_slip
-    n_pause = 0
-    if sc.pause > 0:
-        n_pause = max(2, int(round(sc.pause / dt)))
-        n_pause += n_pause % 2
 
     def segments(factor=1):
         segs = []
@@ -1152,6 +1179,7 @@ def slip_heat(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial
     timings["total_s"] = time.perf_counter() - t_start
     return SlipHeatResult(
         times_s=t, flexure_C=flex, shoe_face_C=run.probes["shoe_face"], hub_C=run.probes["hub"],
+        part_mean_C=run.probes["part_mean"],
         part_max_C=run.part_max, probe_definitions=defs,
         peak_temperature_C=float(run.part_max[kpk]), peak_time_s=float(t[kpk]),
         peak_xy_m=(float(xy[0]), float(xy[1])), peak_zone=_zone_of_node(cm, basis, node),
@@ -1240,6 +1268,8 @@ def render_png(cm: ClutchMesh, result: SlipHeatResult, path: str | Path, *, titl
         ax2.plot(t, result.flexure_C, label="flexure (hottest point)")
     ax2.plot(t, result.shoe_face_C, label="shoe face (hottest point)")
     ax2.plot(t, result.hub_C, label="hub (mean)")
+    if result.part_mean_C is not None:
+        ax2.plot(t, result.part_mean_C, "k:", label="whole part (mean)")
     ax2.axhline(result.limit_temperature_C, color="r", ls="--", lw=1, label="limit temperature")
     ax2.set_xlabel("time [s]")
     ax2.set_ylabel("temperature [C]")

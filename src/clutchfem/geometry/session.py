@@ -8,6 +8,7 @@ caller, from concept building to the mesh pipeline and the drawings, imports it 
 from __future__ import annotations
 
 import contextlib
+import signal
 import threading
 
 import gmsh
@@ -20,8 +21,14 @@ def gmsh_session(name: str = "clutchfem"):
     """Initialise gmsh quietly for one model; always finalise."""
     with _GMSH_LOCK:
         # Ctrl-C stops a long meshing run (gmsh installs its SIGINT handler: possible only in
-        # the main thread; worker threads run uninterruptible, their process can be stopped)
-        gmsh.initialize(interruptible=threading.current_thread() is threading.main_thread())
+        # the main thread; worker threads run uninterruptible, their process can be stopped).
+        # gmsh.initialize sets SIGINT to SIG_DFL and its finalize means to restore the previous
+        # handler but never does (gmsh 4.15 assigns prev_interrupt_handler as a local): without
+        # the restore below every Ctrl-C after a meshing run killed the process outright (exit
+        # -2, no message, no cleanup) instead of raising KeyboardInterrupt.
+        main = threading.current_thread() is threading.main_thread()
+        previous = signal.getsignal(signal.SIGINT) if main else None
+        gmsh.initialize(interruptible=main)
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.option.setNumber("General.Verbosity", 1)
@@ -29,3 +36,5 @@ def gmsh_session(name: str = "clutchfem"):
             yield
         finally:
             gmsh.finalize()
+            if previous is not None:
+                signal.signal(signal.SIGINT, previous)
