@@ -1,48 +1,53 @@
-"""evaluate_many: one process per design, refusals without a process, crashes and timeouts
-cost one row, rows in the order of the points."""
-
-import os
-import time
+"""evaluate_many on the sweep engine: refusals found here without sending anything, rows in
+the order of the points, the design evaluated is the one `--set` builds from the texts."""
 
 import pytest
 
 from clutchfem.errors import ParameterError
-from clutchfem.targets import evaluate as E
+from clutchfem.targets.evaluate import EvalSettings, cluster, evaluate_many
+
+SIZE = 2.4e-3
 
 
-def _fake(point, settings):
-    kind = point.get("kind_")
-    if kind == "crash":
-        os._exit(3)  # what a gmsh abort looks like to the parent
-    if kind == "sleep":
-        time.sleep(30)
-    return {"params": dict(point), "status": "ok", "message": "", "pid": os.getpid(), "x": point.get("x")}
+def test_rows_in_order_with_refusals_in_process(tmp_path):
+    s = EvalSettings("concept4", mesh_size=SIZE, store=str(tmp_path / "results.sqlite"))
+    pts = [{"flexure_thickness": "1.7mm"}, {"flexure_thickness": "9mm"}, {"flexure_thickness": "1.7mm"},
+           {"flexure_length": "30mm"}]
+    rows = evaluate_many(pts, s, workers=0)
+    assert [r["i"] for r in rows] == [0, 1, 2, 3]
+    assert [r["status"] for r in rows] == ["ok", "refused", "ok", "refused"]
+    assert rows[1]["refused_parameter"] == "flexure_thickness" and rows[1]["seconds"] == 0.0
+    assert rows[3]["refused_parameter"] == "flexure_length" and "mm" in rows[3]["message"]
+    assert rows[0]["design_hash"] == rows[2]["design_hash"] and rows[0]["slip_rpm"] == rows[2]["slip_rpm"]
+    r = rows[0]
+    assert r["params"] == {"flexure_thickness": "1.7mm"}
+    assert 0.05 < r["mass_kg"] < 0.5 and 100e6 < r["max_von_mises_Pa"] < 1e10  # SI units
+    assert r["safety_factor"] == pytest.approx(r["yield_strength_Pa"] / r["max_von_mises_Pa"], rel=1e-9)
+    # the same design through analyze: identical answers (same values, same mesh)
+    from clutchfem.clutch.analyze import analyze
+    from clutchfem.design import Design
+    from clutchfem.geometry import MeshSettings, get_concept
+
+    c = get_concept("concept4")
+    an = analyze(Design.from_concept(c, c.Params.from_assignments(["flexure_thickness=1.7mm"]), None,
+                                     MeshSettings(size=SIZE)), errors=False)
+    assert an.slip_rpm == pytest.approx(r["slip_rpm"], rel=1e-12)
+    assert an.max_von_mises_Pa == pytest.approx(r["max_von_mises_Pa"], rel=1e-9)
+    assert (tmp_path / "results.sqlite").exists()  # every design kept with its inputs (study store)
 
 
-class _Settings(E.EvalSettings):
-    def params(self, point=None):  # no concept: refuse one marked point, accept the rest
-        if point and point.get("kind_") == "refuse":
-            raise ParameterError("x", point.get("x"), "anything but this")
-        return None
-
-
-def test_statuses_and_order(monkeypatch):
-    monkeypatch.setattr(E, "evaluate_one", _fake)  # forked children inherit the patch
-    s = _Settings(concept="none", timeout_s=2.0)
-    pts = [{"x": "1"}, {"x": "2", "kind_": "crash"}, {"x": "3", "kind_": "refuse"}, {"x": "4", "kind_": "sleep"},
-           {"x": "5"}]
-    seen = []
-    t0 = time.perf_counter()
-    rows = E.evaluate_many(pts, s, workers=2, on_row=seen.append)
-    assert time.perf_counter() - t0 < 15
-    assert [r["i"] for r in rows] == [0, 1, 2, 3, 4]
-    assert [r["status"] for r in rows] == ["ok", "crashed", "refused", "timeout", "ok"]
-    assert rows[0]["pid"] != os.getpid() and rows[0]["pid"] != rows[4]["pid"]  # a process per design
-    assert "exit code 3" in rows[1]["message"]
-    assert rows[2]["refused_parameter"] == "x" and rows[2]["seconds"] == 0.0
-    assert len(seen) == 5
+def test_on_a_local_dask_cluster():
+    s = EvalSettings("concept4", mesh_size=SIZE)
+    with cluster(1) as address:
+        assert str(address).startswith("tcp://")
+        rows = evaluate_many([{"hub_radius": "12.5mm"}, {"hub_radius": "11.5mm"}], s)
+    assert [r["status"] for r in rows] == ["ok", "ok"]
+    assert rows[0]["worker"] and rows[0]["engagement_rpm"] > rows[1]["engagement_rpm"]
 
 
 def test_workers_are_checked():
     with pytest.raises(ParameterError):
-        E.evaluate_many([], _Settings(concept="none"), workers=0)
+        evaluate_many([], EvalSettings("concept4"), workers=-1)
+    with pytest.raises(ParameterError):
+        with cluster(2, "tcp://127.0.0.1:1"):
+            pass

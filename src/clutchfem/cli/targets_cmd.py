@@ -17,7 +17,11 @@ from ..errors import ClutchfemError, InputError, ParameterError
 from .common import check_out_dir, console, err, fail, length_option
 
 
-def _settings(concept: str, set_: list[str], mesh_size, engine, idle_rpm, a, b, mu=None):
+_WORKERS = "local Dask cluster of N process workers (default: one per core; 0: in this process)"
+_SCHED = "address of an existing dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of --workers)"
+
+
+def _settings(concept: str, set_: list[str], mesh_size, engine, idle_rpm, a, b, mu=None, out=None, sf=1.5):
     from ..geometry import get_concept
     from ..targets.evaluate import EvalSettings
 
@@ -33,8 +37,11 @@ def _settings(concept: str, set_: list[str], mesh_size, engine, idle_rpm, a, b, 
     from ..clutch.analyze import Requirements
 
     Requirements(a=a, b=b)
+    from ..study.store import STORE_NAME
+
     s = EvalSettings(concept=c.name, base=tuple(set_), mesh_size=length_option("size", mesh_size), op=op,
-                     engine_csv=str(engine) if engine else None, idle_rpm=idle_rpm, a=a, b=b)
+                     engine_csv=str(engine) if engine else None, idle_rpm=idle_rpm, a=a, b=b, min_safety_factor=sf,
+                     store=str(Path(out) / STORE_NAME) if out is not None else None)
     s.engine()  # a bad engine CSV is refused here
     return s
 
@@ -74,7 +81,8 @@ def optimize(
                                   "(maximise torque over the max engine torque)"),
     sample: int = typer.Option(32, "--sample", help="space-filling (Sobol) designs before the pattern search"),
     max_evals: int = typer.Option(300, "--max-evals", help="budget of analysed designs (refusals are free)"),
-    workers: Optional[int] = typer.Option(None, "--workers", help="parallel design evaluations (default: cores, <= 2)"),
+    workers: Optional[int] = typer.Option(None, "--workers", help=_WORKERS),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=_SCHED),
     engine: Optional[Path] = typer.Option(None, "--engine", help="engine torque CSV (columns rpm, torque [N m])"),
     idle_rpm: Optional[float] = typer.Option(None, "--idle-rpm", help="engine idle speed [rpm] (default 2700, ASSUMED)"),
     a: float = typer.Option(1.3, "--a", help="engagement > a x idle rpm (ASSUMED default)"),
@@ -88,7 +96,7 @@ def optimize(
 
     try:
         check_out_dir(out)
-        s = _settings(concept, set_, mesh_size, engine, idle_rpm, a, b)
+        s = _settings(concept, set_, mesh_size, engine, idle_rpm, a, b, out=out, sf=safety_factor_min)
         lo_def, slip_def = _limits(s)
         lo, hi = lo_def, None
         if engage_rpm is not None:
@@ -115,7 +123,7 @@ def optimize(
             lo_s, hi_s = r.split(":", 1)
             ranges[n] = (P._parse_value(n, lo_s), P._parse_value(n, hi_s))
         res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
-                  log=lambda m: err.print(escape(m)))
+                  scheduler=scheduler, log=lambda m: err.print(escape(m)))
         final = None
         if out is not None or not json_:
             final = _final_analysis(s, res)
@@ -208,7 +216,8 @@ def tolerance(
                                 "+-0.5 mm alone (the thesis's '0.2-0.5 mm' question)"),
     set_: List[str] = typer.Option([], "--set", help="nominal design: parameter override name=value"),
     safety_factor_min: float = typer.Option(1.5, "--safety-factor-min", help="spec: minimum safety factor [-]"),
-    workers: Optional[int] = typer.Option(None, "--workers", help="parallel design evaluations (default: cores, <= 2)"),
+    workers: Optional[int] = typer.Option(None, "--workers", help=_WORKERS),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=_SCHED),
     engine: Optional[Path] = typer.Option(None, "--engine", help="engine torque CSV (columns rpm, torque [N m])"),
     idle_rpm: Optional[float] = typer.Option(None, "--idle-rpm", help="engine idle speed [rpm] (default 2700, ASSUMED)"),
     a: float = typer.Option(1.3, "--a", help="spec: engagement > a x idle rpm (ASSUMED default)"),
@@ -223,7 +232,7 @@ def tolerance(
 
     try:
         check_out_dir(out)
-        s = _settings(concept, set_, mesh_size, engine, idle_rpm, a, b)
+        s = _settings(concept, set_, mesh_size, engine, idle_rpm, a, b, out=out, sf=safety_factor_min)
         P = type(s.params())
         tols = {}
         for item in tol:
@@ -233,7 +242,7 @@ def tolerance(
             tols[name] = t
         lo, slip = _limits(s)
         res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(lo, None, slip, safety_factor_min),
-                  shifts=shifts, workers=workers, log=lambda m: err.print(escape(m)))
+                  shifts=shifts, workers=workers, scheduler=scheduler, log=lambda m: err.print(escape(m)))
         if out is not None:
             import pandas as pd
 

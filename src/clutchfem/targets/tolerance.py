@@ -52,7 +52,7 @@ import numpy as np
 
 from ..errors import InputError, ParameterError
 from . import values as V
-from .evaluate import EvalSettings, evaluate_many
+from .evaluate import EvalSettings, cluster, evaluate_many
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -183,7 +183,8 @@ def _in_spec(row: dict, spec) -> dict:
 
 
 def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: str = "normal", seed: int = 1,
-              targets=None, shifts: bool = True, workers: int | None = None, log=None) -> ToleranceResult:
+              targets=None, shifts: bool = True, workers: int | None = None, scheduler: str | None = None,
+              log=None) -> ToleranceResult:
     """Monte Carlo of ``tolerances`` (name -> half-width in SI units) around the base design of
     ``settings``; ``targets``: a :class:`~clutchfem.targets.optimize.Targets` giving the spec
     (default: the requirement checks with safety factor >= 1.5).  See the module docstring."""
@@ -226,14 +227,8 @@ def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: st
     batch = [nominal_pt] + points + [pt for _, _, pt in shift_pts]
     if log:
         log(f"{len(batch)} designs: nominal, {n} samples, {len(shift_pts)} shifted")
-    done = [0]
-
-    def progress(_row):
-        done[0] += 1
-        if log and done[0] % 16 == 0:
-            log(f"  {done[0]} / {len(batch)} designs evaluated")
-
-    rows_all = evaluate_many(batch, settings, workers, on_row=progress)
+    with cluster(workers, scheduler):
+        rows_all = evaluate_many(batch, settings, progress=log is not None)
     nom, rows, srows = rows_all[0], rows_all[1:n + 1], rows_all[n + 1:]
     if nom["status"] != "ok":
         raise InputError(f"the nominal design cannot be analysed ({nom['status']}: {nom['message']})")
