@@ -73,3 +73,17 @@ def test_report_refuses_unclear_requests(tmp_path):
     assert r.returncode == 2 and "--out" in r.stderr
     r = run("report", "--concept", "concept4", "--run", str(tmp_path), ok=False)
     assert r.returncode == 2 and "exactly one" in r.stderr
+
+
+def test_report_of_a_user_mesh(tmp_path):
+    """`report --mesh`: the mesh picture instead of the drawing, the mesh file and its SHA-256 in
+    the inputs."""
+    run("geometry", "concept4", "--out", str(tmp_path / "geo"), "--model", "full", "--mesh-size", "2.4mm",
+        "--no-drawing")
+    out = tmp_path / "rep"
+    run("report", "--mesh", str(tmp_path / "geo" / "concept4.msh"), "--drum-radius", "34.4mm", "--thickness", "11mm",
+        "--no-errors", "--out", str(out))
+    html = (out / "report.html").read_text()
+    assert "the user mesh" in html and html.count("data:image/png;base64,") >= 3
+    inputs = json.loads((out / "inputs.json").read_text())
+    assert inputs["mesh_sha256"] and inputs["mesh_file"].endswith("concept4.msh")

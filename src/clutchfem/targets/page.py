@@ -36,12 +36,13 @@ border:1px solid #f1a9a9}.info{background:#eef2f8;color:#234;border:1px solid #c
 .top{display:grid;grid-template-columns:minmax(380px,46%) 1fr;gap:16px;align-items:start}
 table{border-collapse:collapse;width:100%}td,th{border-bottom:1px solid #e6e6e6;padding:3px 6px;text-align:left;
 vertical-align:top}th{background:#f6f6f6;font-weight:600}td.num{text-align:right;white-space:nowrap}
-.ans td:first-child{color:#444}.ans td:last-child{font-weight:600;text-align:right;white-space:nowrap}
+.ans td:first-child{color:#444}.ans td:last-child{font-weight:600;text-align:right;overflow-wrap:anywhere}
+.top>div{min-width:0}
 img{max-width:100%;height:auto;border:1px solid #eee}.fig img{max-width:min(100%,960px)}
 .fig{margin:6px 0 12px 0}.cap{color:#555;font-size:12px}
 .warn{background:#fff6e0;border-left:3px solid #e0a800;padding:3px 8px;margin:3px 0}
 .small{font-size:11px;color:#555}details{margin:6px 0}pre{font-size:11px;background:#f8f8f8;padding:6px;
-overflow-x:auto}
+overflow-x:auto;white-space:pre-wrap;overflow-wrap:anywhere}
 .grid2{display:grid;grid-template-columns:1fr 1fr;gap:12px}
 """
 

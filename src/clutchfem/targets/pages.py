@@ -143,8 +143,10 @@ def optimization_page(res, final_an, folder: Path) -> Page:
             ["torque at the rpm of max engine torque", _f(res.best.get("torque_at_max_engine_torque_Nm"), ".2f", "N m")],
             ["peak von Mises at engine max / safety factor",
              f"{_f(res.best.get('max_von_mises_Pa', math.nan) / 1e6, '.0f', 'MPa')} / {_f(res.best.get('safety_factor'), '.2f')}"],
-            ["part mass", _f(res.best.get("mass_kg", math.nan) * 1e3, ".1f", "g")],
-            ["verify", "clutchfem analyze --concept " + res.concept + " " + " ".join(f"--set {s}" for s in res.set_args)]]
+            ["part mass", _f(res.best.get("mass_kg", math.nan) * 1e3, ".1f", "g")]]
+    verify = Text("verify with analyze (the very design evaluated: the texts read back bit for bit)",
+                  ["clutchfem analyze --concept " + res.concept + " " + " ".join(f"--set {s}" for s in res.set_args)],
+                  "pre")
     cons = Table("constraints at the final design", ["target", "value", "limit", "slack", "binds"],
                  [[c["name"], c["value"], c["limit"], c["slack"], "yes" if c["binds"] else "no"]
                   for c in a["constraints"]], "binds: slack below 2 % of the limit")
@@ -167,7 +169,7 @@ def optimization_page(res, final_an, folder: Path) -> Page:
                                                             "safety factor [-]", "parameters"], rows,
                    "refused: the concept's consistency rules reject the combination before any meshing (free)")
     sections = [("Final design", [cons, prm] + ([Table("other parameters (fixed, from --set)", ["parameter", "value"],
-                                                       other)] if other else []))]
+                                                       other)] if other else []) + [verify])]
     if final_an is not None:
         from ..report import summary_rows
 
