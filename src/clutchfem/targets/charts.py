@@ -60,15 +60,18 @@ def compensation_profile(comp, path) -> Path:
     return _save(fig, path)
 
 
-def compensation_torque(before, after, engine, path, rpm: float) -> Path:
-    """Torque vs rpm and contact share vs rpm, before and after (two analyses)."""
+def compensation_torque(before, after, engine, path, rpm: float, nominal_deg: float) -> Path:
+    """Torque vs rpm and contact share vs rpm, before and after (two analyses); the share is
+    the contact arc over the shoe's own arc ``nominal_deg`` (the analysis's ``arc_fraction``
+    divides by the lining angle span measured from the pivot ray, 73 deg on concept 4's
+    90 deg shoe, and exceeds 100 % once the whole shoe touches)."""
     fig, (a1, a2) = figure(1, 2, figsize=(10, 4.0))
     for an, c, lab in ((before, C_BEFORE, "before"), (after, C_AFTER, "after")):
         cv = an.curves
         a1.plot(cv["rpm"], cv["fe_torque_Nm"], color=c, lw=2,
                 label=f"{lab}: engages {an.engagement_rpm:.0f} rpm, slip {an.slip_rpm:.0f} rpm"
                 if an.slip_rpm is not None else f"{lab}: engages {an.engagement_rpm:.0f} rpm")
-        a2.plot(cv["rpm"], 100 * cv["arc_fraction"], color=c, lw=2, label=lab)
+        a2.plot(cv["rpm"], 100 * cv["contact_arc_deg"] / nominal_deg, color=c, lw=2, label=lab)
     r = np.linspace(*engine.rpm_range, 200)
     a1.plot(r, engine.torque_at(r), color="k", ls="--", lw=1, label="engine full-throttle torque (ASSUMED curve)")
     for ax in (a1, a2):
@@ -79,7 +82,7 @@ def compensation_torque(before, after, engine, path, rpm: float) -> Path:
     a1.set_ylim(0, 3.0 * float(np.max(engine.torque_at(r))))
     a1.legend(fontsize=7, loc="upper left")
     a2.set_ylabel("contact arc [% of the nominal shoe arc]")
-    top = max(float(np.nanmax(100 * after.curves["arc_fraction"])), float(np.nanmax(100 * before.curves["arc_fraction"])))
+    top = max(float(np.nanmax(an.curves["contact_arc_deg"])) for an in (before, after)) / nominal_deg * 100
     a2.set_ylim(0, max(105.0, 1.05 * top))
     a2.legend(fontsize=7, loc="lower right")
     a1.set_title("torque vs speed")

@@ -27,6 +27,9 @@ def design_verdicts(an, sf_min: float = 1.5) -> list:
           _f(an.slip_rpm, ".0f", "rpm") if an.slip_rpm is not None else an.slip_status],
          [f"safety factor >= {sf_min:g} at {an.max_engine_rpm:.0f} rpm", bool(an.safety_factor >= sf_min),
           f"{an.safety_factor:.2f} ({an.max_von_mises_Pa / 1e6:.0f} MPa vs yield {an.yield_strength_Pa / 1e6:.0f} MPa)"]]
+    fsf = getattr(an, "fatigue_safety_factor", None)
+    if fsf is not None:
+        v.append(["fatigue safety factor >= 1 (ASSUMED duty)", bool(fsf >= 1.0), f"{fsf:.2f}"])
     wh = getattr(an, "whirl", None) or {}
     if wh:
         from ..clutch.analyze import WHIRL_MARGIN
@@ -271,7 +274,11 @@ def compensation_page(comp, before, after, engine, folder: Path, inputs: dict) -
 
     folder = Path(folder)
     prof = charts.compensation_profile(comp, folder / "compensation_profile.png")
-    torq = charts.compensation_torque(before, after, engine, folder / "compensation_torque.png", comp.rpm)
+    from ..geometry import get_concept
+
+    root, tip = get_concept(comp.concept).shoe_arc(comp.before)
+    torq = charts.compensation_torque(before, after, engine, folder / "compensation_torque.png", comp.rpm,
+                                      math.degrees(abs(tip - root)))
     conv = charts.compensation_convergence(comp, folder / "compensation_convergence.png")
     b, a = comp.state_before, comp.state_after
     rows = compare_rows(comp, before, after)
