@@ -187,7 +187,7 @@ def _print_optimization(res, final):
                 err_txt = f" (+- {e['total']:.0f} rpm)"
         t.add_row(escape(c["name"]), escape(vs + err_txt), escape(f"{c['sense']} " + (f"{c['limit']:.2f}" if sf else
                                                                                      f"{c['limit']:.0f} rpm")),
-                  "yes" if c["binds"] else "no")
+                  "VIOLATED" if c.get("violated") else ("yes" if c["binds"] else "no"))
     console.print(t)
     p = Table(title="parameters")
     p.add_column("parameter")

@@ -57,7 +57,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.interpolate import CubicSpline
-from scipy.optimize import minimize
 
 from ..errors import InputError, ParameterError, SolverError
 from ..geometry.base import TABLE_FIELDS, TABLE_N

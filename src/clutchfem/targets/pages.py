@@ -151,11 +151,9 @@ def optimization_page(res, final_an, folder: Path) -> Page:
                   ["clutchfem analyze --concept " + res.concept + " " + " ".join(f"--set {s}" for s in res.set_args)],
                   "pre")
     cons = Table("constraints at the final design", ["target", "value", "limit", "slack", "binds"],
-                 [[c["name"], c["value"], c["limit"], c["slack"], "yes" if c["binds"] else "no"]
+                 [[c["name"], c["value"], c["limit"], c["slack"],
+                   "VIOLATED" if c.get("violated") else ("yes" if c["binds"] else "no")]
                   for c in a["constraints"]], "binds: slack below 2 % of the limit")
-    P = type(res.settings.params())
-    from . import values as V
-
     prm = Table("final parameters (free ones searched)", ["parameter", "start", "final", "--set text", "at range end"],
                 [[n, res.start_texts.get(n, ""), res.params_texts.get(n, ""), f"{n}={res.params_texts.get(n, '')}",
                   "yes" if n in res.at_bounds else ""] for n in res.free])
@@ -187,7 +185,6 @@ def optimization_page(res, final_an, folder: Path) -> Page:
         "objective (improvements below 0.1 % are noise)",
         "answers of analyze (errors off) on the default mesh of each design; the final design is re-analysed "
         "with the error estimate"], "list")]))
-    del P, V
     return Page(title=f"{res.concept}: design to targets (optimisation)",
                 subtitle=f"objective {res.targets.objective}; free: {', '.join(res.free)}", verdicts=verdicts,
                 headline=head, hero=[Figure("optimisation path", path_png.name)], sections=sections,
