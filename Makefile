@@ -35,7 +35,8 @@ test: setup
 	$(PY) -m pytest -n 2 -q
 
 bench: setup
-	$(PY) benchmarks/bench_sweep.py && $(PY) benchmarks/bench_solvers.py
+	$(PY) benchmarks/bench_sweep.py && $(PY) benchmarks/bench_solvers.py && $(PY) benchmarks/bench_stress.py \
+	  && $(PY) benchmarks/bench_sweep_throughput.py && $(PY) benchmarks/bench_modelform.py
 
 clean:
 	rm -rf out .pytest_cache
