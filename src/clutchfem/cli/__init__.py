@@ -13,11 +13,12 @@ from .geometry_cmd import geometry
 from .slip_heat_cmd import slip_heat
 from .solve_cmd import solve
 from .sweep_cmd import guidelines, sweep
+from .targets_cmd import compensate, optimize, report, tolerance
 from .validate_cmd import validate
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
-for _cmd in (geometry, solve, analyze, validate, demo, sweep, guidelines):
+for _cmd in (geometry, solve, analyze, validate, demo, sweep, guidelines, optimize, tolerance, compensate, report):
     app.command()(_cmd)
 app.command("slip-heat")(slip_heat)
 

@@ -22,10 +22,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import ClassVar, Literal
 
 import gmsh
 import numpy as np
+from pydantic import model_serializer
+from scipy.interpolate import CubicSpline
 
 from ..errors import GeometryError
 from ..params import ParamSet, choice, param
@@ -33,7 +36,31 @@ from ..units import wrap_angle
 from . import occ as G
 
 occ = gmsh.model.occ
-Profile = Literal["concentric", "eccentric", "linear"]
+Profile = Literal["concentric", "eccentric", "linear", "table"]
+
+#: number of clearance control values of the ``table`` profile (equally spaced along the shoe;
+#: 17: the contact pressure on a rigid drum moves by MPa per micrometre of profile, and 9
+#: values left a 0.3-10 um misfit near the ends of an 80 % target arc, 17 values 0.2-2 nm;
+#: see clutchfem.targets.compensate)
+TABLE_N = 17
+#: names of the table profile's control values, root (s = 0) to tip (s = 1)
+TABLE_FIELDS = tuple(f"table_c{k}" for k in range(TABLE_N))
+#: smallest clearance [m] a profile may leave anywhere along the shoe (a rest gap below this
+#: is a part touching the drum, in the model and on the bench)
+MIN_PROFILE_CLEARANCE = 0.02e-3
+
+
+@lru_cache(maxsize=256)
+def _table_spline(values: tuple[float, ...]) -> CubicSpline:
+    """The clearance c(s) [m] of a table profile: a cubic spline (not-a-knot, C2) through the
+    control values at s = 0, 1/(n-1), ..., 1 (s: arc fraction from root to tip)."""
+    return CubicSpline(np.linspace(0.0, 1.0, len(values)), np.asarray(values, dtype=float), bc_type="not-a-knot")
+
+
+def _table_param(k: int):
+    return param(0.6e-3, "m", 0.05e-3, 3e-3,
+                 f"clearance at {k}/{TABLE_N - 1} of the shoe arc from the root (table profile only; "
+                 "a C2 cubic spline through all of them)", f"c_{k}")
 
 
 class ConceptParams(ParamSet):
@@ -43,8 +70,9 @@ class ConceptParams(ParamSet):
     drum_radius: float = param(34.4e-3, "m", 15e-3, 100e-3, "drum inner radius R_d", "R_d")
     clearance: float = param(0.6e-3, "m", 0.05e-3, 3e-3,
                              "radial shoe-drum clearance at rest (at the root end for a linear profile)", "c")
-    profile: Literal["concentric", "eccentric", "linear"] = choice(
-        "concentric", "shoe outer profile (morphological row D)")
+    profile: Literal["concentric", "eccentric", "linear", "table"] = choice(
+        "concentric", "shoe outer profile (morphological row D); 'table': clearances table_c0..table_c16 "
+                      "along the shoe, joined by a cubic spline")
     clearance_tip: float = param(0.6e-3, "m", 0.05e-3, 3e-3,
                                  "clearance at the shoe tip (linear profile only)", "c_tip")
     eccentricity: float = param(0.0, "m", -3e-3, 3e-3,
@@ -56,6 +84,35 @@ class ConceptParams(ParamSet):
     arrangement: Literal["minus", "plus"] = choice(
         "minus", "flexure placement for ccw rotation: minus = shoe trails its flexure")
     fillet_radius: float = param(0.5e-3, "m", 0.0, 5e-3, "fillet radius at slot ends / flexure roots", "rho")
+    table_c0: float = _table_param(0)
+    table_c1: float = _table_param(1)
+    table_c2: float = _table_param(2)
+    table_c3: float = _table_param(3)
+    table_c4: float = _table_param(4)
+    table_c5: float = _table_param(5)
+    table_c6: float = _table_param(6)
+    table_c7: float = _table_param(7)
+    table_c8: float = _table_param(8)
+    table_c9: float = _table_param(9)
+    table_c10: float = _table_param(10)
+    table_c11: float = _table_param(11)
+    table_c12: float = _table_param(12)
+    table_c13: float = _table_param(13)
+    table_c14: float = _table_param(14)
+    table_c15: float = _table_param(15)
+    table_c16: float = _table_param(16)
+
+    @model_serializer(mode="wrap")
+    def _dump_without_inert_table(self, handler):
+        """The table profile's control values are inert for every other profile and are then
+        left out of the dump: the mesh cache key, the design hash and every recorded input of
+        a concentric / eccentric / linear design stay what they were before the table profile
+        existed."""
+        d = handler(self)
+        if self.profile != "table":
+            for name in TABLE_FIELDS:
+                d.pop(name, None)
+        return d
 
     # ---- profile of the shoe outer surface (canonical frame, shoe 0) ----------------------
     def outer_radius(self, theta: np.ndarray, t0: float, t1: float) -> np.ndarray:
@@ -63,6 +120,8 @@ class ConceptParams(ParamSet):
         spanning [t0 (root), t1 (tip)] in the canonical frame."""
         theta = np.asarray(theta, dtype=float)
         Rd = self.drum_radius
+        if self.profile == "table":
+            return Rd - self.table_clearance((theta - t0) / (t1 - t0))
         if self.profile == "concentric":
             return np.full_like(theta, Rd - self.clearance)
         if self.profile == "linear":
@@ -73,6 +132,15 @@ class ConceptParams(ParamSet):
         ux, uy = np.cos(theta), np.sin(theta)
         b = ux * cx + uy * cy
         return b + np.sqrt(rho_e ** 2 - (cx * cx + cy * cy) + b * b)
+
+    @property
+    def table(self) -> tuple[float, ...]:
+        """The table profile's control clearances [m], root to tip."""
+        return tuple(float(getattr(self, n)) for n in TABLE_FIELDS)
+
+    def table_clearance(self, s) -> np.ndarray:
+        """Clearance [m] of the table profile at arc fraction ``s`` (0 root, 1 tip)."""
+        return _table_spline(self.table)(np.asarray(s, dtype=float))
 
     def eccentric_circle(self, t0: float, t1: float) -> tuple[float, float, float]:
         """Centre (x, y) and radius of the eccentric profile: offset ``eccentricity`` in the
@@ -102,17 +170,28 @@ class ConceptParams(ParamSet):
                 if n.startswith("flexure") and n.endswith("thickness")]
 
     def min_clearance(self, t0: float, t1: float) -> float:
-        th = np.linspace(t0, t1, 201)
+        th = np.linspace(t0, t1, 201 if self.profile != "table" else 801)
         return float(np.min(self.drum_radius - self.outer_radius(th, t0, t1)))
 
     def check_profile(self, t0: float, t1: float) -> None:
-        """Raise if the shoe profile touches or crosses the drum anywhere."""
+        """Raise if the shoe profile touches or crosses the drum anywhere (the table profile's
+        spline is sampled at 801 points: it may dip below its control values between them)."""
         if self.profile == "eccentric":
             cx, cy, rho = self.eccentric_circle(t0, t1)
             if rho <= math.hypot(cx, cy):
                 self.fail("eccentricity", "|e| smaller than the profile radius")
+        if self.profile == "table":
+            s = np.linspace(0.0, 1.0, 801)
+            c = self.table_clearance(s)
+            k = int(np.argmin(c))
+            if c[k] <= MIN_PROFILE_CLEARANCE:
+                near = TABLE_FIELDS[int(round(s[k] * (TABLE_N - 1)))]
+                self.fail(near, f"a table whose spline keeps a clearance > {MIN_PROFILE_CLEARANCE * 1e3:.2f} mm "
+                                f"everywhere (it dips to {c[k] * 1e3:.3f} mm at {s[k]:.3f} of the shoe arc from "
+                                "the root, next to this control value: raise it or smooth its neighbours)")
+            return
         cmin = self.min_clearance(t0, t1)
-        if cmin <= 0.02e-3:
+        if cmin <= MIN_PROFILE_CLEARANCE:
             name = {"linear": "clearance_tip", "eccentric": "eccentricity"}.get(self.profile, "clearance")
             self.fail(name, f"a profile whose clearance stays > 0.02 mm everywhere (minimum here "
                             f"{cmin * 1e3:.3f} mm)")

@@ -122,6 +122,8 @@ def _param_lines(p) -> list[str]:
             continue
         if name in ("eccentricity", "eccentric_angle") and p.profile != "eccentric":
             continue
+        if name.startswith("table_c") and p.profile != "table":
+            continue
         rows.append(f"{name} = {_fmt_value(p, name)}")
     return rows
 
@@ -141,6 +143,10 @@ def _common_annotations(concept, p, geo) -> list:
     tm = root + 0.8 * (tip - root)  # off the shoe's middle, where the concepts label the shoe
     if p.profile == "linear":
         text = f"clearance c = {p.clearance * 1e3:.2f} mm at the root, c_tip = {p.clearance_tip * 1e3:.2f} mm"
+    elif p.profile == "table":
+        tab = p.table
+        text = (f"table profile: clearance {tab[0] * 1e3:.2f} mm at the root -> {tab[-1] * 1e3:.2f} mm at the tip "
+                f"(min {min(tab) * 1e3:.2f}, max {max(tab) * 1e3:.2f} mm, {len(tab)} values)")
     elif p.profile == "eccentric":
         text = (f"eccentric profile: e = {p.eccentricity * 1e3:.2f} mm at psi_e = {p.eccentric_angle:.0f} deg, "
                 f"c = {p.clearance * 1e3:.2f} mm mid-shoe")

@@ -150,6 +150,10 @@ def shoe_body(r_in: float, t0: float, t1: float, profile: Callable[[np.ndarray],
         c = _pt(*eccentric_centre)
         curves.append(occ.addCircleArc(po1, c, po0))
     else:
+        if kind == "table":  # 8 points per interval of the table's spline
+            from .base import TABLE_N
+
+            n_spline = max(n_spline, 8 * (TABLE_N - 1) + 1)
         th = np.linspace(t1, t0, n_spline)
         r = profile(th)
         inner_tags = [_pt(float(ri * math.cos(ti)), float(ri * math.sin(ti))) for ri, ti in zip(r[1:-1], th[1:-1])]

@@ -283,7 +283,8 @@ def add_profile(out: Outline, p, R, t0: float, t1: float, s0: float, s1: float, 
     belonging to a shoe whose contact arc spans [``s0`` (root), ``s1`` (tip)] in the canonical
     frame; ``R`` maps canonical points to the shoe's place (rotation by i * 360/n).  A
     concentric profile is an exact arc about the origin, an eccentric one an exact arc about
-    the eccentric centre, a linear one an interpolating spline through ``n`` profile points.
+    the eccentric centre, a linear one an interpolating spline through ``n`` profile points (a
+    table profile: at least 8 per interval of its own spline).
     The outline must already end on the profile at ``t0``."""
     r_end = float(p.outer_radius(np.array([t1]), s0, s1)[0])
     q = R(polar(r_end, t1))
@@ -291,6 +292,10 @@ def add_profile(out: Outline, p, R, t0: float, t1: float, s0: float, s1: float, 
         return out.arc_to(q, ccw=True)
     if p.profile == "eccentric":
         return out.arc_to(q, R(p.eccentric_centre(s0, s1)), ccw=True)
+    if p.profile == "table":  # 8 points per interval of the table's spline
+        from .base import TABLE_N
+
+        n = max(n, int(math.ceil(8 * (TABLE_N - 1) * abs(t1 - t0) / abs(s1 - s0))) + 1)
     ths = np.linspace(t0, t1, n)[1:-1]
     rs = p.outer_radius(ths, s0, s1)
     return out.spline_to(q, [R(polar(float(r), float(t))) for r, t in zip(rs, ths)])

@@ -1,0 +1,53 @@
+"""evaluate_many on the sweep engine: refusals found here without sending anything, rows in
+the order of the points, the design evaluated is the one `--set` builds from the texts."""
+
+import pytest
+
+from clutchfem.errors import ParameterError
+from clutchfem.targets.evaluate import EvalSettings, cluster, evaluate_many
+
+SIZE = 2.4e-3
+
+
+def test_rows_in_order_with_refusals_in_process(tmp_path):
+    s = EvalSettings("concept4", mesh_size=SIZE, store=str(tmp_path / "results.sqlite"))
+    pts = [{"flexure_thickness": "1.7mm"}, {"flexure_thickness": "9mm"}, {"flexure_thickness": "1.7mm"},
+           {"flexure_length": "30mm"}]
+    rows = evaluate_many(pts, s, workers=0)
+    assert [r["i"] for r in rows] == [0, 1, 2, 3]
+    assert [r["status"] for r in rows] == ["ok", "refused", "ok", "refused"]
+    assert rows[1]["refused_parameter"] == "flexure_thickness" and rows[1]["seconds"] == 0.0
+    assert rows[3]["refused_parameter"] == "flexure_length" and "mm" in rows[3]["message"]
+    assert rows[0]["design_hash"] == rows[2]["design_hash"] and rows[0]["slip_rpm"] == rows[2]["slip_rpm"]
+    r = rows[0]
+    assert r["params"] == {"flexure_thickness": "1.7mm"}
+    assert 0.05 < r["mass_kg"] < 0.5 and 100e6 < r["max_von_mises_Pa"] < 1e10  # SI units
+    assert r["safety_factor"] == pytest.approx(r["yield_strength_Pa"] / r["max_von_mises_Pa"], rel=1e-9)
+    # the same design through analyze: identical answers (same values, same mesh)
+    from clutchfem.clutch.analyze import analyze
+    from clutchfem.design import Design
+    from clutchfem.geometry import MeshSettings, get_concept
+
+    c = get_concept("concept4")
+    an = analyze(Design.from_concept(c, c.Params.from_assignments(["flexure_thickness=1.7mm"]), None,
+                                     MeshSettings(size=SIZE)), errors=False)
+    assert an.slip_rpm == pytest.approx(r["slip_rpm"], rel=1e-12)
+    assert an.max_von_mises_Pa == pytest.approx(r["max_von_mises_Pa"], rel=1e-9)
+    assert (tmp_path / "results.sqlite").exists()  # every design kept with its inputs (study store)
+
+
+def test_on_a_local_dask_cluster():
+    s = EvalSettings("concept4", mesh_size=SIZE)
+    with cluster(1) as address:
+        assert str(address).startswith("tcp://")
+        rows = evaluate_many([{"hub_radius": "12.5mm"}, {"hub_radius": "11.5mm"}], s)
+    assert [r["status"] for r in rows] == ["ok", "ok"]
+    assert rows[0]["worker"] and rows[0]["engagement_rpm"] > rows[1]["engagement_rpm"]
+
+
+def test_workers_are_checked():
+    with pytest.raises(ParameterError):
+        evaluate_many([], EvalSettings("concept4"), workers=-1)
+    with pytest.raises(ParameterError):
+        with cluster(2, "tcp://127.0.0.1:1"):
+            pass

@@ -1,0 +1,89 @@
+"""The one-page report: structure of the self-contained HTML and of its Markdown twin."""
+
+import json
+import re
+import subprocess
+import sys
+
+import pytest
+
+CLI = [sys.executable, "-m", "clutchfem.cli"]
+
+
+def run(*args, ok=True):
+    r = subprocess.run(CLI + list(args), capture_output=True, text=True, timeout=600)
+    if ok:
+        assert r.returncode == 0, r.stderr[-3000:]
+    return r
+
+
+@pytest.fixture(scope="module")
+def design_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    run("report", "--concept", "concept4", "--set", "flexure_thickness=1.8mm", "--mesh-size", "2.4mm",
+        "--no-errors", "--out", str(out))
+    return out
+
+
+def test_html_is_self_contained_with_answers_units_images_inputs(design_report):
+    html = (design_report / "report.html").read_text()
+    assert html.startswith("<!DOCTYPE html>")
+    assert not re.search(r"""<(img|script|link)[^>]+(src|href)=['"](?!data:)""", html)  # nothing external
+    assert html.count("data:image/png;base64,") >= 3  # torque chart, arc/stress chart, drawing
+    for answer in ("engagement speed", "slip speed", "safety factor", "part mass", "max von Mises"):
+        assert answer in html
+    assert re.search(r"\d rpm", html) and re.search(r"\d MPa", html) and re.search(r"\d N m", html)
+    assert "PASS" in html or "FAIL" in html
+    assert "Young&#x27;s modulus" in html or "Young's modulus" in html
+    assert "flexure_thickness" in html and "1.8 mm" in html
+    inputs = json.loads((design_report / "inputs.json").read_text())
+    assert inputs["params"]["flexure_thickness"] == pytest.approx(1.8e-3)
+    assert inputs["concept"] == "concept4" and "mesh_settings" in inputs and "operating_point" in inputs
+
+
+def test_markdown_has_the_same_answers(design_report):
+    md = (design_report / "report.md").read_text()
+    html = (design_report / "report.html").read_text()
+    rows = re.findall(r"^\| ([^|]+) \| ([^|]+) \|$", md, flags=re.M)
+    answers = [(q.strip(), v.strip()) for q, v in rows if q.strip() not in ("answer", "---")]
+    assert len(answers) >= 10
+    import html as h
+
+    for q, v in answers[:12]:
+        assert h.escape(q) in html and h.escape(v) in html
+    for img in re.findall(r"!\[[^]]*\]\(([^)]+)\)", md):
+        assert (design_report / img).exists()
+
+
+def test_run_folder_renders_again(design_report, tmp_path):
+    import pandas as pd
+
+    pd.DataFrame({"rpm": [1000, 2000], "torque_Nm": [0.0, 1.5]}).to_csv(tmp_path / "sweep.csv", index=False)
+    (tmp_path / "torque.png").write_bytes((design_report / "torque_rpm.png").read_bytes())
+    run("report", "--run", str(tmp_path))
+    html = (tmp_path / "report.html").read_text()
+    assert "sweep.csv" in html and "data:image/png;base64," in html and "torque_Nm" in html
+    out = tmp_path / "again"
+    run("report", "--run", str(design_report), "--out", str(out))
+    assert "engagement speed" in (out / "report.html").read_text()
+
+
+def test_report_refuses_unclear_requests(tmp_path):
+    r = run("report", "--concept", "concept4", ok=False)
+    assert r.returncode == 2 and "--out" in r.stderr
+    r = run("report", "--concept", "concept4", "--run", str(tmp_path), ok=False)
+    assert r.returncode == 2 and "exactly one" in r.stderr
+
+
+def test_report_of_a_user_mesh(tmp_path):
+    """`report --mesh`: the mesh picture instead of the drawing, the mesh file and its SHA-256 in
+    the inputs."""
+    run("geometry", "concept4", "--out", str(tmp_path / "geo"), "--model", "full", "--mesh-size", "2.4mm",
+        "--no-drawing")
+    out = tmp_path / "rep"
+    run("report", "--mesh", str(tmp_path / "geo" / "concept4.msh"), "--drum-radius", "34.4mm", "--thickness", "11mm",
+        "--no-errors", "--out", str(out))
+    html = (out / "report.html").read_text()
+    assert "the user mesh" in html and html.count("data:image/png;base64,") >= 3
+    inputs = json.loads((out / "inputs.json").read_text())
+    assert inputs["mesh_sha256"] and inputs["mesh_file"].endswith("concept4.msh")
