@@ -44,6 +44,20 @@ def test_assessment_and_comparison():
     assert t.assess({"status": "refused"})["h"] == math.inf
 
 
+def test_fatigue_target():
+    """--fatigue-min adds a fourth constraint; a design without a fatigue answer misses it."""
+    t = Targets(3510.0, None, 8000.0, 1.5, fatigue_min=1.0)
+    row = {**_row(3600.0, 7800.0, 1.6, 0.10), "fatigue_safety_factor": 0.89}
+    a = t.assess(row)
+    assert [c["key"] for c in a["constraints"]][-1] == "fatigue_safety_factor"
+    assert a["h"] == pytest.approx(0.11) and a["constraints"][-1]["violated"]
+    assert t.assess({**row, "fatigue_safety_factor": None})["h"] == pytest.approx(1.0)
+    assert Targets(3510.0, None, 8000.0, 1.5).assess(row)["h"] == 0.0  # no target: not assessed
+    with pytest.raises(ParameterError) as e:
+        Targets(3510.0, None, 8000.0, 1.5, fatigue_min=-1.0)
+    assert e.value.name == "fatigue_min"
+
+
 def test_targets_and_space_refuse_bad_input():
     with pytest.raises(ParameterError):
         Targets(5000.0, 4000.0, 8000.0, 1.5)
@@ -76,6 +90,8 @@ def test_optimize_json_params_are_confirmed_by_analyze(tmp_path):
     assert an["engagement_rpm_with_ripple"] >= an["requirements"]["engagement_limit_rpm"]
     assert an["slip_rpm"] <= 8150
     assert an["safety_factor"] >= 0.5
+    # the fatigue answer travels through the sweep engine's row unchanged
+    assert res["answers"]["fatigue_safety_factor"] == pytest.approx(an["fatigue_safety_factor"], rel=1e-9)
     # the very design that was evaluated: identical answers
     assert an["slip_rpm"] == pytest.approx(start["value"], rel=1e-9)
 

@@ -73,6 +73,9 @@ def optimize(
                                                  "of max engine torque)"),
     safety_factor_min: float = typer.Option(1.5, "--safety-factor-min", help="minimum safety factor against yield at "
                                             "the engine's maximum speed [-]"),
+    fatigue_min: Optional[float] = typer.Option(None, "--fatigue-min", help="minimum fatigue safety factor (analyze's "
+                                                "fatigue step: Goodman, Miner, ASSUMED duty) [-] (default: no target; "
+                                                "the final design's value is reported)"),
     free: Optional[str] = typer.Option(None, "--free", help="comma-separated parameters to vary (default: the concept's "
                                        "shape parameters)"),
     range_: List[str] = typer.Option([], "--range", help="search range name=LO:HI with units, e.g. "
@@ -109,7 +112,8 @@ def optimize(
                 hi = float(parts[1]) if parts[1].strip() else None
             except ValueError:
                 raise ParameterError("engage_rpm", engage_rpm, "LO:HI in rpm (numbers)", "--engage-rpm") from None
-        t = Targets(lo, hi, slip_rpm_max if slip_rpm_max is not None else slip_def, safety_factor_min, objective)
+        t = Targets(lo, hi, slip_rpm_max if slip_rpm_max is not None else slip_def, safety_factor_min, objective,
+                    fatigue_min=fatigue_min)
         P = type(s.params())
         names = [x.strip() for x in free.split(",") if x.strip()] if free else None
         ranges = {}
@@ -139,7 +143,8 @@ def optimize(
                                 **{f"param:{k}": v for k, v in r["params"].items()},
                                 **{k: r.get(k) for k in ("engagement_rpm", "engagement_rpm_with_ripple", "slip_rpm",
                                                          "torque_at_max_engine_torque_Nm", "max_von_mises_Pa",
-                                                         "safety_factor", "mass_kg", "message")}} for r in res.path])
+                                                         "safety_factor", "fatigue_safety_factor", "mass_kg",
+                                                         "message")}} for r in res.path])
             df.to_csv(out / "optimization_path.csv", index=False)
             files.append(out / "optimization_path.csv")
             page = optimization_page(res, final, out)
@@ -170,6 +175,8 @@ def _final_analysis(s, res):
 
 
 def _print_optimization(res, final):
+    from ..targets.optimize import DIMENSIONLESS, fatigue_note
+
     a = res.best["assessment"]
     t = Table(title=escape(f"{res.concept}: {res.message}"))
     t.add_column("target")
@@ -177,7 +184,7 @@ def _print_optimization(res, final):
     t.add_column("limit", justify="right")
     t.add_column("binds")
     for c in a["constraints"]:
-        sf = c["key"] == "safety_factor"
+        sf = c["key"] in DIMENSIONLESS
         v = c["value"]
         vs = "none" if v is None else (f"{v:.2f}" if sf else f"{v:.0f} rpm")
         err_txt = ""
@@ -201,6 +208,9 @@ def _print_optimization(res, final):
            else f"torque margin {res.best['torque_margin_Nm']:+.2f} N m")
     console.print(f"objective: {obj}; evaluations: {sum(res.evaluations.values())} "
                   f"({', '.join(f'{k} {v}' for k, v in res.evaluations.items() if v)}); time {res.seconds:.0f} s")
+    fnote = fatigue_note(res)
+    if fnote:
+        console.print(f"[yellow]{escape(fnote)}[/yellow]")
     console.print("verify: clutchfem analyze --concept " + escape(res.concept) + " "
                   + " ".join(f"--set {escape(x)}" for x in res.set_args), soft_wrap=True)
 

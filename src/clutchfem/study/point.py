@@ -68,6 +68,9 @@ COLUMNS: tuple[tuple[str, str, str], ...] = (
     ("max_von_mises_MPa", "REAL", "peak von Mises stress at the engine's maximum speed [MPa]"),
     ("safety_factor", "REAL", "yield strength / peak von Mises at the engine's maximum speed [-]"),
     ("yield_strength_MPa", "REAL", "material yield strength Rp0.2 [MPa]"),
+    ("fatigue_safety_factor", "REAL", "fatigue safety factor: load multiplier to Miner sum 1 at the worst point "
+                                      "(Goodman, ASSUMED duty) [-] (empty: no fatigue data)"),
+    ("fatigue_cycle", "TEXT", "the cycle that governs the fatigue safety factor"),
     ("shoe_mass_g", "REAL", "mass of one shoe zone [g]"),
     ("part_mass_g", "REAL", "mass of the whole one-piece part [g]"),
     ("contact_arc_deg", "REAL", "shoe arc in contact at the rpm of max engine torque [deg]"),
@@ -347,6 +350,8 @@ def _fill(row: dict, an, design, settings: Settings, cm) -> None:
         torque_margin_Nm=_num(an.torque_margin_Nm), max_engine_rpm=_num(an.max_engine_rpm),
         max_von_mises_MPa=_num(an.max_von_mises_Pa / 1e6), safety_factor=sf,
         yield_strength_MPa=_num(an.yield_strength_Pa / 1e6),
+        fatigue_safety_factor=_num(getattr(an, "fatigue_safety_factor", None)),
+        fatigue_cycle=getattr(an, "fatigue_governing_cycle", None),
         shoe_mass_g=_num(shoe_kg * 1e3) if shoe_kg is not None else None,
         part_mass_g=_num(an.part["mass_kg"] * 1e3) if an.part and "mass_kg" in an.part else None,
         contact_arc_deg=arc, nominal_arc_deg=_num(nominal),

@@ -121,7 +121,7 @@ def optimization_path(res, path) -> Path:
     ax.scatter(n[~feas], y[~feas], s=12, facecolors="none", edgecolors="tab:gray", label="infeasible")
     ax.scatter(n[feas], y[feas], s=14, color="tab:green", label="meets every target")
     inc_n, inc_y, best = [], [], None
-    from .optimize import better
+    from .optimize import DIMENSIONLESS, better
 
     for r, yy in zip(rows, y):
         if better(r["assessment"], None if best is None else best["assessment"]):
@@ -135,7 +135,7 @@ def optimization_path(res, path) -> Path:
     ax.set_title(f"{res.concept}: optimisation path ({len(res.path)} designs, {res.seconds:.0f} s)")
     for ax, (name, key, limit, sense) in zip(axes[1:], cons):
         v = np.array([r.get(key) if r.get(key) is not None else np.nan for r in rows], dtype=float)
-        unit = "" if key == "safety_factor" else " [rpm]"
+        unit = "" if key in DIMENSIONLESS else " [rpm]"
         ax.scatter(n, v, s=8, c=np.where(feas, "tab:green", "tab:gray"))
         ax.axhline(limit, color="tab:red", ls="--", lw=1)
         ax.set_ylabel(key.replace("_rpm", "").replace("_with_ripple", "\nwith ripple").replace("_", " ") + unit,

@@ -43,7 +43,7 @@ from ..errors import ParameterError
 ANSWERS = {
     "engagement_rpm": "rpm", "engagement_rpm_with_ripple": "rpm", "slip_rpm": "rpm",
     "torque_at_max_engine_torque_Nm": "N m", "torque_margin_Nm": "N m", "max_von_mises_Pa": "Pa",
-    "safety_factor": "-", "mass_kg": "kg", "contact_arc_deg": "deg", "contact_share": "-",
+    "safety_factor": "-", "fatigue_safety_factor": "-", "mass_kg": "kg", "contact_arc_deg": "deg", "contact_share": "-",
 }
 
 _ACTIVE: dict = {"scheduler": None, "workers": None}
@@ -187,6 +187,7 @@ def from_study_row(r: dict, point: dict) -> dict:
         "torque_at_max_engine_torque_Nm": _num(r.get("torque_at_max_engine_torque_Nm")),
         "torque_margin_Nm": _num(r.get("torque_margin_Nm")),
         "max_von_mises_Pa": None if mpa is None else mpa * 1e6, "safety_factor": _num(r.get("safety_factor")),
+        "fatigue_safety_factor": _num(r.get("fatigue_safety_factor")), "fatigue_cycle": r.get("fatigue_cycle"),
         "mass_kg": None if g is None else g * 1e-3, "contact_arc_deg": _num(r.get("contact_arc_deg")),
         "contact_share": _num(r.get("contact_arc_fraction")),
         "engagement_ok": bool(r.get("engagement_ok")), "slip_ok": bool(r.get("slip_ok")),

@@ -8,7 +8,10 @@ Targets (defaults: the requirement checks of :func:`clutchfem.clutch.analyze.ana
 * slip speed (drum held, full throttle) <= b x rpm of the maximum engine torque (b = 1.0:
   8000 rpm on the ASSUMED engine curve); a clutch that never holds the engine violates it;
 * safety factor against yield at the engine's maximum speed >= 1.5 (the core's fatigue
-  caution threshold, ASSUMED).
+  caution threshold, ASSUMED);
+* with ``fatigue_min`` (``--fatigue-min``): the fatigue safety factor of analyze's step 10
+  >= that value (off by default, as the issue's requirement checks are three; the final
+  design's value is always reported and a value below 1 is named).
 
 Each constraint is scored as a relative violation v_j = max(0, (limit - value)/limit) (sign
 by sense); a design's infeasibility is h = sum_j v_j.
@@ -75,11 +78,13 @@ class Targets:
     slip_rpm_max: float | None
     safety_factor_min: float | None
     objective: str = "mass"
+    #: fatigue safety factor (analyze's step 10: Goodman, Miner, ASSUMED duty) >= this; None: no target
+    fatigue_min: float | None = None
 
     def __post_init__(self):
         if self.objective not in OBJECTIVES:
             raise ParameterError("objective", self.objective, "one of " + ", ".join(OBJECTIVES), "optimize")
-        for name in ("engage_rpm_lo", "engage_rpm_hi", "slip_rpm_max", "safety_factor_min"):
+        for name in ("engage_rpm_lo", "engage_rpm_hi", "slip_rpm_max", "safety_factor_min", "fatigue_min"):
             v = getattr(self, name)
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)
                                   or v <= 0):
@@ -99,6 +104,8 @@ class Targets:
             out.append(("slip speed <= max", "slip_rpm", self.slip_rpm_max, "<="))
         if self.safety_factor_min is not None:
             out.append(("safety factor at engine max >= min", "safety_factor", self.safety_factor_min, ">="))
+        if self.fatigue_min is not None:
+            out.append(("fatigue safety factor >= min", "fatigue_safety_factor", self.fatigue_min, ">="))
         return out
 
     def assess(self, row: dict) -> dict:
@@ -110,8 +117,9 @@ class Targets:
         for name, key, limit, sense in self.constraints():
             v = row.get(key)
             if v is None or not math.isfinite(v):
-                # never engages / never holds / no slip speed: the target is missed outright
-                miss = key == "slip_rpm" or (key == "engagement_rpm_with_ripple" and sense == "<=")
+                # never engages / never holds / no slip speed / no fatigue answer: the target is missed outright
+                miss = (key in ("slip_rpm", "fatigue_safety_factor")
+                        or (key == "engagement_rpm_with_ripple" and sense == "<="))
                 viol = 1.0 if miss else 0.0
                 slack = -math.inf if miss else math.inf
             else:
@@ -246,12 +254,14 @@ class OptimizationResult:
             "answers": {k: self.best.get(k) for k in ("engagement_rpm", "engagement_rpm_with_ripple", "slip_rpm",
                                                       "slip_status", "torque_at_max_engine_torque_Nm",
                                                       "torque_margin_Nm", "max_von_mises_Pa", "safety_factor",
-                                                      "mass_kg", "contact_arc_deg")},
+                                                      "fatigue_safety_factor", "mass_kg", "contact_arc_deg")},
+            "notes": [n for n in (fatigue_note(self),) if n],
             "evaluations": self.evaluations, "evaluations_total": sum(self.evaluations.values()),
             "seconds": self.seconds, "iterations": self.iterations, "start": self.start_texts,
             "targets": {"engage_rpm_lo": self.targets.engage_rpm_lo, "engage_rpm_hi": self.targets.engage_rpm_hi,
                         "slip_rpm_max": self.targets.slip_rpm_max,
-                        "safety_factor_min": self.targets.safety_factor_min},
+                        "safety_factor_min": self.targets.safety_factor_min,
+                        "fatigue_min": self.targets.fatigue_min},
             "units": {"rpm": "1/min", "stress": "Pa", "mass": "kg", "torque": "N m", "seconds": "s"},
             "path": [{k: v for k, v in r.items() if k != "warnings"} for r in self.path],
         })
@@ -384,11 +394,26 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
         at_bounds=at_bounds, settings=settings)
 
 
+def fatigue_note(res: "OptimizationResult") -> str | None:
+    """A warning when fatigue was not a target and the final design's fatigue safety factor
+    is below 1 (None otherwise)."""
+    f = res.best.get("fatigue_safety_factor")
+    if res.targets.fatigue_min is not None or f is None or f >= 1.0:
+        return None
+    return (f"note: fatigue was not a target; the final design's fatigue safety factor is {f:.2f} < 1 (ASSUMED "
+            "duty, analyze's fatigue step): add --fatigue-min 1 to make it one")
+
+
+#: constraint keys without a unit (printed with two decimals)
+DIMENSIONLESS = ("safety_factor", "fatigue_safety_factor")
+
+
 def _fmtc(c: dict) -> str:
     v = c["value"]
-    unit = "" if c["key"] == "safety_factor" else " rpm"
-    vs = "none" if v is None else (f"{v:.2f}" if c["key"] == "safety_factor" else f"{v:.0f}")
-    lim = f"{c['limit']:.2f}" if c["key"] == "safety_factor" else f"{c['limit']:.0f}"
+    dimless = c["key"] in DIMENSIONLESS
+    unit = "" if dimless else " rpm"
+    vs = "none" if v is None else (f"{v:.2f}" if dimless else f"{v:.0f}")
+    lim = f"{c['limit']:.2f}" if dimless else f"{c['limit']:.0f}"
     return f"{vs}{unit} against {c['sense']} {lim}{unit}"
 
 

@@ -120,6 +120,7 @@ def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_
 # ---------------------------------------------------------------------------------------
 def optimization_page(res, final_an, folder: Path) -> Page:
     from . import charts
+    from .optimize import DIMENSIONLESS, fatigue_note
 
     folder = Path(folder)
     path_png = charts.optimization_path(res, folder / "optimization_path.png")
@@ -127,7 +128,7 @@ def optimization_page(res, final_an, folder: Path) -> Page:
     verdicts = []
     for c in a["constraints"]:
         val = c["value"]
-        unit = "" if c["key"] == "safety_factor" else " rpm"
+        unit = "" if c["key"] in DIMENSIONLESS else " rpm"
         txt = "none" if val is None else (f"{val:.2f}" if not unit else f"{val:.0f}{unit}")
         lim = f"{c['limit']:.2f}" if not unit else f"{c['limit']:.0f}{unit}"
         verdicts.append([f"{c['name'].split(' >=')[0].split(' <=')[0]} {c['sense']} {lim}", c["violation"] <= 0,
@@ -146,7 +147,11 @@ def optimization_page(res, final_an, folder: Path) -> Page:
             ["torque at the rpm of max engine torque", _f(res.best.get("torque_at_max_engine_torque_Nm"), ".2f", "N m")],
             ["peak von Mises at engine max / safety factor",
              f"{_f(res.best.get('max_von_mises_Pa', math.nan) / 1e6, '.0f', 'MPa')} / {_f(res.best.get('safety_factor'), '.2f')}"],
+            ["fatigue safety factor (ASSUMED duty)", _f(res.best.get("fatigue_safety_factor"), ".2f")
+             + (f" ({res.best.get('fatigue_cycle')})" if res.best.get("fatigue_cycle") else "")],
             ["part mass", _f(res.best.get("mass_kg", math.nan) * 1e3, ".1f", "g")]]
+    if fatigue_note(res):
+        head.append(["note", fatigue_note(res)])
     verify = Text("verify with analyze (the very design evaluated: the texts read back bit for bit)",
                   ["clutchfem analyze --concept " + res.concept + " " + " ".join(f"--set {s}" for s in res.set_args)],
                   "pre")
