@@ -53,7 +53,7 @@ hub_radius = {{min = "11.5mm", max = "12.5mm"}}
 """
 
 STEPS = ("slip_step", "fe_sweep", "engagement_step", "character_step", "mu_sensitivity_step", "coupling_step",
-         "stress_step", "requirements_step", "whirl_step", "mesh_mass_properties")
+         "stress_step", "requirements_step", "whirl_step", "fatigue_step", "mesh_mass_properties")
 
 
 def _spec(n: int, size: float):

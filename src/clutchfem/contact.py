@@ -105,74 +105,95 @@ class ContactNodes:
         return self.normal[0][:, None] * U[self.dof_x] + self.normal[1][:, None] * U[self.dof_y]
 
 
+def check_drum_radius(drum_radius) -> None:
+    if not (isinstance(drum_radius, (int, float)) and math.isfinite(drum_radius) and drum_radius > 0):
+        raise ParameterError("drum_radius", drum_radius, "a radius > 0 m")
+
+
 def contact_nodes(model, drum_radius: float) -> ContactNodes:
     """The contact nodes of ``model`` (an :class:`~clutchfem.fem.FEModel`) facing a drum of
     inner radius ``drum_radius`` [m]: the ``contact`` group, per shoe from ``contact_<i>``."""
     from .fem import contact_weights
 
     cm, basis = model.cm, model.basis
-    if not (isinstance(drum_radius, (int, float)) and math.isfinite(drum_radius) and drum_radius > 0):
-        raise ParameterError("drum_radius", drum_radius, "a radius > 0 m")
-    mesh = cm.mesh
-    b = mesh.boundaries or {}
+    check_drum_radius(drum_radius)
+    b = cm.mesh.boundaries or {}
     if "contact" not in b:
         raise MeshError(f"{cm.source}: no 'contact' boundary group; cannot model the drum")
     facets = cm.boundary("contact")
+
+    def x_dofs(fac):
+        d = basis.get_dofs(np.asarray(fac))
+        return np.concatenate([d.nodal["u^1"], d.facet["u^1"]])
+
     d = basis.get_dofs(facets)
     dx = np.concatenate([d.nodal["u^1"], d.facet["u^1"]])
     dy = np.concatenate([d.nodal["u^2"], d.facet["u^2"]])
+    # the contact surface must face the drum: outward boundary normals point away from the axis
+    _check_facing(cm, facets)
+    return build_contact_nodes(cm, cm, drum_radius, dx, dy, basis.doflocs, x_dofs,
+                               lambda dx_all: contact_weights(cm, basis, facets)[dx_all], basis.N)
+
+
+def build_contact_nodes(cm, part, drum_radius: float, dx, dy, doflocs, x_dofs, weights_of,
+                        ndofs: int) -> ContactNodes:
+    """:class:`ContactNodes` from the x and y dofs of the contact surface of ``part`` (the
+    2-D mesh ``cm`` itself, or its 3-D extrusion: ``part.mesh.boundaries`` and
+    ``part.boundary(name)`` give its groups; ``doflocs`` has 2 or 3 rows; the normal is in
+    the plane): gaps on the exact circle, the
+    sector's cut_b copies merged, the shoe of each node from the ``contact_<i>`` groups.
+    ``x_dofs(facets)``: the x dofs on some facets; ``weights_of(dx)``: tributary weights of
+    the given x dofs (called lazily, when a pressure is asked for)."""
     order = np.argsort(dx)
     dx, dy = dx[order], dy[order]
-    xy = basis.doflocs[:, dx]
-    r = np.hypot(xy[0], xy[1])
-    n = xy / r
-    t = np.vstack([-n[1], n[0]])
+    X = doflocs[:, dx]
+    r = np.hypot(X[0], X[1])
     gap0 = drum_radius - r
     if np.any(gap0 < -1e-9 * drum_radius):
         worst = float(-gap0.min())
         raise MeshError(f"drum radius {drum_radius * 1e3:.4f} mm lies inside the part: contact nodes "
                         f"overlap the drum by up to {worst * 1e3:.4f} mm (drum radius must exceed "
                         f"{r.max() * 1e3:.4f} mm)")
-    # the contact surface must face the drum: outward boundary normals point away from the axis
-    _check_facing(cm, facets)
+    b = part.mesh.boundaries or {}
+    shoe = -np.ones(len(dx), dtype=np.int64)
+    for name, fac in b.items():
+        if name.startswith("contact_"):
+            shoe[np.isin(dx, x_dofs(fac))] = int(name.split("_")[1])
+    if np.all(shoe < 0):
+        shoe[:] = 0
     dx_all, merge = dx, None
     # one-sector model: a contact node on cut_b is the rotated copy of a node on cut_a (the
     # same node of the full part, u_b = R u_a).  Keep one of each pair, with both weights:
     # two copies would make G singular and split their force arbitrarily.
     if cm.sector_angle is not None and "cut_b" in b:
-        db = basis.get_dofs(cm.boundary("cut_b"))
-        copy = np.isin(dx, np.concatenate([db.nodal["u^1"], db.facet["u^1"]]))
+        copy = np.isin(dx, x_dofs(part.boundary("cut_b")))
         if copy.any():
             cs, sn = math.cos(cm.sector_angle), math.sin(cm.sector_angle)
-            back = np.array([[cs, sn], [-sn, cs]]) @ xy[:, copy]  # rotated by -sector_angle
+            R = np.eye(len(X))
+            R[:2, :2] = [[cs, sn], [-sn, cs]]  # rotation by -sector_angle about the axis
+            back = R @ X[:, copy]
             keep = np.nonzero(~copy)[0]
-            dist, j = cKDTree(xy[:, keep].T).query(back.T)
+            dist, j = cKDTree(X[:, keep].T).query(back.T)
             if dist.max() > 1e-8 * drum_radius:
                 raise MeshError(f"{cm.source}: a contact node on cut_b has no partner on cut_a "
                                 f"(mismatch {dist.max():.3g} m)")
             merge = (keep, j, copy)
-            dx, dy, xy, n, t, gap0 = (a[..., keep] for a in (dx, dy, xy, n, t, gap0))
+            dx, dy, X, gap0, shoe = dx[keep], dy[keep], X[:, keep], gap0[keep], shoe[keep]
+    xy = X[:2]
+    n = xy / np.hypot(xy[0], xy[1])
+    t = np.vstack([-n[1], n[0]])
 
     def weights() -> np.ndarray:
-        w = contact_weights(cm, basis, facets)[dx_all]
+        w = weights_of(dx_all)
         if merge is not None:
             keep, j, copy = merge
             np.add.at(w, keep[j], w[copy])
             w = w[keep]
         return w
 
-    shoe = -np.ones(len(dx), dtype=np.int64)
-    for name, fac in b.items():
-        if name.startswith("contact_"):
-            i = int(name.split("_")[1])
-            dd = basis.get_dofs(np.asarray(fac))
-            ids = np.concatenate([dd.nodal["u^1"], dd.facet["u^1"]])
-            shoe[np.isin(dx, ids)] = i
-    if np.all(shoe < 0):
-        shoe[:] = 0
     return ContactNodes(drum_radius=float(drum_radius), dof_x=dx, dof_y=dy, xy=xy, normal=n, tangent=t,
                         gap0=np.maximum(gap0, 0.0), shoe=shoe, angle=np.arctan2(xy[1], xy[0]),
-                        ndofs=basis.N, _weights=weights)
+                        ndofs=ndofs, _weights=weights)
 
 
 def _check_facing(cm, facets: np.ndarray) -> None:

@@ -344,65 +344,20 @@ class FEModel3D(ConstrainedOperators):
         normals; on a sector, the cut_b copies of cut_a nodes merged (as in 2-D).  The
         weights are tributary *areas* divided by the part's axial thickness, so the drum's
         pressure = force / (thickness x weight) is force / area, as in 2-D."""
-        from .contact import ContactNodes, _check_facing
+        from .contact import _check_facing, build_contact_nodes, check_drum_radius
 
         cm, em, basis = self.cm, self.em, self.basis
-        if not (isinstance(drum_radius, (int, float)) and math.isfinite(drum_radius) and drum_radius > 0):
-            from .errors import ParameterError
-
-            raise ParameterError("drum_radius", drum_radius, "a radius > 0 m")
+        check_drum_radius(drum_radius)
         b = em.mesh.boundaries or {}
         if "contact" not in b:
             raise MeshError(f"{cm.source}: no 'contact' boundary group; cannot model the drum")
         facets = em.boundary("contact")
         dx, dy, _ = _component_dofs(basis, facets)
-        order = np.argsort(dx)
-        dx, dy = dx[order], dy[order]
-        X = basis.doflocs[:, dx]
-        xy = X[:2]
-        r = np.hypot(xy[0], xy[1])
-        gap0 = drum_radius - r
-        if np.any(gap0 < -1e-9 * drum_radius):
-            raise MeshError(f"drum radius {drum_radius * 1e3:.4f} mm lies inside the part: contact nodes "
-                            f"overlap the drum by up to {float(-gap0.min()) * 1e3:.4f} mm (drum radius must "
-                            f"exceed {r.max() * 1e3:.4f} mm)")
         _check_facing(cm, cm.boundary("contact"))
-        dx_all, merge = dx, None
-        if cm.sector_angle is not None and "cut_b" in b:
-            bx = _component_dofs(basis, em.boundary("cut_b"))[0]
-            copy = np.isin(dx, bx)
-            if copy.any():
-                cs, sn = math.cos(cm.sector_angle), math.sin(cm.sector_angle)
-                back = np.array([[cs, sn, 0], [-sn, cs, 0], [0, 0, 1]]) @ X[:, copy]
-                keep = np.nonzero(~copy)[0]
-                dist, j = cKDTree(X[:, keep].T).query(back.T)
-                if dist.max() > 1e-8 * drum_radius:
-                    raise MeshError(f"{cm.source}: a contact node on cut_b has no partner on cut_a "
-                                    f"(mismatch {dist.max():.3g} m)")
-                merge = (keep, j, copy)
-                dx, dy, xy, gap0 = dx[keep], dy[keep], xy[:, keep], gap0[keep]
-        n = xy / np.hypot(xy[0], xy[1])
-        t = np.vstack([-n[1], n[0]])
         h = self.thickness
-
-        def weights() -> np.ndarray:
-            w = contact_area_weights(em, basis, facets)[dx_all] / h
-            if merge is not None:
-                keep, j, copy = merge
-                np.add.at(w, keep[j], w[copy])
-                w = w[keep]
-            return w
-
-        shoe = -np.ones(len(dx), dtype=np.int64)
-        for name, fac in b.items():
-            if name.startswith("contact_"):
-                ids = _component_dofs(basis, np.asarray(fac))[0]
-                shoe[np.isin(dx, ids)] = int(name.split("_")[1])
-        if np.all(shoe < 0):
-            shoe[:] = 0
-        return ContactNodes(drum_radius=float(drum_radius), dof_x=dx, dof_y=dy, xy=xy, normal=n,
-                            tangent=t, gap0=np.maximum(gap0, 0.0), shoe=shoe,
-                            angle=np.arctan2(xy[1], xy[0]), ndofs=basis.N, _weights=weights)
+        return build_contact_nodes(cm, em, drum_radius, dx, dy, basis.doflocs,
+                                   lambda fac: _component_dofs(basis, np.asarray(fac))[0],
+                                   lambda dx_all: contact_area_weights(em, basis, facets)[dx_all] / h, basis.N)
 
 
 class VertexStress3D:

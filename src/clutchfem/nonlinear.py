@@ -68,6 +68,7 @@ from skfem import Basis, ElementTriP2
 from .contact import contact_nodes
 from .errors import ParameterError, SolverError
 from .params import ParamSet, param
+from .softening import KrylovSpace
 from .units import rad_s_to_rpm
 
 __all__ = ["NonlinearSettings", "NonlinearModel", "NLState", "geometric_stiffness",
@@ -532,7 +533,7 @@ def prestressed(model) -> PrestressedModel:
 
 
 @dataclass(frozen=True)
-class PrestressRitz:
+class PrestressRitz(KrylovSpace):
     """Spin softening *and* centrifugal pre-stress stiffening on the one factorisation of K:
     mode acceleration on Ritz pairs of (K, M - K_sigma1), a softening strategy for
     :class:`clutchfem.sweep.LoadCase` (``LoadCase(model, contact, PrestressRitz())``).
@@ -550,26 +551,13 @@ class PrestressRitz:
     per-speed factorisation (``Exact`` on :class:`PrestressedModel`) is measured in
     ``benchmarks/bench_modelform.py``."""
 
-    depth: int = 3
-    seeds: str = "load"
     name = "prestress"
-
-    def __post_init__(self):
-        if isinstance(self.depth, bool) or not isinstance(self.depth, int) or not 1 <= self.depth <= 20:
-            raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
-        if self.seeds not in ("load", "all"):
-            raise ParameterError("ritz seeds", self.seeds, "'load' or 'all'")
 
     def bind(self, model, contact):
         from .softening import _ModalResponse
 
-        friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
-        key = ("prestress", self.depth, self.seeds, None if contact is None else id(contact.nodes), friction)
-        cache = model.__dict__.setdefault("_ritz_cache", {})
-        if key not in cache:  # the nodes are kept with the pairs: their id is never reused
-            cache[key] = (None if contact is None else contact.nodes,
-                          _prestress_pairs(prestressed(model), contact, self.depth, self.seeds))
-        theta, Psi = cache[key][1]
+        theta, Psi = self.cached_pairs(model, contact,
+                                       lambda: _prestress_pairs(prestressed(model), contact, self.depth, self.seeds))
 
         class _Response(_ModalResponse):
             def coefficients(self, omega: float) -> np.ndarray:

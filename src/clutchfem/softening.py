@@ -70,7 +70,33 @@ class Off:
 
 
 @dataclass(frozen=True)
-class Ritz:
+class KrylovSpace:
+    """What the Ritz strategies share: ``depth`` Krylov blocks, the ``seeds`` rule, and the
+    pairs cached on the model per (strategy, depth, seeds, contact nodes, friction)."""
+
+    depth: int = 3
+    seeds: str = "load"
+    name = "krylov"
+
+    def __post_init__(self):
+        if isinstance(self.depth, bool) or not isinstance(self.depth, int) or not 1 <= self.depth <= 20:
+            raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
+        if self.seeds not in ("load", "all"):
+            raise ParameterError("ritz seeds", self.seeds, "'load' or 'all'")
+
+    def cached_pairs(self, model, contact, compute):
+        """``compute()`` once per key on ``model`` (the nodes are kept with the pairs: their id
+        is then never reused)."""
+        friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
+        key = (self.name, self.depth, self.seeds, None if contact is None else id(contact.nodes), friction)
+        cache = model.__dict__.setdefault("_ritz_cache", {})
+        if key not in cache:
+            cache[key] = (None if contact is None else contact.nodes, compute())
+        return cache[key][1]
+
+
+@dataclass(frozen=True)
+class Ritz(KrylovSpace):
     """Mode acceleration on ``depth`` blocks of load-dependent Ritz vectors (default).
 
     ``seeds``: ``"load"`` seeds the space with the load case's own contact load D(mu) (one
@@ -80,24 +106,10 @@ class Ritz:
     uses ``"all"`` for its secondary cases (friction off, mu +-30 %) and ``"load"`` for the
     design's own mu."""
 
-    depth: int = 3
-    seeds: str = "load"
     name = "ritz"
 
-    def __post_init__(self):
-        if isinstance(self.depth, bool) or not isinstance(self.depth, int) or not 1 <= self.depth <= 20:
-            raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
-        if self.seeds not in ("load", "all"):
-            raise ParameterError("ritz seeds", self.seeds, "'load' or 'all'")
-
     def bind(self, model, contact):
-        friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
-        key = ("ritz", self.depth, self.seeds, None if contact is None else id(contact.nodes), friction)
-        cache = model.__dict__.setdefault("_ritz_cache", {})
-        if key not in cache:  # the nodes are kept with the pairs: their id is then never reused
-            cache[key] = (None if contact is None else contact.nodes,
-                          ritz_pairs(model, contact, self.depth, self.seeds))
-        w2, Phi = cache[key][1]
+        w2, Phi = self.cached_pairs(model, contact, lambda: ritz_pairs(model, contact, self.depth, self.seeds))
         return _ModalResponse(model, contact, w2, Phi)
 
 
