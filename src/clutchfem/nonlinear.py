@@ -57,7 +57,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import ClassVar, Literal
 
 import numpy as np
@@ -584,39 +584,12 @@ class PrestressRitz(KrylovSpace):
 
 def _prestress_pairs(pm: PrestressedModel, contact, depth: int, which: str = "load"):
     """Seeds as :func:`clutchfem.softening.ritz_pairs`: D(mu) ("load") or both N and Tt ("all",
-    one space for every friction coefficient of a design)."""
-    from .units import wrap_angle
+    one space for every friction coefficient of a design); the space K-orthonormal (M - K_sigma1
+    is indefinite), the pairs theta = 1 / w^2 of M_eff on it."""
+    from .softening import krylov_seeds, krylov_space
 
-    seeds = [pm.f1]
-    if contact is not None:
-        nd = contact.nodes
-        loads = [contact.load] if which == "load" else [nd.normal_load, nd.tangent_load]
-        for s_ in np.unique(nd.shoe):
-            sel = np.nonzero(nd.shoe == s_)[0]
-            a = wrap_angle(nd.angle[sel] - nd.angle[sel].mean())
-            for D in loads:
-                for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
-                    seeds.append(D[:, sel] @ wgt)
-    Kr, Mr, T = pm.Kr, pm.Mr, pm.T
-    blocks: list[np.ndarray] = []
-
-    def k_orthonormal(X):
-        for _ in range(2):
-            for Vb in blocks:
-                X = X - Vb @ (Vb.T @ (Kr @ X))
-        G = X.T @ (Kr @ X)
-        d, Q = np.linalg.eigh((G + G.T) / 2)
-        keep = d > max(d.max(), 0.0) * 1e-12
-        return X @ (Q[:, keep] / np.sqrt(d[keep]))
-
-    X = pm.factor.solve(T.T @ np.column_stack(seeds))
-    for _ in range(depth):
-        X = k_orthonormal(X)
-        if X.shape[1] == 0:
-            break
-        blocks.append(X)
-        X = pm.factor.solve(Mr @ X)
-    V = np.hstack(blocks)
+    V = krylov_space(pm, krylov_seeds(pm.f1, contact, which), depth, pm.Kr)
+    Mr = pm.Mr
     Mv = V.T @ (Mr @ V)
     theta, Y = np.linalg.eigh((Mv + Mv.T) / 2)
-    return theta, T @ (V @ Y)
+    return theta, pm.T @ (V @ Y)

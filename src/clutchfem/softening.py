@@ -142,15 +142,11 @@ def get_softening(spec) -> Softening:
                          "centrifugal pre-stress stiffness)")
 
 
-def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndarray, np.ndarray]:
-    """Load-dependent Ritz pairs (w_j^2, Phi) of (K, M), M-orthonormal (see module doc):
-
-        V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X},  X = K^-1 [f1, contact loads],
-
-    M-orthonormalised by block Gram-Schmidt (twice), then the Rayleigh-Ritz pairs on V.  The
-    contact loads are, per shoe, a uniform and a tip-heavy distribution of D(mu) (``which``
-    = "load") or of both N and Tt ("all")."""
-    seeds = [model.f1]
+def krylov_seeds(f1: np.ndarray, contact, which: str = "load") -> list[np.ndarray]:
+    """The seeds of the Ritz spaces: the centrifugal load f1 and, per shoe, a uniform and a
+    tip-heavy distribution of the contact load D(mu) (``which`` = "load") or of both its parts
+    N and Tt ("all": one space for every friction coefficient of a design)."""
+    seeds = [f1]
     if contact is not None:
         nd = contact.nodes
         loads = [contact.load] if which == "load" else [nd.normal_load, nd.tangent_load]
@@ -161,31 +157,50 @@ def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndar
             for D in loads:
                 for wgt in (np.ones(len(sel)), a / max(np.abs(a).max(), 1e-300)):
                     seeds.append(D[:, sel] @ wgt)
-    Mr, Kr, T = model.Mr, model.Kr, model.T
+    return seeds
+
+
+def krylov_space(model, seeds: list[np.ndarray], depth: int, inner) -> np.ndarray:
+    """V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X}, X = K^-1 T' seeds, on the reduced
+    dofs of ``model`` (its ``Mr``, ``T`` and factorisation of ``Kr``), orthonormal in the
+    ``inner`` product matrix (block Gram-Schmidt, twice for stability)."""
+    Mr, T = model.Mr, model.T
     blocks: list[np.ndarray] = []
 
-    def m_orthonormal(X):
-        for _ in range(2):  # block Gram-Schmidt in the M inner product, twice for stability
+    def orthonormal(X):
+        for _ in range(2):
             for Vb in blocks:
-                X = X - Vb @ (Vb.T @ (Mr @ X))
-        G = X.T @ (Mr @ X)
+                X = X - Vb @ (Vb.T @ (inner @ X))
+        G = X.T @ (inner @ X)
         d, Q = np.linalg.eigh((G + G.T) / 2)
         keep = d > max(d.max(), 0.0) * 1e-12
         return X @ (Q[:, keep] / np.sqrt(d[keep]))
 
     X = model.factor.solve(T.T @ np.column_stack(seeds))
     for _ in range(max(1, depth)):
-        X = m_orthonormal(X)
+        X = orthonormal(X)
         if X.shape[1] == 0:
             break
         blocks.append(X)
         X = model.factor.solve(Mr @ X)
-    V = np.hstack(blocks)
+    return np.hstack(blocks)
+
+
+def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndarray, np.ndarray]:
+    """Load-dependent Ritz pairs (w_j^2, Phi) of (K, M), M-orthonormal (see module doc):
+
+        V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X},  X = K^-1 [f1, contact loads],
+
+    M-orthonormalised by block Gram-Schmidt (twice), then the Rayleigh-Ritz pairs on V.  The
+    contact loads are, per shoe, a uniform and a tip-heavy distribution of D(mu) (``which``
+    = "load") or of both N and Tt ("all"): :func:`krylov_seeds`."""
+    V = krylov_space(model, krylov_seeds(model.f1, contact, which), depth, model.Mr)
+    Kr = model.Kr
     Kv = V.T @ (Kr @ V)
     vals, Y = np.linalg.eigh((Kv + Kv.T) / 2)
     if vals[0] <= 0:
         raise SolverError("spin-softening Ritz space is not positive definite: is the part clamped?")
-    return vals, T @ (V @ Y)
+    return vals, model.T @ (V @ Y)
 
 
 class _ModalResponse:
