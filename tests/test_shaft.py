@@ -101,3 +101,22 @@ def test_shaft_bad_input():
         replace(CASES[0], tip_rotary_inertia_kg_m2=float("nan"))
     with pytest.raises(ParameterError):
         sh.frequency_matrix(5.0, CASES[0], "typo")
+
+
+@pytest.mark.parametrize("shaft", CASES)
+def test_fe_bracketed_first_root_is_the_scanned_one(shaft):
+    """first_frequency_coefficient (FE eigenvalue -> determinant root in a 1e-4 bracket)
+    finds the same first root as the determinant's own scan, to round-off."""
+    b, b_fe = sh.first_frequency_coefficient(shaft)
+    assert b == pytest.approx(float(sh.frequency_coefficients(shaft, 1)[0]), rel=1e-12)
+    assert b_fe == pytest.approx(b, rel=1e-5)
+
+
+def test_first_root_falls_back_to_the_scan_when_the_fe_bracket_misses(monkeypatch):
+    """A wrong FE value (no sign change in its bracket): the scan answers, and the FE value is
+    returned as it was, for the caller's agreement check to refuse."""
+    shaft = CASES[4]
+    monkeypatch.setattr(sh, "fe_frequency_coefficients", lambda *a, **k: np.array([1.3 * 32.0]))
+    b, b_fe = sh.first_frequency_coefficient(shaft)
+    assert b == pytest.approx(float(sh.frequency_coefficients(shaft, 1)[0]), rel=1e-12)
+    assert b_fe == pytest.approx(1.3 * 32.0)

@@ -243,12 +243,16 @@ def frequency_coefficients(shaft: OverhungShaft, n_roots: int = 2,
 # --------------------------------------------------------------------------------------
 
 
-def _beam_matrices(h: float, EI: float, mu: float) -> tuple[np.ndarray, np.ndarray]:
-    k = EI / h**3 * np.array([[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h],
-                              [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
-    m = mu * h / 420 * np.array([[156, 22 * h, 54, -13 * h],
+def _beam_matrices(h, EI: float, mu: float) -> tuple[np.ndarray, np.ndarray]:
+    """Hermite beam element stiffness and consistent mass, (4, 4) each, or (4, 4, n) for
+    an array of element lengths ``h``."""
+    h = np.asarray(h, dtype=float)
+    o = np.ones_like(h)
+    k = EI / h**3 * np.array([[12 * o, 6 * h, -12 * o, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h],
+                              [-12 * o, -6 * h, 12 * o, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
+    m = mu * h / 420 * np.array([[156 * o, 22 * h, 54 * o, -13 * h],
                                  [22 * h, 4 * h * h, 13 * h, -3 * h * h],
-                                 [54, 13 * h, 156, -22 * h],
+                                 [54 * o, 13 * h, 156 * o, -22 * h],
                                  [-13 * h, -3 * h * h, -22 * h, 4 * h * h]])
     return k, m
 
@@ -260,8 +264,9 @@ def fe_frequency_coefficients(shaft: OverhungShaft, n_modes: int = 2, elements: 
     ``elements`` are shared between the spans in proportion to length (at least 4 each);
     the disc adds ``M`` to the tip deflection and ``J`` to the tip rotation.  The
     generalised problem is solved as ``M x = (1/omega^2) K x`` (``K`` is positive definite
-    with the two pins; ``M`` may be indefinite when ``J < 0``).  With ``richardson`` the
-    O(h^4) eigenvalue error is extrapolated from ``elements`` and ``2 elements``.
+    with the two pins; ``M`` may be indefinite when ``J < 0``); every eigenvalue is computed,
+    so no mode can be skipped.  With ``richardson`` the O(h^4) eigenvalue error is
+    extrapolated from ``elements`` and ``2 elements``.
     """
     if elements < 2:
         raise ParameterError("elements", elements, "integer >= 2")
@@ -274,17 +279,39 @@ def fe_frequency_coefficients(shaft: OverhungShaft, n_modes: int = 2, elements: 
     n2 = max(4, elements - n1)
     x = np.concatenate([np.linspace(0.0, l1, n1 + 1), l1 + np.linspace(0.0, l2, n2 + 1)[1:]])
     nn = x.size
+    EI, mu = shaft.bending_stiffness_N_m2, shaft.mass_per_length_kg_m
+    k, m = _beam_matrices(np.diff(x), EI, mu)  # (4, 4, ne) each
+    # element e couples dofs 2e .. 2e+3: scatter-add every element at once
+    dofs = 2 * np.arange(nn - 1)[None, :] + np.arange(4)[:, None]  # (4, ne)
+    rows = np.broadcast_to(dofs[:, None, :], k.shape).ravel()
+    cols = np.broadcast_to(dofs[None, :, :], k.shape).ravel()
     K = np.zeros((2 * nn, 2 * nn))
     M = np.zeros((2 * nn, 2 * nn))
-    EI, mu = shaft.bending_stiffness_N_m2, shaft.mass_per_length_kg_m
-    for e in range(nn - 1):
-        k, m = _beam_matrices(x[e + 1] - x[e], EI, mu)
-        s = slice(2 * e, 2 * e + 4)
-        K[s, s] += k
-        M[s, s] += m
+    np.add.at(K, (rows, cols), k.ravel())
+    np.add.at(M, (rows, cols), m.ravel())
     M[2 * (nn - 1), 2 * (nn - 1)] += shaft.tip_mass_kg
     M[2 * nn - 1, 2 * nn - 1] += shaft.tip_rotary_inertia_kg_m2
     free = np.setdiff1d(np.arange(2 * nn), [0, 2 * n1])
     lam = eigh(M[np.ix_(free, free)], K[np.ix_(free, free)], eigvals_only=True)
     lam = np.sort(lam[lam > 0])[::-1][:n_modes]  # 1/omega^2, largest first
     return (mu / (EI * lam)) ** 0.25
+
+
+def first_frequency_coefficient(shaft: OverhungShaft, rtol: float = 1e-4) -> tuple[float, float]:
+    """(beta_1 from the exact determinant, beta_1 from the FE model) [1/m].
+
+    The FE model computes every eigenvalue, so its lowest one cannot skip a root; it
+    brackets the determinant's first root (within ``rtol``), which ``brentq`` refines to
+    round-off.  Should the bracket hold no sign change (the two models disagreeing), the
+    determinant's own scan (:func:`frequency_coefficients`) answers and the caller compares
+    the two."""
+    b_fe = float(fe_frequency_coefficients(shaft, 1)[0])
+
+    def f(x: float) -> float:
+        return float(frequency_determinant(x, shaft)[0])
+
+    a, b = b_fe * (1 - rtol), b_fe * (1 + rtol)
+    fa, fb = f(a), f(b)
+    if fa * fb < 0:
+        return float(brentq(f, a, b, xtol=1e-14, rtol=1e-13, maxiter=200)), b_fe
+    return float(frequency_coefficients(shaft, 1)[0]), b_fe
