@@ -198,26 +198,31 @@ def model_warnings(res, yield_strength: float) -> list[str]:
     return out
 
 
-def drum_intrusion(res, chunk: int = 64) -> tuple[int, float, tuple[float, float]]:
+def drum_intrusion(res) -> tuple[int, float, tuple[float, float]]:
     """(state index, depth [m], node position) of the deepest pass of a node that is not a
-    contact node beyond the drum circle, |x + u| - R_d (depth <= 0: none passes)."""
+    contact node beyond the drum circle, |x + u| - R_d (depth <= 0: none passes).
+
+    Only nodes with r_0 + max|u| >= R_d can pass (|x + u| <= r_0 + |u|; max|u| over every
+    node and state is the curve's ``max_displacement_m``), so only their rows of the fields
+    are formed: the same deepest pass as checking every node."""
     b = res.fields.fe_basis
     xd = np.concatenate([a[0] for a in (b.nodal_dofs, b.facet_dofs, b.edge_dofs) if a.shape[0] > 0])
-    yd = xd + 1
     X = b.doflocs[:, xd]
     nd = res.contact.nodes
     keep = ~np.isin(xd, nd.dof_x)
     # a one-sector model's cut_b copies of contact nodes are contact nodes too
     r0 = np.hypot(X[0], X[1])
     keep &= r0 < nd.drum_radius - 0.5 * float(np.min(nd.gap0, initial=0.0)) - 1e-12
-    xd, yd, X = xd[keep], yd[keep], X[:, keep]
+    umax = float(np.nanmax(res.curve["max_displacement_m"], initial=0.0)) if len(res.curve) else 0.0
+    keep &= r0 + umax * (1 + 1e-9) >= nd.drum_radius
     best = (0, -np.inf, (math.nan, math.nan))
-    n = res.fields.n
-    for a in range(0, n, chunk):
-        sl = slice(a, min(a + chunk, n))
-        U = res.fields.block(sl)
-        r = np.hypot(X[0][:, None] + U[xd], X[1][:, None] + U[yd]) - nd.drum_radius
-        i, j = np.unravel_index(int(np.argmax(r)), r.shape)
-        if r[i, j] > best[1]:
-            best = (a + j, float(r[i, j]), (float(X[0, i]), float(X[1, i])))
-    return best
+    if not keep.any() or res.fields.n == 0:
+        return best
+    xd, X = xd[keep], X[:, keep]
+    f = res.fields
+    rows = np.concatenate([xd, xd + 1])
+    U = f.U[rows] if f.U is not None else f.basis[rows] @ f.coef
+    k = len(xd)
+    r = np.hypot(X[0][:, None] + U[:k], X[1][:, None] + U[k:]) - nd.drum_radius
+    i, j = np.unravel_index(int(np.argmax(r)), r.shape)
+    return int(j), float(r[i, j]), (float(X[0, i]), float(X[1, i]))
