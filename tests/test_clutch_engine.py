@@ -136,3 +136,38 @@ def test_binary_csv_is_refused(tmp_path, payload):
 def test_folder_as_csv_is_refused(tmp_path):
     with pytest.raises(InputError, match="not a file"):
         EngineCurve.from_csv(tmp_path)
+
+
+def _counting(f):
+    calls = []
+
+    def g(r):
+        r = np.atleast_1d(np.asarray(r, dtype=float))
+        calls.extend(r.tolist())
+        return f(r)
+
+    return g, calls
+
+
+@pytest.mark.parametrize("clutch", [
+    lambda r: np.maximum(0.001 * (r - 1000.0), 0.0),  # one crossing
+    lambda r: np.zeros_like(r),  # never holds
+    lambda r: np.full_like(r, 50.0),  # holds at the start
+    lambda r: np.where(r > 4000.0, np.inf, 0.0),  # self-locking: bisection
+    lambda r: 1.0 + 3.0 * np.sin((r - 2500.0) / 900.0) ** 2,  # several up and down crossings
+    lambda r: np.where(r > 6000.0, 3.0 + 1e-3 * (r - 6000.0), 0.0),  # a jump through the curve
+])
+def test_first_slip_rpm_equals_slip_rpm_and_stops_at_the_answer(clutch):
+    """The early-stopping walk gives slip_rpm's answer on the same grid, and evaluates the
+    clutch torque at no grid speed above the bracket of the first upward crossing."""
+    from clutchfem.clutch.engine import first_slip_rpm
+
+    c = EngineCurve.default()
+    grid = np.arange(c.rpm_range[0], c.rpm_range[1], 250.0)
+    f, calls = _counting(clutch)
+    s = first_slip_rpm(c, f, grid)
+    assert s == slip_rpm(c, clutch, grid=grid)
+    if s is not None:
+        above = np.union1d(grid, c.rpm_range)
+        above = above[above > s]
+        assert max(calls) <= above[0]  # nothing past the bracket of the answer

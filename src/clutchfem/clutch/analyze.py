@@ -54,7 +54,7 @@ import pandas as pd
 from ..errors import ClutchfemError, ParameterError
 from ..units import rpm_to_rad_s, wrap_angle
 from . import ripple as ripple_mod
-from .engine import EngineCurve, _holds, torque_crossings
+from .engine import EngineCurve, _holds, first_slip_rpm, torque_crossings
 from .shoe import ShoeGeometry, shoe_torque
 
 #: Defaults of the requirement factors.  The thesis keeps a and b confidential: ASSUMED.
@@ -449,7 +449,8 @@ def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAns
             continue
         case = secondary_case(design, mu * f)
         torque[key] = float(FETorque(case)(probe)[0])
-        slips[key] = slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm
+        # the slip speed only (no later crossings): the grid walk stops at the answer
+        slips[key] = first_slip_rpm(engine, FETorque(case), bracket_grid(engine, GRID_RPM_SENSITIVITY))
     if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
         t_lo, t_hi = torque["x0.7"], torque["x1.3"]
         pct = {"x0.7": 100 * (t_lo / t_probe - 1), "x1.3": 100 * (t_hi / t_probe - 1)}

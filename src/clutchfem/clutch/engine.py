@@ -16,6 +16,7 @@ points is an ASSUMPTION** (a smooth hump typical of 2-stroke saw engines); it is
 from __future__ import annotations
 
 import csv
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -262,31 +263,57 @@ def torque_crossings(
         grid = np.union1d(np.asarray(grid, dtype=float), [a, b])
         grid = grid[(grid >= a) & (grid <= b)]
 
-    def holds(x) -> np.ndarray:
-        return _holds(curve, clutch_torque_at_rpm, x)
-
     t = np.asarray(clutch_torque_at_rpm(grid), dtype=float)
-    h = holds(grid)
-    out: list[tuple[float, str]] = []
-    for i in np.nonzero(h[1:] != h[:-1])[0]:
-        x0, x1 = float(grid[i]), float(grid[i + 1])
-        up = bool(h[i + 1])
-        f0, f1 = t[i] - curve.torque_at(x0), t[i + 1] - curve.torque_at(x1)
-        if t[i] > 0 and t[i + 1] > 0 and np.isfinite(f0) and np.isfinite(f1) and f0 * f1 < 0:
-            # a strict sign change of a continuous difference: Brent's method (a few
-            # evaluations instead of ~30 halvings; each may be an FE contact solve)
-            def diff(x):
-                return float(np.asarray(clutch_torque_at_rpm(np.array([x])), dtype=float)[0]) - curve.torque_at(x)
+    h = _holds(curve, clutch_torque_at_rpm, grid)
+    return [_refine(curve, clutch_torque_at_rpm, float(grid[i]), float(grid[i + 1]), t[i], t[i + 1], bool(h[i + 1]))
+            for i in np.nonzero(h[1:] != h[:-1])[0]]
 
-            out.append((brentq(diff, x0, x1, xtol=1e-9 * max(1.0, x1), rtol=1e-12), "up" if up else "down"))
-            continue
-        for _ in range(60):
-            xm = 0.5 * (x0 + x1)
-            if bool(holds(np.array([xm]))[0]) == up:
-                x1 = xm
-            else:
-                x0 = xm
-            if x1 - x0 < 1e-9 * max(1.0, x1):
-                break
-        out.append((0.5 * (x0 + x1), "up" if up else "down"))
-    return out
+
+def first_slip_rpm(
+    curve: EngineCurve,
+    clutch_torque_at_rpm: Callable[[np.ndarray], np.ndarray],
+    grid: np.ndarray,
+) -> float | None:
+    """:func:`slip_rpm` on ``grid`` without the crossings past the first upward one: the
+    grid is walked upwards and the walk stops there, so a clutch torque that costs an FE
+    solve per speed is not evaluated beyond the answer.  Equal to ``slip_rpm(curve, f,
+    grid=grid)`` (same bracket, same refinement)."""
+    lo, hi = curve.rpm_range
+    grid = np.union1d(np.asarray(grid, dtype=float), [lo, hi])
+    grid = grid[(grid >= lo) & (grid <= hi)]
+    t_prev, h_prev = None, None
+    for i, x in enumerate(grid):
+        t = float(np.asarray(clutch_torque_at_rpm(np.array([x])), dtype=float)[0])
+        e = t - float(curve.torque_at(x))
+        if math.isnan(e):
+            raise InputError("clutch torque function returned NaN")
+        h = e >= 0.0 and t > 0.0
+        if i == 0 and h:
+            return float(lo)
+        if h and not h_prev:
+            return _refine(curve, clutch_torque_at_rpm, float(grid[i - 1]), float(x), t_prev, t, True)[0]
+        t_prev, h_prev = t, h
+    return None
+
+
+def _refine(curve: EngineCurve, clutch_torque_at_rpm, x0: float, x1: float, t0: float, t1: float,
+            up: bool) -> tuple[float, str]:
+    """The crossing in the grid bracket [x0, x1] (clutch torques t0, t1 there; ``up``: the
+    clutch holds at x1 and not at x0), refined to 1e-9 relative (see :func:`torque_crossings`)."""
+    f0, f1 = t0 - curve.torque_at(x0), t1 - curve.torque_at(x1)
+    if t0 > 0 and t1 > 0 and np.isfinite(f0) and np.isfinite(f1) and f0 * f1 < 0:
+        # a strict sign change of a continuous difference: Brent's method (a few
+        # evaluations instead of ~30 halvings; each may be an FE contact solve)
+        def diff(x):
+            return float(np.asarray(clutch_torque_at_rpm(np.array([x])), dtype=float)[0]) - curve.torque_at(x)
+
+        return brentq(diff, x0, x1, xtol=1e-9 * max(1.0, x1), rtol=1e-12), "up" if up else "down"
+    for _ in range(60):
+        xm = 0.5 * (x0 + x1)
+        if bool(_holds(curve, clutch_torque_at_rpm, np.array([xm]))[0]) == up:
+            x1 = xm
+        else:
+            x0 = xm
+        if x1 - x0 < 1e-9 * max(1.0, x1):
+            break
+    return 0.5 * (x0 + x1), "up" if up else "down"
