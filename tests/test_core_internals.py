@@ -150,3 +150,42 @@ def test_injected_solver_factory_is_used(concept1_coarse):
     ref = design(cm, p).sweep("0,9000")
     assert len(calls) == 1 and calls[0][0] == calls[0][1]
     assert np.allclose(r.curve["normal_force_N"], ref.curve["normal_force_N"], rtol=1e-8)
+
+
+@pytest.mark.parametrize("strategy", ["ritz", "prestress"])
+def test_shared_space_extends_the_load_space_exactly(concept1_coarse, strategy):
+    """seeds='all' built as the extension of a 'load' space (base_mu: only the tangential
+    seeds back-solved) is the same space as built from scratch: principal-angle cosines 1,
+    orthonormal in the strategy's inner product, and the same answers to 1e-8."""
+    from dataclasses import replace
+
+    from clutchfem.softening import get_softening
+    from clutchfem.sweep import LoadCase, sweep
+
+    d = design(*concept1_coarse)
+    soft = replace(get_softening(strategy), seeds="all")
+    ext = replace(soft, base_mu=0.165)
+    c = d.contact(0.3)
+    Vs = np.hstack(soft._cached(d.model, c)[0])
+    Ve = np.hstack(ext._cached(d.model, c)[0])
+    inner = soft.inner(soft.operator_model(d.model))
+    assert Ve.shape == Vs.shape
+    assert np.abs(Ve.T @ (inner @ Ve) - np.eye(Ve.shape[1])).max() < 1e-7
+    cos = np.linalg.svd(Vs.T @ (inner @ Ve), compute_uv=False)
+    assert np.all(np.abs(cos - 1.0) < 1e-6)
+    # the design's own load space was built on the way and is shared with its load case
+    base_key = [k for k in d.model.__dict__["_ritz_cache"] if k[2] == "load" and k[0] == soft.name]
+    assert base_key
+    a = sweep(LoadCase(d.model, c, soft), [6000.0, 9000.0, 12000.0])
+    b = sweep(LoadCase(d.model, c, ext), [6000.0, 9000.0, 12000.0])
+    np.testing.assert_allclose(b.curve["normal_force_N"], a.curve["normal_force_N"], rtol=1e-8)
+
+
+@pytest.mark.parametrize("kw", [{"base_mu": 0.2}, {"seeds": "all", "base_mu": -0.1},
+                                {"seeds": "all", "base_mu": True}, {"seeds": "all", "base_mu": 1.5}])
+def test_base_mu_is_checked(kw):
+    from clutchfem.errors import ParameterError
+    from clutchfem.softening import Ritz
+
+    with pytest.raises(ParameterError, match="base_mu"):
+        Ritz(**kw)

@@ -553,11 +553,19 @@ class PrestressRitz(KrylovSpace):
 
     name = "prestress"
 
+    def operator_model(self, model):
+        return prestressed(model)
+
+    def inner(self, model):
+        return model.Kr
+
+    def pairs(self, model, V):
+        return _prestress_pairs_on(model, V)
+
     def bind(self, model, contact):
         from .softening import _ModalResponse
 
-        theta, Psi = self.cached_pairs(model, contact,
-                                       lambda: _prestress_pairs(prestressed(model), contact, self.depth, self.seeds))
+        theta, Psi = self.cached_pairs(model, contact)
 
         class _Response(_ModalResponse):
             def coefficients(self, omega: float) -> np.ndarray:
@@ -582,14 +590,9 @@ class PrestressRitz(KrylovSpace):
         return r
 
 
-def _prestress_pairs(pm: PrestressedModel, contact, depth: int, which: str = "load"):
-    """Seeds as :func:`clutchfem.softening.ritz_pairs`: D(mu) ("load") or both N and Tt ("all",
-    one space for every friction coefficient of a design); the space K-orthonormal (M - K_sigma1
-    is indefinite), the pairs theta = 1 / w^2 of M_eff on it."""
-    from .softening import krylov_seeds, krylov_space
-
-    V = krylov_space(pm, krylov_seeds(pm.f1, contact, which), depth, pm.Kr)
-    Mr = pm.Mr
-    Mv = V.T @ (Mr @ V)
+def _prestress_pairs_on(pm: PrestressedModel, V: np.ndarray):
+    """theta = 1 / w^2 and Psi (K-orthonormal) of M - K_sigma1 on the K-orthonormal reduced
+    basis V."""
+    Mv = V.T @ (pm.Mr @ V)
     theta, Y = np.linalg.eigh((Mv + Mv.T) / 2)
     return theta, pm.T @ (V @ Y)

@@ -72,10 +72,19 @@ class Off:
 @dataclass(frozen=True)
 class KrylovSpace:
     """What the Ritz strategies share: ``depth`` Krylov blocks, the ``seeds`` rule, and the
-    pairs cached on the model per (strategy, depth, seeds, contact nodes, friction)."""
+    space and its pairs cached on the model per (strategy, depth, seeds, base, contact nodes,
+    friction).
+
+    ``base_mu`` (with ``seeds="all"`` only): build the "all" space as the extension of the
+    "load" space of friction coefficient ``base_mu`` (the design's own load case, whose space
+    is then computed once and shared) by the tangential seeds Tt: the same space as from
+    scratch (span{D(mu) w, Tt w} = span{N w, Tt w}), with the back-solves of the Tt seeds
+    only.  A subclass supplies ``pairs(model, contact, V)`` (Rayleigh-Ritz on the reduced
+    basis V) and ``inner(model)`` (the matrix V is orthonormal in)."""
 
     depth: int = 3
     seeds: str = "load"
+    base_mu: float | None = None
     name = "krylov"
 
     def __post_init__(self):
@@ -83,16 +92,45 @@ class KrylovSpace:
             raise ParameterError("ritz depth", self.depth, "an integer in [1, 20] (Krylov blocks)")
         if self.seeds not in ("load", "all"):
             raise ParameterError("ritz seeds", self.seeds, "'load' or 'all'")
+        if self.base_mu is not None and (self.seeds != "all" or isinstance(self.base_mu, bool)
+                                         or not isinstance(self.base_mu, (int, float))
+                                         or not 0.0 <= self.base_mu <= 1.0):
+            raise ParameterError("ritz base_mu", self.base_mu, "None, or a friction coefficient in [0, 1] with "
+                                 "seeds='all' (the load space the shared space extends)")
 
-    def cached_pairs(self, model, contact, compute):
-        """``compute()`` once per key on ``model`` (the nodes are kept with the pairs: their id
-        is then never reused)."""
+    def operator_model(self, model):
+        """The model whose (K, M) the space is built for (PrestressRitz: M - K_sigma1)."""
+        return model
+
+    def inner(self, model):
+        raise NotImplementedError
+
+    def pairs(self, model, V: np.ndarray):
+        raise NotImplementedError
+
+    def cached_pairs(self, model, contact):
+        """The pairs of this space on ``model`` (computed once per key; the nodes are kept with
+        them: their id is then never reused)."""
+        return self._cached(model, contact)[1]
+
+    def _cached(self, model, contact):
+        """(blocks of the reduced space, pairs), cached on ``model``."""
+        base = self.base_mu if contact is not None else None
         friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
-        key = (self.name, self.depth, self.seeds, None if contact is None else id(contact.nodes), friction)
+        key = (self.name, self.depth, self.seeds, base, None if contact is None else id(contact.nodes), friction)
         cache = model.__dict__.setdefault("_ritz_cache", {})
         if key not in cache:
-            cache[key] = (None if contact is None else contact.nodes, compute())
-        return cache[key][1]
+            m = self.operator_model(model)
+            if base is None:
+                blocks = krylov_blocks(m, krylov_seeds(m.f1, contact, self.seeds), self.depth, self.inner(m))
+            else:
+                from dataclasses import replace
+
+                load = replace(self, seeds="load", base_mu=None)._cached(model, contact.with_mu(base))[0]
+                blocks = load + krylov_blocks(m, krylov_seeds(m.f1, contact, "tangent"), self.depth,
+                                              self.inner(m), base=load)
+            cache[key] = (None if contact is None else contact.nodes, blocks, self.pairs(m, np.hstack(blocks)))
+        return cache[key][1:]
 
 
 @dataclass(frozen=True)
@@ -103,13 +141,19 @@ class Ritz(KrylovSpace):
     space per friction coefficient); ``"all"`` with both its parts N and Tt, one space for
     every mu of a design (a superset of each ``"load"`` space's seeds: at least as accurate;
     the two differ by the Ritz truncation error, ~1e-8 in the normal force).  ``analyze``
-    uses ``"all"`` for its secondary cases (friction off, mu +-30 %) and ``"load"`` for the
-    design's own mu."""
+    uses ``"load"`` for the design's own mu and, for its secondary cases (friction off, mu
+    +-30 %), ``"all"`` built as the extension of that space (``base_mu`` = the design's mu)."""
 
     name = "ritz"
 
+    def inner(self, model):
+        return model.Mr
+
+    def pairs(self, model, V):
+        return _ritz_pairs_on(model, V)
+
     def bind(self, model, contact):
-        w2, Phi = self.cached_pairs(model, contact, lambda: ritz_pairs(model, contact, self.depth, self.seeds))
+        w2, Phi = self.cached_pairs(model, contact)
         return _ModalResponse(model, contact, w2, Phi)
 
 
@@ -145,11 +189,13 @@ def get_softening(spec) -> Softening:
 def krylov_seeds(f1: np.ndarray, contact, which: str = "load") -> list[np.ndarray]:
     """The seeds of the Ritz spaces: the centrifugal load f1 and, per shoe, a uniform and a
     tip-heavy distribution of the contact load D(mu) (``which`` = "load") or of both its parts
-    N and Tt ("all": one space for every friction coefficient of a design)."""
-    seeds = [f1]
+    N and Tt ("all": one space for every friction coefficient of a design); "tangent": the
+    Tt distributions only (what extends a "load" space to the "all" one)."""
+    seeds = [f1] if which != "tangent" else []
     if contact is not None:
         nd = contact.nodes
-        loads = [contact.load] if which == "load" else [nd.normal_load, nd.tangent_load]
+        loads = {"load": [contact.load], "all": [nd.normal_load, nd.tangent_load],
+                 "tangent": [nd.tangent_load]}[which]
         for s_ in np.unique(nd.shoe):
             sel = np.nonzero(nd.shoe == s_)[0]
             a = nd.angle[sel]
@@ -160,30 +206,47 @@ def krylov_seeds(f1: np.ndarray, contact, which: str = "load") -> list[np.ndarra
     return seeds
 
 
-def krylov_space(model, seeds: list[np.ndarray], depth: int, inner) -> np.ndarray:
-    """V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X}, X = K^-1 T' seeds, on the reduced
-    dofs of ``model`` (its ``Mr``, ``T`` and factorisation of ``Kr``), orthonormal in the
-    ``inner`` product matrix (block Gram-Schmidt, twice for stability)."""
-    Mr, T = model.Mr, model.T
-    blocks: list[np.ndarray] = []
+def krylov_blocks(model, seeds: list[np.ndarray], depth: int, inner, base: list[np.ndarray] = ()) -> list[np.ndarray]:
+    """The blocks of V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X}, X = K^-1 T' seeds, on
+    the reduced dofs of ``model`` (its ``Mr``, ``T`` and factorisation of ``Kr``), orthonormal
+    in the ``inner`` product matrix (block Gram-Schmidt, twice for stability).
 
-    def orthonormal(X):
-        for _ in range(2):
-            for Vb in blocks:
-                X = X - Vb @ (Vb.T @ (inner @ X))
+    ``base``: the blocks of another such space of the same model, depth and inner product;
+    the blocks returned then extend it: block k is orthogonalised against the base's blocks
+    0..k (which keeps every vector in the joint Krylov space of both seed sets) and, at the
+    end, against all of them, so that base + returned blocks is an orthonormal basis of the
+    Krylov space of the two seed sets together."""
+    blocks: list[np.ndarray] = []
+    if not seeds:
+        return blocks
+
+    def orthonormal(X, against):
+        if against:  # classical block Gram-Schmidt, twice (as stable as modified, one product each)
+            V = np.hstack(against)
+            for _ in range(2):
+                X = X - V @ (V.T @ (inner @ X))
         G = X.T @ (inner @ X)
         d, Q = np.linalg.eigh((G + G.T) / 2)
-        keep = d > max(d.max(), 0.0) * 1e-12
+        keep = d > max(d.max(initial=0.0), 0.0) * 1e-12
         return X @ (Q[:, keep] / np.sqrt(d[keep]))
 
-    X = model.factor.solve(T.T @ np.column_stack(seeds))
-    for _ in range(max(1, depth)):
-        X = orthonormal(X)
+    X = model.factor.solve(model.T.T @ np.column_stack(seeds))
+    for k in range(max(1, depth)):
+        X = orthonormal(X, list(base[:k + 1]) + blocks)
         if X.shape[1] == 0:
             break
         blocks.append(X)
-        X = model.factor.solve(Mr @ X)
-    return np.hstack(blocks)
+        if k + 1 < depth:  # (the last block is not multiplied)
+            X = model.factor.solve(model.Mr @ X)
+    if len(base) and blocks:  # block k against the base's blocks after k too
+        blocks = [orthonormal(np.hstack(blocks), list(base))]
+    return blocks
+
+
+def krylov_space(model, seeds: list[np.ndarray], depth: int, inner) -> np.ndarray:
+    """V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X}, X = K^-1 T' seeds, on the reduced
+    dofs of ``model``, orthonormal in the ``inner`` product matrix (:func:`krylov_blocks`)."""
+    return np.hstack(krylov_blocks(model, seeds, depth, inner))
 
 
 def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndarray, np.ndarray]:
@@ -194,7 +257,11 @@ def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndar
     M-orthonormalised by block Gram-Schmidt (twice), then the Rayleigh-Ritz pairs on V.  The
     contact loads are, per shoe, a uniform and a tip-heavy distribution of D(mu) (``which``
     = "load") or of both N and Tt ("all"): :func:`krylov_seeds`."""
-    V = krylov_space(model, krylov_seeds(model.f1, contact, which), depth, model.Mr)
+    return _ritz_pairs_on(model, krylov_space(model, krylov_seeds(model.f1, contact, which), depth, model.Mr))
+
+
+def _ritz_pairs_on(model, V: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rayleigh-Ritz pairs (w_j^2, Phi) of (K, M) on the M-orthonormal reduced basis V."""
     Kr = model.Kr
     Kv = V.T @ (Kr @ V)
     vals, Y = np.linalg.eigh((Kv + Kv.T) / 2)

@@ -398,14 +398,16 @@ def slip_step(case, engine: EngineCurve, step: float = GRID_RPM) -> SlipAnswer:
 def secondary_case(design, mu: float):
     """The load case of a secondary friction coefficient (friction off, mu +-30 %): the
     design's softening, with one Ritz space for all of them (seeded by both contact load
-    parts, :class:`~clutchfem.softening.Ritz` ``seeds='all'``) instead of one each."""
+    parts, :class:`~clutchfem.softening.Ritz` ``seeds='all'``) instead of one each, built as
+    the extension of the design's own space (``base_mu``: only the tangential seeds are
+    back-solved)."""
     from dataclasses import replace
 
     from ..softening import get_softening
 
     soft = get_softening(design.op.softening)
     if hasattr(soft, "seeds"):  # Ritz and PrestressRitz
-        soft = replace(soft, seeds="all")
+        soft = replace(soft, seeds="all", base_mu=float(design.op.mu))
     return design.case(mu=mu, softening=soft)
 
 
