@@ -20,7 +20,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import scipy.linalg as sla
 
 from .errors import SolverError
 
@@ -74,8 +73,16 @@ def solve_lcp(G, q: np.ndarray, active0: np.ndarray | None = None,
     scale_q = max(float(np.max(np.abs(q))), 1e-300)
     if np.all(q >= 0):
         return np.zeros(m), np.zeros(m, dtype=bool)
-    lam, active = _active_set(G, q, active0, max_iter)
-    res = math.inf if lam is None else lcp_residual(G, q, lam)
+    lam, active, w, scale = _active_set(G, q, active0, max_iter)
+    if lam is None:
+        res = math.inf
+    elif scale is not None and np.array_equal(lam > 0, active):
+        # the residual from the gaps and the active columns the last step formed (what
+        # lcp_residual computes, without forming them again)
+        res = float(max(np.max(-w, initial=0.0), np.max(-lam, initial=0.0) * scale,
+                        np.max(np.abs(w * lam), initial=0.0) / max(np.max(lam, initial=0.0), 1e-300)))
+    else:
+        res = lcp_residual(G, q, lam)
     if res > max(tol, 1e-9 * scale_q):
         lam = _lemke(_as_columns(G)(np.arange(m)), q)
         active = lam > 0
@@ -86,6 +93,9 @@ def solve_lcp(G, q: np.ndarray, active0: np.ndarray | None = None,
 
 
 def _active_set(G, q, active0, max_iter):
+    """(lam, active, gaps w, scale) or (None, active, None, None): primal-dual active set;
+    ``scale`` is :func:`lcp_residual`'s force-to-gap scale for a lazy G (max |G_ii| over the
+    active nodes), None for a dense one."""
     m = len(q)
     cols = _as_columns(G)
     active = (q < 0) if active0 is None else active0.copy()
@@ -101,19 +111,22 @@ def _active_set(G, q, active0, max_iter):
             if c is None:
                 c = 1.0 / np.mean(np.diag(GA[A]))
             try:
-                lam[A] = sla.solve(GA[A], -q[A])
-            except (sla.LinAlgError, ValueError):
-                return None, active
+                lam[A] = np.linalg.solve(GA[A], -q[A])
+            except np.linalg.LinAlgError:
+                return None, active, None, None
+            if not np.all(np.isfinite(lam[A])):
+                return None, active, None, None
         w = q + GA @ lam[A]
         new = (lam - (c or 0.0) * w) > 0 if c is not None else w < 0
         key = new.tobytes()
         if np.array_equal(new, active):
-            return lam, active
+            scale = float(np.max(np.abs(GA[A, np.arange(len(A))]), initial=0.0)) if isinstance(G, _Lazy) else None
+            return lam, active, w, scale
         if key in seen:  # cycling
-            return None, active
+            return None, active, None, None
         seen.add(key)
         active = new
-    return None, active
+    return None, active, None, None
 
 
 def _lemke(M: np.ndarray, q: np.ndarray, max_iter: int | None = None) -> np.ndarray:

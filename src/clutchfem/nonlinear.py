@@ -568,7 +568,7 @@ class PrestressRitz(KrylovSpace):
         theta, Psi = self.cached_pairs(model, contact)
 
         class _Response(_ModalResponse):
-            def coefficients(self, omega: float) -> np.ndarray:
+            def _coefficients(self, omega: float) -> np.ndarray:
                 from .softening import POLE_BAND
 
                 w2 = omega * omega

@@ -291,6 +291,14 @@ class _ModalResponse:
             self.PhiD = (contact.load.T @ Phi).T  # r x m
 
     def coefficients(self, omega: float) -> np.ndarray:
+        """The mode-acceleration weights at ``omega`` (:meth:`_coefficients`; the last speed's
+        are kept: a contact solve asks for them twice).  Read only."""
+        if omega != self.__dict__.get("_c_omega"):
+            self._c = self._coefficients(omega)
+            self._c_omega = omega
+        return self._c
+
+    def _coefficients(self, omega: float) -> np.ndarray:
         """Mode-acceleration weights c_j = w^2 / (w_j^2 (w_j^2 - w^2))."""
         if self.linear:
             return np.zeros(0)

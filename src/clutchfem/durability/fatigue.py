@@ -580,27 +580,19 @@ def _element_zone(cm: ClutchMesh) -> np.ndarray:
 
 
 def _components(cm: ClutchMesh, elems: np.ndarray) -> list[np.ndarray]:
-    """Connected components (through shared edges) of a set of elements."""
+    """Connected components (through shared edges) of a set of elements, each sorted."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     mesh = cm.mesh
+    elems = np.unique(np.asarray(elems, dtype=np.int64))
     inner = np.nonzero(mesh.f2t[1] >= 0)[0]
     a, b = mesh.f2t[0, inner], mesh.f2t[1, inner]
     sel = np.isin(a, elems) & np.isin(b, elems)
-    parent = {int(e): int(e) for e in elems}
-
-    def find(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    for u, v in zip(a[sel], b[sel]):
-        ru, rv = find(int(u)), find(int(v))
-        if ru != rv:
-            parent[ru] = rv
-    groups: dict[int, list[int]] = {}
-    for e in elems:
-        groups.setdefault(find(int(e)), []).append(int(e))
-    return [np.array(g) for g in groups.values()]
+    ia, ib = np.searchsorted(elems, a[sel]), np.searchsorted(elems, b[sel])
+    n = len(elems)
+    _, label = connected_components(coo_matrix((np.ones(len(ia)), (ia, ib)), shape=(n, n)), directed=False)
+    return [elems[label == k] for k in np.unique(label)]
 
 
 def _interface_points(cm: ClutchMesh, comp: np.ndarray, zone: np.ndarray, prefix: str) -> np.ndarray:
@@ -608,11 +600,9 @@ def _interface_points(cm: ClutchMesh, comp: np.ndarray, zone: np.ndarray, prefix
     mesh = cm.mesh
     inner = np.nonzero(mesh.f2t[1] >= 0)[0]
     a, b = mesh.f2t[0, inner], mesh.f2t[1, inner]
-    za, zb = zone[a], zone[b]
+    in_zone = np.char.startswith(zone.astype(str), prefix)  # per element
     ina, inb = np.isin(a, comp), np.isin(b, comp)
-    other_a = np.array([str(s).startswith(prefix) for s in za])
-    other_b = np.array([str(s).startswith(prefix) for s in zb])
-    hit = (ina & other_b) | (inb & other_a)
+    hit = (ina & in_zone[b]) | (inb & in_zone[a])
     f = mesh.facets[:, inner[hit]]
     return mesh.p[:, np.unique(f)]
 
@@ -715,10 +705,19 @@ def name_location(cm: ClutchMesh, xy, element: int | None = None) -> Location:
                     x_m=float(pt[0]), y_m=float(pt[1]))
 
 
+#: P2 bases of the last meshes named (a mesh is immutable: its basis is built once)
+_P2_BASES: dict[int, tuple] = {}
+
+
 def _p2_basis(cm: ClutchMesh):
     from skfem import Basis, ElementTriP2
 
-    return Basis(cm.mesh, ElementTriP2(), intorder=1)
+    hit = _P2_BASES.get(id(cm.mesh))
+    if hit is None or hit[0] is not cm.mesh:
+        if len(_P2_BASES) >= 4:
+            _P2_BASES.pop(next(iter(_P2_BASES)))
+        hit = _P2_BASES[id(cm.mesh)] = (cm.mesh, Basis(cm.mesh, ElementTriP2(), intorder=1))
+    return hit[1]
 
 
 def _facet_nodes(cm: ClutchMesh) -> np.ndarray:
