@@ -506,21 +506,23 @@ def coupling_step(design, res) -> tuple[dict, pd.DataFrame]:
     except ClutchfemError as exc:
         out["analytic_nominal_arc_Nm"] = math.nan
         coupling["nominal_error"] = str(exc)
-    # FE contact arc per speed, measured from the pivot ray
-    fe_arc = []
+    # FE contact arc per speed, measured from the pivot ray (the arc changes only when a node
+    # joins or leaves the contact: the speeds of one arc are evaluated together)
+    fe_arc = np.zeros(len(rpm))
     q_deg = np.full((len(rpm), 2), np.nan)
+    arcs: dict[tuple[float, float], list[int]] = {}
     for k in range(len(rpm)):
         if np.isfinite(ext[k, 0]):
             q = sorted((abs(wrap_angle(ext[k, 0] - th_p)), abs(wrap_angle(ext[k, 1] - th_p))))
             q1, q2 = max(q[0], 0.0), min(q[1], math.pi)
             q_deg[k] = np.degrees([q1, q2])
-        if not np.isfinite(ext[k, 0]) or F[k] <= 0:
-            fe_arc.append(0.0)
-            continue
+            if F[k] > 0:
+                arcs.setdefault((q1, q2), []).append(k)
+    for (q1, q2), ks in arcs.items():
         try:
-            fe_arc.append(float(shoe_torque(F[k], ShoeGeometry(q1, q2, A, R, L), mu, kind, n).total))
+            fe_arc[ks] = shoe_torque(F[ks], ShoeGeometry(q1, q2, A, R, L), mu, kind, n).total
         except ClutchfemError:
-            fe_arc.append(math.nan)
+            fe_arc[ks] = math.nan
     out["analytic_fe_arc_Nm"] = fe_arc
     out["contact_phi1_deg"] = q_deg[:, 0]  # FE contact extent from the pivot ray (nominal: phi1..phi2)
     out["contact_phi2_deg"] = q_deg[:, 1]
