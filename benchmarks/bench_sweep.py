@@ -13,11 +13,13 @@
    torque at 8000 rpm against a reference (finest mesh, spin_softening='exact').
 4. Spin softening: 'ritz' (load-dependent Ritz, depth 1..6) / 'off' against 'exact' on the
    default mesh.
-5. ``analyze`` (every answer: slip, character, mu +-30 %, coupling, stresses) against one full
-   sweep with stresses on the same speeds, both from the mesh in memory (FE model built in
-   both): the ratio that says what the answers cost on top of the sweep.
+5. ``analyze`` (every answer: slip, character, mu +-30 %, coupling, stresses, whirl, fatigue)
+   against one full sweep with stresses on the same speeds, both from the mesh in memory (FE
+   model built in both): the ratio that says what the answers cost on top of the sweep;
+   timed in blocks (each repeated back to back) and interleaved (sweep, analyze, ...).
 
     .venv/bin/python benchmarks/bench_sweep.py [--concept concept4] [--ref-factor 0.25] [--repeat 3]
+        [--parts 1,2,3,4,5]
 
 Times are the minimum over ``--repeat`` runs (the machine is shared; the median is printed
 too).
@@ -105,146 +107,169 @@ def main() -> None:
     ap.add_argument("--ref-factor", type=float, default=0.25)
     ap.add_argument("--factors", default="4,2,1,0.5")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--parts", default="1,2,3,4,5", help="which parts to run (comma separated)")
     a = ap.parse_args()
+    run_parts = {int(x) for x in a.parts.split(",")}
     c = get_concept(a.concept)
     p = c.params()
     mat = get_material("51CrV4")
 
-    # -- 1. default sweep -----------------------------------------------------------------
     t0 = time.perf_counter()
     cm = mesh_concept(c, p, MeshSettings())
     first = time.perf_counter() - t0
     t0 = time.perf_counter()
     cm = mesh_concept(c, p, MeshSettings())
     t_cache = time.perf_counter() - t0
-    print(f"== 1. default sweep: {c.name}, {RPM} rpm, mu = {MU}, stresses, spin softening 'modal'")
-    print(f"mesh: {cm.n_elements} P2 elements; gmsh generation {cm.mesh_time_s:.3f} s (first call "
-          f"{first:.3f} s), load from cache {t_cache:.3f} s (excluded below)")
-    setups, sweeps, totals, cpu = [], [], [], []
-    for _ in range(a.repeat):
-        d, r, ts, tw = run(cm, p, mat)
-        setups.append(ts)
-        sweeps.append(tw)
-        totals.append(ts + tw)
-        _, _, cs, cw = run(cm, p, mat, clock=time.process_time)
-        cpu.append(cs + cw)
-    fe, resp = d.model, d.case().response
-    print(f"solver back-end {fe.factor.name}, dofs {fe.ndofs}, reduced {fe.Kr.shape[0]}, contact "
-          f"nodes {d.nodes.m} (condensed: {resp.compliance.n_condensed}), Ritz vectors {resp.Phi.shape[1]}, "
-          f"speeds {len(r.curve)}, engagement {r.engagement_rpm:.1f} rpm, torque(8000) {torque_at(r):.4f} N m")
-    print(f"wall time (min / median of {a.repeat}): setup {min(setups):.3f} / "
-          f"{statistics.median(setups):.3f} s, sweep {min(sweeps):.3f} / {statistics.median(sweeps):.3f} s, "
-          f"total {min(totals):.3f} / {statistics.median(totals):.3f} s; CPU time total {min(cpu):.3f} s")
-    tm = r.timings
-    tm = {**tm, "condense_s": resp.compliance.seconds}
-    parts = ["assemble_s", "constraints_s", "mass_s", "factorize_s", "solve_u1_s", "case_setup_s",
-             "engagement_s", "contact_s", "condense_s", "post_s"]
-    print("breakdown (last run): " + ", ".join(f"{k[:-2]} {tm[k] * 1e3:.1f} ms" for k in parts if k in tm)
-          + "  (case_setup: mass, factorisation, u1, Ritz vectors; condense is part of contact; "
-          "post: fields and stresses)")
+    if 1 in run_parts:
+        # -- 1. default sweep -----------------------------------------------------------------
+        print(f"== 1. default sweep: {c.name}, {RPM} rpm, mu = {MU}, stresses, spin softening 'modal'")
+        print(f"mesh: {cm.n_elements} P2 elements; gmsh generation {cm.mesh_time_s:.3f} s (first call "
+              f"{first:.3f} s), load from cache {t_cache:.3f} s (excluded below)")
+        setups, sweeps, totals, cpu = [], [], [], []
+        for _ in range(a.repeat):
+            d, r, ts, tw = run(cm, p, mat)
+            setups.append(ts)
+            sweeps.append(tw)
+            totals.append(ts + tw)
+            _, _, cs, cw = run(cm, p, mat, clock=time.process_time)
+            cpu.append(cs + cw)
+        fe, resp = d.model, d.case().response
+        print(f"solver back-end {fe.factor.name}, dofs {fe.ndofs}, reduced {fe.Kr.shape[0]}, contact "
+              f"nodes {d.nodes.m} (condensed: {resp.compliance.n_condensed}), Ritz vectors {resp.Phi.shape[1]}, "
+              f"speeds {len(r.curve)}, engagement {r.engagement_rpm:.1f} rpm, torque(8000) {torque_at(r):.4f} N m")
+        print(f"wall time (min / median of {a.repeat}): setup {min(setups):.3f} / "
+              f"{statistics.median(setups):.3f} s, sweep {min(sweeps):.3f} / {statistics.median(sweeps):.3f} s, "
+              f"total {min(totals):.3f} / {statistics.median(totals):.3f} s; CPU time total {min(cpu):.3f} s")
+        tm = r.timings
+        tm = {**tm, "condense_s": resp.compliance.seconds}
+        parts = ["assemble_s", "constraints_s", "mass_s", "factorize_s", "solve_u1_s", "case_setup_s",
+                 "engagement_s", "contact_s", "condense_s", "post_s"]
+        print("breakdown (last run): " + ", ".join(f"{k[:-2]} {tm[k] * 1e3:.1f} ms" for k in parts if k in tm)
+              + "  (case_setup: mass, factorisation, u1, Ritz vectors; condense is part of contact; "
+              "post: fields and stresses)")
 
-    # -- 2. one static solve ----------------------------------------------------------------
-    st, st_cpu, st_fe = [], [], []
-    for _ in range(a.repeat):
-        t0, c0 = time.perf_counter(), time.process_time()
-        static_solve(cm, p, mat)
-        st.append(time.perf_counter() - t0)
-        st_cpu.append(time.process_time() - c0)
-        t0 = time.perf_counter()
-        fe = FEModel(cm, mat)
-        fe.solve(fe.f1)
-        st_fe.append(time.perf_counter() - t0)
-    print(f"\n== 2. one no-contact static solve (K and f1 assembly, constraints, factorisation, solve): "
-          f"wall {min(st):.3f} s, CPU {min(st_cpu):.3f} s  (clutchfem's FEModel + u1: {min(st_fe):.3f} s)")
-    print(f"full sweep / static solve: wall {min(totals) / min(st):.2f}, CPU {min(cpu) / min(st_cpu):.2f}")
+    if 2 in run_parts:
+        # -- 2. one static solve ----------------------------------------------------------------
+        st, st_cpu, st_fe = [], [], []
+        for _ in range(a.repeat):
+            t0, c0 = time.perf_counter(), time.process_time()
+            static_solve(cm, p, mat)
+            st.append(time.perf_counter() - t0)
+            st_cpu.append(time.process_time() - c0)
+            t0 = time.perf_counter()
+            fe = FEModel(cm, mat)
+            fe.solve(fe.f1)
+            st_fe.append(time.perf_counter() - t0)
+        print(f"\n== 2. one no-contact static solve (K and f1 assembly, constraints, factorisation, solve): "
+              f"wall {min(st):.3f} s, CPU {min(st_cpu):.3f} s  (clutchfem's FEModel + u1: {min(st_fe):.3f} s)")
+        print(f"full sweep / static solve: wall {min(totals) / min(st):.2f}, CPU {min(cpu) / min(st_cpu):.2f}")
 
-    # -- 3. mesh table ----------------------------------------------------------------------
-    print(f"\n== 3. mesh size vs time vs error (reference: f = {a.ref_factor}, spin_softening='exact')")
-    cm_ref = mesh_concept(c, p, settings(a.ref_factor))
-    t0 = time.perf_counter()
-    dref, ref, ts, tw = run(cm_ref, p, mat, softening="exact", rpm=[8000.0], stresses=False)
-    t_ref = time.perf_counter() - t0
-    e_ref, T_ref = ref.engagement_rpm, torque_at(ref)
-    print(f"reference: {cm_ref.n_elements} elements, {dref.model.ndofs} dofs, {dref.nodes.m} "
-          f"contact nodes, engagement {e_ref:.3f} rpm, torque(8000) {T_ref:.5f} N m ({t_ref:.1f} s)")
-    rows = []
-    factors = [float(x) for x in a.factors.split(",")] + [a.ref_factor]
-    for f in factors:
+    if 3 in run_parts:
+        # -- 3. mesh table ----------------------------------------------------------------------
+        print(f"\n== 3. mesh size vs time vs error (reference: f = {a.ref_factor}, spin_softening='exact')")
+        cm_ref = mesh_concept(c, p, settings(a.ref_factor))
         t0 = time.perf_counter()
-        cmf = mesh_concept(c, p, settings(f))
-        t_mesh = time.perf_counter() - t0
-        best = None
-        for _ in range(1 if f < 0.5 else a.repeat):
-            df, rf, ts, tw = run(cmf, p, mat)
-            best = (ts, tw) if best is None or ts + tw < sum(best) else best
-        rows.append((f, cmf.mesh_settings["size"] * 1e3, cmf.n_elements, df.model.ndofs, df.nodes.m,
-                     t_mesh, best[0], best[1], best[0] + best[1],
-                     rf.engagement_rpm - e_ref, 100 * (rf.engagement_rpm / e_ref - 1),
-                     100 * (torque_at(rf) / T_ref - 1)))
-    table(["f", "size mm", "elements", "dofs", "m", "mesh s", "setup s", "sweep s", "total s",
-           "d_eng rpm", "d_eng %", "d_T8000 %"], rows,
-          ["{:g}", "{:.2f}", "{:d}", "{:d}", "{:d}", "{:.2f}", "{:.3f}", "{:.3f}", "{:.3f}", "{:+.2f}",
-           "{:+.3f}", "{:+.3f}"])
-    print("(d_* against the reference; the last row is the reference mesh with 'modal' softening; "
-          "'mesh s' includes gmsh generation on a cold cache)")
+        dref, ref, ts, tw = run(cm_ref, p, mat, softening="exact", rpm=[8000.0], stresses=False)
+        t_ref = time.perf_counter() - t0
+        e_ref, T_ref = ref.engagement_rpm, torque_at(ref)
+        print(f"reference: {cm_ref.n_elements} elements, {dref.model.ndofs} dofs, {dref.nodes.m} "
+              f"contact nodes, engagement {e_ref:.3f} rpm, torque(8000) {T_ref:.5f} N m ({t_ref:.1f} s)")
+        rows = []
+        factors = [float(x) for x in a.factors.split(",")] + [a.ref_factor]
+        for f in factors:
+            t0 = time.perf_counter()
+            cmf = mesh_concept(c, p, settings(f))
+            t_mesh = time.perf_counter() - t0
+            best = None
+            for _ in range(1 if f < 0.5 else a.repeat):
+                df, rf, ts, tw = run(cmf, p, mat)
+                best = (ts, tw) if best is None or ts + tw < sum(best) else best
+            rows.append((f, cmf.mesh_settings["size"] * 1e3, cmf.n_elements, df.model.ndofs, df.nodes.m,
+                         t_mesh, best[0], best[1], best[0] + best[1],
+                         rf.engagement_rpm - e_ref, 100 * (rf.engagement_rpm / e_ref - 1),
+                         100 * (torque_at(rf) / T_ref - 1)))
+        table(["f", "size mm", "elements", "dofs", "m", "mesh s", "setup s", "sweep s", "total s",
+               "d_eng rpm", "d_eng %", "d_T8000 %"], rows,
+              ["{:g}", "{:.2f}", "{:d}", "{:d}", "{:d}", "{:.2f}", "{:.3f}", "{:.3f}", "{:.3f}", "{:+.2f}",
+               "{:+.3f}", "{:+.3f}"])
+        print("(d_* against the reference; the last row is the reference mesh with 'modal' softening; "
+              "'mesh s' includes gmsh generation on a cold cache)")
 
-    # -- 4. spin softening --------------------------------------------------------------------
-    print("\n== 4. spin softening on the default mesh (errors against 'exact')")
-    res = {}
-    variants = [("exact", "exact"), ("off", "off")] + [(f"ritz depth {d}", Ritz(depth=d)) for d in (1, 2, 3, 4, 6)]
-    from clutchfem.errors import SolverError
+    if 4 in run_parts:
+        # -- 4. spin softening --------------------------------------------------------------------
+        print("\n== 4. spin softening on the default mesh (errors against 'exact')")
+        res = {}
+        variants = [("exact", "exact"), ("off", "off")] + [(f"ritz depth {d}", Ritz(depth=d)) for d in (1, 2, 3, 4, 6)]
+        from clutchfem.errors import SolverError
 
-    refused = {}
-    for name, soft in variants:
-        t0 = time.perf_counter()
-        try:
-            dk, rk, _, _ = run(cm, p, mat, softening=soft)
-        except SolverError as exc:  # the sweep's own residual check refuses a too coarse space
-            refused[name] = str(exc)
-            continue
-        res[name] = (rk, time.perf_counter() - t0, dk.case(softening=soft).response)
-    ex = res["exact"][0]
-    cx = ex.curve.set_index("rpm")
-    hi = cx.index >= 6000
-    rows = []
-    for name in refused:
-        print(f"{name}: refused by the sweep's residual check ({refused[name][:80]}...)")
-    for name, _ in variants:
-        if name not in res:
-            continue
-        rk, tk, resp = res[name]
-        c_ = rk.curve.set_index("rpm")
-        dN = (c_.loc[hi, "normal_force_N"] / cx.loc[hi, "normal_force_N"] - 1).abs().max()
-        rows.append((name, getattr(resp, "Phi", np.zeros((0, 0))).shape[1], tk, rk.engagement_rpm,
-                     100 * (rk.engagement_rpm / ex.engagement_rpm - 1),
-                     100 * (torque_at(rk) / torque_at(ex) - 1), 100 * dN, float(rk.curve["residual"].max())))
-    table(["softening", "vectors", "time s", "engagement rpm", "d_eng %", "d_T8000 %", "max|dN| >= 6000 rpm %",
-           "max residual"],
-          rows, ["{}", "{:d}", "{:.3f}", "{:.2f}", "{:+.2e}", "{:+.2e}", "{:.2e}", "{:.1e}"])
-    print("(default: depth 3)")
+        refused = {}
+        for name, soft in variants:
+            t0 = time.perf_counter()
+            try:
+                dk, rk, _, _ = run(cm, p, mat, softening=soft)
+            except SolverError as exc:  # the sweep's own residual check refuses a too coarse space
+                refused[name] = str(exc)
+                continue
+            res[name] = (rk, time.perf_counter() - t0, dk.case(softening=soft).response)
+        ex = res["exact"][0]
+        cx = ex.curve.set_index("rpm")
+        hi = cx.index >= 6000
+        rows = []
+        for name in refused:
+            print(f"{name}: refused by the sweep's residual check ({refused[name][:80]}...)")
+        for name, _ in variants:
+            if name not in res:
+                continue
+            rk, tk, resp = res[name]
+            c_ = rk.curve.set_index("rpm")
+            dN = (c_.loc[hi, "normal_force_N"] / cx.loc[hi, "normal_force_N"] - 1).abs().max()
+            rows.append((name, getattr(resp, "Phi", np.zeros((0, 0))).shape[1], tk, rk.engagement_rpm,
+                         100 * (rk.engagement_rpm / ex.engagement_rpm - 1),
+                         100 * (torque_at(rk) / torque_at(ex) - 1), 100 * dN, float(rk.curve["residual"].max())))
+        table(["softening", "vectors", "time s", "engagement rpm", "d_eng %", "d_T8000 %", "max|dN| >= 6000 rpm %",
+               "max residual"],
+              rows, ["{}", "{:d}", "{:.3f}", "{:.2f}", "{:+.2e}", "{:+.2e}", "{:.2e}", "{:.1e}"])
+        print("(default: depth 3)")
 
-    # -- 5. analyze vs one full sweep ---------------------------------------------------------
-    engine = EngineCurve.default()
-    speeds = check_speeds(None, engine)
-    t_sw, t_an, t_err = [], [], []
-    for _ in range(a.repeat):
-        t0 = time.perf_counter()
-        Design(cm, OperatingPoint(mu=MU, material=mat), params=p).sweep(speeds, stresses=True)
-        t_sw.append(time.perf_counter() - t0)
-        t0 = time.perf_counter()
-        an = analyze(Design(cm, OperatingPoint(mu=MU, material=mat), params=p), engine=engine, errors=False)
-        t_an.append(time.perf_counter() - t0)
-        t0 = time.perf_counter()
-        analyze(Design(cm, OperatingPoint(mu=MU, material=mat), params=p), engine=engine)
-        t_err.append(time.perf_counter() - t0)
-    print(f"\n== 5. analyze vs one full sweep with stresses ({len(speeds)} speeds, default softening "
-          f"'{OperatingPoint().softening}', FE model built in both; slip crossings bracketed on "
-          f"{len(bracket_grid(engine))} speeds)")
-    print(f"full sweep {min(t_sw):.3f} s; analyze without the error estimate {min(t_an):.3f} s (ratio "
-          f"{min(t_an) / min(t_sw):.2f}); with it (a mesh twice as fine) {min(t_err):.3f} s (ratio "
-          f"{min(t_err) / min(t_sw):.2f}); min of {a.repeat}; slip {an.slip_rpm:.1f} rpm, torque(8000) "
-          f"{an.torque_at_max_engine_torque_Nm:.4f} N m")
+    if 5 in run_parts:
+        # -- 5. analyze vs one full sweep ---------------------------------------------------------
+        engine = EngineCurve.default()
+        speeds = check_speeds(None, engine)
 
+        def design():
+            return Design(cm, OperatingPoint(mu=MU, material=mat), params=p)
+
+        def t_sweep():
+            t0 = time.perf_counter()
+            design().sweep(speeds, stresses=True)
+            return time.perf_counter() - t0
+
+        def t_analyze(errors=False):
+            t0 = time.perf_counter()
+            out = analyze(design(), engine=engine, errors=errors)
+            return time.perf_counter() - t0, out
+
+        # (a) in blocks (timeit-style: each operation repeated back to back), (b) interleaved
+        # sweep / analyze: the operation before changes the allocator's and the caches' state
+        # (large temporaries), which moves an analysis by ~5 %
+        blk_sw = [t_sweep() for _ in range(a.repeat)]
+        blk_an = [t_analyze()[0] for _ in range(a.repeat)]
+        int_sw, int_an = [], []
+        for _ in range(a.repeat):
+            int_sw.append(t_sweep())
+            int_an.append(t_analyze()[0])
+        t_err, an = zip(*[t_analyze(errors=True) for _ in range(max(1, a.repeat // 2))])
+        an = an[-1]
+        print(f"\n== 5. analyze vs one full sweep with stresses ({len(speeds)} speeds, default softening "
+              f"'{OperatingPoint().softening}', FE model built in both; slip crossings bracketed on "
+              f"{len(bracket_grid(engine))} speeds; min of {a.repeat})")
+        for label, sw, ana in (("in blocks", blk_sw, blk_an), ("interleaved", int_sw, int_an)):
+            print(f"{label:11s}: full sweep {min(sw):.3f} s, analyze without the error estimate {min(ana):.3f} s: "
+                  f"ratio {min(ana) / min(sw):.2f}, analyze - sweep = {1e3 * (min(ana) - min(sw)):.0f} ms "
+                  f"(medians {statistics.median(sw):.3f} / {statistics.median(ana):.3f} s)")
+        print(f"analyze with the error estimate (a mesh twice as fine) {min(t_err):.3f} s (ratio "
+              f"{min(t_err) / min(blk_sw):.2f} to the sweep in blocks); slip {an.slip_rpm:.1f} rpm, torque(8000) "
+              f"{an.torque_at_max_engine_torque_Nm:.4f} N m")
 
 if __name__ == "__main__":
     main()
