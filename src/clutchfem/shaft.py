@@ -297,15 +297,16 @@ def fe_frequency_coefficients(shaft: OverhungShaft, n_modes: int = 2, elements: 
     return (mu / (EI * lam)) ** 0.25
 
 
-def first_frequency_coefficient(shaft: OverhungShaft, rtol: float = 1e-4) -> tuple[float, float]:
+def first_frequency_coefficient(shaft: OverhungShaft, rtol: float = 1e-5,
+                                elements: int = 12) -> tuple[float, float]:
     """(beta_1 from the exact determinant, beta_1 from the FE model) [1/m].
 
-    The FE model computes every eigenvalue, so its lowest one cannot skip a root; it
-    brackets the determinant's first root (within ``rtol``), which ``brentq`` refines to
-    round-off.  Should the bracket hold no sign change (the two models disagreeing), the
-    determinant's own scan (:func:`frequency_coefficients`) answers and the caller compares
-    the two."""
-    b_fe = float(fe_frequency_coefficients(shaft, 1)[0])
+    The FE model (``elements`` and twice as many, Richardson: ~1e-9 on a crankshaft) computes
+    every eigenvalue, so its lowest one cannot skip a root; it brackets the determinant's
+    first root (within ``rtol``), which ``brentq`` refines to round-off.  Should the bracket
+    hold no sign change (the two models disagreeing), the determinant's own scan
+    (:func:`frequency_coefficients`) answers and the caller compares the two."""
+    b_fe = float(fe_frequency_coefficients(shaft, 1, elements)[0])
 
     def f(x: float) -> float:
         return float(frequency_determinant(x, shaft)[0])
