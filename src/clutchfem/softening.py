@@ -115,6 +115,10 @@ class KrylovSpace:
 
     def _cached(self, model, contact):
         """(blocks of the reduced space, pairs), cached on ``model``."""
+        return self._entry(model, contact)[1:3]
+
+    def _entry(self, model, contact):
+        """(contact nodes, blocks, pairs, blocks' inner-product images), cached on ``model``."""
         base = self.base_mu if contact is not None else None
         friction = 0.0 if contact is None or self.seeds == "all" else contact.friction
         key = (self.name, self.depth, self.seeds, base, None if contact is None else id(contact.nodes), friction)
@@ -122,15 +126,18 @@ class KrylovSpace:
         if key not in cache:
             m = self.operator_model(model)
             if base is None:
-                blocks = krylov_blocks(m, krylov_seeds(m.f1, contact, self.seeds), self.depth, self.inner(m))
+                blocks, images = krylov_blocks(m, krylov_seeds(m.f1, contact, self.seeds), self.depth,
+                                               self.inner(m))
             else:
                 from dataclasses import replace
 
-                load = replace(self, seeds="load", base_mu=None)._cached(model, contact.with_mu(base))[0]
-                blocks = load + krylov_blocks(m, krylov_seeds(m.f1, contact, "tangent"), self.depth,
-                                              self.inner(m), base=load)
-            cache[key] = (None if contact is None else contact.nodes, blocks, self.pairs(m, np.hstack(blocks)))
-        return cache[key][1:]
+                _, b0, _, i0 = replace(self, seeds="load", base_mu=None)._entry(model, contact.with_mu(base))
+                b1, i1 = krylov_blocks(m, krylov_seeds(m.f1, contact, "tangent"), self.depth, self.inner(m),
+                                       base=(b0, i0))
+                blocks, images = b0 + b1, i0 + i1
+            cache[key] = (None if contact is None else contact.nodes, blocks,
+                          self.pairs(m, np.hstack(blocks)), images)
+        return cache[key]
 
 
 @dataclass(frozen=True)
@@ -206,47 +213,56 @@ def krylov_seeds(f1: np.ndarray, contact, which: str = "load") -> list[np.ndarra
     return seeds
 
 
-def krylov_blocks(model, seeds: list[np.ndarray], depth: int, inner, base: list[np.ndarray] = ()) -> list[np.ndarray]:
-    """The blocks of V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X}, X = K^-1 T' seeds, on
-    the reduced dofs of ``model`` (its ``Mr``, ``T`` and factorisation of ``Kr``), orthonormal
-    in the ``inner`` product matrix (block Gram-Schmidt, twice for stability).
+def krylov_blocks(model, seeds: list[np.ndarray], depth: int, inner,
+                  base: tuple[list[np.ndarray], list[np.ndarray]] = ((), ())) -> tuple[list, list]:
+    """(blocks, images): the blocks of V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X},
+    X = K^-1 T' seeds, on the reduced dofs of ``model`` (its ``Mr``, ``T`` and factorisation
+    of ``Kr``), orthonormal in the ``inner`` product matrix (classical block Gram-Schmidt,
+    twice for stability), and their images ``inner @ block`` (kept: the projections then
+    cost no product).
 
-    ``base``: the blocks of another such space of the same model, depth and inner product;
-    the blocks returned then extend it: block k is orthogonalised against the base's blocks
-    0..k (which keeps every vector in the joint Krylov space of both seed sets) and, at the
-    end, against all of them, so that base + returned blocks is an orthonormal basis of the
-    Krylov space of the two seed sets together."""
+    ``base``: (blocks, images) of another such space of the same model, depth and inner
+    product; the blocks returned then extend it: block k is orthogonalised against the base's
+    blocks 0..k (which keeps every vector in the joint Krylov space of both seed sets) and, at
+    the end, against all of them, so that base + returned blocks is an orthonormal basis of
+    the Krylov space of the two seed sets together."""
     blocks: list[np.ndarray] = []
+    images: list[np.ndarray] = []
     if not seeds:
-        return blocks
+        return blocks, images
 
-    def orthonormal(X, against):
-        if against:  # classical block Gram-Schmidt, twice (as stable as modified, one product each)
-            V = np.hstack(against)
+    def orthonormal(X, against, against_images):
+        if against:
+            V, IV = np.hstack(against), np.hstack(against_images)
             for _ in range(2):
-                X = X - V @ (V.T @ (inner @ X))
-        G = X.T @ (inner @ X)
+                X = X - V @ (IV.T @ X)
+        IX = inner @ X
+        G = X.T @ IX
         d, Q = np.linalg.eigh((G + G.T) / 2)
         keep = d > max(d.max(initial=0.0), 0.0) * 1e-12
-        return X @ (Q[:, keep] / np.sqrt(d[keep]))
+        S = Q[:, keep] / np.sqrt(d[keep])
+        return X @ S, IX @ S
 
+    base_blocks, base_images = list(base[0]), list(base[1])
     X = model.factor.solve(model.T.T @ np.column_stack(seeds))
     for k in range(max(1, depth)):
-        X = orthonormal(X, list(base[:k + 1]) + blocks)
+        X, IX = orthonormal(X, base_blocks[:k + 1] + blocks, base_images[:k + 1] + images)
         if X.shape[1] == 0:
             break
         blocks.append(X)
+        images.append(IX)
         if k + 1 < depth:  # (the last block is not multiplied)
             X = model.factor.solve(model.Mr @ X)
-    if len(base) and blocks:  # block k against the base's blocks after k too
-        blocks = [orthonormal(np.hstack(blocks), list(base))]
-    return blocks
+    if base_blocks and blocks:  # block k against the base's blocks after k too
+        X, IX = orthonormal(np.hstack(blocks), base_blocks, base_images)
+        blocks, images = [X], [IX]
+    return blocks, images
 
 
 def krylov_space(model, seeds: list[np.ndarray], depth: int, inner) -> np.ndarray:
     """V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X}, X = K^-1 T' seeds, on the reduced
     dofs of ``model``, orthonormal in the ``inner`` product matrix (:func:`krylov_blocks`)."""
-    return np.hstack(krylov_blocks(model, seeds, depth, inner))
+    return np.hstack(krylov_blocks(model, seeds, depth, inner)[0])
 
 
 def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndarray, np.ndarray]:
