@@ -673,7 +673,7 @@ def test_lcp_lemke_fallback():
     assert np.linalg.eigvalsh(G + G.T).min() > 0
     for scale_G, scale_q in ((1.0, 1.0), (1e-8, 1e-4)):
         Gs, qs = G * scale_G, q * scale_q
-        lam_as, _ = _active_set(Gs, qs, None, 100)
+        lam_as = _active_set(Gs, qs, None, 100)[0]
         assert lam_as is None  # the active set alone fails here
         lam, active = solve_lcp(Gs, qs)
         _check_lcp(Gs, qs, lam)
