@@ -139,12 +139,10 @@ def _basis(b: np.ndarray, xi: float, length: float) -> np.ndarray:
     Basis: sin(b xi), cos(b xi), exp(-b xi), exp(-b (l - xi)).  Shape (n, 4, 4)."""
     s, c = np.sin(b * xi), np.cos(b * xi)
     e1, e2 = np.exp(-b * xi), np.exp(-b * (length - xi))
-    return np.stack([
-        np.stack([s, c, e1, e2], -1),
-        np.stack([c, -s, -e1, e2], -1),
-        np.stack([-s, -c, e1, e2], -1),
-        np.stack([-c, s, -e1, e2], -1),
-    ], -2)
+    out = np.empty(np.shape(b) + (4, 4))
+    for row, (a0, a1, a2) in enumerate(((s, c, e1), (c, -s, -e1), (-s, -c, e1), (-c, s, -e1))):
+        out[..., row, 0], out[..., row, 1], out[..., row, 2], out[..., row, 3] = a0, a1, a2, e2
+    return out
 
 
 def frequency_matrix(beta, shaft: OverhungShaft, model: Model = "physical") -> np.ndarray:
