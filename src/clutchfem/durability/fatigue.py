@@ -472,22 +472,34 @@ def _damage(X: np.ndarray, sa: np.ndarray, sm: np.ndarray, n: np.ndarray, p: Fat
         return np.where(N > 0, n[:, None] / N, np.inf)
 
 
-def _load_factor(sa, sm, n, p, Se, iters: int = 64) -> tuple[np.ndarray, np.ndarray]:
-    """Per point the X with D(X) = 1 (bisection in log X); returns (X, upper bracket)."""
+def _load_factor(sa, sm, n, p, Se, sections: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    """Per point the X with D(X) = 1: ``sections``-section search in log X on [1e-6, 1e6]
+    (D is monotone in X; every pass evaluates D at ``sections`` - 1 interior points of each
+    point's bracket at once and keeps the sub-bracket where D crosses 1, until the brackets
+    reach adjacent doubles); returns (X = geometric mean of the bracket, its upper end)."""
     P = sa.shape[1]
-    lo = np.full(P, 1e-6)
-    hi = np.full(P, 1e6)
-    d_hi = _damage(hi, sa, sm, n, p, Se).sum(axis=0)
-    never = d_hi < 1.0  # zero stress at every cycle: no damage at any factor
-    for _ in range(iters):
-        mid = np.sqrt(lo * hi)
-        d = _damage(mid, sa, sm, n, p, Se).sum(axis=0)
-        up = d >= 1.0
-        hi = np.where(up, mid, hi)
-        lo = np.where(up, lo, mid)
-    X = np.sqrt(lo * hi)
+    lo = np.full(P, math.log(1e-6))
+    hi = np.full(P, math.log(1e6))
+    never = _damage(np.exp(hi), sa, sm, n, p, Se).sum(axis=0) < 1.0  # no stress: no damage at any X
+    frac = np.arange(1, sections) / sections
+    for _ in range(64):
+        t = lo[:, None] + (hi - lo)[:, None] * frac[None, :]  # (P, sections - 1)
+        X = np.exp(t)
+        sar = reversed_equivalent(sa[:, :, None] * X, sm[:, :, None] * X, p.ultimate_strength, p.mean_stress_rule)
+        N = cycles_to_failure(sar, p, Se)
+        with np.errstate(divide="ignore"):
+            D = np.where(N > 0, n[:, None, None] / N, np.inf).sum(axis=0)  # (P, sections - 1)
+        up = D >= 1.0
+        first = np.where(up.any(axis=1), up.argmax(axis=1), sections - 1)  # first interior point with D >= 1
+        rows = np.arange(P)
+        new_hi = np.where(first < sections - 1, t[rows, np.minimum(first, sections - 2)], hi)
+        new_lo = np.where(first > 0, t[rows, np.maximum(first - 1, 0)], lo)
+        if np.array_equal(new_hi, hi) and np.array_equal(new_lo, lo):
+            break  # adjacent doubles: no interior point left
+        lo, hi = new_lo, new_hi
+    X = np.exp(0.5 * (lo + hi))
     X[never] = np.inf
-    return X, hi
+    return X, np.exp(hi)
 
 
 def fatigue_check(cycles: Sequence[LoadCycle], params: FatigueParams | None = None, *,
