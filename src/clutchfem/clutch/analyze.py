@@ -856,7 +856,11 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     slip_power = None
     if slip.rpm is not None:
         slip_power = float(engine.torque_at(slip.rpm) * rpm_to_rad_s(slip.rpm))
-    curves["engine_torque_Nm"] = [float(engine.torque_at(x)) if lo <= x <= hi else math.nan for x in curves["rpm"]]
+    r_c = curves["rpm"].to_numpy(dtype=float)
+    inside = (r_c >= lo) & (r_c <= hi)
+    e_t = np.full(len(r_c), math.nan)
+    e_t[inside] = engine.torque_at(r_c[inside])
+    curves["engine_torque_Nm"] = e_t
     curves["normal_force_N"] = res.curve["normal_force_N"].to_numpy()
     curves["max_von_mises_Pa"] = res.curve["max_von_mises_Pa"].to_numpy()
     curves["safety_factor"] = res.curve["safety_factor"].to_numpy()

@@ -282,9 +282,10 @@ def first_slip_rpm(
     grid = np.union1d(np.asarray(grid, dtype=float), [lo, hi])
     grid = grid[(grid >= lo) & (grid <= hi)]
     t_prev, h_prev = None, None
+    engine = np.asarray(curve.torque_at(grid), dtype=float)
     for i, x in enumerate(grid):
         t = float(np.asarray(clutch_torque_at_rpm(np.array([x])), dtype=float)[0])
-        e = t - float(curve.torque_at(x))
+        e = t - float(engine[i])
         if math.isnan(e):
             raise InputError("clutch torque function returned NaN")
         h = e >= 0.0 and t > 0.0
