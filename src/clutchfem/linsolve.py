@@ -4,7 +4,9 @@ The back-end is *injected* where a model is built (``FEModel(..., solver=...)``,
 scikit-fem's ``solve(A, b, solver=...)`` takes one): a back-end name, or any callable
 ``A -> object with .solve(B)`` (e.g. a PARDISO or an iterative wrapper of your own).  The
 environment variable ``CLUTCHFEM_SOLVER`` only sets the default (``auto``).  Back-ends:
-* ``cholmod``: supernodal Cholesky from SuiteSparse via scikit-sparse (optional extra
+* ``cholmod``: Cholesky from SuiteSparse via scikit-sparse, simplicial up to
+  ``SIMPLICIAL_MAX_N`` unknowns (faster than supernodal on these problems, measured), CHOLMOD's
+  choice above (optional extra
   ``clutchfem[cholmod]``; needs Debian's libsuitesparse-dev to build);
 * ``superlu``: scipy's SuperLU in symmetric mode (minimum-degree ordering of A + A',
   no off-diagonal pivoting), always available: the fallback.
@@ -60,6 +62,13 @@ def _one_blas_thread():
     return threadpool_limits(1, user_api="blas")
 
 
+#: size up to which CHOLMOD's simplicial factorisation is used (above it CHOLMOD chooses):
+#: on the 2-D models (4k-34k dofs) and the 3-D one (51k) it factorises 1.0-2x and back-solves
+#: 1.3-3x faster than the supernodal one CHOLMOD's own heuristic picks (BENCHMARKS.md,
+#: solvers), with one BLAS thread or the default threads
+SIMPLICIAL_MAX_N = 100_000
+
+
 class _Cholmod:
     name = "cholmod"
 
@@ -67,7 +76,7 @@ class _Cholmod:
         from sksparse.cholmod import CholmodNotPositiveDefiniteError, cholesky
 
         try:
-            self._f = cholesky(sp.csc_matrix(A))
+            self._f = cholesky(sp.csc_matrix(A), mode="simplicial" if A.shape[0] <= SIMPLICIAL_MAX_N else "auto")
         except CholmodNotPositiveDefiniteError as exc:
             raise SolverError(f"stiffness matrix is not positive definite ({exc}): is the part "
                               "clamped (bore group) and connected?") from None
