@@ -233,7 +233,7 @@ def test_single_cycle_factor_equals_the_bisection(rule, miner):
     sa = rng.uniform(10e6, 600e6, 40)
     sm = rng.uniform(-300e6, 900e6, 40)
     for n in (1e2, 5e3, 2e5, 1e6, 1e8, 1e9):
-        X, _ = _load_factor(sa[None], sm[None], np.array([n]), p, Se)
+        X = _load_factor(sa[None], sm[None], np.array([n]), p, Se)[0]
         np.testing.assert_allclose(single_cycle_factor(sa, sm, n, p, Se), X, rtol=1e-9)
 
 
@@ -344,3 +344,42 @@ def test_analyze_cli_json_has_fatigue_keys_and_settings_act():
         assert time.perf_counter() - t0 < 3.0
     r = inv("analyze", "--list-fatigue")
     assert r.exit_code == 0 and "start_stops" in r.output and "edge_finish" in r.output
+
+
+@pytest.mark.parametrize("concept, loads", [
+    ("concept4", FatigueLoads()),
+    ("concept1", FatigueLoads()),
+    ("concept2", FatigueLoads(start_stops=1e2, revolutions=1e9)),  # the running cycles govern
+    ("concept4", FatigueLoads(cutting_torque=3.0)),  # near the capacity: slipping revolutions
+])
+def test_screened_fatigue_step_equals_checking_every_point(concept, loads):
+    """fatigue_step builds the cycles only where the lower bound L(p) of the factor (from
+    upper bounds of each cycle's amplitude and mean) can reach the smallest factor: the same
+    factor, worst point, governing cycle and location as building them at every point; the
+    bounds hold at every point; L(p) <= the point's factor everywhere."""
+    d = Design.from_concept(concept, mesh_settings=COARSE)
+    res = d.sweep(np.union1d(np.arange(0, 14001, 1000.0), [8000.0]))
+    fa = fatigue_step(d, res, ENGINE, loads=loads)
+    cs = fatigue_cycles(d, res, ENGINE, loads=loads)
+    p = FatigueParams()
+    pts = d.model.stress.points
+    full = fatigue_check(list(cs.cycles), p, xy=pts, cm=d.cm, element=np.arange(d.cm.n_elements).repeat(3))
+    assert fa.safety_factor == pytest.approx(full.safety_factor, rel=1e-12)
+    assert fa.governing_cycle == full.governing_cycle and fa.location == full.location.description
+    assert fa.details["points_screened"] < pts.shape[1] / 4
+    vfull = max(float(np.maximum(von_mises(c.state_a), von_mises(c.state_b)).max()) for c in cs.cycles)
+    assert fa.details["yield_safety_factor_over_cycles"] == pytest.approx(
+        fa.details["params"]["yield_strength"] / vfull, rel=1e-12)
+    scale = float(cs.stress_bound.max())
+    for i, c in enumerate(cs.cycles):
+        sa, sm = c.equivalent()
+        assert np.all(sa <= cs.amplitude_bound[i] * (1 + 1e-9) + 1e-9 * scale), c.name
+        assert np.all(np.abs(sm) <= cs.mean_bound[i] * (1 + 1e-9) + 1e-9 * scale), c.name
+        assert np.all(np.maximum(von_mises(c.state_a), von_mises(c.state_b)) <= cs.stress_bound * (1 + 1e-9)
+                      + 1e-9 * scale)
+    n = [c.count for c in cs.cycles]
+    L = np.min([single_cycle_factor(cs.amplitude_bound[i], cs.mean_bound[i], len(n) * n[i], p)
+                for i in range(len(n))], axis=0)
+    assert np.all(L <= full.point_safety_factor * (1 + 1e-9))
+    print(f"\n{concept}: {fa.details['points_screened']} of {pts.shape[1]} points screened in, "
+          f"{fa.details['points_checked']} checked")

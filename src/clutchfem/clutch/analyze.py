@@ -68,6 +68,9 @@ SELF_ENERGISING_WARN = 1.5
 #: required margin of the first crankshaft critical speed over the engine's maximum speed
 #: (ASSUMED: the usual 20-30 % separation rule for rotors running below their first critical)
 WHIRL_MARGIN = 0.25
+#: points with the smallest lower bound of the fatigue factor whose cycles are built first
+#: (their smallest factor bounds the part's: the screen of fatigue_step)
+FATIGUE_PROBE_POINTS = 32
 #: Friction factors of the mu sensitivity study (mu +- 30 %).
 MU_FACTORS = (0.7, 1.3)
 #: spacing [rpm] of the internal grid on which clutch/engine crossings are bracketed (then
@@ -596,7 +599,7 @@ def _case_torque(case, lam: np.ndarray, mu: float) -> float:
 
 
 def fatigue_cycles(design, res, engine: EngineCurve, loads=None,
-                   ripple_model: ripple_mod.RippleModel | None = None):
+                   ripple_model: ripple_mod.RippleModel | None = None, points=None):
     """The service cycles of :mod:`clutchfem.durability.cycles` for ``design`` (a
     :class:`~clutchfem.durability.cycles.CycleSet`): start-stop to the speed each start
     reaches (default the engine's maximum), running revolutions at the operating speed with
@@ -606,8 +609,21 @@ def fatigue_cycles(design, res, engine: EngineCurve, loads=None,
     and at the maximum speed taken from the sweep ``res`` when solved there), and the
     frictionless case (mu = 0, the secondary cases' Ritz space) at the same speeds,
     warm-started from the slip state's contact nodes: a handful of memoised contact solves,
-    no factorisation.  ``loads``: :class:`~clutchfem.durability.cycles.FatigueLoads`."""
-    from ..durability.cycles import FatigueLoads, ServiceStates, ripple_classes, service_cycles
+    no factorisation.  ``loads``: :class:`~clutchfem.durability.cycles.FatigueLoads`;
+    ``points``: the cycles at these stress points only (default all)."""
+    from ..durability.cycles import service_cycles
+
+    st, kw, ripple = _fatigue_states(design, res, engine, loads, ripple_model)
+    cs = service_cycles(st, points=points, **kw)
+    cs.info["ripple"] = ripple
+    return cs
+
+
+def _fatigue_states(design, res, engine: EngineCurve, loads=None,
+                    ripple_model: ripple_mod.RippleModel | None = None):
+    """(ServiceStates, the other arguments of service_cycles, ripple info) of
+    :func:`fatigue_cycles`."""
+    from ..durability.cycles import FatigueLoads, ServiceStates, ripple_classes
 
     loads = loads if loads is not None else FatigueLoads()
     if not isinstance(loads, FatigueLoads):
@@ -653,12 +669,12 @@ def fatigue_cycles(design, res, engine: EngineCurve, loads=None,
         Mf_max = _case_torque(cf, lam_fmax, mu)
     st = ServiceStates(omegas=w, S0=np.moveaxis(S0[..., :3], 2, 0), Sf_o=Sf_o, Mf=Mf, M0=M0[:3],
                        omega_max=w_max, S0_max=S0[..., 3], Sf_max=Sf_max, Mf_max=Mf_max, M0_max=float(M0[3]))
-    cs = service_cycles(st, delta_classes=classes, cutting_torque=m_o, inertia=loads.drive_inertia,
-                        max_speed_torque=float(engine.torque_at(rpm_max)), start_stops=loads.start_stops,
-                        samples=loads.samples)
-    cs.info["ripple"] = {"delta_mean": float(rm.delta_mean(rpm_o)), "delta_std": float(rm.delta_std(rpm_o)),
-                         "assumed": list(rm.assumed)}
-    return cs
+    kw = dict(delta_classes=classes, cutting_torque=m_o, inertia=loads.drive_inertia,
+              max_speed_torque=float(engine.torque_at(rpm_max)), start_stops=loads.start_stops,
+              samples=loads.samples)
+    ripple = {"delta_mean": float(rm.delta_mean(rpm_o)), "delta_std": float(rm.delta_std(rpm_o)),
+              "assumed": list(rm.assumed)}
+    return st, kw, ripple
 
 
 def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
@@ -673,8 +689,9 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
     available')."""
     import time
 
-    from ..durability.cycles import FatigueLoads
-    from ..durability.fatigue import FatigueParams, LoadCycle, candidate_points, fatigue_check, von_mises
+    from ..durability.cycles import FatigueLoads, service_cycles
+    from ..durability.fatigue import (FatigueParams, LoadCycle, candidate_points, fatigue_check, single_cycle_factor,
+                                      von_mises)
 
     t0 = time.perf_counter()
     model = design.model
@@ -687,16 +704,49 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
         params = FatigueParams(yield_strength=min(material.yield_strength, FatigueParams().ultimate_strength))
     if not isinstance(params, FatigueParams):
         raise ParameterError("fatigue params", type(params).__name__, "a clutchfem.durability.fatigue.FatigueParams")
-    cs = fatigue_cycles(design, res, engine, loads, ripple_model)
+    st, kw, ripple = _fatigue_states(design, res, engine, loads, ripple_model)
     t1 = time.perf_counter()
-    # exact check on the points that can be the worst (closed-form bounds), Langer's first
-    # yield over all points
+    # Which points can be the worst, exactly, before any cycle is built (the chord searches
+    # are the cost): with upper bounds of every cycle's amplitude and mean at a point
+    # (service_cycles' bounds), the closed-form lower bound L(p) of candidate_points holds
+    # with them too (the single-type factor falls with both); the cycles of the K points with
+    # the smallest L give an upper bound U of the smallest factor, and only points with
+    # L <= U are kept.  On those, the closed-form screen with the true amplitudes and means
+    # (candidate_points) and the exact check.
     pts = model.stress.points
     elem = np.arange(design.cm.n_elements).repeat(3)
-    cand = candidate_points(cs.cycles, params)
-    sub = [LoadCycle(c.name, c.state_a[:, cand], c.state_b[:, cand], c.count) for c in cs.cycles]
-    fr = fatigue_check(sub, params, xy=pts[:, cand], cm=design.cm, element=elem[cand])
-    vmax = np.max([np.maximum(von_mises(c.state_a), von_mises(c.state_b)).max() for c in cs.cycles])
+    b = service_cycles(st, bound_only=True, **kw)
+    M = b.stress_bound
+    counts = [kw["start_stops"]] + [max(float(c["count"]), 1.0) for c in kw["delta_classes"]]
+    C = len(counts)
+    L = np.min([single_cycle_factor(b.amplitude_bound[i], b.mean_bound[i], C * counts[i], params)
+                for i in range(C)], axis=0)
+    top = np.argsort(L, kind="stable")[:FATIGUE_PROBE_POINTS]
+
+    def check(points):
+        cs = service_cycles(st, points=points, **kw)
+        cand = candidate_points(cs.cycles, params)
+        sub = [LoadCycle(c.name, c.state_a[:, cand], c.state_b[:, cand], c.count) for c in cs.cycles]
+        return cs, fatigue_check(sub, params, xy=pts[:, points[cand]], cm=design.cm, element=elem[points[cand]]), cand
+
+    cs_top, fr_top, cand_top = check(top)
+    with np.errstate(divide="ignore"):
+        keep = np.nonzero(L <= fr_top.safety_factor * (1.0 + 1e-9))[0] if math.isfinite(fr_top.safety_factor) \
+            else np.arange(len(M))
+    keep = np.union1d(keep, top)
+    cs, fr, cand = (cs_top, fr_top, cand_top) if len(keep) == len(top) else check(keep)
+    cs.info["ripple"] = ripple
+
+    def peak_vm(cycles):
+        return max((float(np.maximum(von_mises(c.state_a), von_mises(c.state_b)).max(initial=0.0)) for c in cycles),
+                   default=0.0)
+
+    # Langer's first yield over the cycles at every point: where the bound exceeds the peak
+    # found so far, the cycles are built too
+    vmax = peak_vm(cs.cycles)
+    rest = np.setdiff1d(np.nonzero(M > vmax)[0], keep)
+    if len(rest):
+        vmax = max(vmax, peak_vm(service_cycles(st, points=rest, **kw).cycles))
     t2 = time.perf_counter()
     info = cs.info
     notes = []
@@ -715,7 +765,8 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
         "worst_xy_m": None if fr.worst_xy_m is None else list(fr.worst_xy_m),
         "damage_at_worst": fr.damage_at_worst, "per_cycle": [dict(c) for c in fr.per_cycle],
         "yield_safety_factor_over_cycles": params.yield_strength / vmax if vmax > 0 else math.inf,
-        "points_checked": int(len(cand)), "points": int(pts.shape[1]), "endurance_limit_Pa": fr.endurance_limit_Pa,
+        "points_checked": int(len(cand)), "points_screened": int(len(keep)), "points_yield_checked":
+        int(len(keep) + len(rest)), "points": int(pts.shape[1]), "endurance_limit_Pa": fr.endurance_limit_Pa,
         "marin_factors": dict(fr.factors), "params": dict(fr.params),
         "loads": (loads if loads is not None else FatigueLoads()).model_dump(),
         "ripple": info.pop("ripple"), "cycles": info, "notes": notes,

@@ -243,12 +243,31 @@ class ServiceStates:
     M0_max: float
 
 
+    def at(self, points) -> "ServiceStates":
+        """The same states at the points ``points`` only (indices into the stress arrays)."""
+        idx = np.asarray(points)
+        return ServiceStates(omegas=self.omegas, S0=self.S0[..., idx], Sf_o=self.Sf_o[:, idx], Mf=self.Mf,
+                             M0=self.M0, omega_max=self.omega_max, S0_max=self.S0_max[:, idx],
+                             Sf_max=self.Sf_max[:, idx], Mf_max=self.Mf_max, M0_max=self.M0_max)
+
+
 @dataclass(frozen=True)
 class CycleSet:
-    """The load cycles and what they were built from (JSON-ready ``info``)."""
+    """The load cycles and what they were built from (JSON-ready ``info``).
+
+    ``stress_bound`` (npts,) [Pa]: per point an upper bound of the von Mises stress of every
+    state the cycles were sampled from; ``amplitude_bound``, ``mean_bound`` (cycles, npts)
+    [Pa]: per cycle type (in the order of ``cycles``) and point, upper bounds of its
+    equivalent amplitude and |mean|.  All by the triangle inequality (von Mises is a
+    seminorm): a sample sum_a c_a B_a has vM <= sum_a |c_a| vM(B_a), the chord between two
+    samples vM <= sum_a range(c_a) vM(B_a); start-stop (rest to its peak P) has amplitude =
+    mean = vM(P)/2."""
 
     cycles: tuple[LoadCycle, ...]
     info: dict = field(default_factory=dict)
+    stress_bound: np.ndarray | None = None
+    amplitude_bound: np.ndarray | None = None
+    mean_bound: np.ndarray | None = None
 
 
 def _interp_w2(w2, nodes_w2, values):
@@ -257,8 +276,16 @@ def _interp_w2(w2, nodes_w2, values):
 
 
 def service_cycles(st: ServiceStates, *, delta_classes: list[dict], cutting_torque: float, inertia: float,
-                   max_speed_torque: float, start_stops: float, samples: int = 24) -> CycleSet:
-    """Start-stop and running-revolution cycles from the solved states (module docstring)."""
+                   max_speed_torque: float, start_stops: float, samples: int = 24, points=None,
+                   bound_only: bool = False) -> CycleSet:
+    """Start-stop and running-revolution cycles from the solved states (module docstring).
+
+    ``points``: build them at these points only (indices into the stress arrays; each point's
+    cycles depend on its own stresses only).  ``bound_only``: skip the cycles (their chord
+    searches are most of the cost) and return the ``stress_bound`` of every point, for a
+    screen of the points before the cycles are built."""
+    if points is not None:
+        st = st.at(points)
     w = np.asarray(st.omegas, dtype=float)
     if w.shape != (3,) or not (0 < w[0] < w[1] < w[2]):
         raise ParameterError("omegas", w, "three increasing speeds w_o (1 - d), w_o, w_o (1 + d) > 0 rad/s")
@@ -276,6 +303,7 @@ def service_cycles(st: ServiceStates, *, delta_classes: list[dict], cutting_torq
     info_classes = []
     cycles = []
     running_rows = []  # coefficient rows of the running samples of classes seen at least once per start
+    sampled = []  # coefficient rows of every running sample (for the stress bound)
     for c in delta_classes:
         d = float(c["delta"])
         w2 = (wo * (1.0 + d * np.sin(theta))) ** 2
@@ -287,9 +315,11 @@ def service_cycles(st: ServiceStates, *, delta_classes: list[dict], cutting_torq
         carried = np.clip(demand, -cap_r, cap_f) if mf_o > 0 else np.zeros(n)
         slipping = (carried != demand) if mf_o > 0 else np.ones(n, dtype=bool)
         C = np.column_stack([np.ones(n), up, dn, carried])
-        Sa, Sb, ia, ib = longest_chord(B[1:], C[:, 1:], base=B[0], gram=gram)
         name = class_name(c)
-        cycles.append(LoadCycle(name, Sa, Sb, max(float(c["count"]), 1.0)))
+        sampled.append(C)
+        if not bound_only:
+            Sa, Sb, ia, ib = longest_chord(B[1:], C[:, 1:], base=B[0], gram=gram)
+            cycles.append(LoadCycle(name, Sa, Sb, max(float(c["count"]), 1.0)))
         if c["count"] >= start_stops:
             running_rows.append(C)
         info_classes.append({"name": name, "z_range": c["z_range"], "delta": d, "probability": c["probability"],
@@ -306,6 +336,21 @@ def service_cycles(st: ServiceStates, *, delta_classes: list[dict], cutting_torq
     for C in running_rows:
         rows.append(np.column_stack([C, np.zeros(len(C))]))
     Cs = np.vstack(rows)
+    # bounds by the triangle inequality (von Mises is a seminorm): a sample sum_a c_a B_a has
+    # vM <= sum_a |c_a| vM(B_a), and a chord between two samples has vM <= sum_a range(c_a)
+    # vM(B_a); no state is formed
+    field_vm = np.stack([np.sqrt(np.maximum(_q(F, F), 0.0)) for F in Bs])  # (5, npts)
+    amp_b, mean_b = [], []
+    for C in sampled:
+        Mc = np.abs(C).max(axis=0) @ field_vm[:4]
+        amp_b.append(np.minimum(0.5 * ((C[:, 1:].max(axis=0) - C[:, 1:].min(axis=0)) @ field_vm[1:4]), Mc))
+        mean_b.append(Mc)
+    in_start = [Mc for Mc, c in zip(mean_b, delta_classes) if c["count"] >= start_stops]
+    peak_b = np.max([field_vm[4]] + in_start, axis=0)  # start-stop: rest -> the farthest row of Cs
+    bound = np.max([field_vm[4]] + mean_b, axis=0)
+    amp_b, mean_b = np.vstack([0.5 * peak_b] + amp_b), np.vstack([0.5 * peak_b] + mean_b)
+    if bound_only:
+        return CycleSet((), {}, bound, amp_b, mean_b)
     peak, which = farthest_state(Bs, Cs)
     cycles.insert(0, LoadCycle("start-stop", np.zeros_like(peak), peak, start_stops))
     info = {
@@ -315,9 +360,11 @@ def service_cycles(st: ServiceStates, *, delta_classes: list[dict], cutting_torq
         "frictionless_torque_mu_R_N0_Nm": list(st.M0),
         "max_speed_rpm": st.omega_max * 30 / math.pi, "max_speed_torque_Nm": float(max_speed_torque),
         "max_speed_carried_torque_Nm": float(m_hi), "capacity_at_max_speed_Nm": float(st.Mf_max),
-        "start_stop_peak_from_running_state_fraction": float(np.mean(which > 0)),
+        # (over the points the cycles were built at: analyze builds them at the screened points)
+        "start_stop_peak_from_running_state_fraction": float(np.mean(which > 0)) if len(which) else math.nan,
+        "points": int(len(which)),
         "start_stops": float(start_stops), "revolutions": float(sum(c["count"] for c in delta_classes)),
         "samples_per_revolution": n, "classes": info_classes,
         "engaged_at_operating_speed": bool(mf_o > 0),
     }
-    return CycleSet(tuple(cycles), info)
+    return CycleSet(tuple(cycles), info, bound, amp_b, mean_b)
