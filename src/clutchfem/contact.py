@@ -17,8 +17,8 @@ Coulomb friction adds -s mu lam_i t_i (t_i = e_theta).  The *load operator* is t
 linear in mu, so two condensed sets span the compliance K^-1 D(mu) of every friction
 coefficient (mu +-30 %, friction off) of one design: they reuse the same back-substitutions
 (:class:`Compliance`).  Columns are condensed lazily, only for
-the nodes the LCP (:mod:`clutchfem.lcp`) makes active, with their neighbours along the shoe
-prefetched in one blocked solve: the shoes touch the drum on a short arc.
+the nodes the LCP (:mod:`clutchfem.lcp`) makes active, with the nodes likely asked for next
+in the same blocked solve: the shoes touch the drum on a short arc.
 """
 
 from __future__ import annotations
@@ -287,9 +287,12 @@ class Compliance:
 
     column by column as the LCP needs them, shared by every friction coefficient of the
     design.  D is linear in f, so two condensed sets span every f: the set ``a`` of the first
-    friction f_a asked for (a single sweep condenses exactly its own columns, nothing more)
-    and, when another f is asked for, a set ``b``: K^-1 N if f_a != 0 (then W(f) = r A +
-    (1 - r) B with r = f / f_a), else K^-1 Tt (then W(f) = A + f B).
+    friction f_a asked for (a single sweep condenses its own columns, nothing more) and,
+    when another f is asked for, a set ``b``: K^-1 N if f_a != 0 (then W(f) = r A + (1 - r) B
+    with r = f / f_a), else K^-1 Tt (then W(f) = A + f B).  Each condensation is one blocked
+    back-solve: set ``a`` takes the asked node's neighbours along the shoe with it (the arc
+    grows with speed), set ``b`` the nodes set ``a`` holds (the other friction coefficients
+    touch the drum where the first one does).
     """
 
     def __init__(self, model, nodes: ContactNodes):
@@ -332,17 +335,20 @@ class Compliance:
         if not len(missing):
             return
         nd = self.nodes
+        # each call streams the whole factorisation once (the columns are cheap next to that
+        # when the factor is not in cache): condense what is likely to be asked for next too
         if kind == "a":
-            # a sweep's contact arc grows node by node with speed: condense the PREFETCH
-            # nearest nodes on either side along the same shoe too (one call instead of one per
-            # speed; ~1.5x cheaper per column with SuperLU, about even with CHOLMOD).  The
-            # second set serves the other friction coefficients, whose contact nodes are mostly
-            # the first set's: exactly the nodes asked for.
+            # a sweep's contact arc grows node by node with speed: the PREFETCH nearest nodes
+            # on either side along the same shoe
             near = self._rank[missing][:, None] + np.arange(-PREFETCH, PREFETCH + 1)[None, :]
             near = nd.by_arc[np.clip(near, 0, nd.m - 1)]
             near = near[nd.shoe[near] == nd.shoe[missing][:, None]]
-            missing = np.unique(np.concatenate([missing, near]))
-            missing = missing[pos[missing] < 0]
+        else:
+            # the other friction coefficients touch the drum where the first one does: the
+            # first set's nodes
+            near = np.nonzero(self._pos["a"] >= 0)[0]
+        missing = np.unique(np.concatenate([missing, near]))
+        missing = missing[pos[missing] < 0]
         t = time.perf_counter()
         Wn = self.model.solve(self._load(kind)[:, missing].toarray()).reshape(self.model.ndofs, -1)
         pos[missing] = self._W[kind].shape[1] + np.arange(len(missing))
