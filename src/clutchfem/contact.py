@@ -376,9 +376,15 @@ class Compliance:
         """Columns ``idx`` of W(f) (all dofs)."""
         return self._columns(self._W, idx, friction)
 
-    def basis(self) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """(columns, positions): every condensed column [A | B] and, per set, the column index
-        of each node (-1: not condensed), for the reduced-basis fields of a sweep."""
+    def positions(self) -> tuple[int, dict[str, np.ndarray]]:
+        """(number of condensed columns, positions): per set, the index of each node's column in
+        [A | B] (-1: not condensed), for the reduced-basis fields of a sweep."""
         k = self._W["a"].shape[1]
         pos = {"a": self._pos["a"].copy(), "b": np.where(self._pos["b"] >= 0, self._pos["b"] + k, -1)}
-        return np.hstack([self._W["a"], self._W["b"]]), pos
+        return k + self._W["b"].shape[1], pos
+
+    def columns(self, idx: np.ndarray) -> np.ndarray:
+        """Columns ``idx`` (sorted, of [A | B]) of the condensed compliance (all dofs)."""
+        idx = np.asarray(idx, dtype=np.int64)
+        k = self._W["a"].shape[1]
+        return np.hstack([self._W["a"][:, idx[idx < k]], self._W["b"][:, idx[idx >= k] - k]])

@@ -348,11 +348,8 @@ class _ModalResponse:
         """(basis, coef, None): every state's displacement is basis @ coef[:, k]; only the
         columns some state uses are kept."""
         r = self.Phi.shape[1]
-        if self.contact is not None:
-            W, pos = self.compliance.basis()
-        else:
-            W, pos = np.zeros((self.model.ndofs, 0)), None
-        coef = np.zeros((1 + r + W.shape[1], len(omegas)))
+        nw, pos = self.compliance.positions() if self.contact is not None else (0, None)
+        coef = np.zeros((1 + r + nw, len(omegas)))
         for j, (w, lam) in enumerate(zip(omegas, lams)):
             w2 = w * w
             coef[0, j] = w2
@@ -369,8 +366,10 @@ class _ModalResponse:
                 coef[1:1 + r, j] = self.coefficients(w) * load
         used = np.any(coef != 0.0, axis=1)
         used[0] = True
-        basis = np.hstack([self.u1[:, None], self.Phi, W])[:, used]
-        return basis, coef[used], None
+        parts = [self.u1[:, None], self.Phi[:, used[1:1 + r]]]
+        if nw:
+            parts.append(self.compliance.columns(np.nonzero(used[1 + r:])[0]))
+        return np.hstack(parts), coef[used], None
 
 
 class _ExactResponse:
