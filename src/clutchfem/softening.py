@@ -302,9 +302,15 @@ class _ModalResponse:
             nd = contact.nodes
             self.compliance = model_compliance(model, nd)
             self.friction = contact.friction
-            self.Bu1 = nd.normal_displacement(self.u1)
-            self.BPhi = nd.normal_displacement(Phi).reshape(nd.m, -1)
-            self.PhiD = (contact.load.T @ Phi).T  # r x m
+            # what depends on the space and the nodes only is shared by the load cases of every
+            # friction coefficient (Phi' D(f) = Phi' N + f Phi' Tt)
+            cache = model.__dict__.setdefault("_modal_cache", {})
+            key = (id(Phi), id(nd))
+            if key not in cache:
+                cache[key] = (Phi, nd, nd.normal_displacement(self.u1), nd.normal_displacement(Phi).reshape(nd.m, -1),
+                              (nd.normal_load.T @ Phi).T, (nd.tangent_load.T @ Phi).T)  # (Phi, nd kept: ids)
+            _, _, self.Bu1, self.BPhi, PhiN, PhiT = cache[key]
+            self.PhiD = PhiN + self.friction * PhiT if self.friction != 0.0 else PhiN  # r x m
 
     def coefficients(self, omega: float) -> np.ndarray:
         """The mode-acceleration weights at ``omega`` (:meth:`_coefficients`; the last speed's
