@@ -189,3 +189,25 @@ def test_base_mu_is_checked(kw):
 
     with pytest.raises(ParameterError, match="base_mu"):
         Ritz(**kw)
+
+
+@pytest.mark.parametrize("what", ["sweep", "analyze"])
+def test_a_finished_design_is_freed_without_the_garbage_collector(concept1_coarse, what):
+    """No reference cycle holds a design's FE model (its matrices and factorisation): when the
+    design and its results go, the model goes at once, not at some later garbage collection
+    (in a study, memory and time would otherwise be charged to whichever design runs then)."""
+    import gc
+    import weakref
+
+    from clutchfem.clutch.analyze import analyze
+
+    gc.collect()
+    gc.disable()
+    try:
+        d = design(*concept1_coarse)
+        r = analyze(d, errors=False) if what == "analyze" else d.sweep("0:14000:500")
+        model, factor = weakref.ref(d.model), weakref.ref(d.model.factor)
+        del d, r
+        assert model() is None and factor() is None
+    finally:
+        gc.enable()

@@ -296,14 +296,17 @@ class Compliance:
     """
 
     def __init__(self, model, nodes: ContactNodes):
-        self.model = model
+        # the model's constraint map and factorisation, not the model: the model caches this
+        # object, and a reference back would make a cycle that only the garbage collector
+        # frees (a design's matrices would outlive it)
+        self._T, self._factor, self._ndofs = model.T, model.factor, model.ndofs
         self.nodes = nodes
         m = nodes.m
         self._rank = np.empty(m, dtype=np.int64)
         self._rank[nodes.by_arc] = np.arange(m)
         self.f_a: float | None = None
         self._pos = {"a": -np.ones(m, dtype=np.int64), "b": -np.ones(m, dtype=np.int64)}
-        self._W = {"a": np.zeros((model.ndofs, 0)), "b": np.zeros((model.ndofs, 0))}
+        self._W = {"a": np.zeros((self._ndofs, 0)), "b": np.zeros((self._ndofs, 0))}
         self._BW = {"a": np.zeros((m, 0)), "b": np.zeros((m, 0))}
         self.seconds = 0.0
 
@@ -350,7 +353,8 @@ class Compliance:
         missing = np.unique(np.concatenate([missing, near]))
         missing = missing[pos[missing] < 0]
         t = time.perf_counter()
-        Wn = self.model.solve(self._load(kind)[:, missing].toarray()).reshape(self.model.ndofs, -1)
+        F = self._load(kind)[:, missing].toarray()
+        Wn = (self._T @ self._factor.solve(self._T.T @ F)).reshape(self._ndofs, -1)
         pos[missing] = self._W[kind].shape[1] + np.arange(len(missing))
         self._W[kind] = np.hstack([self._W[kind], Wn])
         self._BW[kind] = np.hstack([self._BW[kind], nd.normal_displacement(Wn).reshape(nd.m, -1)])

@@ -500,36 +500,37 @@ class PrestressedModel:
     def __getattr__(self, name):
         return getattr(self.__dict__["_base"], name)
 
+    def _cached(self, key: str, compute):
+        # kept on the base model (a view holds its model, not the other way round: no
+        # reference cycle, a design's matrices go when it goes)
+        d = self.__dict__["_base"].__dict__
+        if key not in d:
+            d[key] = compute()
+        return d[key]
+
     @property
     def K_sigma1(self):
-        d = self.__dict__
-        if "_Ks" not in d:
+        def compute():
             t0 = time.perf_counter()
-            d["_Ks"] = geometric_stiffness(self._base, self._base.u1)
+            Ks = geometric_stiffness(self._base, self._base.u1)
             self._base.timings["prestress_s"] = time.perf_counter() - t0
-        return d["_Ks"]
+            return Ks
+
+        return self._cached("_prestress_Ks", compute)
 
     @property
     def M(self):
-        d = self.__dict__
-        if "_M" not in d:
-            d["_M"] = (self._base.M - self.K_sigma1).tocsr()
-        return d["_M"]
+        return self._cached("_prestress_M", lambda: (self._base.M - self.K_sigma1).tocsr())
 
     @property
     def Mr(self):
-        d = self.__dict__
-        if "_Mr" not in d:
-            d["_Mr"] = (self.T.T @ self.M @ self.T).tocsc()
-        return d["_Mr"]
+        return self._cached("_prestress_Mr", lambda: (self.T.T @ self.M @ self.T).tocsc())
 
 
 def prestressed(model) -> PrestressedModel:
-    """The :class:`PrestressedModel` of ``model``, built once (K_sigma1 is one assembly)."""
-    d = model.__dict__
-    if "_prestressed" not in d:
-        d["_prestressed"] = PrestressedModel(model)
-    return d["_prestressed"]
+    """The :class:`PrestressedModel` view of ``model`` (K_sigma1 is one assembly, done once:
+    the view's matrices are cached on ``model``)."""
+    return PrestressedModel(model)
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ import time
 from functools import cached_property
 
 import numpy as np
-from scipy.optimize import brentq
+from .roots import brentq
 
 from .checks import check_numerics, condition_estimate, equilibrium
 from .contact import DrumContact

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
-from scipy.optimize import brentq
+from clutchfem.roots import brentq
 
 from clutchfem.errors import InputError, ParameterError
 
