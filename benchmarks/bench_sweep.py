@@ -108,7 +108,13 @@ def main() -> None:
     ap.add_argument("--factors", default="4,2,1,0.5")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--parts", default="1,2,3,4,5", help="which parts to run (comma separated)")
+    ap.add_argument("--no-tune-malloc", action="store_true",
+                    help="leave glibc's allocator as it is (the CLI and the sweep workers tune it)")
     a = ap.parse_args()
+    if not a.no_tune_malloc:
+        from clutchfem.runtime import tune_malloc
+
+        print(f"allocator tuned as in the CLI and the sweep workers: {tune_malloc()}")
     run_parts = {int(x) for x in a.parts.split(",")}
     c = get_concept(a.concept)
     p = c.params()

@@ -211,3 +211,16 @@ def test_a_finished_design_is_freed_without_the_garbage_collector(concept1_coars
         assert model() is None and factor() is None
     finally:
         gc.enable()
+
+
+def test_tune_malloc_is_idempotent_and_takes_on_glibc():
+    import sys
+
+    from clutchfem.runtime import tune_malloc
+
+    first = tune_malloc()
+    assert tune_malloc() is first
+    if sys.platform.startswith("linux"):
+        import platform
+
+        assert first == (platform.libc_ver()[0] == "glibc")

@@ -41,6 +41,9 @@ def main() -> None:
         raise SystemExit(130)
 
     signal.signal(signal.SIGINT, interrupted)
+    from ..runtime import tune_malloc
+
+    tune_malloc()  # this process is clutchfem's: freed arrays stay for the next design
     app()
 
 

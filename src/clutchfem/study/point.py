@@ -385,6 +385,9 @@ def warm_up(concept: str | None = None) -> str:
     from ..clutch import analyze  # noqa: F401
     from ..design import Design  # noqa: F401
     from ..mesh import mesh_concept  # noqa: F401
+    from ..runtime import tune_malloc
+
+    tune_malloc()  # a worker process runs design after design: freed arrays stay for the next
 
     if concept:
         from ..geometry import get_concept

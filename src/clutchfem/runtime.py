@@ -1,0 +1,42 @@
+"""Process settings for the processes clutchfem owns (the CLI, sweep workers, benchmarks).
+
+:func:`tune_malloc`: glibc's allocator hands arrays above a (dynamic) threshold straight
+back to the operating system when they are freed, so the next design's arrays of the same
+sizes are page-faulted in afresh.  A design allocates and frees tens of MB of matrices,
+fields and factor columns; keeping freed memory in the heap for the next one saves ~10 % of
+a sweep or an analysis (BENCHMARKS.md, section 4).  Called where clutchfem owns the process,
+never on import: a library does not change its host's allocator.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import sys
+
+__all__ = ["tune_malloc"]
+
+#: mallopt parameters (glibc malloc.h)
+_M_TRIM_THRESHOLD = -1
+_M_MMAP_THRESHOLD = -3
+#: arrays up to this size come from the heap (glibc's maximum for the threshold on 64-bit)
+MMAP_THRESHOLD = 32 * 1024 * 1024
+#: free memory at the top of the heap kept for reuse
+TRIM_THRESHOLD = 1024 * 1024 * 1024
+
+_done: bool | None = None
+
+
+def tune_malloc() -> bool:
+    """Keep freed memory in the heap (glibc only; elsewhere a no-op).  Returns whether the
+    allocator took the settings; idempotent."""
+    global _done
+    if _done is None:
+        _done = False
+        if sys.platform.startswith("linux"):
+            try:
+                libc = ctypes.CDLL("libc.so.6")
+                _done = bool(libc.mallopt(_M_MMAP_THRESHOLD, MMAP_THRESHOLD)) and bool(
+                    libc.mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD))
+            except (OSError, AttributeError):  # not glibc
+                _done = False
+    return _done
