@@ -211,3 +211,23 @@ def test_bad_input_names_the_parameter(make, name):
         make()
     assert ei.value.name == name
     assert name in str(ei.value) and "allowed" in str(ei.value)
+
+
+def test_arc_torque_is_shoe_torque_per_lining():
+    """The vectorised arc_torque equals shoe_torque(...).total lining by lining (plus and
+    minus, a self-locking plus lining, F = 0), and refuses a bad angle naming it."""
+    from clutchfem.clutch.shoe import arc_torque
+
+    rng = np.random.default_rng(3)
+    p1 = rng.uniform(0.0, 1.5, 40)
+    p2 = p1 + rng.uniform(0.05, 1.6, 40)
+    F = rng.uniform(0.0, 300.0, 40)
+    F[0] = 0.0
+    A, R, L = 0.025, 0.0344, 0.02
+    for kind, mu in (("minus", 0.3), ("plus", 0.3), ("plus", 0.9)):
+        got = arc_torque(F, p1, p2, A, R, L, mu, kind, 3)
+        ref = [shoe_torque(f, ShoeGeometry(a, b, A, R, L), mu, kind, 3).total for f, a, b in zip(F, p1, p2)]
+        np.testing.assert_array_equal(got, np.asarray(ref, dtype=float))
+    assert np.isinf(arc_torque(F, p1, p2, A, R, L, 0.9, "plus", 3)).any()
+    with pytest.raises(ParameterError, match="phi2"):
+        arc_torque([1.0, 1.0], [0.1, 0.5], [0.4, 0.5], A, R, L, 0.3, "minus")

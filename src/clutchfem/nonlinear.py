@@ -572,12 +572,13 @@ class PrestressRitz(KrylovSpace):
             def _coefficients(self, omega: float) -> np.ndarray:
                 from .softening import POLE_BAND
 
-                w2 = omega * omega
-                if np.any(np.abs(1.0 - w2 * theta) < POLE_BAND):
+                x = (omega * omega) * theta
+                d = 1.0 - x
+                if np.abs(d).min(initial=np.inf) < POLE_BAND:
                     raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is a natural speed of the "
                                       "prestressed free part: K - w^2 (M - K_sigma1) is singular there; solve a "
                                       "speed next to it")
-                return w2 * theta / (1.0 - w2 * theta)
+                return x / d
 
             def unstable_count(self, omega: float) -> int:
                 return int(np.count_nonzero(omega * omega * theta > 1.0))

@@ -55,7 +55,7 @@ from ..errors import ClutchfemError, ParameterError
 from ..units import rpm_to_rad_s, wrap_angle
 from . import ripple as ripple_mod
 from .engine import EngineCurve, _holds, first_slip_rpm, torque_crossings
-from .shoe import ShoeGeometry, shoe_torque
+from .shoe import ShoeGeometry, arc_torque, shoe_torque
 
 #: Defaults of the requirement factors.  The thesis keeps a and b confidential: ASSUMED.
 DEFAULT_A = 1.3
@@ -509,23 +509,23 @@ def coupling_step(design, res) -> tuple[dict, pd.DataFrame]:
     except ClutchfemError as exc:
         out["analytic_nominal_arc_Nm"] = math.nan
         coupling["nominal_error"] = str(exc)
-    # FE contact arc per speed, measured from the pivot ray (the arc changes only when a node
-    # joins or leaves the contact: the speeds of one arc are evaluated together)
+    # FE contact arc per speed, measured from the pivot ray
     fe_arc = np.zeros(len(rpm))
     q_deg = np.full((len(rpm), 2), np.nan)
-    arcs: dict[tuple[float, float], list[int]] = {}
-    for k in range(len(rpm)):
-        if np.isfinite(ext[k, 0]):
-            q = sorted((abs(wrap_angle(ext[k, 0] - th_p)), abs(wrap_angle(ext[k, 1] - th_p))))
-            q1, q2 = max(q[0], 0.0), min(q[1], math.pi)
-            q_deg[k] = np.degrees([q1, q2])
-            if F[k] > 0:
-                arcs.setdefault((q1, q2), []).append(k)
-    for (q1, q2), ks in arcs.items():
-        try:
-            fe_arc[ks] = shoe_torque(F[ks], ShoeGeometry(q1, q2, A, R, L), mu, kind, n).total
-        except ClutchfemError:
-            fe_arc[ks] = math.nan
+    touch = np.isfinite(ext[:, 0])
+    qa, qb = np.abs(wrap_angle(ext[touch, 0] - th_p)), np.abs(wrap_angle(ext[touch, 1] - th_p))
+    q1, q2 = np.maximum(np.minimum(qa, qb), 0.0), np.minimum(np.maximum(qa, qb), math.pi)
+    q_deg[touch] = np.degrees(np.column_stack([q1, q2]))
+    on = np.nonzero(touch)[0]
+    sel = F[on] > 0
+    try:
+        fe_arc[on[sel]] = arc_torque(F[on[sel]], q1[sel], q2[sel], A, R, L, mu, kind, n)
+    except ClutchfemError:  # an arc the shoe model does not take: speed by speed
+        for k, a1, a2 in zip(on[sel], q1[sel], q2[sel]):
+            try:
+                fe_arc[k] = arc_torque(F[k:k + 1], [a1], [a2], A, R, L, mu, kind, n)[0]
+            except ClutchfemError:
+                fe_arc[k] = math.nan
     out["analytic_fe_arc_Nm"] = fe_arc
     out["contact_phi1_deg"] = q_deg[:, 0]  # FE contact extent from the pivot ray (nominal: phi1..phi2)
     out["contact_phi2_deg"] = q_deg[:, 1]

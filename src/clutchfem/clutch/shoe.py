@@ -68,6 +68,7 @@ __all__ = [
     "QuadratureShoe",
     "lining_integrals",
     "torque_factor",
+    "arc_torque",
     "shoe_torque",
     "engagement_speed",
     "apply_force",
@@ -120,13 +121,34 @@ def _check_angles(phi1: float, phi2: float) -> tuple[float, float]:
     return p1, p2
 
 
+def _check_geometry(A: float, R: float, L: float) -> None:
+    _check_positive("R", R, "m")
+    if _check_positive("A", A, "m") >= R:
+        raise ParameterError("A", A, f"pivot inside the drum: 0 < A < R = {R} m")
+    _check_positive("L", L, "m")
+
+
 def lining_integrals(phi1: float, phi2: float) -> LiningIntegrals:
     """Closed-form lining integrals I_s, I_ss, I_sc (thesis eqs 4-6) for angles in rad."""
     p1, p2 = _check_angles(phi1, phi2)
-    I_s = math.cos(p1) - math.cos(p2)
-    I_ss = 0.5 * (p2 - p1) - 0.25 * (math.sin(2.0 * p2) - math.sin(2.0 * p1))
-    I_sc = 0.25 * (math.cos(2.0 * p1) - math.cos(2.0 * p2))
-    return LiningIntegrals(I_s, I_ss, I_sc)
+    return LiningIntegrals(*(float(v) for v in _integrals(p1, p2)))
+
+
+def _integrals(p1, p2):
+    """(I_s, I_ss, I_sc) for angles (floats or arrays, checked by the caller)."""
+    return (np.cos(p1) - np.cos(p2), 0.5 * (p2 - p1) - 0.25 * (np.sin(2.0 * p2) - np.sin(2.0 * p1)),
+            0.25 * (np.cos(2.0 * p1) - np.cos(2.0 * p2)))
+
+
+def _factor(integrals, a: float, L: float, mu: float, kind: ShoeKind):
+    """(M/F, denominator) of eq 2 (plus) / eq 7 (minus) for lining integrals (floats or
+    arrays); a = A / R.  M/F is inf where the denominator is <= 0 (self-locking)."""
+    I_s, I_ss, I_sc = integrals
+    sign = -1.0 if kind == "plus" else 1.0
+    den = a * I_ss + sign * mu * (I_s - a * I_sc)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        k = np.where(den > 0.0, mu * I_s * L / np.where(den > 0.0, den, 1.0), np.inf)
+    return k, den
 
 
 @dataclass(frozen=True)
@@ -145,11 +167,7 @@ class ShoeGeometry:
 
     def __post_init__(self) -> None:
         _check_angles(self.phi1, self.phi2)
-        _check_positive("R", self.R, "m")
-        A = _check_positive("A", self.A, "m")
-        if A >= self.R:
-            raise ParameterError("A", self.A, f"pivot inside the drum: 0 < A < R = {self.R} m")
-        _check_positive("L", self.L, "m")
+        _check_geometry(self.A, self.R, self.L)
 
     @property
     def integrals(self) -> LiningIntegrals:
@@ -177,13 +195,28 @@ def torque_factor(geometry: ShoeGeometry, mu: float, kind: ShoeKind) -> TorqueFa
     """Torque per unit apply force of one shoe, eq 2 (plus) / eq 7 (minus)."""
     mu = _check_mu(mu)
     kind = _check_kind(kind)
-    I_s, I_ss, I_sc = geometry.integrals
-    a = geometry.A / geometry.R
-    sign = -1.0 if kind == "plus" else 1.0
-    den = a * I_ss + sign * mu * (I_s - a * I_sc)
-    if den <= 0.0:
-        return TorqueFactor(math.inf, den, True)
-    return TorqueFactor(mu * I_s * geometry.L / den, den, False)
+    k, den = _factor(geometry.integrals, geometry.A / geometry.R, geometry.L, mu, kind)
+    return TorqueFactor(float(k), float(den), bool(den <= 0.0))
+
+
+def arc_torque(F, phi1, phi2, A: float, R: float, L: float, mu: float, kind: ShoeKind, n: int = 1) -> np.ndarray:
+    """Total torque [N m] of n shoes, eqs 2/7 and 8, for apply forces ``F`` [N] on linings
+    ``phi1``..``phi2`` [rad] (arrays of one length: one lining per force; the geometry
+    otherwise as :class:`ShoeGeometry`): the vectorised :func:`shoe_torque` (inf where
+    self-locking and F > 0).  Angles outside 0 <= phi1 < phi2 <= pi are refused, naming the
+    first."""
+    F, p1, p2 = (np.asarray(x, dtype=float) for x in (F, phi1, phi2))
+    bad = ~(np.isfinite(p1) & np.isfinite(p2) & (p1 >= 0.0) & (p1 < p2) & (p2 <= math.pi))
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        _check_angles(p1.flat[i], p2.flat[i])
+    if np.any(~np.isfinite(F)) or np.any(F < 0.0):
+        raise ParameterError("F", F.min() if F.size else F, "apply force finite and >= 0 N")
+    _check_geometry(A, R, L)
+    k, _ = _factor(_integrals(p1, p2), A / R, L, _check_mu(mu), _check_kind(kind))
+    with np.errstate(invalid="ignore"):
+        m = np.where(F > 0.0, k * F, 0.0)
+    return _check_n(n) * m
 
 
 @dataclass(frozen=True)
