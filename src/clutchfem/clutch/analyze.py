@@ -690,8 +690,8 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
     import time
 
     from ..durability.cycles import FatigueLoads, service_cycles
-    from ..durability.fatigue import (FatigueParams, LoadCycle, candidate_points, fatigue_check, single_cycle_factor,
-                                      von_mises)
+    from ..durability.fatigue import (FatigueParams, LoadCycle, candidate_points, endurance_limit, fatigue_check,
+                                      single_cycle_factor, von_mises)
 
     t0 = time.perf_counter()
     model = design.model
@@ -719,13 +719,14 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
     M = b.stress_bound
     counts = [kw["start_stops"]] + [max(float(c["count"]), 1.0) for c in kw["delta_classes"]]
     C = len(counts)
-    L = np.min([single_cycle_factor(b.amplitude_bound[i], b.mean_bound[i], C * counts[i], params)
+    Se = endurance_limit(params)[0]
+    L = np.min([single_cycle_factor(b.amplitude_bound[i], b.mean_bound[i], C * counts[i], params, Se)
                 for i in range(C)], axis=0)
     top = np.argsort(L, kind="stable")[:FATIGUE_PROBE_POINTS]
 
     def check(points):
         cs = service_cycles(st, points=points, **kw)
-        cand = candidate_points(cs.cycles, params)
+        cand = candidate_points(cs.cycles, params, Se)
         sub = [LoadCycle(c.name, c.state_a[:, cand], c.state_b[:, cand], c.count) for c in cs.cycles]
         return cs, fatigue_check(sub, params, xy=pts[:, points[cand]], cm=design.cm, element=elem[points[cand]]), cand
 

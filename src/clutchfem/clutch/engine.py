@@ -220,10 +220,11 @@ def slip_rpm(
     return up[0] if up else None
 
 
-def _holds(curve: EngineCurve, clutch_torque_at_rpm, x) -> np.ndarray:
+def _holds(curve: EngineCurve, clutch_torque_at_rpm, x, t=None) -> np.ndarray:
     """The clutch holds the engine at speeds ``x``: its torque is > 0 (it transmits) and
-    reaches the engine torque.  (0 >= 0 where neither delivers torque is *not* holding.)"""
-    t = np.asarray(clutch_torque_at_rpm(x), dtype=float)
+    reaches the engine torque.  (0 >= 0 where neither delivers torque is *not* holding.)
+    ``t``: the clutch torques at ``x`` when already evaluated."""
+    t = np.asarray(clutch_torque_at_rpm(x) if t is None else t, dtype=float)
     e = t - curve.torque_at(x)
     if np.any(np.isnan(e)):
         raise InputError("clutch torque function returned NaN")
@@ -264,7 +265,7 @@ def torque_crossings(
         grid = grid[(grid >= a) & (grid <= b)]
 
     t = np.asarray(clutch_torque_at_rpm(grid), dtype=float)
-    h = _holds(curve, clutch_torque_at_rpm, grid)
+    h = _holds(curve, clutch_torque_at_rpm, grid, t)
     return [_refine(curve, clutch_torque_at_rpm, float(grid[i]), float(grid[i + 1]), t[i], t[i + 1], bool(h[i + 1]))
             for i in np.nonzero(h[1:] != h[:-1])[0]]
 

@@ -82,7 +82,7 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
-from scipy.stats import norm
+from statistics import NormalDist
 
 from ..errors import ParameterError
 from ..params import ParamSet, param
@@ -129,6 +129,11 @@ class FatigueLoads(ParamSet):
 # ---------------------------------------------------------------------------------------
 # pure pieces (no FE)
 # ---------------------------------------------------------------------------------------
+def _cdf(z: float) -> float:
+    """Standard normal distribution function (0 and 1 at -+inf)."""
+    return 0.0 if z == -math.inf else 1.0 if z == math.inf else NormalDist().cdf(z)
+
+
 def ripple_classes(ripple_model, rpm: float, revolutions: float) -> list[dict]:
     """The ripple classes at mean speed ``rpm``: per class its z range, the delta it is
     represented by (upper edge, clipped at 0) and its count (``revolutions`` x probability)."""
@@ -136,7 +141,7 @@ def ripple_classes(ripple_model, rpm: float, revolutions: float) -> list[dict]:
     std = float(ripple_model.delta_std(rpm))
     out = []
     for lo, hi, z in DELTA_CLASSES:
-        p = float(norm.cdf(hi) - norm.cdf(lo))
+        p = _cdf(hi) - _cdf(lo)
         out.append({"z_range": [lo, hi], "z": z, "delta": max(mean + z * std, 0.0), "probability": p,
                     "count": revolutions * p})
     return out

@@ -93,7 +93,7 @@ from typing import ClassVar, Literal
 
 import numpy as np
 from scipy.spatial import cKDTree
-from scipy.stats import norm
+from statistics import NormalDist
 
 from ..errors import InputError, ParameterError
 from ..mesh import ClutchMesh
@@ -247,7 +247,7 @@ def marin_factors(p: FatigueParams) -> dict[str, float]:
     else:
         a, b = SURFACE_TABLE[p.edge_finish]
         ka = min(a * (p.ultimate_strength / 1e6) ** b, 1.0)
-    z = float(norm.ppf(p.reliability))
+    z = NormalDist().inv_cdf(p.reliability)
     return {"k_a": float(ka), "k_b": p.size_factor, "k_c": p.load_factor, "k_d": float(_kd(p.temperature)),
             "k_e": float(1.0 - 0.08 * z), "k_f": p.misc_factor}
 
