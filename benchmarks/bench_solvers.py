@@ -2,7 +2,9 @@
 that condenses the contact problem (G = B K^-1 D, one column per contact node).
 
 * back-ends: scipy SuperLU as used by clutchfem.linsolve (MMD on A + A', symmetric mode),
-  SuperLU with COLAMD, and CHOLMOD (scikit-sparse) when ``import sksparse.cholmod`` works;
+  SuperLU with COLAMD, and CHOLMOD (scikit-sparse) when ``import sksparse.cholmod`` works,
+  supernodal (CHOLMOD's own choice for these matrices) and simplicial (clutchfem's choice
+  up to linsolve.SIMPLICIAL_MAX_N unknowns);
 * right-hand sides: all m columns at once, blocks of 16 / 64, one at a time;
 * BLAS threads x machine load: every configuration runs in a fresh process with
   OPENBLAS_NUM_THREADS unset (library default = all cores) or 1, on an otherwise idle
@@ -75,10 +77,10 @@ def worker(f: float, repeat: int, backends: list[str]) -> dict:
                                                           options={"SymmetricMode": True})
         facs["SuperLU COLAMD"] = lambda: spla.splu(A, permc_spec="COLAMD")
     if "cholmod" in backends:
-        def chol():
-            from sksparse.cholmod import cholesky
-            return cholesky(A)
-        facs["CHOLMOD"] = chol
+        from sksparse.cholmod import cholesky
+
+        facs["CHOLMOD supernodal (its own choice here)"] = lambda: cholesky(A)
+        facs["CHOLMOD simplicial (clutchfem, n <= 100k)"] = lambda: cholesky(A, mode="simplicial")
     for name, make in facs.items():
         tf, F = timeit(make, repeat)
         solve = F.solve if hasattr(F, "solve") else F

@@ -421,8 +421,9 @@ def character_step(design, probe: float) -> CharacterAnswer:
     c0, c1 = secondary_case(design, 0.0), secondary_case(design, design.op.mu)
     if c0.contact is None:
         return CharacterAnswer("not in contact", (), probe)
-    lam0, _ = c0.solve(w)
-    lam1, _ = c1.solve(w)
+    start = design.case().solve(w)[1]  # the design's own contact nodes there start both solves
+    lam0, _ = c0.solve(w, start)
+    lam1, _ = c1.solve(w, start)
     nd = c0.contact.nodes
     per = []
     for s_ in nd.shoes:
@@ -453,7 +454,9 @@ def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAns
             notes.append(f"mu x {f} = {mu * f:.3g} > 1: sensitivity point skipped")
             continue
         case = secondary_case(design, mu * f)
-        torque[key] = float(FETorque(case)(probe)[0])
+        ft = FETorque(case)
+        ft._active = design.case().solve(rpm_to_rad_s(probe))[1]  # start from the design's own contact
+        torque[key] = float(ft(probe)[0])
         # the slip speed only (no later crossings): the grid walk stops at the answer
         slips[key] = first_slip_rpm(engine, FETorque(case), bracket_grid(engine, GRID_RPM_SENSITIVITY))
     if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
@@ -650,7 +653,8 @@ def _fatigue_states(design, res, engine: EngineCurve, loads=None,
     # full slip at the three operating speeds (torques; the stress at w_o from the sweep when
     # it was solved there), then frictionless states warm-started from the slip state's
     # contact nodes (one blocked condensation instead of a pivot-by-pivot one)
-    lamf = [cf.solve(float(x))[0] for x in w]
+    lam_o, act_o = cf.solve(float(w[1]))  # (solved already when w_o is on the sweep's grid)
+    lamf = [cf.solve(float(w[0]), act_o)[0], lam_o, cf.solve(float(w[2]), act_o)[0]]
     Mf = np.array([_case_torque(cf, lam, mu) for lam in lamf])
     k_max = _sweep_index(res, rpm_max)
     lam_fmax = res.lam[k_max] if k_max is not None else cf.solve(float(w_max))[0]
