@@ -366,3 +366,19 @@ def test_bad_input_is_refused():
     _param("element", lambda: name_location(cm, (0.02, 0.0), element=10 ** 7))
     with pytest.raises(InputError, match="coordinates"):
         fatigue_check([c1], cm=cm)
+
+
+def test_p2_nodes_of_a_quadratic_mesh_are_the_p2_basis_nodes():
+    """name_location reads the P2 nodes off a quadratic mesh instead of building a P2 basis:
+    the same positions and facet node ids as scikit-fem's P2 basis."""
+    from skfem import Basis, ElementTriP2
+
+    from clutchfem.design import Design
+    from clutchfem.durability import fatigue as fa
+    from clutchfem.geometry import MeshSettings
+
+    cm = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2.5e-3)).cm
+    b = Basis(cm.mesh, ElementTriP2(), intorder=1)
+    assert fa._quadratic(cm)
+    np.testing.assert_array_equal(fa._p2_nodes(cm), b.doflocs)
+    np.testing.assert_array_equal(fa._facet_nodes(cm), np.vstack([cm.mesh.facets, b.facet_dofs[0]]))

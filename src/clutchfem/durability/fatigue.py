@@ -732,15 +732,22 @@ def _p2_basis(cm: ClutchMesh):
     return hit[1]
 
 
+def _quadratic(cm: ClutchMesh) -> bool:
+    """The mesh carries its P2 nodes (a quadratic MeshTri2: vertices, then one per facet)."""
+    m = cm.mesh
+    return m.doflocs.shape[1] == m.nvertices + m.facets.shape[1]
+
+
 def _facet_nodes(cm: ClutchMesh) -> np.ndarray:
     """(3, nfacets) P2 node ids of every facet: its two corners and its mid-edge node."""
-    b = _p2_basis(cm)
-    return np.vstack([cm.mesh.facets, b.facet_dofs[0]])
+    m = cm.mesh
+    mid = m.nvertices + np.arange(m.facets.shape[1]) if _quadratic(cm) else _p2_basis(cm).facet_dofs[0]
+    return np.vstack([m.facets, mid])
 
 
 def _p2_nodes(cm: ClutchMesh) -> np.ndarray:
     """(2, n) positions of the P2 nodes (corners keep the mesh's vertex numbers)."""
-    return _p2_basis(cm).doflocs
+    return cm.mesh.doflocs if _quadratic(cm) else _p2_basis(cm).doflocs
 
 
 def _area(cm: ClutchMesh, elems: np.ndarray) -> float:
