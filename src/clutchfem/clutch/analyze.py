@@ -685,9 +685,11 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
                  ripple_model: ripple_mod.RippleModel | None = None) -> FatigueAnswer:
     """Step 10: fatigue safety factor under the service cycles of :func:`fatigue_cycles`,
     checked by :func:`clutchfem.durability.fatigue.fatigue_check` (Goodman, Marin-corrected
-    endurance limit, Basquin + Miner) at every element vertex (bisection on the points a
-    closed-form screen leaves, :func:`~clutchfem.durability.fatigue.candidate_points`; the
-    same worst point as checking all).  ``params``:
+    endurance limit, Basquin + Miner) at every element vertex: the cycles are built only at
+    the points a closed-form lower bound of the factor cannot rule out (bounds of every
+    cycle's amplitude and mean, :class:`~clutchfem.durability.cycles.CycleSet`), the exact
+    check runs on those :func:`~clutchfem.durability.fatigue.candidate_points` leaves (the
+    same worst point as checking all; tested).  ``params``:
     :class:`~clutchfem.durability.fatigue.FatigueParams` (default: 51CrV4 with the design
     material's yield strength; another material needs its own, else the answer is 'not
     available')."""
