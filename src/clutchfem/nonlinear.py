@@ -68,7 +68,7 @@ from skfem import Basis, ElementTriP2
 from .contact import contact_nodes
 from .errors import ParameterError, SolverError
 from .params import ParamSet, param
-from .softening import KrylovSpace
+from .softening import POLE_BAND, KrylovSpace, _ModalResponse
 from .units import rad_s_to_rpm
 
 __all__ = ["NonlinearSettings", "NonlinearModel", "NLState", "geometric_stiffness",
@@ -564,32 +564,34 @@ class PrestressRitz(KrylovSpace):
         return _prestress_pairs_on(model, V)
 
     def bind(self, model, contact):
-        from .softening import _ModalResponse
-
         theta, Psi = self.cached_pairs(model, contact)
-
-        class _Response(_ModalResponse):
-            def _coefficients(self, omega: float) -> np.ndarray:
-                from .softening import POLE_BAND
-
-                x = (omega * omega) * theta
-                d = 1.0 - x
-                if np.abs(d).min(initial=np.inf) < POLE_BAND:
-                    raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is a natural speed of the "
-                                      "prestressed free part: K - w^2 (M - K_sigma1) is singular there; solve a "
-                                      "speed next to it")
-                return x / d
-
-            def unstable_count(self, omega: float) -> int:
-                return int(np.count_nonzero(omega * omega * theta > 1.0))
-
-        r = _Response(model, contact, np.ones(len(theta)), Psi)
+        r = _PrestressResponse(model, contact, np.ones(len(theta)), Psi)
+        r.theta = theta
         r.check_model = prestressed(model)  # the equilibrium check uses M - K_sigma1,
         r.precondition_check = True  # measured as the displacement error the residual causes
         tmax = float(theta.max(initial=0.0))
         r.omega_limit = 1.0 / math.sqrt(tmax) if tmax > 0 else None
         r.linear = False
         return r
+
+
+class _PrestressResponse(_ModalResponse):
+    """Mode acceleration with theta = 1 / w_j^2 of M - K_sigma1 (``theta`` set by
+    :meth:`PrestressRitz.bind`)."""
+
+    theta: np.ndarray
+
+    def _coefficients(self, omega: float) -> np.ndarray:
+        x = (omega * omega) * self.theta
+        d = 1.0 - x
+        if np.abs(d).min(initial=np.inf) < POLE_BAND:
+            raise SolverError(f"speed {rad_s_to_rpm(omega):.0f} rpm is a natural speed of the "
+                              "prestressed free part: K - w^2 (M - K_sigma1) is singular there; solve a "
+                              "speed next to it")
+        return x / d
+
+    def unstable_count(self, omega: float) -> int:
+        return int(np.count_nonzero(omega * omega * self.theta > 1.0))
 
 
 def _prestress_pairs_on(pm: PrestressedModel, V: np.ndarray):

@@ -47,6 +47,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Literal
 
 import numpy as np
@@ -272,12 +273,23 @@ def fe_frequency_coefficients(shaft: OverhungShaft, n_modes: int = 2, elements: 
         c = fe_frequency_coefficients(shaft, n_modes, elements, False)
         f = fe_frequency_coefficients(shaft, n_modes, 2 * elements, False)
         return f + (f - c) / 15.0
-    l1, l2 = shaft.span_m, shaft.overhang_m
-    n1 = max(4, round(elements * l1 / shaft.length_m))
+    EI, mu = shaft.bending_stiffness_N_m2, shaft.mass_per_length_kg_m
+    K, M0, tip = _beam_system(shaft.span_m, shaft.overhang_m, EI, mu, shaft.tip_mass_kg, elements)
+    M = M0.copy()
+    M[tip, tip] += shaft.tip_rotary_inertia_kg_m2
+    lam = eigh(M, K, eigvals_only=True)
+    lam = np.sort(lam[lam > 0])[::-1][:n_modes]  # 1/omega^2, largest first
+    return (mu / (EI * lam)) ** 0.25
+
+
+@lru_cache(maxsize=32)
+def _beam_system(l1: float, l2: float, EI: float, mu: float, tip_mass: float, elements: int):
+    """(K, M, tip) of the pinned beam with the tip mass, on its free dofs (read-only; the
+    disc's rotary inertia, which the gyroscopic readings change, goes on M[tip, tip])."""
+    n1 = max(4, round(elements * l1 / (l1 + l2)))
     n2 = max(4, elements - n1)
     x = np.concatenate([np.linspace(0.0, l1, n1 + 1), l1 + np.linspace(0.0, l2, n2 + 1)[1:]])
     nn = x.size
-    EI, mu = shaft.bending_stiffness_N_m2, shaft.mass_per_length_kg_m
     k, m = _beam_matrices(np.diff(x), EI, mu)  # (4, 4, ne) each
     # element e couples dofs 2e .. 2e+3: scatter-add every element at once
     dofs = 2 * np.arange(nn - 1)[None, :] + np.arange(4)[:, None]  # (4, ne)
@@ -287,12 +299,11 @@ def fe_frequency_coefficients(shaft: OverhungShaft, n_modes: int = 2, elements: 
     M = np.zeros((2 * nn, 2 * nn))
     np.add.at(K, (rows, cols), k.ravel())
     np.add.at(M, (rows, cols), m.ravel())
-    M[2 * (nn - 1), 2 * (nn - 1)] += shaft.tip_mass_kg
-    M[2 * nn - 1, 2 * nn - 1] += shaft.tip_rotary_inertia_kg_m2
+    M[2 * (nn - 1), 2 * (nn - 1)] += tip_mass
     free = np.setdiff1d(np.arange(2 * nn), [0, 2 * n1])
-    lam = eigh(M[np.ix_(free, free)], K[np.ix_(free, free)], eigvals_only=True)
-    lam = np.sort(lam[lam > 0])[::-1][:n_modes]  # 1/omega^2, largest first
-    return (mu / (EI * lam)) ** 0.25
+    Kf, Mf = K[np.ix_(free, free)], M[np.ix_(free, free)]
+    Kf.flags.writeable = Mf.flags.writeable = False
+    return Kf, Mf, int(np.searchsorted(free, 2 * nn - 1))
 
 
 def first_frequency_coefficient(shaft: OverhungShaft, rtol: float = 1e-5,

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+from functools import lru_cache
 from pathlib import Path
 
 from . import __version__
@@ -64,10 +65,16 @@ def design_hash(design) -> str:
 def design_label(design) -> str:
     """File-name stem: the concept name at its defaults (parameters, operating point and mesh
     settings), else the name plus the design hash."""
-    from .geometry import MeshSettings
-
     default = False
     if design.params is not None:
-        default = (design.params == type(design.params)() and design.op == type(design.op)()
-                   and dict(design.cm.mesh_settings) == MeshSettings(model="sector").model_dump())
+        params0, op0, mesh0 = _defaults(type(design.params), type(design.op))
+        default = design.params == params0 and design.op == op0 and dict(design.cm.mesh_settings) == mesh0
     return design.name if default else f"{design.name}-{design_hash(design)}"
+
+
+@lru_cache(maxsize=64)
+def _defaults(params_type, op_type):
+    """The default parameter set, operating point and mesh settings (frozen: built once)."""
+    from .geometry import MeshSettings
+
+    return params_type(), op_type(), MeshSettings(model="sector").model_dump()
