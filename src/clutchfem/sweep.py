@@ -145,6 +145,11 @@ class LoadCase:
         self._memo[key] = (lam.copy(), act.copy())
         return lam, act
 
+    def solved(self, omega: float) -> np.ndarray | None:
+        """The contact nodes of the state solved at ``omega`` [rad/s], if it was (memo)."""
+        hit = self._memo.get(float(omega))
+        return None if hit is None else hit[1]
+
     def _held_state(self, G, q: np.ndarray, active0: np.ndarray):
         """Past divergence the LCP is not a P-matrix problem: besides the state the drum holds
         it has the free (lam = 0, unstable) one.  The active-set iteration from the contact

@@ -351,10 +351,11 @@ class FETorque:
     """The exact FE clutch torque [N m] as a vectorised function of rpm (each speed one small
     contact solve with the design's one factorisation; results memoised)."""
 
-    def __init__(self, case):
+    def __init__(self, case, start=None):
         self.case = case
         self.memo: dict[float, float] = {}
         self._active = None
+        self._start = start  # a load case on the same nodes whose solved states start the solves
 
     def __call__(self, rpm) -> np.ndarray:
         r = np.atleast_1d(np.asarray(rpm, dtype=float))
@@ -362,7 +363,9 @@ class FETorque:
         for k, x in enumerate(r.ravel()):
             x = float(x)
             if x not in self.memo:
-                lam, act = self.case.solve(rpm_to_rad_s(x), self._active)
+                w = rpm_to_rad_s(x)
+                hit = self._start.solved(w) if self._start is not None else None
+                lam, act = self.case.solve(w, hit if hit is not None and hit.any() else self._active)
                 if act is not None:
                     self._active = act
                 c = self.case.contact
@@ -454,11 +457,11 @@ def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAns
             notes.append(f"mu x {f} = {mu * f:.3g} > 1: sensitivity point skipped")
             continue
         case = secondary_case(design, mu * f)
-        ft = FETorque(case)
-        ft._active = design.case().solve(rpm_to_rad_s(probe))[1]  # start from the design's own contact
-        torque[key] = float(ft(probe)[0])
+        # the contact solves start from the design's own contact nodes at the same speed
+        torque[key] = float(FETorque(case, start=design.case())(probe)[0])
         # the slip speed only (no later crossings): the grid walk stops at the answer
-        slips[key] = first_slip_rpm(engine, FETorque(case), bracket_grid(engine, GRID_RPM_SENSITIVITY))
+        slips[key] = first_slip_rpm(engine, FETorque(case, start=design.case()),
+                                    bracket_grid(engine, GRID_RPM_SENSITIVITY))
     if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
         t_lo, t_hi = torque["x0.7"], torque["x1.3"]
         pct = {"x0.7": 100 * (t_lo / t_probe - 1), "x1.3": 100 * (t_hi / t_probe - 1)}
