@@ -115,7 +115,12 @@ def main() -> None:
         from clutchfem.runtime import tune_malloc
 
         print(f"allocator tuned as in the CLI and the sweep workers: {tune_malloc()}")
-    run_parts = {int(x) for x in a.parts.split(",")}
+    try:
+        run_parts = {int(x) for x in a.parts.split(",")}
+    except ValueError:
+        run_parts = set()
+    if not run_parts or not run_parts <= {1, 2, 3, 4, 5}:
+        ap.error(f"--parts {a.parts!r}: comma-separated part numbers from 1 to 5")
     c = get_concept(a.concept)
     p = c.params()
     mat = get_material("51CrV4")
