@@ -70,7 +70,6 @@ the clutch (no run-out).
 from __future__ import annotations
 
 import math
-from functools import cached_property
 from typing import ClassVar, Literal
 
 import numpy as np

@@ -10,7 +10,7 @@ from typing import Optional
 import typer
 from rich.console import Console
 
-from ..errors import ClutchfemError, InputError
+from ..errors import InputError
 
 console = Console()
 err = Console(stderr=True)
