@@ -35,12 +35,10 @@ from pathlib import Path
 import numpy as np
 
 from clutchfem.contact import contact_nodes
-from clutchfem.fem import FEModel
-from clutchfem.fem3d import ExtrusionSettings, FEModel3D
+from clutchfem.core import get_material, rad_s_to_rpm
+from clutchfem.fe import ExtrusionSettings, FEModel, FEModel3D
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.materials import get_material
 from clutchfem.mesh import mesh_concept
-from clutchfem.units import rad_s_to_rpm
 
 OMEGA = 1000.0
 
@@ -146,7 +144,7 @@ def compare_3d(cm, p, mat, layers: int, work: Path) -> dict:
     t_ccx = _run_ccx(job)
     U = _read_dat(job.with_suffix(".dat"), X.shape[1], 3)
     Uc = np.vstack([u[0::3], u[1::3], u[2::3]])
-    nodes = fe.contact_nodes(p.drum_radius)
+    nodes = contact_nodes(fe, p.drum_radius)
     u1_ccx = np.zeros_like(u)
     for k in range(3):
         u1_ccx[k::3] = U[k] / OMEGA ** 2

@@ -18,6 +18,12 @@ Run:  PYTHONPATH=src python benchmarks/bench_modelform.py [--quick] [--only conc
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
+# the solver edge cases and verification shapes live with the tests (tests/support), not in the library
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+
 import argparse
 import math
 import sys
@@ -29,18 +35,15 @@ import numpy as np
 import scipy.sparse.linalg as spla
 from scipy.optimize import brentq
 
-from clutchfem.clutch.analyze import slip_step
-from clutchfem.clutch.engine import EngineCurve
-from clutchfem.contact import DrumContact, contact_nodes
-from clutchfem.design import Design
-from clutchfem.fem import FEModel
+from clutchfem.accuracy import NonlinearModel, second_order_engagement
+from clutchfem.analysis import slip_step
+from clutchfem.clutch import EngineCurve
+from clutchfem.contact import DrumContact, contact_nodes, lazy, solve_lcp
+from clutchfem.core import rad_s_to_rpm, rpm_to_rad_s
+from clutchfem.fe import FEModel, geometric_stiffness
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.lcp import lazy, solve_lcp
+from clutchfem.loadcase import Design, OperatingPoint, sweep
 from clutchfem.mesh import mesh_concept
-from clutchfem.nonlinear import NonlinearModel, geometric_stiffness, second_order_engagement
-from clutchfem.operating import OperatingPoint
-from clutchfem.sweep import sweep
-from clutchfem.units import rad_s_to_rpm, rpm_to_rad_s
 
 RPM = 8000.0  # engine's maximum-torque speed (seed 000): where N, T and stresses are compared
 FINE = MeshSettings(size=0.8e-3, flexure_factor=0.25)
@@ -188,9 +191,9 @@ def flexure_study(L=19e-3, t=1.75e-3, widths=(1e-3, 2e-3, 4e-3, 8e-3, 11e-3, 16e
     """Clamped cantilever flexure, tip load along its depth: compliance in PS / PE / 3-D."""
     from skfem import FacetBasis, LinearForm, asm
 
-    from clutchfem.fem3d import ExtrusionSettings, FEModel3D
-    from clutchfem.materials import get_material
-    from clutchfem.testshapes import load_cantilever
+    from clutchfem.core import get_material
+    from clutchfem.fe import ExtrusionSettings, FEModel3D
+    from support.shapes import load_cantilever
 
     steel = get_material("51CrV4")
     rows = []

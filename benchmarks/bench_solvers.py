@@ -32,9 +32,9 @@ def build(f: float):
     import scipy.sparse as sp
 
     from clutchfem.contact import contact_nodes
-    from clutchfem.fem import FEModel
+    from clutchfem.core import get_material
+    from clutchfem.fe import FEModel
     from clutchfem.geometry import MeshSettings, get_concept
-    from clutchfem.materials import get_material
     from clutchfem.mesh import mesh_concept
 
     c = get_concept("concept4")

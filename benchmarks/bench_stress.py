@@ -1,4 +1,4 @@
-"""Numerical stress test (issue 12): every case of :mod:`clutchfem.stresscases` with its
+"""Numerical stress test (issue 12): every case of :mod:`support.solver_edges` (tests/support) with its
 outcome (answer or refusal), engagement speed, largest equilibrium residual and torque-balance
 error, condition estimate, the check against its reference and the message of a refusal.
 Prints the Markdown table kept in BENCHMARKS.md.
@@ -8,10 +8,16 @@ Prints the Markdown table kept in BENCHMARKS.md.
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
+# the solver edge cases and verification shapes live with the tests (tests/support), not in the library
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+
 import platform
 import time
 
-from clutchfem import stresscases as S
+from support import solver_edges as S
 
 
 def main() -> None:

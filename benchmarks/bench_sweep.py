@@ -32,19 +32,16 @@ import statistics
 import time
 
 import numpy as np
-
 from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, LinearForm, asm
 from skfem.helpers import ddot, sym_grad, trace
 
-from clutchfem.clutch.analyze import analyze, bracket_grid, check_speeds
-from clutchfem.clutch.engine import EngineCurve
-from clutchfem.design import Design
-from clutchfem.fem import FEModel, constraint_map
+from clutchfem.analysis import analyze, bracket_grid, check_speeds
+from clutchfem.clutch import EngineCurve
+from clutchfem.core import get_material
+from clutchfem.fe import FEModel, constraint_map, factorize
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.linsolve import factorize
-from clutchfem.materials import get_material
+from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import mesh_concept
-from clutchfem.operating import OperatingPoint
 from clutchfem.softening import Ritz
 
 RPM = "0:14000:250"
@@ -112,7 +109,7 @@ def main() -> None:
                     help="leave glibc's allocator as it is (the CLI and the sweep workers tune it)")
     a = ap.parse_args()
     if not a.no_tune_malloc:
-        from clutchfem.runtime import tune_malloc
+        from clutchfem.core import tune_malloc
 
         print(f"allocator tuned as in the CLI and the sweep workers: {tune_malloc()}")
     try:
@@ -211,7 +208,7 @@ def main() -> None:
         print("\n== 4. spin softening on the default mesh (errors against 'exact')")
         res = {}
         variants = [("exact", "exact"), ("off", "off")] + [(f"ritz depth {d}", Ritz(depth=d)) for d in (1, 2, 3, 4, 6)]
-        from clutchfem.errors import SolverError
+        from clutchfem.core import SolverError
 
         refused = {}
         for name, soft in variants:

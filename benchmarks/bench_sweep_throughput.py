@@ -57,7 +57,7 @@ STEPS = ("slip_step", "fe_sweep", "engagement_step", "character_step", "mu_sensi
 
 
 def _spec(n: int, size: float):
-    from clutchfem.study import parse_spec
+    from clutchfem.studies import parse_spec
 
     return parse_spec(SPEC.format(n=n, size=size), source=f"bench-{n}")
 
@@ -67,8 +67,8 @@ def per_step(n: int, size: float) -> dict:
     from threadpoolctl import threadpool_limits
 
     import clutchfem.clutch.analyze as A
-    from clutchfem.study.hashing import design_hash
-    from clutchfem.study.point import evaluate
+    from clutchfem.studies import evaluate
+    from clutchfem.studies.hashing import design_hash
 
     spent = {s: 0.0 for s in STEPS}
     originals = {s: getattr(A, s) for s in STEPS}
@@ -103,9 +103,7 @@ def per_step(n: int, size: float) -> dict:
 
 
 def sweep(n: int, size: float, workers: int, cache: str, store_dir: Path) -> dict:
-    from clutchfem.study.point import COLUMNS
-    from clutchfem.study.runner import run_points
-    from clutchfem.study.store import ResultStore
+    from clutchfem.studies import COLUMNS, ResultStore, run_points
 
     os.environ["CLUTCHFEM_CACHE"] = cache  # inherited by the worker processes
     spec = _spec(n, size)

@@ -1,5 +1,5 @@
 """Guideline (thesis 4.4): "a 0.2-0.5 mm shift of the flexure changes stiffness and stress a
-lot" -- how much, per 0.1 mm, from the FE model, on the sweep engine.
+lot" -- how much, per 0.1 mm, from the FE model, on the study engine.
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python examples/guideline_flexure_shift.py [--out DIR] [--workers N]
 
@@ -31,9 +31,9 @@ from pathlib import Path
 
 import numpy as np
 
+from clutchfem.core import figure
 from clutchfem.geometry import get_concept
-from clutchfem.plotting import figure
-from clutchfem.study.runner import run_grid
+from clutchfem.studies import run_grid
 
 SMALL = os.environ.get("CLUTCHFEM_EXAMPLE_SMALL") == "1"
 #: (label, concept, parameter, shifts allowed below the default?)

@@ -1,5 +1,5 @@
 """Guideline (thesis 4.4): "a thicker flexure engages later, with lower stress" -- with
-numbers from the FE model, on the sweep engine.
+numbers from the FE model, on the study engine.
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python examples/guideline_flexure_thickness.py [--out DIR] [--workers N]
 
@@ -25,9 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
+from clutchfem.core import figure
 from clutchfem.geometry import get_concept
-from clutchfem.plotting import figure
-from clutchfem.study.runner import run_grid
+from clutchfem.studies import run_grid
 
 SMALL = os.environ.get("CLUTCHFEM_EXAMPLE_SMALL") == "1"
 #: (concept, flexure thicknesses [m])

@@ -1,5 +1,5 @@
 """Guideline (thesis 4.4): "a heavier shoe engages earlier and slips at a lower rpm" -- with
-numbers from the FE model, on the sweep engine.
+numbers from the FE model, on the study engine.
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python examples/guideline_shoe_mass.py [--out DIR] [--workers N]
 
@@ -28,8 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-from clutchfem.plotting import figure
-from clutchfem.study.runner import run_grid
+from clutchfem.core import figure
+from clutchfem.studies import run_grid
 
 SMALL = os.environ.get("CLUTCHFEM_EXAMPLE_SMALL") == "1"
 

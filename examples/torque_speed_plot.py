@@ -17,10 +17,10 @@ import argparse
 import os
 from pathlib import Path
 
-from clutchfem.clutch.analyze import Requirements, analyze
-from clutchfem.clutch.engine import EngineCurve
-from clutchfem.design import Design
+from clutchfem.analysis import Requirements, analyze
+from clutchfem.clutch import EngineCurve
 from clutchfem.geometry import MeshSettings
+from clutchfem.loadcase import Design
 from clutchfem.report import comparison_plot, summary_rows
 
 

@@ -32,9 +32,9 @@ from __future__ import annotations
 
 import math
 
+from clutchfem.core import param
+from clutchfem.geometry import Annotation, Concept, ConceptParams, Shapes
 from clutchfem.geometry import occ as G
-from clutchfem.geometry.base import Annotation, Concept, ConceptParams, Shapes
-from clutchfem.params import param
 
 
 class Concept1Params(ConceptParams):

@@ -43,13 +43,12 @@ from pathlib import Path
 
 import numpy as np
 
+from clutchfem.core import param
+from clutchfem.geometry import Annotation, Shapes, load_concept_file
 from clutchfem.geometry import occ as G
 from clutchfem.geometry import sketch as K
-from clutchfem.geometry.base import Annotation, Shapes
-from clutchfem.geometry.registry import _load_file
-from clutchfem.params import param
 
-_C1 = _load_file(str(Path(__file__).resolve().with_name("concept1.py")))
+_C1 = load_concept_file(str(Path(__file__).resolve().with_name("concept1.py")))
 Concept1 = type(_C1)
 Concept1Params = Concept1.Params
 

@@ -31,10 +31,10 @@ import math
 
 import numpy as np
 
+from clutchfem.core import param
+from clutchfem.geometry import Annotation, Concept, ConceptParams, Shapes
 from clutchfem.geometry import occ as G
 from clutchfem.geometry import sketch as K
-from clutchfem.geometry.base import Annotation, Concept, ConceptParams, Shapes
-from clutchfem.params import param
 
 
 class Concept3Params(ConceptParams):

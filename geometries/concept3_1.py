@@ -36,13 +36,12 @@ from pathlib import Path
 
 import numpy as np
 
+from clutchfem.core import param
+from clutchfem.geometry import Annotation, load_concept_file
 from clutchfem.geometry import occ as G
 from clutchfem.geometry import sketch as K
-from clutchfem.geometry.base import Annotation
-from clutchfem.geometry.registry import _load_file
-from clutchfem.params import param
 
-_C3 = _load_file(str(Path(__file__).resolve().with_name("concept3.py")))
+_C3 = load_concept_file(str(Path(__file__).resolve().with_name("concept3.py")))
 Concept3 = type(_C3)
 Concept3Params = Concept3.Params
 

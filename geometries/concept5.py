@@ -34,11 +34,10 @@ import math
 
 import numpy as np
 
-from clutchfem.errors import GeometryError
+from clutchfem.core import GeometryError, param
+from clutchfem.geometry import Annotation, Concept, ConceptParams, Shapes
 from clutchfem.geometry import occ as G
 from clutchfem.geometry import sketch as K
-from clutchfem.geometry.base import Annotation, Concept, ConceptParams, Shapes
-from clutchfem.params import param
 
 
 class Concept5Params(ConceptParams):

@@ -21,14 +21,20 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from clutchfem.clutch.analyze import analyze, slip_answer  # noqa: E402
-from clutchfem.clutch.baseline import BaselineClutch  # noqa: E402
-from clutchfem.clutch.engine import EngineCurve  # noqa: E402
-from clutchfem.clutch.shoe import ShoeGeometry, torque_factor  # noqa: E402
-from clutchfem.design import Design  # noqa: E402
+from clutchfem.analysis import analyze, slip_answer  # noqa: E402
+from clutchfem.clutch import (  # noqa: E402
+    BaselineClutch,  # noqa: E402
+    EngineCurve,  # noqa: E402
+    ShoeGeometry,
+    torque_factor,
+)
 from clutchfem.geometry import MeshSettings, get_concept  # noqa: E402
+from clutchfem.loadcase import Design  # noqa: E402
 from clutchfem.mesh import mesh_concept  # noqa: E402
-from clutchfem.report import comparison_plot, summary_rows  # noqa: E402
+from clutchfem.report import (
+    comparison_plot,
+    summary_rows,  # noqa: E402
+)
 
 DPI = 90
 CONCEPTS = ("concept1", "concept4")

@@ -47,14 +47,14 @@ RPM_MAX_TORQUE, RPM_MAX = 8000.0, 14000.0  # ... and below the engine's max-torq
 def _engagement(cm, p) -> float | None:
     """FE engagement speed [rpm]: 51CrV4, mu = 0.165, modal spin softening (the solver's
     defaults); None if the shoe never reaches the drum below its first natural frequency."""
-    from clutchfem.design import Design
+    from clutchfem.loadcase import Design
 
     w, _ = Design(cm, params=p).case().engagement
     return None if w is None else w * 60 / (2 * math.pi)
 
 
 def _png(concept, p, cm, path: Path) -> Path:
-    from clutchfem.geometry.drawing import draw_concept
+    from clutchfem.geometry import draw_concept
 
     for dpi in (100, 85, 72):
         with tempfile.TemporaryDirectory() as tmp:

@@ -25,17 +25,28 @@ import numpy as np  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
+from clutchfem.analysis import analyze
+from clutchfem.analysis.pipeline import fatigue_cycles, fatigue_step  # noqa: E402
 from clutchfem.cli.slip_heat_cmd import run_slip_heat  # noqa: E402
-from clutchfem.clutch.analyze import analyze, fatigue_cycles, fatigue_step  # noqa: E402
-from clutchfem.clutch.engine import EngineCurve  # noqa: E402
-from clutchfem.design import Design  # noqa: E402
-from clutchfem.durability.cycles import FatigueLoads, revolution_torque  # noqa: E402
-from clutchfem.durability.fatigue import FatigueParams, endurance_limit, fatigue_check  # noqa: E402
-from clutchfem.durability.heat import SlipScenario, ThermalEnvironment, ThermalMaterial, render_png  # noqa: E402
+from clutchfem.clutch import EngineCurve  # noqa: E402
+from clutchfem.core import rpm_to_rad_s  # noqa: E402
+from clutchfem.durability import (  # noqa: E402  # noqa: E402
+    FatigueLoads,
+    FatigueParams,
+    SlipScenario,
+    ThermalEnvironment,
+    ThermalMaterial,
+    endurance_limit,
+    fatigue_check,
+    render_png,
+)
+from clutchfem.durability.cycles import revolution_torque  # noqa: E402
 from clutchfem.geometry import MeshSettings, get_concept  # noqa: E402
+from clutchfem.loadcase import (
+    Design,  # noqa: E402
+    OperatingPoint,  # noqa: E402
+)
 from clutchfem.mesh import mesh_concept  # noqa: E402
-from clutchfem.operating import OperatingPoint  # noqa: E402
-from clutchfem.units import rpm_to_rad_s  # noqa: E402
 
 CONCEPTS = ("concept1", "concept2", "concept4")
 #: concept 4 with its contact moved towards the flexure (root clearance 0.2 mm, tip 1.0 mm)

@@ -7,9 +7,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from clutchfem.checks import drum_intrusion
-from clutchfem.design import Design
 from clutchfem.geometry import MeshSettings
+from clutchfem.loadcase import Design, drum_intrusion
 
 
 @pytest.fixture(scope="module")

@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 
-from clutchfem.clutch.analyze import analyze, shoe_kind
-from clutchfem.design import Design
+from clutchfem.analysis import analyze
+from clutchfem.analysis.pipeline import shoe_kind
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import mesh_concept
-from clutchfem.operating import OperatingPoint
 
 
 def test_shoe_kind_convention():

@@ -14,14 +14,12 @@ import sys
 import numpy as np
 import pytest
 
-from clutchfem.clutch.analyze import analyze, mesh_mass_properties
-from clutchfem.design import Design
-from clutchfem.operating import OperatingPoint
-from clutchfem.errors import ParameterError
+from clutchfem.analysis import analyze, mesh_mass_properties
+from clutchfem.core import ParameterError, get_material
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.materials import get_material
+from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import load_user_geometry, mesh_concept
-from clutchfem.testshapes import load_annulus, load_cantilever
+from support.shapes import load_annulus, load_cantilever
 
 CLI = [sys.executable, "-m", "clutchfem.cli"]
 SIZE = "0.002"

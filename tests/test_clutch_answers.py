@@ -9,10 +9,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from clutchfem.clutch.analyze import Requirements, check_speeds, slip_answer
-from clutchfem.clutch.engine import EngineCurve, torque_crossings
-from clutchfem.errors import ParameterError
-from clutchfem.results import contact_extent
+from clutchfem.analysis import Requirements, check_speeds, slip_answer
+from clutchfem.clutch import EngineCurve, torque_crossings
+from clutchfem.core import ParameterError
+from clutchfem.loadcase import contact_extent
 
 FLAT = EngineCurve((1000.0, 10000.0), (3.0, 3.0), source="flat 3 N m")
 

@@ -9,8 +9,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from clutchfem.clutch.baseline import BaselineClutch, baseline_torque_at_rpm
-from clutchfem.errors import ParameterError
+from clutchfem.clutch import BaselineClutch
+from clutchfem.clutch.baseline import baseline_torque_at_rpm
+from clutchfem.core import ParameterError
 
 
 def test_paper_torques_at_950_rad_s():

@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.clutch.engine import DEFAULT_CURVE_RPM, DEFAULT_CURVE_TORQUE, EngineCurve, slip_rpm
-from clutchfem.errors import InputError, ParameterError
+from clutchfem.clutch import EngineCurve, slip_rpm
+from clutchfem.clutch.engine import DEFAULT_CURVE_RPM, DEFAULT_CURVE_TORQUE
+from clutchfem.core import InputError, ParameterError
 
 
 def test_default_curve_matches_seed000_anchors():
@@ -160,7 +161,7 @@ def _counting(f):
 def test_first_slip_rpm_equals_slip_rpm_and_stops_at_the_answer(clutch):
     """The early-stopping walk gives slip_rpm's answer on the same grid, and evaluates the
     clutch torque at no grid speed above the bracket of the first upward crossing."""
-    from clutchfem.clutch.engine import first_slip_rpm
+    from clutchfem.clutch import first_slip_rpm
 
     c = EngineCurve.default()
     grid = np.arange(c.rpm_range[0], c.rpm_range[1], 250.0)

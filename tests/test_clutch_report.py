@@ -17,7 +17,7 @@ import pytest
 from typer.testing import CliRunner
 
 from clutchfem.cli import app
-from clutchfem.clutch.engine import EngineCurve
+from clutchfem.clutch import EngineCurve
 
 MESH = ["--mesh-size", "0.002"]
 KEYS = ("engagement_rpm", "engagement_rpm_with_ripple", "slip_rpm", "max_von_mises_Pa", "safety_factor",
@@ -152,8 +152,9 @@ def test_summary_rows_say_never_holds_and_never_engages(c4, tmp_path):
 
     d, _ = c4
     # a rebuilt Analysis (fields from the JSON) with the slip answer replaced
-    from clutchfem.clutch.analyze import Analysis
     import pandas as pd
+
+    from clutchfem.analysis import Analysis
 
     fields = {f.name for f in dataclasses.fields(Analysis)}
     an = Analysis(**{k: v for k, v in d.items() if k in fields and k != "curves"}, curves=pd.DataFrame(d["curves"]))
@@ -163,9 +164,10 @@ def test_summary_rows_say_never_holds_and_never_engages(c4, tmp_path):
 
 
 def test_comparison_chart_with_baseline(c4, tmp_path):
-    from clutchfem.report import comparison_plot
-    from clutchfem.clutch.analyze import Analysis
     import pandas as pd
+
+    from clutchfem.analysis import Analysis
+    from clutchfem.report import comparison_plot
 
     d, _ = c4
     fields = {f.name for f in dataclasses.fields(Analysis)}

@@ -10,19 +10,16 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
-from clutchfem.clutch.shoe import (
+from clutchfem.clutch import (
     CentrifugalShoe,
     ShoeGeometry,
-    apply_force,
-    engagement_speed,
     lining_integrals,
-    quadrature_shoe_torque,
     shoe_torque,
     simplified_torque,
     torque_factor,
-    torque_from_normal_force,
 )
-from clutchfem.errors import ParameterError
+from clutchfem.clutch.shoe import apply_force, engagement_speed, quadrature_shoe_torque, torque_from_normal_force
+from clutchfem.core import ParameterError
 
 FAST = settings(max_examples=60, deadline=None)
 
@@ -216,7 +213,7 @@ def test_bad_input_names_the_parameter(make, name):
 def test_arc_torque_is_shoe_torque_per_lining():
     """The vectorised arc_torque equals shoe_torque(...).total lining by lining (plus and
     minus, a self-locking plus lining, F = 0), and refuses a bad angle naming it."""
-    from clutchfem.clutch.shoe import arc_torque
+    from clutchfem.clutch import arc_torque
 
     rng = np.random.default_rng(3)
     p1 = rng.uniform(0.0, 1.5, 40)

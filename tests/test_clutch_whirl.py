@@ -10,12 +10,11 @@ from dataclasses import FrozenInstanceError, replace
 
 import pytest
 
-from clutchfem.clutch import whirl as W
-from clutchfem.design import Design
-from clutchfem.errors import ParameterError
+from clutchfem.clutch import crankshaft as W
+from clutchfem.core import ParameterError
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import mesh_concept
-from clutchfem.operating import OperatingPoint
 
 
 @pytest.fixture(scope="module")
@@ -228,7 +227,7 @@ def test_mesh_area_properties_of_two_shoes_sector_and_full():
 def test_mesh_area_properties_of_a_ring(tmp_path):
     """Ring a <= r <= b, full and as 12 sectors of 30 deg: A = pi (b^2 - a^2), J = pi (b^4 -
     a^4)/2, I_xx = I_yy = J/2 (cyclic symmetry), centroid on the axis."""
-    from clutchfem.testshapes import load_annulus
+    from support.shapes import load_annulus
 
     a, b, h = 0.01, 0.03, 0.011
     area, J = math.pi * (b * b - a * a), math.pi * (b**4 - a**4) / 2
@@ -244,7 +243,7 @@ def test_mesh_area_properties_of_a_ring(tmp_path):
 
 
 def test_whirl_refuses_bad_input(design4, answer4, tmp_path):
-    from clutchfem.testshapes import load_annulus
+    from support.shapes import load_annulus
 
     with pytest.raises(ParameterError) as e:
         W.whirl("concept4")

@@ -13,13 +13,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from clutchfem.design import Design
-from clutchfem.fem import FEModel
+from clutchfem.contact import lazy, solve_lcp
+from clutchfem.core import get_material
+from clutchfem.fe import FEModel
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.lcp import lazy, solve_lcp
-from clutchfem.materials import get_material
+from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import mesh_concept
-from clutchfem.operating import OperatingPoint
 
 STEEL = get_material("51CrV4")
 
@@ -116,7 +115,7 @@ def test_solver_backends_agree(concept1_coarse, backend, monkeypatch):
     """Every installed direct solver gives the same sweep (CHOLMOD is installed by
     `make setup` when it builds; SuperLU is always there), whether chosen by the environment
     variable (the default) or injected."""
-    from clutchfem.linsolve import available
+    from clutchfem.fe import available
 
     if backend not in available():
         pytest.skip(f"{backend} not installed here")
@@ -159,8 +158,8 @@ def test_shared_space_extends_the_load_space_exactly(concept1_coarse, strategy):
     orthonormal in the strategy's inner product, and the same answers to 1e-8."""
     from dataclasses import replace
 
+    from clutchfem.loadcase import LoadCase, sweep
     from clutchfem.softening import get_softening
-    from clutchfem.sweep import LoadCase, sweep
 
     d = design(*concept1_coarse)
     soft = replace(get_softening(strategy), seeds="all")
@@ -184,7 +183,7 @@ def test_shared_space_extends_the_load_space_exactly(concept1_coarse, strategy):
 @pytest.mark.parametrize("kw", [{"base_mu": 0.2}, {"seeds": "all", "base_mu": -0.1},
                                 {"seeds": "all", "base_mu": True}, {"seeds": "all", "base_mu": 1.5}])
 def test_base_mu_is_checked(kw):
-    from clutchfem.errors import ParameterError
+    from clutchfem.core import ParameterError
     from clutchfem.softening import Ritz
 
     with pytest.raises(ParameterError, match="base_mu"):
@@ -199,7 +198,7 @@ def test_a_finished_design_is_freed_without_the_garbage_collector(concept1_coars
     import gc
     import weakref
 
-    from clutchfem.clutch.analyze import analyze
+    from clutchfem.analysis import analyze
 
     gc.collect()
     gc.disable()
@@ -216,7 +215,7 @@ def test_a_finished_design_is_freed_without_the_garbage_collector(concept1_coars
 def test_tune_malloc_is_idempotent_and_takes_on_glibc():
     import sys
 
-    from clutchfem.runtime import tune_malloc
+    from clutchfem.core import tune_malloc
 
     first = tune_malloc()
     assert tune_malloc() is first

@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from clutchfem.design import Design
 from clutchfem.geometry import MeshSettings
+from clutchfem.loadcase import Design
 
 REF = json.loads((Path(__file__).parent / "data" / "core_reference.json").read_text())
 TOL = 1e-9
@@ -43,8 +43,8 @@ def test_sweeps_equal_the_pre_redesign_numbers(design):
 
 
 def test_analyze_assembles_and_factorises_once(monkeypatch):
-    from clutchfem.clutch.analyze import analyze
-    from clutchfem.linsolve import COUNTS
+    from clutchfem.analysis import analyze
+    from clutchfem.fe import COUNTS
 
     d = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2e-3))
     before = COUNTS.copy()

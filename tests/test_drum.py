@@ -26,9 +26,9 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.drum import DrumWall, RingDrum, annulus_harmonic_compliance, lame_free_ring_expansion
-from clutchfem.errors import ParameterError
-from clutchfem.materials import Material, get_material
+from clutchfem.contact import DrumWall, RingDrum
+from clutchfem.contact.ring import annulus_harmonic_compliance, lame_free_ring_expansion
+from clutchfem.core import Material, ParameterError, get_material
 
 RD = 0.0344
 
@@ -131,11 +131,10 @@ def test_annulus_on_elastic_drum_closed_form(tmp_path, state):
     discrete nodal loads add ~1e-4), and the non-linear reference with the same drum agrees
     in the small-strain limit."""
     from clutchfem.contact import DrumContact, contact_nodes
-    from clutchfem.fem import FEModel
-    from clutchfem.nonlinear import NonlinearModel
-    from clutchfem.sweep import LoadCase, sweep
-    from clutchfem.testshapes import load_annulus
-    from clutchfem.units import rad_s_to_rpm
+    from clutchfem.core import rad_s_to_rpm
+    from clutchfem.fe import FEModel
+    from clutchfem.loadcase import LoadCase, sweep
+    from support.shapes import load_annulus
 
     steel = get_material("51CrV4")
     c, mu, w = 0.2e-3, 0.3, 3.5e4
@@ -170,12 +169,12 @@ def test_nonlinear_reference_with_elastic_drum_linear_limit(tmp_path):
     softening exact) in the small-strain limit: with E x s and the clearance / s the forces
     stay those of a steel clutch while the strains drop s-fold, and so must the difference
     (measured: 5.7e-2 at s = 1, 6e-3 at s = 10, 1.5e-3 at s = 40)."""
+    from clutchfem.accuracy import NonlinearModel
     from clutchfem.contact import DrumContact, contact_nodes
-    from clutchfem.fem import FEModel
-    from clutchfem.nonlinear import NonlinearModel
-    from clutchfem.sweep import LoadCase, sweep
-    from clutchfem.testshapes import load_annulus
-    from clutchfem.units import rad_s_to_rpm
+    from clutchfem.core import rad_s_to_rpm
+    from clutchfem.fe import FEModel
+    from clutchfem.loadcase import LoadCase, sweep
+    from support.shapes import load_annulus
 
     steel = get_material("51CrV4")
     mu, w = 0.3, 3.5e4

@@ -12,20 +12,26 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from clutchfem.clutch.analyze import (_stresses, analyze, fatigue_cycles, fatigue_step, secondary_case)
-from clutchfem.clutch.engine import EngineCurve
-from clutchfem.clutch.ripple import RippleModel
-from clutchfem.design import Design
-from clutchfem.durability.cycles import (FatigueLoads, ServiceStates, longest_chord, reverse_capacity,
-                                         service_cycles)
-from clutchfem.durability.fatigue import (FatigueParams, LoadCycle, _load_factor, candidate_points,
-                                          endurance_limit, fatigue_check, single_cycle_factor, von_mises)
-from clutchfem.errors import ParameterError
+from clutchfem.analysis import analyze
+from clutchfem.analysis.pipeline import _stresses, fatigue_cycles, fatigue_step, secondary_case
+from clutchfem.clutch import EngineCurve, RippleModel
+from clutchfem.core import ParameterError, rpm_to_rad_s
+from clutchfem.durability import (
+    FatigueLoads,
+    FatigueParams,
+    LoadCycle,
+    ServiceStates,
+    candidate_points,
+    endurance_limit,
+    fatigue_check,
+    service_cycles,
+    single_cycle_factor,
+)
+from clutchfem.durability.cycles import longest_chord, reverse_capacity
+from clutchfem.durability.fatigue import _load_factor, von_mises
 from clutchfem.geometry import MeshSettings
-from clutchfem.operating import OperatingPoint
-from clutchfem.sweep import LoadCase
-from clutchfem.testshapes import load_annulus
-from clutchfem.units import rpm_to_rad_s
+from clutchfem.loadcase import Design, LoadCase, OperatingPoint
+from support.shapes import load_annulus
 
 COARSE = MeshSettings(size=2.5e-3)
 ENGINE = EngineCurve.default()
@@ -269,7 +275,7 @@ def test_analyze_has_fatigue_answer_with_a_named_location(an4):
     """Concept 4: the factor, a flexure-end location, the governing cycle among the cycles
     counted; JSON strict and carries the keys; the table and the report show them; no
     'fatigue caution' on yield any more."""
-    from clutchfem.jsonio import dumps
+    from clutchfem.core import dumps
     from clutchfem.report import markdown_summary, summary_rows
 
     an = an4

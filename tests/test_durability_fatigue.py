@@ -19,11 +19,16 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.durability.fatigue import (FatigueParams, LoadCycle, amplitude_mean, cycles_to_failure,
-                                          endurance_limit, equivalent_stresses, fatigue_check,
-                                          haigh_safety_factor, marin_factors, name_location,
-                                          reversed_equivalent)
-from clutchfem.errors import InputError, ParameterError
+from clutchfem.core import InputError, ParameterError
+from clutchfem.durability import FatigueParams, LoadCycle, endurance_limit, fatigue_check, name_location
+from clutchfem.durability.fatigue import (
+    amplitude_mean,
+    cycles_to_failure,
+    equivalent_stresses,
+    haigh_safety_factor,
+    marin_factors,
+    reversed_equivalent,
+)
 
 MPa = 1e6
 MACHINED = FatigueParams(edge_finish="machined")
@@ -373,9 +378,9 @@ def test_p2_nodes_of_a_quadratic_mesh_are_the_p2_basis_nodes():
     the same positions and facet node ids as scikit-fem's P2 basis."""
     from skfem import Basis, ElementTriP2
 
-    from clutchfem.design import Design
     from clutchfem.durability import fatigue as fa
     from clutchfem.geometry import MeshSettings
+    from clutchfem.loadcase import Design
 
     cm = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2.5e-3)).cm
     b = Basis(cm.mesh, ElementTriP2(), intorder=1)

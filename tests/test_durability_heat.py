@@ -25,13 +25,22 @@ import pytest
 from scipy.spatial import cKDTree
 from skfem import Basis, ElementTriP2, FacetBasis, Functional, LinearForm, MeshTri2, asm
 
-from clutchfem.durability.heat import (DrumThermal, SlipHeatLoad, SlipScenario, ThermalEnvironment,
-                                       ThermalMaterial, drum_patch_response, heat_partition,
-                                       render_png, slip_heat, slip_heat_load, wall_step_response,
-                                       write_vtu)
-from clutchfem.errors import InputError, ParameterError
+from clutchfem.core import InputError, ParameterError
+from clutchfem.durability import (
+    DrumThermal,
+    SlipHeatLoad,
+    SlipScenario,
+    ThermalEnvironment,
+    ThermalMaterial,
+    heat_partition,
+    render_png,
+    slip_heat,
+    slip_heat_load,
+    write_vtu,
+)
+from clutchfem.durability.heat import drum_patch_response, wall_step_response
 from clutchfem.mesh import ClutchMesh
-from clutchfem.testshapes import load_annulus, load_cantilever
+from support.shapes import load_annulus, load_cantilever
 
 STEEL = ThermalMaterial()
 K, RC = STEEL.conductivity, STEEL.density * STEEL.specific_heat

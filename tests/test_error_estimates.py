@@ -9,11 +9,11 @@ import json
 import pytest
 from typer.testing import CliRunner
 
+from clutchfem.accuracy import model_form, refined_design
+from clutchfem.analysis import analyze
 from clutchfem.cli import app
-from clutchfem.clutch.analyze import analyze
-from clutchfem.design import Design
-from clutchfem.errorest import model_form, refined_design
 from clutchfem.geometry import MeshSettings
+from clutchfem.loadcase import Design
 
 
 @pytest.mark.slow

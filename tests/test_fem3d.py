@@ -25,14 +25,14 @@ import math
 
 import numpy as np
 import pytest
-from skfem import (Basis, BilinearForm, ElementTetP2, ElementVector, Functional, asm)
+from skfem import Basis, BilinearForm, ElementTetP2, ElementVector, Functional, asm
 from skfem.helpers import ddot, sym_grad, trace
 
-from clutchfem.fem import FEModel, von_mises
-from clutchfem.fem3d import (ExtrusionSettings, build_fe_model_3d, extrude, lame_3d,
-                             von_mises_3d, _stiffness)
-from clutchfem.materials import Material
-from clutchfem.testshapes import load_annulus
+from clutchfem.core import Material
+from clutchfem.fe import ExtrusionSettings, FEModel, build_fe_model_3d, extrude, lame_3d, von_mises
+from clutchfem.fe import von_mises as von_mises_3d
+from clutchfem.fe.model3d import _stiffness
+from support.shapes import load_annulus
 
 STEEL = Material(name="steel (verification)", E=210e9, nu=0.3, rho=7850.0)
 A_IN, B_OUT, H = 6.5e-3, 33.8e-3, 11e-3
@@ -233,8 +233,7 @@ def test_concept4_3d_between_plane_stress_and_plane_strain():
     """Concept 4 (default): centrifugal compliance f1.u1 of the 3-D model lies between the
     plane-strain (discrete lower bound, same 2-D mesh) and plane-stress values; the contact
     nodes of the extruded shoe sit on the 2-D contact radii."""
-    from clutchfem.geometry.base import MeshSettings
-    from clutchfem.geometry.registry import get_concept
+    from clutchfem.geometry import MeshSettings, get_concept
     from clutchfem.mesh import mesh_concept
 
     c = get_concept("concept4")
@@ -272,15 +271,15 @@ def test_3d_drum_contact_plane_strain_closed_form(sectors, softening):
     and mid-plane symmetry scaled), torque and a uniform pressure vs the plane-strain closed
     form, and the same numbers from the 2-D plane-strain FEModel on the same mesh."""
     from clutchfem.contact import DrumContact, contact_nodes
+    from clutchfem.core import rad_s_to_rpm
+    from clutchfem.loadcase import LoadCase, sweep
     from clutchfem.softening import Ritz
-    from clutchfem.sweep import LoadCase, sweep
-    from clutchfem.units import rad_s_to_rpm
 
     cm = sectors[2e-3]
     c, mu = 0.2e-3, 0.3
     pe = plane_strain_material(STEEL)
     fe3 = build_fe_model_3d(cm, STEEL, settings=ExtrusionSettings(layers=1), slide_z=("top",))
-    nodes3 = fe3.contact_nodes(B_OUT + c)
+    nodes3 = contact_nodes(fe3, B_OUT + c)
     # Ritz depth 5 in 3-D: at depth 3 the space misses 2.4e-3 of the normal force at these
     # speeds (0.65 x the torsion-mode speed; 2-D: 7e-7), depth 5: 4e-6 (measured)
     soft3 = Ritz(depth=5) if softening == "ritz" else softening
@@ -343,7 +342,7 @@ def test_concept4_3d_cli_json(tmp_path):
 def test_3d_geometric_stiffness_matches_skfem_form(sectors):
     from skfem.helpers import grad
 
-    from clutchfem.nonlinear import geometric_stiffness
+    from clutchfem.fe import geometric_stiffness
 
     fe = build_fe_model_3d(sectors[4e-3], STEEL, settings=ExtrusionSettings(layers=1))
     u = fe.u1
@@ -367,8 +366,8 @@ def test_plane_stress_estimate_against_a_3d_flexure_and_concept4(tmp_path):
     (h / L = 0.42, 3 layers) and brackets concept 4's measured engagement shift."""
     from skfem import FacetBasis, LinearForm
 
-    from clutchfem.modelerror import plane_stress_estimate
-    from clutchfem.testshapes import load_cantilever
+    from clutchfem.accuracy import plane_stress_estimate
+    from support.shapes import load_cantilever
 
     L, t, h = 19e-3, 1.75e-3, 8e-3
     cm = load_cantilever(tmp_path / "flex.msh", L, t, t / 4, depth=1.0)

@@ -1,7 +1,7 @@
 """Verification of the FE model against closed-form solutions, cross-checks between model
 variants, and unit tests of the contact LCP solver.
 
-Geometries come from :mod:`clutchfem.testshapes` (gmsh -> .msh with physical groups ->
+Geometries come from :mod:`support.shapes` (tests/support) (gmsh -> .msh with physical groups ->
 :func:`clutchfem.mesh.load_user_geometry`), so the user-mesh path is exercised as well.
 
 Rotating annulus (plane stress, a <= r <= b, bore clamped)
@@ -55,18 +55,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import special as sps
 from scipy.optimize import brentq
-from skfem import (Basis, BilinearForm, ElementTriP1, ElementVector, FacetBasis, LinearForm,
-                   asm, condense, solve)
+from skfem import Basis, BilinearForm, ElementTriP1, ElementVector, FacetBasis, LinearForm, asm, condense, solve
 from skfem.helpers import ddot, sym_grad, trace
 
-from clutchfem.design import Design
-from clutchfem.lcp import _active_set, _lemke, lcp_residual, solve_lcp
-from clutchfem.errors import MeshError, SolverError
-from clutchfem.fem import FEModel, von_mises
-from clutchfem.materials import Material, get_material
-from clutchfem.operating import OperatingPoint
-from clutchfem.testshapes import load_annulus, load_cantilever
-from clutchfem.units import rad_s_to_rpm
+from clutchfem.contact import lcp_residual, solve_lcp
+from clutchfem.contact.lcp import _active_set, _lemke
+from clutchfem.core import Material, MeshError, SolverError, get_material, rad_s_to_rpm
+from clutchfem.fe import FEModel, von_mises
+from clutchfem.loadcase import Design, OperatingPoint
+from support.shapes import load_annulus, load_cantilever
 
 STEEL = Material(name="steel (verification)", E=210e9, nu=0.3, rho=7850.0)
 
@@ -497,8 +494,7 @@ def test_concept_mesh_convergence():
     flexure / fillet factors scaled together by 2, 1, 0.5) of concept 4 (concept 1 if
     concept 4 is absent).  Measured on concept 4: engagement 4120.2 / 4113.2 / 4110.8 rpm
     (differences 7.1, 2.4 rpm), torque 3.1712 / 3.1739 / 3.1759 N m (0.0027, 0.0019)."""
-    from clutchfem.geometry import MeshSettings, get_concept
-    from clutchfem.geometry.registry import concepts
+    from clutchfem.geometry import MeshSettings, concepts, get_concept
     from clutchfem.mesh import mesh_concept
 
     name = "concept4" if "concept4" in concepts() else "concept1"
@@ -564,8 +560,7 @@ def test_concept_peak_stress_not_a_mesh_artefact(name):
     4.5 GPa (concept 4, 0.76 GPa); it grows under refinement (8.3 GPa at f = 0.25).
     mesh._fix_invalid_high_order runs gmsh's high-order optimiser only for minDetJac <= 0;
     with a scaled-Jacobian threshold (minSJ < 0.2) the ratio drops to 1.04 / 1.07."""
-    from clutchfem.geometry import MeshSettings, get_concept
-    from clutchfem.geometry.registry import concepts
+    from clutchfem.geometry import MeshSettings, concepts, get_concept
     from clutchfem.mesh import mesh_concept
 
     assert name in concepts(), f"{name} missing from geometries/"
@@ -695,7 +690,7 @@ def test_user_mesh_empty_bore_group(tmp_path):
     tagged, and load_user_geometry calls mesh.boundaries.get(...) -> AttributeError."""
     import gmsh
 
-    from clutchfem.geometry.session import gmsh_session
+    from clutchfem.geometry import gmsh_session
     from clutchfem.mesh import load_user_geometry
 
     path = tmp_path / "nobore.msh"

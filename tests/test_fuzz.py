@@ -14,13 +14,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
+from clutchfem.analysis import analyze
 from clutchfem.cli import app
-from clutchfem.clutch.analyze import analyze
-from clutchfem.design import Design
-from clutchfem.errors import ClutchfemError
+from clutchfem.core import ClutchfemError
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import mesh_concept
-from clutchfem.operating import OperatingPoint
 
 COARSE = MeshSettings(size=3e-3)
 FUZZ = settings(max_examples=25, deadline=None, derandomize=True,

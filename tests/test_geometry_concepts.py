@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from skfem import Basis, ElementTriP0, ElementTriP2, Functional
 
-from clutchfem.errors import GeometryError, ParameterError
+from clutchfem.core import GeometryError, ParameterError
 from clutchfem.geometry import MeshSettings, concepts, get_concept
 from clutchfem.geometry import sketch as K
 from clutchfem.mesh import mesh_concept
@@ -69,9 +69,9 @@ def test_concept_is_documented(name):
 
 
 DROPPED_CONCEPT = '''"""A concept dropped into a geometries folder by the test (concept 4 renamed)."""
-from clutchfem.geometry.registry import _PKG, _load_file
+from clutchfem.geometry.registry import _PKG, load_concept_file
 
-Base = type(_load_file(str(_PKG.parent.parent / "geometries" / "concept4.py")))
+Base = type(load_concept_file(str(_PKG.parent.parent / "geometries" / "concept4.py")))
 
 
 class Dropped(Base):
@@ -368,8 +368,7 @@ def test_unknown_parameter_is_refused():
 # concept 4: the defaults are a sensible 60 cc clutch; the beam stays off the drum
 # --------------------------------------------------------------------------------------
 def test_concept4_defaults_engage_in_window():
-    from clutchfem.design import Design
-    from clutchfem.operating import OperatingPoint
+    from clutchfem.loadcase import Design, OperatingPoint
 
     c = get_concept("concept4")
     p = c.params()
@@ -392,8 +391,7 @@ WINDOW_RPM = (1.3 * 2700.0, 5000.0)
 def test_concept1_and_2_defaults_engage_in_window(name):
     """The 60 cc defaults engage inside the window (51CrV4, mu = 0.165, spin softening on);
     the first contact is at the shoe tip, as on the thesis prototypes."""
-    from clutchfem.design import Design
-    from clutchfem.operating import OperatingPoint
+    from clutchfem.loadcase import Design, OperatingPoint
 
     c = get_concept(name)
     p = c.params()
@@ -432,7 +430,7 @@ def test_only_shoes_reach_the_drum(name):
 @pytest.mark.parametrize("name", ALL)
 def test_every_concept_draws(name, tmp_path):
     """The labelled drawing of the defaults (PNG and SVG) is written for every concept."""
-    from clutchfem.geometry.drawing import draw_concept
+    from clutchfem.geometry import draw_concept
 
     c = get_concept(name)
     files = draw_concept(c, c.params(), tmp_path / name, dpi=60)
@@ -464,7 +462,7 @@ def test_outline_detects_self_intersection():
 
 
 def test_drawings_are_written(tmp_path):
-    from clutchfem.geometry.drawing import draw_concept, draw_mesh
+    from clutchfem.geometry import draw_concept, draw_mesh
 
     c = get_concept("concept4")
     p = c.params(arrangement="plus", profile="linear", clearance_tip=1.0e-3)

@@ -17,13 +17,12 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from clutchfem.analysis import analyze
 from clutchfem.cli import app
-from clutchfem.clutch.analyze import analyze
-from clutchfem.design import Design
-from clutchfem.errors import ClutchfemError, InputError, MeshError, ParameterError, SolverError
+from clutchfem.core import ClutchfemError, MeshError, SolverError
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import mesh_concept
-from clutchfem.operating import OperatingPoint
 
 COARSE = MeshSettings(size=2.5e-3)
 MESH = ["--mesh-size", "2.5mm"]
@@ -117,7 +116,7 @@ def test_no_friction_never_holds_and_says_so(c1):
 def test_speed_past_divergence_is_refused_for_a_free_part(c1):
     """Without the drum to hold it, a speed past the divergence speed is refused for every
     softening strategy (the shoes would fly out)."""
-    from clutchfem.sweep import LoadCase, sweep
+    from clutchfem.loadcase import LoadCase, sweep
 
     cm, p = c1
     d = Design(cm, OperatingPoint(), params=p)
@@ -199,7 +198,7 @@ def test_corrupted_mesh_cache_is_rebuilt_with_a_warning():
     c = get_concept("concept1")
     p = c.params(flexure_thickness=2.1e-3)
     cm = mesh_concept(c, p, COARSE)
-    from clutchfem.mesh import cache_dir
+    from clutchfem.mesh.meshing import cache_dir
 
     (f,) = [x for x in cache_dir().glob("concept1-*.msh") if not x.name.endswith(".groups.msh")
             and x.stat().st_mtime >= cm.msh_path.stat().st_mtime and x == cm.msh_path]

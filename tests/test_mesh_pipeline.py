@@ -7,9 +7,8 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTriP0, Functional
 
-from clutchfem.errors import MeshError, ParameterError
-from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.geometry.session import gmsh_session
+from clutchfem.core import MeshError, ParameterError
+from clutchfem.geometry import MeshSettings, get_concept, gmsh_session
 from clutchfem.mesh import load_user_geometry, mesh_concept
 
 COARSE = MeshSettings(size=2.0e-3)

@@ -41,11 +41,10 @@ import scipy.sparse.linalg as spla
 from scipy.integrate import solve_bvp
 from skfem import FacetBasis, LinearForm, asm
 
-from clutchfem.fem import FEModel
-from clutchfem.materials import Material
-from clutchfem.nonlinear import (NonlinearModel, NonlinearSettings, geometric_stiffness,
-                                 second_order_engagement)
-from clutchfem.testshapes import load_annulus, load_cantilever
+from clutchfem.accuracy import NonlinearModel, second_order_engagement
+from clutchfem.core import Material
+from clutchfem.fe import FEModel, geometric_stiffness
+from support.shapes import load_annulus, load_cantilever
 
 STEEL = Material(name="steel (verification)", E=210e9, nu=0.3, rho=7850.0)
 A_IN, B_OUT, H = 6.5e-3, 33.8e-3, 11e-3
@@ -280,12 +279,11 @@ def test_concept4_friction_contact_linear_limit():
     displacements): the non-linear contact force equals the linear fast path's (exact
     softening) to O(strain ~1e-4), with and without friction, while friction itself changes
     the force by percents: the two codes agree on the friction direction and magnitude."""
-    from clutchfem.geometry.base import MeshSettings
-    from clutchfem.geometry.registry import get_concept
-    from clutchfem.mesh import mesh_concept
     from clutchfem.contact import DrumContact
-    from clutchfem.sweep import LoadCase, sweep
-    from clutchfem.units import rad_s_to_rpm
+    from clutchfem.core import rad_s_to_rpm
+    from clutchfem.geometry import MeshSettings, get_concept
+    from clutchfem.loadcase import LoadCase, sweep
+    from clutchfem.mesh import mesh_concept
 
     c = get_concept("concept4")
     cm = mesh_concept(c, c.Params(), MeshSettings())
@@ -316,10 +314,9 @@ def test_concept4_prestress_fast_path_matches_nonlinear_reference():
     (``PrestressRitz``, one factorisation) equals its per-speed factorisation to 1e-6 and the
     non-linear reference's engagement speed and normal force at 8000 rpm to 3e-3 (measured
     1e-3 and 2e-4), while the plain spin-softened fast path is off by 1.4 % and 3 %."""
-    from clutchfem.design import Design
-    from clutchfem.nonlinear import PrestressedModel, PrestressRitz
-    from clutchfem.sweep import LoadCase, sweep
-    from clutchfem.units import rpm_to_rad_s
+    from clutchfem.core import rpm_to_rad_s
+    from clutchfem.loadcase import Design, LoadCase, sweep
+    from clutchfem.softening import PrestressedModel, PrestressRitz
 
     d = Design.from_concept("concept4")
     fast = sweep(LoadCase(d.model, d.contact(), PrestressRitz()), [8000.0])

@@ -1,6 +1,6 @@
 """Numerical stress test (issue 12): the solver driven to its edges gives a correct answer
 or a clear refusal, never a silent wrong number.  The cases are in
-:mod:`clutchfem.stresscases` (shared with ``benchmarks/bench_stress.py``, whose table is in
+:mod:`support.solver_edges` (tests/support) (shared with ``benchmarks/bench_stress.py``, whose table is in
 BENCHMARKS.md); here every outcome is checked against its reference and the invariants."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from clutchfem import stresscases as S
+from support import solver_edges as S
 
 pytestmark = pytest.mark.stress
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from clutchfem import shaft as sh
-from clutchfem.errors import ParameterError
+from clutchfem.clutch import shaft as sh
+from clutchfem.core import ParameterError
 from clutchfem.validation.shaft import paper_shaft
 
 CASES = [

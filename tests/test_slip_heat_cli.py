@@ -209,10 +209,10 @@ def test_part_mean_temperature_is_the_heat_content():
     from skfem import Basis, ElementTriP2, Functional
 
     from clutchfem.cli.slip_heat_cmd import run_slip_heat
-    from clutchfem.clutch.engine import EngineCurve
-    from clutchfem.durability.heat import SlipScenario, ThermalMaterial
+    from clutchfem.clutch import EngineCurve
+    from clutchfem.durability import SlipScenario, ThermalMaterial
     from clutchfem.geometry import MeshSettings, get_concept
-    from clutchfem.operating import OperatingPoint
+    from clutchfem.loadcase import OperatingPoint
 
     c = get_concept("concept4")
     doc, r, d = run_slip_heat(c, c.params(), OperatingPoint(), MeshSettings(size=2.5e-3), EngineCurve.default(),

@@ -21,10 +21,10 @@ from pathlib import Path
 
 import pytest
 
-from clutchfem.clutch.analyze import analyze
-from clutchfem.design import Design
+from clutchfem.analysis import analyze
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.study.guidelines import elasticity, fd_values
+from clutchfem.loadcase import Design
+from clutchfem.studies.guidelines import elasticity, fd_values
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -1,4 +1,4 @@
-"""Sweep specs, sampling, the design hash and the result store (no FE: fast).
+"""Study specs, sampling, the design hash and the result store (no FE: fast).
 
 Spec errors must name the key, its value and what is allowed; samples are seeded and stay
 in their ranges (a Latin hypercube hits every stratum of every dimension once); the
@@ -13,11 +13,9 @@ import sqlite3
 import numpy as np
 import pytest
 
-from clutchfem.errors import InputError
-from clutchfem.study import EXAMPLE_SPEC, SpecError, parse_spec
-from clutchfem.study.hashing import design_hash
-from clutchfem.study.point import COLUMNS, model_version
-from clutchfem.study.store import ResultStore
+from clutchfem.core import InputError
+from clutchfem.studies import COLUMNS, EXAMPLE_SPEC, ResultStore, SpecError, model_version, parse_spec
+from clutchfem.studies.hashing import design_hash
 
 BASE = """
 [design]
@@ -94,7 +92,7 @@ def test_spec_errors_name_key_value_and_allowed(text, key, allowed):
     assert e.key == key, str(e)
     assert allowed in e.allowed, str(e)
     msg = str(e)
-    assert msg.startswith("sweep spec t.toml: key '" + key + "'") and allowed in msg
+    assert msg.startswith("study spec t.toml: key '" + key + "'") and allowed in msg
 
 
 def test_missing_table_and_bad_toml():

@@ -1,4 +1,4 @@
-"""The sweep engine end to end: statuses, resume, crashes, kill -9, Ctrl-C, a remote
+"""The study engine end to end: statuses, resume, crashes, kill -9, Ctrl-C, a remote
 scheduler, and the example spec (coarse meshes, a few designs each).
 
 * refused / failed points are recorded and the sweep goes on; a rerun computes nothing,
@@ -11,7 +11,7 @@ scheduler, and the example spec (coarse meshes, a few designs each).
   a message, the finished rows stored and no process left behind;
 * ``--scheduler`` runs on a ``dask scheduler`` and a ``dask worker`` started here as
   separate processes on 127.0.0.1 (the rows name the worker's process);
-* ``clutchfem sweep --example`` prints a spec that runs as it is (``--json`` contract).
+* ``clutchfem study --example`` prints a spec that runs as it is (``--json`` contract).
 """
 
 from __future__ import annotations
@@ -28,10 +28,7 @@ from pathlib import Path
 
 import pytest
 
-from clutchfem.study import parse_spec
-from clutchfem.study.point import COLUMNS
-from clutchfem.study.store import ResultStore
-from clutchfem.study.runner import run_points, run_sweep
+from clutchfem.studies import COLUMNS, ResultStore, parse_spec, run_points, run_study
 
 ROOT = Path(__file__).resolve().parents[1]
 CRASHY = ROOT / "tests" / "data" / "study_geometries"
@@ -100,7 +97,7 @@ def _kill_group(pgid: int) -> None:
 
 
 def _start_sweep(spec: Path, out: Path, *args: str) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-m", "clutchfem.cli", "sweep", str(spec), "--out", str(out),
+    return subprocess.Popen([sys.executable, "-m", "clutchfem.cli", "study", str(spec), "--out", str(out),
                              "--no-charts", *args], env=_env(), start_new_session=True, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
 
@@ -164,7 +161,7 @@ method = "list"
 crash = {values = [0, 1, 0, 0]}
 flexure_thickness = {values = ["1.7mm", "1.75mm", "1.8mm", "1.85mm"]}
 """)
-    summary = run_sweep(spec, tmp_path / "out", workers=2, progress=False, charts=False)
+    summary = run_study(spec, tmp_path / "out", workers=2, progress=False, charts=False)
     assert (summary["points"], summary["done"], summary["ok"], summary["failed"]) == (4, 4, 3, 1)
     with sqlite3.connect(summary["store"]) as db:
         (msg,) = db.execute("SELECT message FROM results WHERE status = 'failed'").fetchone()
@@ -189,7 +186,7 @@ def test_kill_9_loses_no_finished_point_and_the_rerun_computes_only_the_rest(tmp
         _kill_group(proc.pid)
     before = {h: (s, t) for h, s, t in _rows(store)}  # what survived (at least the 3 seen)
     assert len(before) >= 3
-    rerun = subprocess.run([sys.executable, "-m", "clutchfem.cli", "sweep", str(spec), "--out", str(out),
+    rerun = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", str(spec), "--out", str(out),
                             "--no-charts", "--json", "--workers", "2"], env=_env(), capture_output=True,
                            text=True, timeout=300)
     assert rerun.returncode == 0, rerun.stderr[-3000:]
@@ -246,7 +243,7 @@ def test_remote_scheduler_and_worker_processes(tmp_path):
                                    "--no-dashboard", "--host", "127.0.0.1"], env=env, stdout=log_w, stderr=log_w,
                                   start_new_session=True)
         spec = parse_spec(SMALL.replace("steps = 4", "steps = 2").replace("[80, 85, 90]", "[90]"))
-        summary = run_sweep(spec, tmp_path / "out", scheduler=address, progress=False, charts=False)
+        summary = run_study(spec, tmp_path / "out", scheduler=address, progress=False, charts=False)
         assert (summary["points"], summary["done"], summary["ok"]) == (2, 2, 2)
         assert summary["scheduler"] == address and summary["workers"] == 1
         with sqlite3.connect(summary["store"]) as db:
@@ -272,12 +269,12 @@ def test_remote_scheduler_and_worker_processes(tmp_path):
 
 
 def test_example_spec_runs_as_it_is(tmp_path):
-    ex = subprocess.run([sys.executable, "-m", "clutchfem.cli", "sweep", "--example"], env=_env(),
+    ex = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", "--example"], env=_env(),
                         capture_output=True, text=True, timeout=60)
     assert ex.returncode == 0 and "[vary.params]" in ex.stdout
     spec = tmp_path / "example.toml"
     spec.write_text(ex.stdout)
-    run = subprocess.run([sys.executable, "-m", "clutchfem.cli", "sweep", str(spec), "--json", "--workers", "2"],
+    run = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", str(spec), "--json", "--workers", "2"],
                          env=_env(), cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr[-3000:]
     assert "Traceback" not in run.stderr
@@ -318,11 +315,11 @@ method = "grid"
 [vary.params]
 mu = {values = [0.12, 0.2]}
 """)
-    from clutchfem.study import load_spec
+    from clutchfem.studies import load_spec
 
     spec = load_spec(spec_file)
     assert spec.design == "part.msh" and spec.settings.mesh_bytes == part.read_bytes()
-    summary = run_sweep(spec, tmp_path / "out", workers=0, progress=False, charts=False)
+    summary = run_study(spec, tmp_path / "out", workers=0, progress=False, charts=False)
     assert (summary["points"], summary["ok"]) == (2, 2)
     with sqlite3.connect(summary["store"]) as db:
         rows = db.execute("SELECT point_json, torque_at_max_engine_torque_Nm, part_mass_g FROM results").fetchall()

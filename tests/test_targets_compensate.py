@@ -7,10 +7,11 @@ import sys
 import numpy as np
 import pytest
 
-from clutchfem.design import Design
+from clutchfem.core import rpm_to_rad_s
 from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.targets.compensate import cardinal, compensate, evenness, shoe_state
-from clutchfem.units import rpm_to_rad_s
+from clutchfem.loadcase import Design
+from clutchfem.studies import compensate
+from clutchfem.studies.compensation import cardinal, evenness, shoe_state
 
 SIZE = 2.4e-3
 

@@ -1,10 +1,11 @@
-"""evaluate_many on the sweep engine: refusals found here without sending anything, rows in
+"""evaluate_many on the study engine: refusals found here without sending anything, rows in
 the order of the points, the design evaluated is the one `--set` builds from the texts."""
 
 import pytest
 
-from clutchfem.errors import ParameterError
-from clutchfem.targets.evaluate import EvalSettings, cluster, evaluate_many
+from clutchfem.core import ParameterError
+from clutchfem.studies import EvalSettings, evaluate_many
+from clutchfem.studies.batch import cluster
 
 SIZE = 2.4e-3
 
@@ -24,9 +25,9 @@ def test_rows_in_order_with_refusals_in_process(tmp_path):
     assert 0.05 < r["mass_kg"] < 0.5 and 100e6 < r["max_von_mises_Pa"] < 1e10  # SI units
     assert r["safety_factor"] == pytest.approx(r["yield_strength_Pa"] / r["max_von_mises_Pa"], rel=1e-9)
     # the same design through analyze: identical answers (same values, same mesh)
-    from clutchfem.clutch.analyze import analyze
-    from clutchfem.design import Design
+    from clutchfem.analysis import analyze
     from clutchfem.geometry import MeshSettings, get_concept
+    from clutchfem.loadcase import Design
 
     c = get_concept("concept4")
     an = analyze(Design.from_concept(c, c.Params.from_assignments(["flexure_thickness=1.7mm"]), None,

@@ -8,8 +8,9 @@ import sys
 
 import pytest
 
-from clutchfem.errors import ParameterError
-from clutchfem.targets.optimize import Targets, better, default_free, make_space
+from clutchfem.core import ParameterError
+from clutchfem.studies import Targets, default_free
+from clutchfem.studies.optimization import better, make_space
 
 CLI = [sys.executable, "-m", "clutchfem.cli"]
 SIZE = "2.4mm"
@@ -90,7 +91,7 @@ def test_optimize_json_params_are_confirmed_by_analyze(tmp_path):
     assert an["engagement_rpm_with_ripple"] >= an["requirements"]["engagement_limit_rpm"]
     assert an["slip_rpm"] <= 8150
     assert an["safety_factor"] >= 0.5
-    # the fatigue answer travels through the sweep engine's row unchanged
+    # the fatigue answer travels through the study engine's row unchanged
     assert res["answers"]["fatigue_safety_factor"] == pytest.approx(an["fatigue_safety_factor"], rel=1e-9)
     # the very design that was evaluated: identical answers
     assert an["slip_rpm"] == pytest.approx(start["value"], rel=1e-9)

@@ -4,14 +4,14 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from clutchfem.design import Design
-from clutchfem.errors import ParameterError
-from clutchfem.geometry import MeshSettings, get_concept
-from clutchfem.geometry.base import TABLE_FIELDS, TABLE_N
-from clutchfem.mesh import cache_key
-from clutchfem.targets import values as V
+from clutchfem.core import ParameterError
+from clutchfem.geometry import TABLE_FIELDS, TABLE_N, MeshSettings, get_concept
+from clutchfem.loadcase import Design
+from clutchfem.mesh.meshing import cache_key
+from clutchfem.studies import values as V
 
 COARSE = MeshSettings(size=2.4e-3)
 
@@ -55,7 +55,7 @@ def test_table_profile_follows_the_spline_at_the_contact_nodes():
 def test_table_that_dips_to_the_drum_is_refused_naming_a_control_value():
     """A C2 spline overshoots next to a spike: small control values beside a large one dip below
     the 0.02 mm the profile must keep; the refusal names the control value nearest the dip."""
-    from clutchfem.geometry.base import _table_spline
+    from clutchfem.geometry import table_spline as _table_spline
 
     c = get_concept("concept4")
     vals = [0.06e-3] * TABLE_N

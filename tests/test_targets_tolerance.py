@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.errors import ParameterError
+from clutchfem.core import ParameterError
 from clutchfem.geometry import get_concept
-from clutchfem.targets.evaluate import EvalSettings
-from clutchfem.targets.tolerance import bootstrap_src, parse_tolerance, src, tolerance, wilson
+from clutchfem.studies import EvalSettings, parse_tolerance, tolerance
+from clutchfem.studies.tolerancing import bootstrap_src, src, wilson
 
 
 def test_wilson_interval_closed_forms():

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from clutchfem.errors import ParameterError
+from clutchfem.core import ParameterError
 from clutchfem.validation import chain
 
 T, D, W = 0.064, 0.018, 20.0

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.errors import ParameterError
+from clutchfem.core import ParameterError
 from clutchfem.validation import shaft as sh
 
 

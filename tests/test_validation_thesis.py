@@ -7,10 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.clutch.engine import EngineCurve, slip_rpm
-from clutchfem.clutch.shoe import CentrifugalShoe
-from clutchfem.errors import ParameterError
-from clutchfem.units import rad_s_to_rpm
+from clutchfem.clutch import CentrifugalShoe, EngineCurve, slip_rpm
+from clutchfem.core import ParameterError, rad_s_to_rpm
 from clutchfem.validation import thesis
 
 

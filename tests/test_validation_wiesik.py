@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from clutchfem.clutch import ripple
-from clutchfem.clutch.baseline import BaselineClutch
-from clutchfem.errors import ParameterError
+from clutchfem.clutch import BaselineClutch, ripple
+from clutchfem.core import ParameterError
 from clutchfem.validation import wiesik
 from clutchfem.validation.wiesik import (
     ChainModel,

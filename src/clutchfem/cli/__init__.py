@@ -12,13 +12,13 @@ from .demo_cmd import demo
 from .geometry_cmd import geometry
 from .slip_heat_cmd import slip_heat
 from .solve_cmd import solve
-from .sweep_cmd import guidelines, sweep
+from .study_cmd import guidelines, study
 from .targets_cmd import compensate, optimize, report, tolerance
 from .validate_cmd import validate
 
 app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
                   help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
-for _cmd in (geometry, solve, analyze, validate, demo, sweep, guidelines, optimize, tolerance, compensate, report):
+for _cmd in (geometry, solve, analyze, validate, demo, study, guidelines, optimize, tolerance, compensate, report):
     app.command()(_cmd)
 app.command("slip-heat")(slip_heat)
 
@@ -41,7 +41,7 @@ def main() -> None:
         raise SystemExit(130)
 
     signal.signal(signal.SIGINT, interrupted)
-    from ..runtime import tune_malloc
+    from ..core import tune_malloc
 
     tune_malloc()  # this process is clutchfem's: freed arrays stay for the next design
     app()

@@ -9,16 +9,26 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..errors import ClutchfemError
-from ..operating import OperatingPoint as _OP
-from .common import (build_params, check_out_dir, console, describe_groups, err, fail, grouped_assignments,
-                     length_option, load_design, material_from, operating_point)
+from ..core import ClutchfemError
+from ..loadcase import OperatingPoint as _OP
+from .common import (
+    build_params,
+    check_out_dir,
+    console,
+    describe_groups,
+    err,
+    fail,
+    grouped_assignments,
+    length_option,
+    load_design,
+    material_from,
+    operating_point,
+)
 
 
 def fatigue_groups() -> dict:
     """The parameter sets --fatigue writes into: service loads and fatigue strength."""
-    from ..durability.cycles import FatigueLoads
-    from ..durability.fatigue import FatigueParams
+    from ..durability import FatigueLoads, FatigueParams
 
     return {"loads": FatigueLoads, "strength": FatigueParams}
 
@@ -64,9 +74,10 @@ def analyze(
     list_fatigue: bool = typer.Option(False, "--list-fatigue", help="list the --fatigue settings and exit"),
 ):
     """Engagement (static, with ripple), slip rpm, torque margin, stress, plus/minus character."""
-    from ..clutch.analyze import Requirements, analyze as run, check_speeds
-    from ..clutch.engine import EngineCurve
-    from ..errors import InputError, ParameterError
+    from ..analysis import Requirements, check_speeds
+    from ..analysis import analyze as run
+    from ..clutch import EngineCurve
+    from ..core import InputError, ParameterError
 
     try:
         if list_fatigue:
@@ -117,7 +128,7 @@ def analyze(
             for f in write_analysis(an, eng, out, an.label):
                 err.print(f"wrote {escape(str(f))}")
         if json_:
-            from ..jsonio import dumps
+            from ..core import dumps
 
             print(dumps(an.to_json()))
             return

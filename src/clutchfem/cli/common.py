@@ -10,7 +10,7 @@ from typing import Optional
 import typer
 from rich.console import Console
 
-from ..errors import InputError
+from ..core import InputError
 
 console = Console()
 err = Console(stderr=True)
@@ -48,9 +48,8 @@ def check_out_dir(out: Optional[Path], option: str = "--out") -> Optional[Path]:
 def operating_point(material=None, **given):
     """An :class:`~clutchfem.operating.OperatingPoint` from CLI option strings (None: not
     given), each parsed with its unit suffix and checked against its range."""
-    from ..operating import OperatingPoint
-
-    from ..errors import ParameterError
+    from ..core import ParameterError
+    from ..loadcase import OperatingPoint
 
     try:
         values = OperatingPoint.parse_assignments([f"{k}={v}" for k, v in given.items() if v is not None])
@@ -66,7 +65,7 @@ def length_option(name: str, raw: Optional[str]):
     """A length option (``--mesh-size 0.8mm``) in m, or None."""
     if raw is None:
         return None
-    from ..errors import ParameterError
+    from ..core import ParameterError
     from ..geometry import MeshSettings
 
     try:
@@ -87,7 +86,7 @@ def mesh_settings(size, model: str):
 
 
 def material_from(material: Optional[str], E, nu, rho):
-    from ..materials import Material, get_material
+    from ..core import Material, get_material
 
     if E is not None or nu is not None or rho is not None:
         base = get_material(material) if material else get_material("51CrV4")
@@ -103,8 +102,8 @@ USER_THICKNESS = 11e-3
 def load_design(concept, set_, mesh, mesh_size, model, op, solver=None):
     """(Design, concept or None, params or None) for ``--concept NAME [--set ...]`` or
     ``--mesh FILE``; ``op`` the operating point."""
-    from ..design import Design
     from ..geometry import get_concept
+    from ..loadcase import Design
     from ..mesh import load_user_geometry, mesh_concept
 
     if (concept is None) == (mesh is None):
@@ -129,7 +128,7 @@ def grouped_assignments(items, groups: dict, option: str) -> dict:
     prefix when several do (``drum.conductivity=16``); units as in ``--set``.  Returns
     {prefix: {name: value}}; unknown, ambiguous or repeated names are refused, naming the
     option and every known name."""
-    from ..errors import ParameterError
+    from ..core import ParameterError
 
     owners: dict[str, list[str]] = {}
     for prefix, cls in groups.items():
@@ -166,7 +165,7 @@ def grouped_assignments(items, groups: dict, option: str) -> dict:
 
 def build_params(cls, values: dict, option: str):
     """``cls(**values)``, its errors naming the option the user typed."""
-    from ..errors import ParameterError
+    from ..core import ParameterError
 
     try:
         return cls(**values)

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import typer
 
-from ..errors import ClutchfemError
-from ..jsonio import write as write_json
+from ..core import ClutchfemError
+from ..core import write as write_json
 from .common import check_out_dir, console, fail
 from .geometry_cmd import _geometry_table, build_geometry
 

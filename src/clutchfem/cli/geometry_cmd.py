@@ -11,8 +11,8 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..errors import ClutchfemError
-from ..jsonio import write as write_json
+from ..core import ClutchfemError
+from ..core import write as write_json
 from .common import check_out_dir, console, fail, length_option, mesh_settings
 
 
@@ -72,7 +72,7 @@ def build_geometry(c, p, out: Path, mesh_size, model: str, drawing: bool) -> dic
     files = [msh]
     if drawing:
         try:
-            from ..geometry.drawing import draw_concept
+            from ..geometry import draw_concept
         except ImportError:  # drawing module not available
             draw_concept = None
         if draw_concept is not None:

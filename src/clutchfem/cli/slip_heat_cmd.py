@@ -20,15 +20,25 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..errors import ClutchfemError
-from ..operating import OperatingPoint as _OP
-from .common import (build_params, check_out_dir, console, describe_groups, err, fail, grouped_assignments,
-                     length_option, mesh_settings, operating_point)
+from ..core import ClutchfemError
+from ..loadcase import OperatingPoint as _OP
+from .common import (
+    build_params,
+    check_out_dir,
+    console,
+    describe_groups,
+    err,
+    fail,
+    grouped_assignments,
+    length_option,
+    mesh_settings,
+    operating_point,
+)
 
 
 def thermal_groups() -> dict:
     """The parameter sets --thermal writes into (prefix -> ParamSet class)."""
-    from ..durability.heat import DrumThermal, SlipScenario, ThermalEnvironment, ThermalMaterial
+    from ..durability import DrumThermal, SlipScenario, ThermalEnvironment, ThermalMaterial
 
     return {"part": ThermalMaterial, "drum": DrumThermal, "env": ThermalEnvironment, "scenario": SlipScenario}
 
@@ -61,7 +71,7 @@ def slip_heat(
 ):
     """Slip heat with the drum held at full throttle: temperatures of flexure, shoe face and
     hub against time, time to the limit (tempering) temperature, yield strength left."""
-    from ..errors import InputError, ParameterError
+    from ..core import InputError, ParameterError
 
     try:
         groups = thermal_groups()
@@ -95,7 +105,7 @@ def slip_heat(
                                  "option --heat-fraction")
         if model not in ("sector", "full"):
             raise ParameterError("model", model, "'sector' or 'full'", "option --model")
-        from ..clutch.engine import EngineCurve
+        from ..clutch import EngineCurve
 
         eng = EngineCurve.from_csv(engine) if engine else EngineCurve.default()
         op = operating_point(None, mu=mu, rotation=rotation)
@@ -111,7 +121,7 @@ def slip_heat(
             for f in write_outputs(doc, result, design, out):
                 err.print(f"wrote {escape(str(f))}")
         if json_:
-            from ..jsonio import dumps
+            from ..core import dumps
 
             print(dumps(doc))
             return
@@ -131,13 +141,12 @@ def run_slip_heat(concept, params, op, mesh_settings_, engine, *, part=None, dru
                   heat_fraction=None, design=None):
     """(JSON document, SlipHeatResult or None, Design): mesh, the slip speed with the drum
     held (FE torque against ``engine``), the contact forces there, the heat run."""
-    from ..clutch.analyze import slip_step
-    from ..design import Design
-    from ..durability.heat import SlipHeatLoad, SlipScenario, ThermalEnvironment, ThermalMaterial
-    from ..durability.heat import slip_heat as run_heat
+    from ..analysis import slip_step
+    from ..core import rpm_to_rad_s
+    from ..durability import SlipHeatLoad, SlipScenario, ThermalEnvironment, ThermalMaterial
+    from ..durability import slip_heat as run_heat
+    from ..loadcase import Design, design_inputs, design_label
     from ..mesh import mesh_concept
-    from ..traceability import design_inputs, design_label
-    from ..units import rpm_to_rad_s
 
     part = part or ThermalMaterial()
     env = env or ThermalEnvironment()
@@ -150,7 +159,7 @@ def run_slip_heat(concept, params, op, mesh_settings_, engine, *, part=None, dru
     lo, hi = engine.rpm_range
     mu = design.op.mu
     eng_info = {"source": engine.source, "assumed_shape": engine.assumed, "rpm_range": [lo, hi]}
-    from ..durability.heat import DrumThermal
+    from ..durability import DrumThermal
 
     thermal_inputs = {"part": part.model_dump(), "drum": (drum or DrumThermal()).model_dump(),
                       "environment": env.model_dump(), "scenario": scenario.model_dump(),
@@ -216,8 +225,8 @@ def write_outputs(doc: dict, result, design, out: Path) -> list[Path]:
     ``<label>_slip_heat.json`` (the document, with the design inputs).  All are written to
     hidden temporary names first and renamed together at the end, so an interrupted run
     leaves none of them (and no half file)."""
-    from ..durability.heat import render_png, write_vtu
-    from ..jsonio import write
+    from ..core import write
+    from ..durability import render_png, write_vtu
 
     out = Path(out)
     stem = f"{doc['label']}_slip_heat"
@@ -228,7 +237,7 @@ def write_outputs(doc: dict, result, design, out: Path) -> list[Path]:
         jobs.append((".vtu", lambda p: write_vtu(design.cm, result, p)))
         jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title)))
     jobs.append((".json", lambda p: write(p, doc, indent=2)))
-    from ..errors import InputError
+    from ..core import InputError
 
     for suffix, _ in jobs:  # a folder (or anything but a file) in the way: refuse before writing any
         final = out / f"{stem}{suffix}"

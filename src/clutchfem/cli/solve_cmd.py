@@ -11,10 +11,9 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..errors import ClutchfemError
-from ..operating import OperatingPoint as _OP
-from .common import (check_out_dir, console, fail, length_option, load_design, material_from,
-                     operating_point)
+from ..core import ClutchfemError
+from ..loadcase import OperatingPoint as _OP
+from .common import check_out_dir, console, fail, length_option, load_design, material_from, operating_point
 
 
 def solve(
@@ -45,11 +44,9 @@ def solve(
     no_errors: bool = typer.Option(False, "--no-errors", help="skip the error estimate (a mesh twice as fine)"),
 ):
     """Speed sweep: engagement, contact forces and arc, friction torque (drum held), stresses."""
-    from ..checks import model_warnings
-    from ..errorest import sweep_errors
-    from ..jsonio import dumps, write
-    from ..operating import parse_rpm
-    from ..traceability import design_inputs
+    from ..accuracy import sweep_errors
+    from ..core import dumps, write
+    from ..loadcase import design_inputs, model_warnings, parse_rpm
 
     try:
         check_out_dir(out)
@@ -77,7 +74,7 @@ def solve(
                 res.shoes.to_csv(out / "shoes.csv", index=False)
             write(out / "result.json", doc, indent=2)
         if vtk:
-            from ..output import write_vtk
+            from ..fe import write_vtk
 
             target = check_out_dir(out or Path("out/solve"))
             files = write_vtk(res, which, target)

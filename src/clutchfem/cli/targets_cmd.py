@@ -13,9 +13,8 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..errors import ClutchfemError, InputError, ParameterError
+from ..core import ClutchfemError, InputError, ParameterError
 from .common import check_out_dir, console, err, fail, length_option
-
 
 _WORKERS = "local Dask cluster of N process workers (default: one per core; 0: in this process)"
 _SCHED = "address of an existing dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of --workers)"
@@ -23,21 +22,21 @@ _SCHED = "address of an existing dask.distributed scheduler, e.g. tcp://10.0.0.5
 
 def _settings(concept: str, set_: list[str], mesh_size, engine, idle_rpm, a, b, mu=None, out=None, sf=1.5):
     from ..geometry import get_concept
-    from ..targets.evaluate import EvalSettings
+    from ..studies import EvalSettings
 
     c = get_concept(concept)
     c.Params.from_assignments(set_)  # refuse a bad --set before any work
     op = {}
     if mu is not None:
-        from ..operating import OperatingPoint
+        from ..loadcase import OperatingPoint
 
         op["mu"] = OperatingPoint.parse_assignments([f"mu={mu}"])["mu"]
     if idle_rpm is not None and not (isinstance(idle_rpm, (int, float)) and 0 < idle_rpm < 1e6):
         raise ParameterError("idle_rpm", idle_rpm, "an idle speed > 0 rpm")
-    from ..clutch.analyze import Requirements
+    from ..analysis import Requirements
 
     Requirements(a=a, b=b)
-    from ..study.store import STORE_NAME
+    from ..studies import STORE_NAME
 
     s = EvalSettings(concept=c.name, base=tuple(set_), mesh_size=length_option("size", mesh_size), op=op,
                      engine_csv=str(engine) if engine else None, idle_rpm=idle_rpm, a=a, b=b, min_safety_factor=sf,
@@ -48,7 +47,7 @@ def _settings(concept: str, set_: list[str], mesh_size, engine, idle_rpm, a, b, 
 
 def _limits(settings):
     """(engagement limit a x idle, slip limit b x rpm of max torque) [rpm] of the settings."""
-    from ..clutch.analyze import DEFAULT_IDLE_RPM
+    from ..analysis import DEFAULT_IDLE_RPM
 
     eng = settings.engine()
     idle = settings.idle_rpm or eng.idle_rpm or DEFAULT_IDLE_RPM
@@ -56,7 +55,7 @@ def _limits(settings):
 
 
 def _write_common(out: Path, page, files: list):
-    from ..targets.page import write_page
+    from ..report import write_page
 
     h, m = write_page(page, out)
     files += [h, m, out / "inputs.json", out / "page.json"]
@@ -95,7 +94,8 @@ def optimize(
     json_: bool = typer.Option(False, "--json", help="print the result as one JSON object"),
 ):
     """Find a design that meets the targets at least part mass (or largest torque margin)."""
-    from ..targets.optimize import Targets, optimize as run
+    from ..studies import Targets
+    from ..studies import optimize as run
 
     try:
         check_out_dir(out)
@@ -134,8 +134,8 @@ def optimize(
         if out is not None:
             import pandas as pd
 
-            from ..jsonio import write
-            from ..targets.pages import optimization_page
+            from ..core import write
+            from ..report import optimization_page
 
             files = [write(out / "optimization.json", res.to_json(), indent=1)]
             df = pd.DataFrame([{**{"n": r["n"], "phase": r.get("phase"), "status": r["status"],
@@ -151,7 +151,7 @@ def optimize(
             files.append(out / "optimization_path.png")
             _write_common(out, page, files)
         if json_:
-            from ..jsonio import dumps
+            from ..core import dumps
 
             d = res.to_json()
             d.pop("path")
@@ -165,9 +165,9 @@ def optimize(
 
 def _final_analysis(s, res):
     """The final design analysed again with the error estimate (for the report)."""
-    from ..clutch.analyze import Requirements, analyze
-    from ..design import Design
+    from ..analysis import Requirements, analyze
     from ..geometry import get_concept
+    from ..loadcase import Design
 
     p = s.params(res.best["params"])
     d = Design.from_concept(get_concept(s.concept), p, s.operating_point(), s.mesh_settings())
@@ -175,7 +175,7 @@ def _final_analysis(s, res):
 
 
 def _print_optimization(res, final):
-    from ..targets.optimize import DIMENSIONLESS, fatigue_note
+    from ..studies import DIMENSIONLESS, fatigue_note
 
     a = res.best["assessment"]
     t = Table(title=escape(f"{res.concept}: {res.message}"))
@@ -237,8 +237,8 @@ def tolerance(
     json_: bool = typer.Option(False, "--json", help="print the result as one JSON object"),
 ):
     """Monte Carlo of manufacturing tolerances: spread, share out of spec, ranking of dimensions."""
-    from ..targets.optimize import Targets
-    from ..targets.tolerance import parse_tolerance, tolerance as run
+    from ..studies import Targets, parse_tolerance
+    from ..studies import tolerance as run
 
     try:
         check_out_dir(out)
@@ -256,8 +256,8 @@ def tolerance(
         if out is not None:
             import pandas as pd
 
-            from ..jsonio import write
-            from ..targets.pages import tolerance_page
+            from ..core import write
+            from ..report import tolerance_page
 
             files = [write(out / "tolerance.json", res.to_json(), indent=1)]
             pd.DataFrame([{**{f"d:{k}": v for k, v in r.get("d", {}).items()}, "status": r["status"],
@@ -271,7 +271,7 @@ def tolerance(
                                   "n": n, "dist": dist, "seed": seed}})
             _write_common(out, page, files)
         if json_:
-            from ..jsonio import dumps
+            from ..core import dumps
 
             d = res.to_json()
             d.pop("samples")
@@ -283,9 +283,8 @@ def tolerance(
 
 
 def _design_inputs(s) -> dict:
-    from ..design import Design
     from ..geometry import get_concept
-    from ..traceability import design_inputs
+    from ..loadcase import Design, design_inputs
 
     d = Design.from_concept(get_concept(s.concept), s.params(), s.operating_point(), s.mesh_settings())
     return {**design_inputs(d), "engine": s.engine_csv or "built-in (ASSUMED shape)", "requirements": {"a": s.a, "b": s.b}}
@@ -354,11 +353,11 @@ def compensate(
     json_: bool = typer.Option(False, "--json", help="print the result as one JSON object"),
 ):
     """Shoe profile (table of clearances) that spreads the contact pressure evenly at --rpm."""
-    from ..clutch.analyze import analyze
-    from ..clutch.engine import EngineCurve
-    from ..design import Design
+    from ..analysis import analyze
+    from ..clutch import EngineCurve
     from ..geometry import MeshSettings, get_concept
-    from ..targets.compensate import compensate as run
+    from ..loadcase import Design
+    from ..studies import compensate as run
 
     try:
         check_out_dir(out)
@@ -374,12 +373,12 @@ def compensate(
                   max_iter=max_iter, log=lambda m: err.print(escape(m)))
         before = analyze(Design.from_concept(c, res.before, None, ms), engine=eng, errors=False)
         after = analyze(Design.from_concept(c, res.after, None, ms), engine=eng, errors=False)
-        from ..targets.pages import compare_rows
+        from ..report import compare_rows
 
         rows = compare_rows(res, before, after)
         if out is not None:
-            from ..jsonio import write
-            from ..targets.pages import compensation_page
+            from ..core import write
+            from ..report import compensation_page
 
             doc = _comp_json(res, rows)
             files = [write(out / "compensation.json", doc, indent=1)]
@@ -396,7 +395,7 @@ def compensate(
                       out / "compensation_convergence.png"]
             _write_common(out, page, files)
         if json_:
-            from ..jsonio import dumps
+            from ..core import dumps
 
             print(dumps(_comp_json(res, rows)))
             return
@@ -419,7 +418,7 @@ def compensate(
 
 
 def _comp_json(res, rows) -> dict:
-    from ..jsonio import clean
+    from ..core import clean
 
     return clean({
         "concept": res.concept, "rpm": res.rpm, "target_arc": res.target_arc, "arc": list(res.arc),
@@ -454,7 +453,7 @@ def report(
         if given != 1:
             raise InputError("give exactly one of --concept NAME, --mesh FILE or --run DIR")
         if run_dir is not None:
-            from ..targets.page import folder_page, write_page
+            from ..report import folder_page, write_page
 
             if not Path(run_dir).is_dir():
                 raise InputError(f"--run {run_dir}: not a folder")
@@ -471,11 +470,10 @@ def report(
         if out is None:
             raise InputError("--out DIR is required: the folder for report.html, report.md, the images and inputs.json")
         check_out_dir(out)
-        from ..clutch.analyze import analyze
-        from ..clutch.engine import EngineCurve
-        from ..operating import OperatingPoint
-        from ..targets.page import write_page
-        from ..targets.pages import design_page
+        from ..analysis import analyze
+        from ..clutch import EngineCurve
+        from ..loadcase import OperatingPoint
+        from ..report import design_page, write_page
         from .common import load_design
 
         if concept is not None and (drum_radius is not None or thickness is not None):
@@ -488,7 +486,7 @@ def report(
         design, c, p = load_design(concept, set_, mesh, length_option("size", mesh_size), "sector", op)
         an = analyze(design, engine=eng, errors=errors)
         page = design_page(an, design, eng, out, c, p)
-        from ..jsonio import write
+        from ..core import write
 
         files = [write(out / "analysis.json", an.to_json(), indent=1)]
         an.curves.to_csv(out / "curves.csv", index=False)

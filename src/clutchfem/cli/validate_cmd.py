@@ -9,8 +9,7 @@ from typing import Optional
 
 import typer
 
-from ..errors import ClutchfemError, InputError
-from ..jsonio import dumps
+from ..core import ClutchfemError, InputError, dumps
 from .common import check_out_dir, console, err, fail
 
 

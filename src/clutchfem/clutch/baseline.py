@@ -29,8 +29,7 @@ from typing import Literal
 
 import numpy as np
 
-from clutchfem.errors import ParameterError
-from clutchfem.units import rpm_to_rad_s
+from ..core import ParameterError, rpm_to_rad_s
 
 __all__ = ["BaselineClutch", "baseline_torque_at_rpm"]
 

@@ -23,9 +23,8 @@ from pathlib import Path
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
-from clutchfem.roots import brentq
 
-from clutchfem.errors import InputError, ParameterError
+from ..core import InputError, ParameterError, brentq
 
 __all__ = ["EngineCurve", "DEFAULT_CURVE_RPM", "DEFAULT_CURVE_TORQUE", "slip_rpm", "torque_crossings"]
 
@@ -214,13 +213,13 @@ def slip_rpm(
     """
     crossings = torque_crossings(curve, clutch_torque_at_rpm, rpm_min, rpm_max, n_grid, grid)
     a = curve.rpm_range[0] if rpm_min is None else float(rpm_min)
-    if bool(_holds(curve, clutch_torque_at_rpm, np.array([a]))[0]):
+    if bool(holds(curve, clutch_torque_at_rpm, np.array([a]))[0]):
         return float(a)
     up = [x for x, d in crossings if d == "up"]
     return up[0] if up else None
 
 
-def _holds(curve: EngineCurve, clutch_torque_at_rpm, x, t=None) -> np.ndarray:
+def holds(curve: EngineCurve, clutch_torque_at_rpm, x, t=None) -> np.ndarray:
     """The clutch holds the engine at speeds ``x``: its torque is > 0 (it transmits) and
     reaches the engine torque.  (0 >= 0 where neither delivers torque is *not* holding.)
     ``t``: the clutch torques at ``x`` when already evaluated."""
@@ -245,7 +244,7 @@ def torque_crossings(
     clutch torque rises through the engine torque (a stable slip point: above it the clutch
     holds more than the engine gives) and ``'down'`` where it falls below again (possible
     with a drooping FE curve or a user engine curve with a late torque peak).  Changes of
-    "holds" (:func:`_holds`) are bracketed on ``grid`` (default: ``n_grid`` equal steps over
+    "holds" (:func:`holds`) are bracketed on ``grid`` (default: ``n_grid`` equal steps over
     the range) and refined to 1e-9 relative: by Brent's method where clutch minus engine
     torque changes sign strictly with the clutch transmitting at both ends (the curves are
     continuous), else by bisection of "holds" (which also works with an ``inf`` clutch
@@ -265,7 +264,7 @@ def torque_crossings(
         grid = grid[(grid >= a) & (grid <= b)]
 
     t = np.asarray(clutch_torque_at_rpm(grid), dtype=float)
-    h = _holds(curve, clutch_torque_at_rpm, grid, t)
+    h = holds(curve, clutch_torque_at_rpm, grid, t)
     return [_refine(curve, clutch_torque_at_rpm, float(grid[i]), float(grid[i + 1]), t[i], t[i + 1], bool(h[i + 1]))
             for i in np.nonzero(h[1:] != h[:-1])[0]]
 
@@ -312,7 +311,7 @@ def _refine(curve: EngineCurve, clutch_torque_at_rpm, x0: float, x1: float, t0: 
         return brentq(diff, x0, x1, xtol=1e-9 * max(1.0, x1), rtol=1e-12), "up" if up else "down"
     for _ in range(60):
         xm = 0.5 * (x0 + x1)
-        if bool(_holds(curve, clutch_torque_at_rpm, np.array([xm]))[0]) == up:
+        if bool(holds(curve, clutch_torque_at_rpm, np.array([xm]))[0]) == up:
             x1 = xm
         else:
             x0 = xm

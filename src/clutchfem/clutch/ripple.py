@@ -31,8 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from clutchfem.errors import ParameterError
-from clutchfem.units import rad_s_to_rpm, rpm_to_rad_s
+from ..core import ParameterError, rad_s_to_rpm, rpm_to_rad_s
 
 __all__ = [
     "RippleModel",

@@ -52,8 +52,7 @@ from typing import Literal, NamedTuple
 import numpy as np
 from scipy import integrate
 
-from clutchfem.errors import ParameterError
-from clutchfem.units import rpm_to_rad_s
+from ..core import ParameterError, rpm_to_rad_s
 
 ShoeKind = Literal["plus", "minus"]
 _KINDS = ("plus", "minus")

@@ -12,14 +12,35 @@ Both modules take plain arrays (contact forces, stress states) and a
 :class:`~clutchfem.mesh.ClutchMesh`; they never run the elastic FE solver themselves.
 """
 
-from .fatigue import (FatigueParams, FatigueResult, LoadCycle, Location, fatigue_check,
-                      name_location)
-from .heat import (DrumThermal, HeatPartition, SlipHeatLoad, SlipHeatResult, SlipScenario,
-                   ThermalEnvironment, ThermalMaterial, heat_partition, slip_heat,
-                   slip_heat_load)
+from .cycles import FatigueLoads, ServiceStates, ripple_classes, service_cycles
+from .fatigue import (
+                      FatigueParams,
+                      FatigueResult,
+                      LoadCycle,
+                      Location,
+                      candidate_points,
+                      endurance_limit,
+                      fatigue_check,
+                      name_location,
+                      single_cycle_factor,
+)
+from .heat import (
+                      DrumThermal,
+                      HeatPartition,
+                      SlipHeatLoad,
+                      SlipHeatResult,
+                      SlipScenario,
+                      ThermalEnvironment,
+                      ThermalMaterial,
+                      heat_partition,
+                      render_png,
+                      slip_heat,
+                      slip_heat_load,
+                      write_vtu,
+)
 
-__all__ = [
-    "DrumThermal", "HeatPartition", "SlipHeatLoad", "SlipHeatResult", "SlipScenario",
-    "ThermalEnvironment", "ThermalMaterial", "heat_partition", "slip_heat", "slip_heat_load",
-    "FatigueParams", "FatigueResult", "LoadCycle", "Location", "fatigue_check", "name_location",
-]
+__all__ = ["DrumThermal", "FatigueLoads", "FatigueParams", "FatigueResult", "HeatPartition", "LoadCycle",
+           "Location", "ServiceStates", "SlipHeatLoad", "SlipHeatResult", "SlipScenario", "ThermalEnvironment",
+           "ThermalMaterial", "candidate_points", "endurance_limit", "fatigue_check", "heat_partition",
+           "name_location", "render_png", "ripple_classes", "service_cycles", "single_cycle_factor",
+           "slip_heat", "slip_heat_load", "write_vtu"]

@@ -79,13 +79,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from statistics import NormalDist
 from typing import ClassVar
 
 import numpy as np
-from statistics import NormalDist
 
-from ..errors import ParameterError
-from ..params import ParamSet, param
+from ..core import ParameterError, ParamSet, param
 from .fatigue import LoadCycle
 
 __all__ = ["FatigueLoads", "DELTA_CLASSES", "SEED_DRIVE_INERTIA", "ripple_classes", "revolution_torque",

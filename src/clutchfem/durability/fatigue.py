@@ -89,19 +89,19 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from statistics import NormalDist
 from typing import ClassVar, Literal
 
 import numpy as np
 from scipy.spatial import cKDTree
-from statistics import NormalDist
 
-from ..errors import InputError, ParameterError
+from ..core import InputError, ParameterError, ParamSet, choice, param
+from ..fe import von_mises
 from ..mesh import ClutchMesh
-from ..params import ParamSet, choice, param
 
 __all__ = [
     "FatigueParams", "LoadCycle", "FatigueResult", "Location", "amplitude_mean",
-    "equivalent_stresses", "von_mises", "marin_factors", "endurance_limit", "reversed_equivalent",
+    "equivalent_stresses", "marin_factors", "endurance_limit", "reversed_equivalent",
     "cycles_to_failure", "haigh_safety_factor", "fatigue_check", "name_location", "SURFACE_TABLE",
     "allowed_amplitude", "single_cycle_factor", "candidate_points",
 ]
@@ -163,12 +163,6 @@ def _stress_array(name: str, s) -> np.ndarray:
     if np.abs(a).max() > 1e11:
         raise InputError(f"{name}: stresses up to {np.abs(a).max():.3g} Pa: expected Pa (|s| <= 1e11)")
     return a
-
-
-def von_mises(s: np.ndarray) -> np.ndarray:
-    """Plane-stress von Mises stress of (sxx, syy, sxy) stacked on the first axis."""
-    sxx, syy, sxy = s[0], s[1], s[2]
-    return np.sqrt(np.maximum(sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy, 0.0))
 
 
 def amplitude_mean(state_a, state_b) -> tuple[np.ndarray, np.ndarray]:

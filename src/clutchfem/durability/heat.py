@@ -153,10 +153,9 @@ from scipy.special import erfc
 from skfem import Basis, BilinearForm, ElementTriP2, FacetBasis, LinearForm, asm
 from skfem.helpers import dot, grad
 
-from ..errors import InputError, MeshError, ParameterError
-from ..linsolve import factorize
+from ..core import InputError, MeshError, ParameterError, ParamSet, choice, param
+from ..fe import factorize
 from ..mesh import ClutchMesh
-from ..params import ParamSet, choice, param
 
 __all__ = [
     "ThermalMaterial", "DrumThermal", "ThermalEnvironment", "SlipScenario", "SlipHeatLoad",

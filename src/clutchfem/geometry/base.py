@@ -22,47 +22,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import ClassVar, Literal
 
 import gmsh
 import numpy as np
 from pydantic import model_serializer
-from scipy.interpolate import CubicSpline
 
-from ..errors import GeometryError
-from ..params import ParamSet, choice, param
-from ..units import wrap_angle
+from ..core import GeometryError, ParamSet, choice, param, wrap_angle
 from . import occ as G
+from .profile import MIN_PROFILE_CLEARANCE, TABLE_FIELDS, TABLE_N, table_param, table_spline
 
 occ = gmsh.model.occ
-Profile = Literal["concentric", "eccentric", "linear", "table"]
-
-#: number of clearance control values of the ``table`` profile (equally spaced along the shoe;
-#: 17: the contact pressure on a rigid drum moves by MPa per micrometre of profile, and 9
-#: values left a 0.3-10 um misfit near the ends of an 80 % target arc, 17 values 0.2-2 nm;
-#: see clutchfem.targets.compensate)
-TABLE_N = 17
-#: names of the table profile's control values, root (s = 0) to tip (s = 1)
-TABLE_FIELDS = tuple(f"table_c{k}" for k in range(TABLE_N))
-#: smallest clearance [m] a profile may leave anywhere along the shoe (a rest gap below this
-#: is a part touching the drum, in the model and on the bench)
-MIN_PROFILE_CLEARANCE = 0.02e-3
-
-
-@lru_cache(maxsize=256)
-def _table_spline(values: tuple[float, ...]) -> CubicSpline:
-    """The clearance c(s) [m] of a table profile: a cubic spline (not-a-knot, C2) through the
-    control values at s = 0, 1/(n-1), ..., 1 (s: arc fraction from root to tip)."""
-    return CubicSpline(np.linspace(0.0, 1.0, len(values)), np.asarray(values, dtype=float), bc_type="not-a-knot")
-
-
-def _table_param(k: int):
-    return param(0.6e-3, "m", 0.05e-3, 3e-3,
-                 f"clearance at {k}/{TABLE_N - 1} of the shoe arc from the root (table profile only; "
-                 "a C2 cubic spline through all of them)", f"c_{k}")
-
-
 class ConceptParams(ParamSet):
     """Parameters common to every one-piece concept (defaults: the 60 cc saw of the thesis)."""
 
@@ -84,23 +54,23 @@ class ConceptParams(ParamSet):
     arrangement: Literal["minus", "plus"] = choice(
         "minus", "flexure placement for ccw rotation: minus = shoe trails its flexure")
     fillet_radius: float = param(0.5e-3, "m", 0.0, 5e-3, "fillet radius at slot ends / flexure roots", "rho")
-    table_c0: float = _table_param(0)
-    table_c1: float = _table_param(1)
-    table_c2: float = _table_param(2)
-    table_c3: float = _table_param(3)
-    table_c4: float = _table_param(4)
-    table_c5: float = _table_param(5)
-    table_c6: float = _table_param(6)
-    table_c7: float = _table_param(7)
-    table_c8: float = _table_param(8)
-    table_c9: float = _table_param(9)
-    table_c10: float = _table_param(10)
-    table_c11: float = _table_param(11)
-    table_c12: float = _table_param(12)
-    table_c13: float = _table_param(13)
-    table_c14: float = _table_param(14)
-    table_c15: float = _table_param(15)
-    table_c16: float = _table_param(16)
+    table_c0: float = table_param(0)
+    table_c1: float = table_param(1)
+    table_c2: float = table_param(2)
+    table_c3: float = table_param(3)
+    table_c4: float = table_param(4)
+    table_c5: float = table_param(5)
+    table_c6: float = table_param(6)
+    table_c7: float = table_param(7)
+    table_c8: float = table_param(8)
+    table_c9: float = table_param(9)
+    table_c10: float = table_param(10)
+    table_c11: float = table_param(11)
+    table_c12: float = table_param(12)
+    table_c13: float = table_param(13)
+    table_c14: float = table_param(14)
+    table_c15: float = table_param(15)
+    table_c16: float = table_param(16)
 
     @model_serializer(mode="wrap")
     def _dump_without_inert_table(self, handler):
@@ -140,7 +110,7 @@ class ConceptParams(ParamSet):
 
     def table_clearance(self, s) -> np.ndarray:
         """Clearance [m] of the table profile at arc fraction ``s`` (0 root, 1 tip)."""
-        return _table_spline(self.table)(np.asarray(s, dtype=float))
+        return table_spline(self.table)(np.asarray(s, dtype=float))
 
     def eccentric_circle(self, t0: float, t1: float) -> tuple[float, float, float]:
         """Centre (x, y) and radius of the eccentric profile: offset ``eccentricity`` in the

@@ -36,7 +36,7 @@ _ZONE_STYLE = {
 
 
 def _figure(figsize):
-    from ..plotting import figure
+    from ..core import figure
 
     return figure(figsize=figsize)
 
@@ -72,8 +72,8 @@ def sample_concept(concept: "Concept", p: "ConceptParams", n_per_curve: int = 64
     ``flexure_i`` and ``hub`` to closed polylines (list of k x 2 arrays)."""
     import gmsh
 
-    from .session import gmsh_session
     from .base import MeshSettings, build_model
+    from .session import gmsh_session
 
     flip = np.array([1.0, -1.0]) if p.arrangement == "minus" else np.array([1.0, 1.0])
     with gmsh_session(f"draw-{concept.name}"):
@@ -103,7 +103,7 @@ def sample_concept(concept: "Concept", p: "ConceptParams", n_per_curve: int = 64
             "pivots": built.pivots, "contact_arcs": built.contact_arcs}
 
 
-def _fmt_value(p, name: str) -> str:
+def fmt_param_value(p, name: str) -> str:
     v = getattr(p, name)
     unit = type(p).unit(name)
     if isinstance(v, str):
@@ -124,7 +124,7 @@ def _param_lines(p) -> list[str]:
             continue
         if name.startswith("table_c") and p.profile != "table":
             continue
-        rows.append(f"{name} = {_fmt_value(p, name)}")
+        rows.append(f"{name} = {fmt_param_value(p, name)}")
     return rows
 
 

@@ -17,7 +17,8 @@ from collections.abc import Callable
 import gmsh
 import numpy as np
 
-from ..units import wrap_angle
+from ..core import wrap_angle
+from .profile import TABLE_N
 
 occ = gmsh.model.occ
 
@@ -151,8 +152,6 @@ def shoe_body(r_in: float, t0: float, t1: float, profile: Callable[[np.ndarray],
         curves.append(occ.addCircleArc(po1, c, po0))
     else:
         if kind == "table":  # 8 points per interval of the table's spline
-            from .base import TABLE_N
-
             n_spline = max(n_spline, 8 * (TABLE_N - 1) + 1)
         th = np.linspace(t1, t0, n_spline)
         r = profile(th)

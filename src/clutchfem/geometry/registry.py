@@ -15,7 +15,7 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 
-from ..errors import ParameterError
+from ..core import ParameterError
 from .base import Concept
 
 _PKG = Path(__file__).resolve().parent.parent
@@ -28,7 +28,7 @@ def search_path() -> list[Path]:
 
 
 @lru_cache(maxsize=None)
-def _load_file(path: str) -> Concept:
+def load_concept_file(path: str) -> Concept:
     spec = importlib.util.spec_from_file_location(f"clutchfem_geometries.{Path(path).stem}", path)
     mod = importlib.util.module_from_spec(spec)
     assert spec.loader is not None
@@ -51,7 +51,7 @@ def concepts() -> dict[str, Concept]:
         for f in sorted(d.glob("*.py")):
             if f.name.startswith("_"):
                 continue
-            c = _load_file(str(f))
+            c = load_concept_file(str(f))
             found.setdefault(c.name, c)
     return dict(sorted(found.items()))
 

@@ -18,8 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..core import GeometryError
 from . import occ as G
+from .profile import TABLE_N
 
 Vec = np.ndarray
 
@@ -293,8 +294,6 @@ def add_profile(out: Outline, p, R, t0: float, t1: float, s0: float, s1: float, 
     if p.profile == "eccentric":
         return out.arc_to(q, R(p.eccentric_centre(s0, s1)), ccw=True)
     if p.profile == "table":  # 8 points per interval of the table's spline
-        from .base import TABLE_N
-
         n = max(n, int(math.ceil(8 * (TABLE_N - 1) * abs(t1 - t0) / abs(s1 - s0))) + 1)
     ths = np.linspace(t0, t1, n)[1:-1]
     rs = p.outer_radius(ths, s0, s1)

@@ -54,8 +54,8 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
-from clutchfem.errors import ParameterError
-from clutchfem.validation.records import ValidationRecord
+from ..core import ParameterError
+from .records import ValidationRecord
 
 MODULE = "chain"
 #: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
@@ -316,7 +316,7 @@ def records() -> list[ValidationRecord]:
 
 def figures(out_dir: Path) -> list[Path]:
     """Reproduce figs 3 (N_u2 vs psi) and 4 (N_u1 vs psi) for z = 6, 8, 10; returns PNG paths."""
-    from clutchfem.plotting import figure
+    from ..core import figure
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

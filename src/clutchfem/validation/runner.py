@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
 
-from clutchfem.validation.records import ValidationRecord
+from .records import ValidationRecord
 
 PACKAGE = "clutchfem.validation"
 #: report position of a module that sets no ``ORDER`` (after those that do)

@@ -5,7 +5,7 @@ cutting mechanism of a circular-saw machine* (OCR'd): its tables and conclusions
 the overhung-shaft mechanics of :mod:`clutchfem.shaft` (model, equations and the
 well-conditioned determinant are documented there).  The chainsaw application of the same
 mechanics, the crankshaft whirl with a design's clutch on the overhang, is a design
-analysis: :mod:`clutchfem.clutch.whirl`.
+analysis: :mod:`clutchfem.clutch.crankshaft`.
 
 What the paper printed, and how we read it (all checked against Tables 1-2):
 
@@ -40,15 +40,9 @@ from typing import Literal
 
 import numpy as np
 
-from clutchfem.errors import ParameterError, SolverError
-from clutchfem.shaft import (
-    Model,
-    OverhungShaft,
-    fe_frequency_coefficients,
-    frequency_coefficients,
-)
-from clutchfem.units import rad_s_to_rpm
-from clutchfem.validation.records import ValidationRecord
+from ..clutch import OverhungShaft, ShaftModel, fe_frequency_coefficients, frequency_coefficients
+from ..core import ParameterError, SolverError, rad_s_to_rpm
+from .records import ValidationRecord
 
 MODULE = "shaft"
 #: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
@@ -124,7 +118,7 @@ def paper_shaft(l1: float, l2: float, disc: str, inertia: DiscInertia = "polar",
 
 
 @lru_cache(maxsize=4096)
-def _roots(shaft: OverhungShaft, n: int, model: Model) -> tuple[float, ...]:
+def _roots(shaft: OverhungShaft, n: int, model: ShaftModel) -> tuple[float, ...]:
     """Memoised :func:`frequency_coefficients` (pure function of a frozen shaft): the
     records, tolerances and figures ask for the same systems repeatedly."""
     return tuple(float(b) for b in frequency_coefficients(shaft, n, model))
@@ -165,7 +159,7 @@ def lost_root_overhang(l1: float, disc: str = "D500", lo: float = 0.18, hi: floa
 # --------------------------------------------------------------------------------------
 
 
-def _printed_tol(shaft: OverhungShaft, model: Model, disc: str, k: int, beta: float,
+def _printed_tol(shaft: OverhungShaft, model: ShaftModel, disc: str, k: int, beta: float,
                  paper: float) -> float:
     """Relative tolerance from the precision the paper prints (independent of the result).
 
@@ -189,7 +183,7 @@ def _rid(kind: str, l1: float, l2: float, disc: str) -> str:
 def records() -> list[ValidationRecord]:
     """Tables 1 and 2 (as-printed system), the physical model on a subset, conclusion 4 and
     the saw shaft's omega_1 under each reading (the chainsaw crankshaft whirl of a design is
-    :func:`clutchfem.clutch.whirl.whirl`, not a paper comparison)."""
+    :func:`clutchfem.clutch.crankshaft.whirl`, not a paper comparison)."""
     out: list[ValidationRecord] = []
     lost = {l1: lost_root_overhang(l1) for l1 in TABLE1}
     cells: list[tuple[float, str, int, float]] = []  # (l1, disc, mode index, l2) -> paper
@@ -296,7 +290,7 @@ def _curve(fn, xs) -> np.ndarray:
 
 def figures(out_dir: Path) -> list[Path]:
     """Figs 2 (beta_1, beta_2 vs l2) and 3 (omega_1 vs l2 for the three discs); PNG paths."""
-    from clutchfem.plotting import figure
+    from ..core import figure
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -356,4 +350,4 @@ def report_notes(recs: list[ValidationRecord]) -> str:
         "can account for the gap. The `physical` rows show the correct model (cross-checked "
         "by a Hermite beam FE model to 1e-5) against the same printed numbers. The chainsaw "
         "crankshaft whirl with a design's clutch on the overhang (same mechanics) is a design "
-        "analysis, not a paper comparison: `clutchfem.clutch.whirl`.")
+        "analysis, not a paper comparison: `clutchfem.clutch.crankshaft`.")

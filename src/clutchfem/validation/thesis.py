@@ -26,19 +26,20 @@ from pathlib import Path
 
 import numpy as np
 
-from clutchfem.clutch.baseline import BaselineClutch
-from clutchfem.clutch.engine import EngineCurve, slip_rpm
-from clutchfem.clutch.ripple import RippleModel, effective_engagement_rpm
-from clutchfem.clutch.shoe import (
+from ..clutch import (
+    BaselineClutch,
     CentrifugalShoe,
+    EngineCurve,
+    RippleModel,
     ShoeGeometry,
+    effective_engagement_rpm,
     lining_integrals,
     simplified_torque,
+    slip_rpm,
     torque_factor,
 )
-from clutchfem.errors import ParameterError
-from clutchfem.units import rad_s_to_rpm, rpm_to_rad_s
-from clutchfem.validation.records import ValidationRecord
+from ..core import ParameterError, rad_s_to_rpm, rpm_to_rad_s
+from .records import ValidationRecord
 
 MODULE = "thesis"
 #: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)

@@ -68,12 +68,9 @@ import numpy as np
 from scipy import integrate
 from scipy.stats import norm
 
-from clutchfem.clutch.baseline import BaselineClutch
-from clutchfem.clutch.engine import EngineCurve
-from clutchfem.clutch.ripple import RippleModel, cycle_time, speed
-from clutchfem.errors import ParameterError, SolverError
-from clutchfem.units import rpm_to_rad_s
-from clutchfem.validation.records import ValidationRecord
+from ..clutch import BaselineClutch, EngineCurve, RippleModel, cycle_time, speed
+from ..core import ParameterError, SolverError, rpm_to_rad_s
+from .records import ValidationRecord
 
 MODULE = "wiesik"
 #: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)

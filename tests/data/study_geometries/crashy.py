@@ -8,10 +8,10 @@ import signal
 from pathlib import Path
 
 import clutchfem
-from clutchfem.geometry.registry import _load_file
-from clutchfem.params import param
+from clutchfem.core import param
+from clutchfem.geometry import load_concept_file
 
-_C4 = _load_file(str(Path(clutchfem.__file__).resolve().parents[2] / "geometries" / "concept4.py"))
+_C4 = load_concept_file(str(Path(clutchfem.__file__).resolve().parents[2] / "geometries" / "concept4.py"))
 
 
 class CrashyParams(type(_C4).Params):

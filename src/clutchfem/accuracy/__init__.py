@@ -1,0 +1,21 @@
+"""Accuracy stage: the error of every answer (:mod:`.answer_error`): discretisation (the
+design on a finer mesh) and model form (3-D thickness effect, :mod:`.plane_stress`;
+geometric non-linearity; elastic drum), with the geometrically non-linear reference
+(:mod:`.nonlinear`) that measures part of it."""
+
+from .answer_error import (
+                           ANSWERS,
+                           NOT_ESTIMATED,
+                           AnswerError,
+                           discretisation,
+                           format_error,
+                           model_form,
+                           refined_design,
+                           sweep_errors,
+)
+from .nonlinear import NLState, NonlinearModel, NonlinearSettings, second_order_engagement
+from .plane_stress import PlaneStressEstimate, plane_stress_estimate
+
+__all__ = ["ANSWERS", "NOT_ESTIMATED", "AnswerError", "NLState", "NonlinearModel", "NonlinearSettings",
+           "PlaneStressEstimate", "discretisation", "format_error", "model_form", "plane_stress_estimate",
+           "refined_design", "second_order_engagement", "sweep_errors"]

@@ -1,0 +1,178 @@
+"""``clutchfem study`` and ``clutchfem guidelines``: parametric studies on the study engine
+(:mod:`clutchfem.study`).  Parse, call, print."""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import sys
+import threading
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from ..core import ClutchfemError
+from .common import check_out_dir, console, err, fail
+
+
+@contextlib.contextmanager
+def _ctrl_c_as_keyboard_interrupt():
+    """During a study, Ctrl-C raises KeyboardInterrupt (the CLI's own handler exits at once
+    with "unfinished work is not written"): the runner then cancels the pending points,
+    shuts its cluster down and says how many finished points are stored."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+_WORKERS_HELP = "local cluster of N process workers (default: one per core; 0: in this process, no Dask)"
+_SCHED_HELP = "address of an existing dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of --workers)"
+
+
+def study(
+    spec: Optional[Path] = typer.Argument(None, help="study spec (TOML); see --example"),
+    example: bool = typer.Option(False, "--example", help="print a commented example spec (12 designs of "
+                                 "concept 4) that runs as it is, and exit"),
+    workers: Optional[int] = typer.Option(None, "--workers", help=_WORKERS_HELP),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=_SCHED_HELP),
+    out: Optional[Path] = typer.Option(None, "--out", help="output folder: results.sqlite (the store), results.csv, "
+                                       "charts/, summary.json (default: ./<spec name>-study)"),
+    retry_failed: bool = typer.Option(False, "--retry-failed", help="recompute the points stored as failed "
+                                      "(finished points are otherwise skipped)"),
+    charts: bool = typer.Option(True, "--charts/--no-charts", help="draw the charts at the end"),
+    json_: bool = typer.Option(False, "--json", help="print one JSON summary object at the end (points, done, ok, "
+                               "refused, failed, store, ...)"),
+):
+    """Parameter study: every point of SPEC through the full analysis, on Dask, stored as it
+    finishes (rerun to resume).  Status per point: ok, refused (input refused, with its
+    message) or failed (no answer: solver refusal, error, crashed worker)."""
+    from ..studies import EXAMPLE_SPEC, StudyInterrupted, default_out, load_spec, run_study
+
+    try:
+        if example:
+            if spec is not None:
+                raise _usage("--example prints a spec; give either --example or SPEC")
+            sys.stdout.write(EXAMPLE_SPEC)
+            return
+        if spec is None:
+            raise _usage("give a study spec (TOML), or --example to print one")
+        if workers is not None and scheduler is not None:
+            raise _usage("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+        sp = load_spec(spec)
+        out = check_out_dir(out if out is not None else default_out(str(spec)))
+        try:
+            with _ctrl_c_as_keyboard_interrupt():
+                summary = run_study(sp, out, workers=workers, scheduler=scheduler, retry_failed=retry_failed,
+                                    progress=True, charts=charts)
+        except StudyInterrupted as exc:
+            err.print(f"[yellow]{escape(str(exc))}[/]")
+            if json_:
+                from ..core import dumps
+
+                print(dumps(exc.result.as_dict()))
+            raise typer.Exit(code=130) from None
+        if json_:
+            from ..core import dumps
+
+            print(dumps(summary))
+            return
+        _print_summary(summary)
+    except ClutchfemError as exc:
+        fail(exc)
+
+
+def _usage(msg: str):
+    from ..core import InputError
+
+    return InputError(msg)
+
+
+def _print_summary(s: dict) -> None:
+    t = Table(title=escape(f"study {s['spec']}: {s['design']}, {s['method']}"))
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    rate = s.get("designs_per_min")
+    rows = [("points in the spec", f"{s['points']}"), ("done (any status)", f"{s['done']}"),
+            ("  ok", f"{s['ok']}"), ("  refused (input)", f"{s['refused']}"), ("  failed", f"{s['failed']}"),
+            ("feasible (all requirements met)", f"{s['feasible']}"),
+            ("computed in this run", f"{s['computed']}"), ("finished before (skipped)", f"{s['skipped']}"),
+            ("wall time", f"{s['wall_s']:.1f} s"),
+            ("rate", f"{rate:.0f} designs/min" if rate else "-"),
+            ("ran on", s["scheduler"]), ("store", s["store"])]
+    e = s.get("errors") or {}
+    if e.get("sampled"):
+        names = {"engagement_rpm": "engagement", "slip_rpm": "slip rpm", "torque_at_max_engine_torque_Nm": "torque",
+                 "max_von_mises_MPa": "peak stress"}
+        for ans, label in names.items():
+            x = e.get(ans) or {}
+            if x.get("band_median_pct") is not None:
+                rows.append((f"error of {label} ({e['sampled']} sampled designs)",
+                             f"+- {x['band_median_pct']:.1f} % median, {x['band_max_pct']:.1f} % max "
+                             f"(mesh {x['discretisation_median_pct']:.1f} %)"))
+    for q, v in rows:
+        t.add_row(escape(q), escape(v))
+    console.print(t)
+    for f in s.get("files", []):
+        err.print(f"wrote {escape(f)}")
+
+
+def guidelines(
+    concept: str = typer.Argument(..., help="concept name (concept4, 4, ...)"),
+    set_: List[str] = typer.Option([], "--set", help="design point: concept parameter name=value "
+                                   "(unit suffix: mm, deg)"),
+    params: Optional[str] = typer.Option(None, "--params", help="parameters to study, comma separated (default: "
+                                         "every continuous parameter with a non-zero value)"),
+    step: float = typer.Option(0.02, "--step", help="relative finite-difference step h [-]: central differences at "
+                               "h, h/2 and 2h and a fit decide whether the derivative is stable"),
+    points: int = typer.Option(7, "--points", help="points of each one-at-a-time sweep [-]"),
+    span: float = typer.Option(0.5, "--span", help="one-at-a-time range: design value x (1 -+ span), within "
+                               "the parameter's declared range [-]"),
+    mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm; "
+                                            "default 1.2mm)"),
+    mu: Optional[str] = typer.Option(None, "--mu", help="shoe-drum friction coefficient (default 0.165)"),
+    material: Optional[str] = typer.Option(None, "--material", help="material (default 51CrV4)"),
+    engine: Optional[Path] = typer.Option(None, "--engine", help="engine torque CSV (columns rpm, torque [N m])"),
+    workers: Optional[int] = typer.Option(None, "--workers", help=_WORKERS_HELP),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=_SCHED_HELP),
+    out: Optional[Path] = typer.Option(None, "--out", help="output folder: store, guidelines.csv/json, charts "
+                                       "(default: ./<concept>-guidelines)"),
+    json_: bool = typer.Option(False, "--json", help="print the ranked table as JSON"),
+):
+    """Design guidelines: per parameter, elasticities d ln(answer) / d ln(parameter) of
+    engagement, slip rpm, torque at max engine torque, peak stress, shoe mass and contact arc
+    at the design point (with a check of the step against mesh noise), and a one-at-a-time
+    sweep over its range; ranked table and small-multiple charts."""
+    from ..studies import GuidelineSettings, StudyInterrupted, run_guidelines, summary_table
+
+    try:
+        if workers is not None and scheduler is not None:
+            raise _usage("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+        gs = GuidelineSettings.from_cli(concept, set_, params, step=step, points=points, span=span,
+                                        mesh_size=mesh_size, mu=mu, material=material, engine=engine)
+        out = check_out_dir(out if out is not None else Path(f"{gs.concept}-guidelines"))
+        try:
+            with _ctrl_c_as_keyboard_interrupt():
+                res = run_guidelines(gs, out, workers=workers, scheduler=scheduler, progress=True)
+        except StudyInterrupted as exc:
+            err.print(f"[yellow]{escape(str(exc))}[/]")
+            raise typer.Exit(code=130) from None
+        if json_:
+            from ..core import dumps
+
+            print(dumps(res.as_json()))
+            return
+        console.print(summary_table(res))
+        for n in res.notes:
+            console.print(f"[dim]note: {escape(n)}[/]")
+        for f in res.files:
+            err.print(f"wrote {escape(str(f))}")
+    except ClutchfemError as exc:
+        fail(exc)

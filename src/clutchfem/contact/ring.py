@@ -1,0 +1,329 @@
+"""Elastic drum: a ring of given wall thickness, width and material, held or spinning,
+condensed to the contact nodes' angles for the contact LCP.
+
+What the contact problem needs
+------------------------------
+The rigid drum gives the LCP  w = q + G lam  (w the gaps, q = g0 - B u_free(w)).  An elastic
+drum's inner wall moves out by  u_d(w) + C_d lam  at the contact nodes (its own centrifugal
+expansion when it spins, and its compliance under the shoe forces), which opens the gaps:
+
+    w = (q + u_d(w)) + (G + C_d) lam,    C_d = C_rr + s mu C_rt,
+
+C_rr[i, j] the radial displacement of the drum at node i's angle per unit outward force at
+node j's, C_rt[i, j] per unit tangential force along +e_theta (the friction force on the drum
+is +s mu lam_j t_j: the hub turns in sense s, the held drum is dragged along).  For a
+one-sector model of n identical shoes the loads repeat every 2 pi / n, and C_d is the cyclic
+sum over the n copies.  C_d is symmetric positive semi-definite (C_rr), so G + C_d keeps
+the P-matrix property the LCP solver relies on for moderate mu.
+
+Ring model (curved Timoshenko beam, the default)
+------------------------------------------------
+Centroid radius R = R_d + t/2 (R_d the inner radius, t the wall thickness), width b, A = b t,
+I = b t^3 / 12, shear area kappa A (Cowper: kappa = 10 (1 + nu) / (12 + 11 nu)).  Radial
+displacement w (outward), tangential v, section rotation psi; per harmonic k >= 2 with
+w = W cos k phi, v = V sin k phi, psi = Psi sin k phi the strains are
+
+    e = (k V + W) / R,   kappa_b = k Psi / R,   gamma = Psi - (k W + V) / R,
+
+and the energy (pi R / 2)(EA e^2 + EI kappa_b^2 + G kappa A gamma^2) against the work
+pi R (Q W + T V + m Psi) of line loads Q cos k phi (radial), T sin k phi (tangential) and the
+line moment m sin k phi gives a 3 x 3 system per k.  A tangential force on the inner surface
+acts t/2 inside the centroid: it carries the moment m = -(t/2) T.  k = 0: uniform expansion,
+taken from the exact thick cylinder under internal pressure (Lame, plane stress:
+u(R_d) = p R_d / E ((R_d^2 + R_o^2) / (R_o^2 - R_d^2) + nu), p = Q R / (R_d b); the ring's
+W = Q R^2 / EA is its thin limit, 1.8 % low at t / R_d = 0.06); the tangential k = 0 part is
+the torque, reacted by the drum's bottom: no radial displacement.  k = 1 is a rigid translation of a free ring: the drum sits on its
+bearing through its bottom disc, which holds its centre, so the k = 1 part is taken as
+rigid (W_1 = 0).  Without shear (``shear=False``) the system is Euler-Bernoulli's, whose
+inextensible limit is the textbook W = Q R^4 / (EI (k^2 - 1)^2).
+
+A point force P at angle theta_j is the line load (P / (2 pi R)) (1 + 2 sum_k cos k phi)
+(per unit centroid length), so the radial displacement at theta_i is
+
+    C_rr(phi) = (n / (2 pi R)) (a_0 + 2 sum_{k in n N} s_k a_k cos k phi),   phi = theta_i - theta_j,
+    C_rt(phi) = -(n / (2 pi R)) 2 sum_{k in n N} s_k b_k sin k phi,
+
+with a_k = W/Q, b_k = W/T the harmonic compliances and s_k = sinc(k w_j / 2) the factor
+that spreads node j's force over its tributary arc w_j (a ring under a true point load is
+finite, but the smearing matches the FE nodes' meaning and makes the elasticity check
+converge).  The series is summed to k_max = 400 n: its bending terms fall like k^-4, the
+shear terms like k^-2 times the smearing factor's ~2 / (k w_j), so the truncation error is
+~2e-6 of the diagonal for 0.6 deg arcs (measured in tests/test_drum.py).
+
+Verified (tests/test_drum.py) harmonic by harmonic against a condensed scikit-fem annulus
+(plane stress, P2, the same wall), :func:`annulus_harmonic_compliance`: the two agree to
+<1 % for the default drum (t / R_d = 0.06) up to k ~ 15 and to ~1e-3 for a thin ring; the
+ring misses the local through-thickness squeeze under the load (2-D elasticity's
+logarithmic point-load term), which grows with k and is measured there.
+
+Free expansion of a spinning drum: the free rotating annulus (plane stress Lame,
+R_d <= r <= R_d + t), inner radius:
+u_d = rho w^2 a / (8 E) ((1 - nu)(3 + nu)(a^2 + b^2) + (1 + nu)(3 + nu) b^2 - (1 - nu^2) a^2)
+with a = R_d, b = R_d + t.
+
+Assumptions: the drum is a ring of uniform section (the cup bottom's stiffening of the
+rim near it is ignored: conservative, the real rim is stiffer), width ``width`` carries
+the shoe loads (the contact is over the clutch's thickness), plane sections, coaxial with
+the clutch (no run-out).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar, Literal
+
+import numpy as np
+from pydantic import field_validator
+
+from ..core import Material, ParamSet, choice, get_material, param
+
+__all__ = ["DrumWall", "RingDrum", "annulus_harmonic_compliance", "lame_free_ring_expansion"]
+
+
+class DrumWall(ParamSet):
+    """The drum's wall (inner radius comes from the design's drum radius)."""
+
+    context: ClassVar[str] = "elastic drum"
+    wall_thickness: float = param(2.0e-3, "m", 0.2e-3, 30e-3,
+                                  "radial wall thickness of the drum (ASSUMED 2 mm: a pressed steel cup)", "t_d")
+    width: float = param(14e-3, "m", 1e-3, 0.3,
+                         "axial width of the drum wall (ASSUMED 14 mm: the cup depth of a 60 cc saw)", "b_d")
+    material: Material = get_material("51CrV4")
+    state: Literal["held", "spinning"] = choice(
+        "held", "held: drum at rest (idle, chain brake, slip); spinning: turning with the clutch "
+        "(its own centrifugal expansion opens the gap)")
+    shear: bool = True
+
+    @field_validator("material", mode="before")
+    @classmethod
+    def _material(cls, v):
+        return get_material(v) if isinstance(v, str) else v
+
+
+def lame_free_ring_expansion(material: Material, r_in: float, r_out: float, omega: float) -> float:
+    """Radial displacement [m] of the inner surface of a free rotating annulus (plane stress)."""
+    E, nu, rho = material.E, material.nu, material.rho
+    a, b = r_in, r_out
+    return rho * omega ** 2 * a / (8 * E) * ((1 - nu) * (3 + nu) * (a * a + b * b)
+                                              + (1 + nu) * (3 + nu) * b * b - (1 - nu * nu) * a * a)
+
+
+class RingDrum:
+    """The ring model of a drum of inner radius ``radius`` (module docstring)."""
+
+    KMAX_PER_N = 400
+
+    def __init__(self, radius: float, wall: DrumWall | None = None):
+        from ..core import ParameterError
+
+        if not (isinstance(radius, (int, float)) and math.isfinite(radius) and radius > 0):
+            raise ParameterError("drum_radius", radius, "a radius > 0 m")
+        self.wall = wall or DrumWall()
+        self.radius = float(radius)
+        if self.wall.wall_thickness > 0.5 * self.radius:
+            raise ParameterError("wall_thickness", self.wall.wall_thickness,
+                                 f"<= half the drum radius ({0.5 * self.radius * 1e3:.3g} mm) for a ring model",
+                                 "elastic drum")
+        t, b = self.wall.wall_thickness, self.wall.width
+        m = self.wall.material
+        self.Rc = self.radius + t / 2
+        self.EA = m.E * b * t
+        self.EI = m.E * b * t ** 3 / 12
+        nu = m.nu
+        kappa = 10 * (1 + nu) / (12 + 11 * nu)
+        self.GkA = (m.E / (2 * (1 + nu))) * kappa * b * t if self.wall.shear else math.inf
+        # k = 0: exact thick cylinder (Lame, plane stress) under the internal pressure
+        # p = Q_in / b, Q_in = Q R / R_d; thin limit R^2 / EA
+        ai, ao = self.radius, self.radius + t
+        self._a0 = (self.Rc / ai) / b * ai / m.E * ((ai * ai + ao * ao) / (ao * ao - ai * ai) + nu)
+
+    # -- harmonics ----------------------------------------------------------------------
+    def harmonics(self, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(a_k, b_k): radial displacement of the ring per unit radial line load Q cos k phi
+        and per unit tangential line load T sin k phi applied at the inner surface (with its
+        moment -(t/2) T), loads per unit centroid length.  k = 0: (Lame, 0); k = 1: (0, 0)."""
+        k = np.atleast_1d(np.asarray(k, dtype=float))
+        R, EA, EI, GkA = self.Rc, self.EA, self.EI, self.GkA
+        t = self.wall.wall_thickness
+        a = np.zeros(len(k))
+        bk = np.zeros(len(k))
+        for i, kk in enumerate(k):
+            if kk == 0:
+                a[i] = self._a0
+                continue
+            if kk == 1:
+                continue
+            e = np.array([1 / R, kk / R, 0.0])
+            kb = np.array([0.0, 0.0, kk / R])
+            if math.isinf(GkA):  # Euler-Bernoulli: Psi = (k W + V) / R eliminated
+                kb = np.array([kk * kk / R ** 2, kk / R ** 2])
+                Km = EA * np.outer(e[:2], e[:2]) + EI * np.outer(kb, kb)
+                a[i] = np.linalg.solve(Km, [1.0, 0.0])[0]
+                # the moment m = -(t/2) T works on Psi = (k W + V)/R: load (-(t/2) k/R, 1 - (t/2)/R)
+                bk[i] = np.linalg.solve(Km, [-(t / 2) * kk / R, 1.0 - (t / 2) / R])[0]
+                continue
+            g = np.array([-kk / R, -1 / R, 1.0])
+            Km = EA * np.outer(e, e) + EI * np.outer(kb, kb) + GkA * np.outer(g, g)
+            a[i] = np.linalg.solve(Km, [1.0, 0.0, 0.0])[0]
+            bk[i] = np.linalg.solve(Km, [0.0, 1.0, -t / 2])[0]
+        return a, bk
+
+    # -- condensed compliance -------------------------------------------------------------
+    def compliance(self, angles: np.ndarray, n: int = 1, arc: np.ndarray | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
+        """(C_rr, C_rt) [m/N], m x m, at the polar ``angles`` [rad] for the n-fold cyclic load
+        pattern (n = number of identical sectors; 1: the loads of all shoes are listed);
+        ``arc`` [rad]: each node's tributary arc (None: point loads).  See module docstring."""
+        from ..core import ParameterError
+
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ParameterError("n", n, "an integer number of identical sectors >= 1")
+        th = np.asarray(angles, dtype=float)
+        k = np.arange(n, self.KMAX_PER_N * n + 1, n, dtype=float)
+        a, b = self.harmonics(k)
+        a0 = self.harmonics([0.0])[0][0]
+        phi = th[:, None] - th[None, :]
+        w = np.zeros(len(th)) if arc is None else np.asarray(arc, dtype=float)
+        s = np.sinc(np.outer(w, k) / (2 * math.pi))  # numpy sinc(x) = sin(pi x)/(pi x): (m, K)
+        pref = n / (2 * math.pi * self.Rc)
+        Crr = np.empty((len(th), len(th)))
+        Crt = np.empty((len(th), len(th)))
+        for j in range(len(th)):  # column j: force at node j (smeared over its arc)
+            kp = np.outer(phi[:, j], k)
+            Crr[:, j] = pref * (a0 + 2 * np.cos(kp) @ (s[j] * a))
+            Crt[:, j] = -pref * 2 * (np.sin(kp) @ (s[j] * b))
+        return Crr, Crt
+
+    def free_expansion(self, omega: float) -> float:
+        """Radial displacement [m] of the inner wall of the drum spinning at ``omega`` alone
+        (0 when the drum is held)."""
+        if self.wall.state == "held":
+            return 0.0
+        return lame_free_ring_expansion(self.wall.material, self.radius,
+                                        self.radius + self.wall.wall_thickness, omega)
+
+    def operator(self, nodes, friction: float, n: int) -> np.ndarray:
+        """C_d = C_rr + (s mu) C_rt at the contact nodes (a ContactNodes) for an n-fold cyclic
+        model; the tributary arc of node i is weight_i / |x_i| (its length over its radius)."""
+        arc = np.asarray(nodes.weight) / np.hypot(*nodes.xy[:2])
+        ang, inv = np.unique(np.round(nodes.angle, 12), return_inverse=True)
+        # nodes at the same angle (3-D: several levels) share the ring's displacement; their
+        # arcs are the same: spread over one arc
+        arc_u = np.zeros(len(ang))
+        np.maximum.at(arc_u, inv, arc)
+        Crr, Crt = self.compliance(ang, n, arc_u)
+        C = Crr if friction == 0.0 else Crr + friction * Crt
+        return C[np.ix_(inv, inv)]
+
+
+def annulus_harmonic_compliance(radius: float, wall: DrumWall, ks, size: float | None = None,
+                                tmpdir=None) -> dict:
+    """Verification model: a plane-stress P2 annulus R_d <= r <= R_d + t of width b
+    (scikit-fem, curved elements), free, loaded on its inner surface by the radial traction
+    cos k theta and, separately, the tangential traction sin k theta (per unit inner length);
+    rigid-body modes removed by Lagrange multipliers (the loads are self-equilibrated for
+    k != 1).  Returns per k the cos k theta amplitude of the inner wall's radial displacement,
+    converted to the ring's convention (load per unit centroid length):
+    {k: (a_k, b_k)} comparable with :meth:`RingDrum.harmonics`."""
+    import tempfile
+    from pathlib import Path
+
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+    from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm
+    from skfem.helpers import ddot, sym_grad, trace
+
+    from ..geometry import gmsh_session
+    from ..mesh import load_user_geometry
+
+    t, b = wall.wall_thickness, wall.width
+    a_in, a_out = radius, radius + t
+    size = size or t / 3
+    d = Path(tmpdir or tempfile.mkdtemp())
+    path = d / f"drum_{a_in:.6g}_{t:.6g}_{size:.6g}.msh"
+    import gmsh
+
+    with gmsh_session("drum"):
+        occ = gmsh.model.occ
+        outer = occ.addDisk(0, 0, 0, a_out, a_out)
+        inner = occ.addDisk(0, 0, 0, a_in, a_in)
+        (surf,), _ = occ.cut([(2, outer)], [(2, inner)])
+        occ.synchronize()
+        bore, rim = [], []
+        for _, c in gmsh.model.getBoundary([surf], oriented=False):
+            xmin, ymin, _, xmax, ymax, _ = gmsh.model.getBoundingBox(1, abs(c))
+            (bore if max(xmax, ymax) < 0.5 * (a_in + a_out) else rim).append(abs(c))
+        gmsh.model.addPhysicalGroup(1, bore, name="bore")
+        gmsh.model.addPhysicalGroup(1, rim, name="contact")
+        gmsh.model.addPhysicalGroup(2, [surf[1]], name="solid")
+        gmsh.option.setNumber("Mesh.MeshSizeMax", size)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        gmsh.option.setNumber("Mesh.Algorithm", 6)
+        gmsh.option.setNumber("Mesh.ElementOrder", 2)
+        gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+        gmsh.model.mesh.generate(2)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        gmsh.option.setNumber("Mesh.SaveAll", 0)
+        gmsh.write(str(path))
+    cm = load_user_geometry(path, thickness=b)
+    mesh = cm.mesh
+    m = wall.material
+    lam, mu = m.lame_plane_stress()
+    basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)
+
+    @BilinearForm
+    def stiff(u, v, w):
+        eu, ev = sym_grad(u), sym_grad(v)
+        return b * (2 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev))
+
+    K = asm(stiff, basis).tocsr()
+    X = basis.doflocs
+    N = basis.N
+    # rigid modes: x-, y-translation, rotation
+    Rm = np.zeros((N, 3))
+    Rm[0::2, 0] = 1.0
+    Rm[1::2, 1] = 1.0
+    Rm[0::2, 2] = -X[1, 0::2]
+    Rm[1::2, 2] = X[0, 1::2]
+    Rm /= np.linalg.norm(Rm, axis=0)
+    A = sp.bmat([[K, sp.csr_matrix(Rm)], [sp.csr_matrix(Rm.T), None]], format="csc")
+    lu = spla.splu(A)
+    fb = FacetBasis(mesh, basis.elem, facets=cm.boundary("bore"), intorder=8)
+    loads = []
+    ks = [int(k) for k in ks]
+    for k in ks:
+        @LinearForm
+        def radial(v, w, k=k):
+            th = np.arctan2(w.x[1], w.x[0])
+            return np.cos(k * th) * (np.cos(th) * v[0] + np.sin(th) * v[1])
+
+        @LinearForm
+        def tangential(v, w, k=k):
+            th = np.arctan2(w.x[1], w.x[0])
+            return np.sin(k * th) * (-np.sin(th) * v[0] + np.cos(th) * v[1])
+
+        loads += [asm(radial, fb), asm(tangential, fb)]
+    F = np.column_stack(loads)
+    U = lu.solve(np.vstack([F, np.zeros((3, F.shape[1]))]))[:N]
+    # radial displacement of the inner-wall nodes, projected on cos k theta
+    dd = basis.get_dofs(cm.boundary("bore"))
+    ix = np.concatenate([dd.nodal["u^1"], dd.facet["u^1"]])
+    iy = ix + 1
+    th = np.arctan2(X[1, ix], X[0, ix])
+    order = np.argsort(th)
+    th = th[order]
+    out = {}
+    scale = radius / (radius + t / 2)  # per unit inner length -> per unit centroid length
+    for q, k in enumerate(ks):
+        res = []
+        for col in (2 * q, 2 * q + 1):
+            u = U[:, col]
+            ur = (np.cos(th) * u[ix[order]] + np.sin(th) * u[iy[order]])
+            # least-squares amplitude of cos k theta on the (non-uniform) node angles
+            basis_f = np.column_stack([np.cos(k * th), np.sin(k * th)] + ([np.ones_like(th)] if k else []))
+            coef = np.linalg.lstsq(basis_f if k else np.ones((len(th), 1)), ur, rcond=None)[0]
+            res.append(coef[0] / scale)
+        out[k] = tuple(res)
+    return out

@@ -1,0 +1,26 @@
+"""FE stage: the 2-D and 3-D linear-elastic models of the spinning part (K, f1, constraints,
+one factorisation), stress recovery with the one von Mises, sparse direct solvers and
+``.vtu`` field output."""
+
+from .geometric import Kinematics, geometric_stiffness
+from .linsolve import COUNTS, Solver, available, factorize
+from .model import ConstrainedOperators, FEModel, constraint_map, contact_weights
+from .model3d import (
+                      ExtrudedMesh,
+                      ExtrusionSettings,
+                      FEModel3D,
+                      build_fe_model_3d,
+                      component_dofs,
+                      contact_area_weights,
+                      extrude,
+                      geometric_stiffness_3d,
+                      lame_3d,
+)
+from .stress import VertexStress, VertexStress3D, von_mises
+from .vtu import write_vtk
+
+__all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
+           "Kinematics", "geometric_stiffness",
+           "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",
+           "constraint_map", "contact_area_weights", "contact_weights", "extrude", "factorize",
+           "geometric_stiffness_3d", "lame_3d", "von_mises", "write_vtk"]

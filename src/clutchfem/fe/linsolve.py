@@ -1,0 +1,126 @@
+"""Sparse direct solvers behind one tiny interface: ``factorize(A).solve(B)``.
+
+The back-end is *injected* where a model is built (``FEModel(..., solver=...)``, in the way
+scikit-fem's ``solve(A, b, solver=...)`` takes one): a back-end name, or any callable
+``A -> object with .solve(B)`` (e.g. a PARDISO or an iterative wrapper of your own).  The
+environment variable ``CLUTCHFEM_SOLVER`` only sets the default (``auto``).  Back-ends:
+* ``cholmod``: Cholesky from SuiteSparse via scikit-sparse, simplicial up to
+  ``SIMPLICIAL_MAX_N`` unknowns (faster than supernodal on these problems, measured), CHOLMOD's
+  choice above (optional extra
+  ``clutchfem[cholmod]``; needs Debian's libsuitesparse-dev to build);
+* ``superlu``: scipy's SuperLU in symmetric mode (minimum-degree ordering of A + A',
+  no off-diagonal pivoting), always available: the fallback.
+``auto`` takes CHOLMOD when it imports and SuperLU otherwise.  The figures behind this
+choice are in BENCHMARKS.md (benchmarks/bench_solvers.py).
+"""
+
+from __future__ import annotations
+
+import os
+from collections import Counter
+from typing import Any, Callable, Union
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ..core import SolverError
+
+
+class _SuperLU:
+    name = "superlu"
+
+    def __init__(self, A: sp.spmatrix):
+        try:
+            self._lu = spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A",
+                                 diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        except RuntimeError as exc:  # "Factor is exactly singular"
+            raise SolverError(f"stiffness matrix is singular ({exc}): is the part clamped "
+                              "(bore group) and connected?") from None
+
+    def solve(self, B: np.ndarray) -> np.ndarray:
+        B = np.asarray(B, dtype=float)
+        if B.ndim == 1 or B.shape[1] <= _BLOCK:
+            return self._lu.solve(B)
+        # multi-column triangular solves: blocks of 16 columns, one BLAS thread (multi-threaded
+        # OpenBLAS gains nothing here and is up to 90x slower when the cores are shared)
+        with _one_blas_thread():
+            return np.hstack([self._lu.solve(np.asfortranarray(B[:, j:j + _BLOCK]))
+                              for j in range(0, B.shape[1], _BLOCK)])
+
+
+_BLOCK = 16
+
+
+def _one_blas_thread():
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # optional: without it the default BLAS threading applies
+        import contextlib
+
+        return contextlib.nullcontext()
+    return threadpool_limits(1, user_api="blas")
+
+
+#: size up to which CHOLMOD's simplicial factorisation is used (above it CHOLMOD chooses):
+#: on the 2-D models (4k-34k dofs) and the 3-D one (51k) it factorises 1.0-2x and back-solves
+#: 1.3-3x faster than the supernodal one CHOLMOD's own heuristic picks (BENCHMARKS.md,
+#: solvers), with one BLAS thread or the default threads
+SIMPLICIAL_MAX_N = 100_000
+
+
+class _Cholmod:
+    name = "cholmod"
+
+    def __init__(self, A: sp.spmatrix):
+        from sksparse.cholmod import CholmodNotPositiveDefiniteError, cholesky
+
+        try:
+            self._f = cholesky(sp.csc_matrix(A), mode="simplicial" if A.shape[0] <= SIMPLICIAL_MAX_N else "auto")
+        except CholmodNotPositiveDefiniteError as exc:
+            raise SolverError(f"stiffness matrix is not positive definite ({exc}): is the part "
+                              "clamped (bore group) and connected?") from None
+
+    def solve(self, B: np.ndarray) -> np.ndarray:
+        return self._f(np.asarray(B, dtype=float))
+
+
+def available() -> list[str]:
+    out = ["superlu"]
+    try:
+        import sksparse.cholmod  # noqa: F401
+
+        out.insert(0, "cholmod")
+    except Exception:  # ImportError or a broken shared library
+        pass
+    return out
+
+
+#: what ``solver=`` accepts: None (the default back-end), a back-end name, or a factory
+Solver = Union[None, str, Callable[[sp.spmatrix], Any]]
+
+#: factorisations done in this process, by kind ('K': stiffness, 'shifted': K - w^2 M of the
+#: exact spin-softening reference); tests read it to check that work is not repeated
+COUNTS: Counter = Counter()
+
+
+def factorize(A: sp.spmatrix, backend: Solver = None, kind: str = "K"):
+    """Factorise the symmetric positive definite matrix A with ``backend`` (see module doc)."""
+    COUNTS[kind] += 1
+    if callable(backend):
+        f = backend(A)
+        if not hasattr(f, "solve"):
+            raise SolverError(f"solver factory {backend!r} returned {type(f).__name__}, which has no "
+                              ".solve(B) method")
+        return f
+    if backend is not None and not isinstance(backend, str):
+        raise SolverError(f"solver={backend!r} is not allowed: use None, 'auto', 'cholmod', 'superlu' "
+                          "or a callable A -> object with .solve(B)")
+    backend = (backend or os.environ.get("CLUTCHFEM_SOLVER", "auto")).lower()
+    if backend == "auto":
+        backend = available()[0]
+    if backend == "cholmod":
+        return _Cholmod(A)
+    if backend == "superlu":
+        return _SuperLU(A)
+    raise SolverError(f"unknown solver back-end '{backend}': use auto, cholmod or superlu")

@@ -1,0 +1,147 @@
+"""The operating point of an analysis: one typed parameter set for the CLI, ``analyze`` and
+the solver alike.
+
+Drum radius, friction coefficient, sense of rotation, axial thickness, material, spin
+softening, formulation (plane stress, plane strain, 3-D with its layers), the drum's
+elasticity (rigid, or a ring wall, held or spinning) and the speeds: one default, one range and one error message
+for each (:mod:`clutchfem.params`).  ``None`` for the drum radius and the thickness means
+"the concept's value" (a user mesh has no drum: its radius must be given).
+
+The friction coefficient mu = 0.165 is seed 000's value for the spring clutch's shoe lining
+on the drum (steel on steel here is similar; ASSUMED the same).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar, Literal
+
+import numpy as np
+from pydantic import field_validator
+
+from ..core import InputError, Material, ParameterError, ParamSet, choice, get_material, param
+
+#: speeds above this are refused: no clutch survives them (and a mix-up of rad/s and rpm in
+#: a list is caught)
+MAX_RPM = 1.0e6
+#: more speeds than this in one sweep are refused (memory and run time grow with them)
+MAX_SPEEDS = 20000
+
+
+class OperatingPoint(ParamSet):
+    """Operating point and model choices of one analysis (see module docstring)."""
+
+    context: ClassVar[str] = "operating point"
+
+    drum_radius: float | None = param(None, "m", 1e-3, 2.0,
+                                      "drum inner radius (default: the concept's; required for a user mesh)")
+    mu: float = param(0.165, "-", 0.0, 1.0, "shoe-drum friction coefficient (seed 000: 0.165)")
+    rotation: Literal["ccw", "cw"] = choice("ccw", "hub's sense of rotation (drum held)")
+    thickness: float | None = param(None, "m", 0.5e-3, 0.2,
+                                    "axial thickness of the part (default: the concept's; user mesh 11 mm)")
+    material: Material = get_material("51CrV4")
+    softening: Literal["ritz", "modal", "exact", "off", "prestress"] = choice(
+        "prestress", "spin softening and stiffening: prestress (default: mode acceleration on Ritz pairs with "
+        "the spin softening and the centrifugal pre-stress stiffness of the flexures, 0.1 % from the "
+        "geometrically non-linear reference), ritz (spin softening only, alias modal: 1.3-3 % model-form "
+        "error), exact (per-speed reference of ritz), off")
+    formulation: Literal["plane-stress", "plane-strain", "3d"] = choice(
+        "plane-stress", "formulation: plane-stress (thin part), plane-strain (long part) or 3d "
+        "(the 2-D mesh extruded through the thickness, P2 tetrahedra)")
+    layers: int = param(2, "-", 1, 16, "3d: element layers through half the thickness (mid-plane symmetry)")
+    drum_wall: float | None = param(None, "m", 0.2e-3, 30e-3,
+                                    "elastic drum: wall thickness (default: rigid drum); a ring of width 14 mm "
+                                    "ASSUMED, the part's material")
+    drum_state: Literal["held", "spinning"] = choice(
+        "held", "elastic drum: held (idle, chain brake, slip) or spinning with the clutch (its centrifugal "
+        "expansion opens the gap)")
+    rpm: str | None = param(None, "rpm", None, None,
+                            "speeds: 8000 | 1000,2000 | start:stop:step (default: 0..engine max for "
+                            "analyze, 0:14000:250 for solve)")
+
+    @field_validator("material", mode="before")
+    @classmethod
+    def _material(cls, v):
+        if isinstance(v, str):
+            return get_material(v)
+        return v
+
+    @field_validator("rpm", mode="before")
+    @classmethod
+    def _rpm(cls, v):
+        if v is None or isinstance(v, str):
+            if v is not None:
+                parse_rpm(v)  # refuse a bad spec now, naming it
+            return v
+        parse_rpm(v)
+        return ",".join(f"{x:.12g}" for x in np.atleast_1d(np.asarray(v, dtype=float)))
+
+    def speeds(self, default: str = "0:14000:250") -> np.ndarray:
+        """The speeds [rpm] (``default`` when none were given)."""
+        return parse_rpm(self.rpm if self.rpm is not None else default)
+
+    @classmethod
+    def help(cls, name: str) -> str:
+        """CLI help text of a field: meaning, unit, allowed values and default."""
+        f = cls.model_fields[name]
+        d = f.default
+        if isinstance(d, Material):
+            d = "51CrV4"
+        unit = cls.unit(name)
+        allowed = cls.allowed(name) if name != "material" else "51CrV4, titanium, aluminium"
+        dflt = "the concept's" if d is None and name in ("drum_radius", "thickness") else d
+        return f"{f.description} ({unit}; {allowed}; default {dflt})".replace("(-; ", "(")
+
+
+def parse_rpm(spec) -> np.ndarray:
+    """rpm values from a number, a list/array, or a string '8000', '1000,2000', '0:14000:250'
+    (start:stop:step, stop included).  Refuses (InputError naming the spec): an empty list,
+    non-finite or negative speeds, speeds above MAX_RPM, more than MAX_SPEEDS speeds."""
+    if isinstance(spec, bool):
+        raise InputError(f"rpm spec {spec!r} is not understood: use 8000, 1000,2000,3000 or 0:14000:250 (rpm)")
+    if isinstance(spec, str):
+        s = spec.strip()
+        try:
+            if ":" in s:
+                parts = [float(x) for x in s.split(":")]
+                if len(parts) != 3:
+                    raise ValueError
+                a, b, step = parts
+                if not all(math.isfinite(x) for x in parts):
+                    raise InputError(f"rpm spec '{spec}': start, stop and step must be finite numbers (rpm)")
+                if step <= 0 or b < a:
+                    raise InputError(f"rpm spec '{spec}': need start <= stop and step > 0 "
+                                     "(form start:stop:step, e.g. 0:14000:250)")
+                n = int(math.floor((b - a) / step + 1e-9)) + 1
+                if n > MAX_SPEEDS:
+                    raise InputError(f"rpm spec '{spec}' gives {n} speeds; at most {MAX_SPEEDS} are allowed "
+                                     "(use a larger step: answers such as the slip speed do not depend on it)")
+                vals = a + step * np.arange(n)
+            else:
+                vals = np.array([float(x) for x in s.split(",") if x.strip()])
+        except InputError:
+            raise
+        except ValueError:
+            raise InputError(f"rpm spec '{spec}' is not understood: use 8000, 1000,2000,3000 or "
+                             "0:14000:250 (rpm)") from None
+    else:
+        try:
+            vals = np.atleast_1d(np.asarray(spec, dtype=float)).ravel()
+        except (TypeError, ValueError):
+            raise InputError(f"rpm spec {spec!r} is not understood: give numbers in rpm") from None
+    if vals.size == 0:
+        raise InputError(f"rpm spec '{spec}' gives no speed")
+    if vals.size > MAX_SPEEDS:
+        raise InputError(f"rpm spec gives {vals.size} speeds; at most {MAX_SPEEDS} are allowed")
+    if not np.all(np.isfinite(vals)) or np.any(vals < 0):
+        raise InputError(f"rpm spec '{spec}': speeds must be finite and >= 0 rpm")
+    if vals.max() > MAX_RPM:
+        raise InputError(f"rpm spec '{spec}': speeds above {MAX_RPM:g} rpm are not physical here "
+                         "(is it in rad/s or rpm?)")
+    return vals
+
+
+def check_rpm_range(rpm: np.ndarray, lo: float, hi: float, why: str) -> None:
+    """Refuse speeds outside [lo, hi] rpm, naming ``why`` the range is what it is."""
+    if rpm.min() < lo or rpm.max() > hi:
+        raise ParameterError("rpm", f"{rpm.min():g}..{rpm.max():g}", f"speeds within {lo:g}..{hi:g} rpm ({why})")

@@ -1,0 +1,80 @@
+"""Every result can be traced to its design: the full inputs and a hash of them.
+
+:func:`design_inputs` records what defines an answer: the concept and every parameter (or
+the user mesh file and its SHA-256), the mesh settings and size, the operating point
+(material included), and the software versions.  :func:`design_hash` is a short stable hash
+of the defining part (no timings, no paths of caches), and :func:`design_label` a file-name
+stem that tells two designs in one folder apart: the concept name alone at its defaults,
+the name plus the hash otherwise.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from functools import lru_cache
+from pathlib import Path
+
+from .. import __version__
+from ..core import clean
+
+
+def _file_sha256(path) -> str | None:
+    try:
+        h = hashlib.sha256()
+        with open(path, "rb") as fh:
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                h.update(block)
+        return h.hexdigest()
+    except OSError:
+        return None
+
+
+def design_inputs(design) -> dict:
+    """The inputs that define ``design``'s answers (JSON-ready)."""
+    import gmsh
+    import skfem
+
+    cm = design.cm
+    d: dict = {"name": design.name, "clutchfem": __version__, "gmsh": gmsh.__version__,
+               "scikit-fem": getattr(skfem, "__version__", "?")}
+    if design.params is not None:
+        d["concept"] = design.name
+        d["params"] = design.params.model_dump()
+        d["mesh_settings"] = dict(cm.mesh_settings)
+    else:
+        d["mesh_file"] = cm.source
+        d["mesh_sha256"] = _file_sha256(cm.source)
+    d["mesh"] = {"elements": cm.n_elements, "nodes": cm.n_nodes, "model": "sector" if cm.sector_angle else "full"}
+    op = design.op.model_dump()
+    op["drum_radius"] = design.drum_radius
+    op["thickness"] = design.thickness
+    d["operating_point"] = op
+    return clean(d)
+
+
+def design_hash(design) -> str:
+    """12 hex digits of SHA-256 over the defining inputs (versions included)."""
+    d = design_inputs(design)
+    d.pop("name", None)
+    if "mesh_file" in d:  # the content defines it, not where the file lies
+        d["mesh_file"] = Path(d["mesh_file"]).name
+    return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:12]
+
+
+def design_label(design) -> str:
+    """File-name stem: the concept name at its defaults (parameters, operating point and mesh
+    settings), else the name plus the design hash."""
+    default = False
+    if design.params is not None:
+        params0, op0, mesh0 = _defaults(type(design.params), type(design.op))
+        default = design.params == params0 and design.op == op0 and dict(design.cm.mesh_settings) == mesh0
+    return design.name if default else f"{design.name}-{design_hash(design)}"
+
+
+@lru_cache(maxsize=64)
+def _defaults(params_type, op_type):
+    """The default parameter set, operating point and mesh settings (frozen: built once)."""
+    from ..geometry import MeshSettings
+
+    return params_type(), op_type(), MeshSettings(model="sector").model_dump()

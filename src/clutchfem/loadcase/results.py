@@ -1,0 +1,281 @@
+"""Results of a speed sweep: one frozen, self-contained object, and every table built from it.
+
+A :class:`SweepResult` keeps what was solved (speeds, nodal contact forces, the displacement
+of every state as a small reduced basis and coefficients) and the read-only parts needed to
+post-process it (contact node geometry, the stress recovery operator, the FE basis for
+``.vtu`` output).  It never points back at a solver: ``.vtu`` files and pressure tables are
+written from its stored states, not by solving again.
+
+Conventions of the tables (one meaning everywhere):
+
+* forces, torque: the whole clutch (a one-sector model is scaled by n_shoes_total / 1);
+* ``contact_arc_deg``: per shoe, the arc of the drum surface covered by the nodes in contact,
+  each node standing for the boundary up to half-way to its neighbours (a single node in
+  contact has the width of one node spacing, not zero); the curve gives the mean over the
+  modelled shoes;
+* ``max_von_mises_Pa``: raw (unaveraged) vertex stresses, the peak over the part;
+* angles: polar angles of the drum frame [deg];
+* ``residual``: relative equilibrium residual of the state, ``torque_balance_error``: bore
+  reaction moment against the applied moment (:mod:`clutchfem.checks`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ..core import InputError, wrap_angle
+
+#: speeds per block when stresses and displacements of many speeds are post-processed
+#: (bounds the memory of a sweep over many speeds)
+CHUNK = 64
+
+
+@dataclass(frozen=True, eq=False)
+class Fields:
+    """Displacements of the solved states: ``basis @ coef`` (reduced) or explicit ``U``, and
+    the read-only operators to post-process them."""
+
+    basis: np.ndarray | None  # (ndofs, nb)
+    coef: np.ndarray | None  # (nb, ns)
+    U: np.ndarray | None  # (ndofs, ns) explicit (exact softening)
+    stress: object  # clutchfem.stress.VertexStress
+    fe_basis: object  # skfem Basis of the P2 vector field (dof layout, node positions)
+
+    @property
+    def n(self) -> int:
+        return self.U.shape[1] if self.U is not None else self.coef.shape[1]
+
+    def displacement(self, k: int) -> np.ndarray:
+        """Full displacement vector [m] (all dofs) of state k."""
+        return self.U[:, k] if self.U is not None else self.basis @ self.coef[:, k]
+
+    def block(self, sl: slice) -> np.ndarray:
+        return self.U[:, sl] if self.U is not None else self.basis @ self.coef[:, sl]
+
+    def stresses(self, sl: slice) -> np.ndarray:
+        """Vertex stresses (3, npts, len(sl)) of states ``sl``."""
+        if self.U is not None:
+            s = self.stress(self.U[:, sl])
+            return s.reshape(s.shape[0], -1, len(range(*sl.indices(self.n))))
+        return self._basis_stress @ self.coef[:, sl]
+
+    @property
+    def _basis_stress(self) -> np.ndarray:
+        if "_bs" not in self.__dict__:  # (components: 3 in 2-D, 6 in 3-D)
+            s = self.stress(self.basis)
+            object.__setattr__(self, "_bs", s.reshape(s.shape[0], -1, self.basis.shape[1]))
+        return self.__dict__["_bs"]
+
+
+@dataclass(frozen=True, eq=False)
+class SweepResult:
+    """What a sweep returns (see module docstring for the table conventions)."""
+
+    rpm: np.ndarray
+    omega: np.ndarray  # rad/s
+    lam: np.ndarray  # (ns, m) nodal contact forces [N] of the model (sector or full)
+    engagement_rpm: float | None
+    first_touch: str | None
+    first_touch_angle_deg: float | None
+    divergence_rpm: float | None
+    contact: object | None  # clutchfem.contact.DrumContact
+    scale: float
+    thickness: float
+    softening: str
+    curve: pd.DataFrame
+    shoes: pd.DataFrame
+    fields: Fields
+    #: 1-norm condition estimate of the reduced stiffness (clutchfem.checks)
+    condition: float = float("nan")
+    #: numerical warnings of the solve (model-applicability warnings: clutchfem.checks.model_warnings)
+    warnings: list = field(default_factory=list)
+    timings: dict = field(default_factory=dict)
+
+    @property
+    def mu(self) -> float:
+        return 0.0 if self.contact is None else self.contact.mu
+
+    def index(self, rpm: float) -> int:
+        """Index of the sweep speed equal to ``rpm`` (within 1e-9 relative); refuses a speed
+        that was not solved (no silent nearest-speed answer)."""
+        k = int(np.argmin(np.abs(self.rpm - rpm)))
+        if abs(self.rpm[k] - rpm) > 1e-9 * max(1.0, abs(rpm)):
+            raise InputError(f"{rpm:g} rpm is not a speed of this sweep (solved: {_speeds(self.rpm)}); "
+                             "sweep it first")
+        return k
+
+    def pressure(self, rpm: float) -> pd.DataFrame:
+        """Contact pressure along the contact surface at sweep speed ``rpm``."""
+        return pressure_table(self, self.index(rpm))
+
+    def displacement(self, k: int) -> np.ndarray:
+        return self.fields.displacement(k)
+
+    @property
+    def displacements(self) -> np.ndarray:
+        """(ndofs, nspeeds) displacements of every state [m] (built on demand)."""
+        return self.fields.block(slice(None))
+
+    def contact_extent(self, shoe: int = 0) -> np.ndarray:
+        """(nspeeds, 2) start and end polar angle [rad] of shoe ``shoe``'s contact (NaN where
+        it does not touch); see the module docstring for the half-spacing convention."""
+        return contact_extent(self.contact, self.lam, shoe)
+
+    def to_json(self) -> dict:
+        cols = ["rpm", "normal_force_N", "torque_Nm", "contact_arc_deg", "max_von_mises_Pa",
+                "max_displacement_m"]
+        return {"engagement_rpm": self.engagement_rpm, "first_touch": self.first_touch,
+                "divergence_rpm": self.divergence_rpm, "mu": self.mu, "softening": self.softening,
+                "condition_estimate": self.condition,
+                "max_residual": float(self.curve["residual"].max()) if "residual" in self.curve else None,
+                "warnings": list(self.warnings), "curve": records(self.curve), "required_columns": cols}
+
+
+def _speeds(rpm: np.ndarray) -> str:
+    if len(rpm) <= 6:
+        return ", ".join(f"{r:g}" for r in rpm) + " rpm"
+    return f"{len(rpm)} speeds {rpm.min():g}..{rpm.max():g} rpm"
+
+
+def records(df: pd.DataFrame) -> list[dict]:
+    """DataFrame rows as JSON-safe dicts (NaN and +-inf become null: strict JSON)."""
+    from ..core import clean
+
+    return clean(df.to_dict("records"))
+
+
+# ---------------------------------------------------------------------------------------
+# tables
+# ---------------------------------------------------------------------------------------
+def contact_extent(contact, lam: np.ndarray, shoe: int = 0) -> np.ndarray:
+    out = np.full((lam.shape[0], 2), np.nan)
+    if contact is None:
+        return out
+    nd = contact.nodes
+    sel = np.nonzero(nd.shoe == shoe)[0]
+    if sel.size == 0:
+        return out
+    ang = nd.angle[sel]
+    ang = wrap_angle(ang, float(np.angle(np.exp(1j * ang).mean())))  # unwrap around the shoe
+    # nodes at one angle (a 3-D model's levels) are one position along the arc: in contact
+    # if any of them is
+    a, inv = np.unique(np.round(ang, 12), return_inverse=True)
+    gaps = np.diff(a)
+    lo_half = np.concatenate([[gaps[0] if gaps.size else 0.0], gaps]) / 2  # to the previous node
+    hi_half = np.concatenate([gaps, [gaps[-1] if gaps.size else 0.0]]) / 2  # to the next node
+    on = np.zeros((lam.shape[0], len(a)), dtype=bool)
+    np.logical_or.at(on.T, inv, (lam[:, sel] > 0).T)
+    hit = on.any(axis=1)
+    i0 = np.argmax(on, axis=1)
+    i1 = on.shape[1] - 1 - np.argmax(on[:, ::-1], axis=1)
+    out[hit, 0] = a[i0[hit]] - lo_half[i0[hit]]
+    out[hit, 1] = a[i1[hit]] + hi_half[i1[hit]]
+    return out
+
+
+def contact_arcs_deg(contact, lam: np.ndarray) -> dict[int, np.ndarray]:
+    """Per shoe, the contact arc [deg] at every state (0 where it does not touch)."""
+    if contact is None:
+        return {}
+    out = {}
+    for s_ in contact.nodes.shoes:
+        ext = contact_extent(contact, lam, s_)
+        out[s_] = np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0]))
+    return out
+
+
+def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses: bool,
+                yield_strength: float) -> pd.DataFrame:
+    """The sweep curve: one row per speed (see module docstring for the conventions)."""
+    ns = len(rpm)
+    R = 0.0 if contact is None else contact.drum_radius
+    mu = 0.0 if contact is None else contact.mu
+    nsum = lam.sum(axis=1) * scale if lam.size else np.zeros(ns)
+    arcs = contact_arcs_deg(contact, lam)
+    arc = np.mean(np.vstack(list(arcs.values())), axis=0) if arcs else np.zeros(ns)
+    b = fields.fe_basis
+    # every node's x and y dof (2-D P2: vertices and facets; 3-D P2 tetrahedra: vertices and edges)
+    xd, yd = (np.concatenate([d[c] for d in (b.nodal_dofs, b.facet_dofs, b.edge_dofs) if d.shape[0] > c])
+              for c in (0, 1))
+    umax = np.zeros(ns)
+    vm_max = np.full(ns, np.nan)
+    kmax = np.zeros(ns, dtype=np.int64)
+    for a in range(0, ns, CHUNK):
+        sl = slice(a, min(a + CHUNK, ns))
+        U = fields.block(sl)
+        umax[sl] = np.sqrt(U[xd] ** 2 + U[yd] ** 2).max(axis=0) if U.size else 0.0
+        if stresses:
+            vm = fields.stress.von_mises(fields.stresses(sl))
+            vm_max[sl] = vm.max(axis=0)
+            kmax[sl] = vm.argmax(axis=0)
+    df = pd.DataFrame({"rpm": np.asarray(rpm, dtype=float), "omega_rad_s": np.asarray(omega, dtype=float),
+                       "normal_force_N": nsum, "torque_Nm": mu * R * nsum, "contact_arc_deg": arc,
+                       "contact_nodes": (lam > 0).sum(axis=1) if lam.size else np.zeros(ns, dtype=int),
+                       "max_displacement_m": umax})
+    if stresses and ns:
+        pts = fields.stress.points
+        df["max_von_mises_Pa"] = vm_max
+        df["max_vm_x_m"] = pts[0, kmax]
+        df["max_vm_y_m"] = pts[1, kmax]
+        with np.errstate(divide="ignore", over="ignore"):
+            df["safety_factor"] = np.where(vm_max > 0, yield_strength / np.maximum(vm_max, 1e-300), np.inf)
+    else:
+        df["max_von_mises_Pa"] = np.nan
+        df["safety_factor"] = np.nan
+    return df
+
+
+def shoe_table(rpm, lam, contact, nominal_arcs) -> pd.DataFrame:
+    """One row per (speed, modelled shoe): normal force, torque, contact extent and arc,
+    share of the nominal shoe arc."""
+    if contact is None:
+        return pd.DataFrame()
+    nd = contact.nodes
+    R, mu = contact.drum_radius, contact.mu
+    frames = []
+    for s_ in nd.shoes:
+        sel = nd.shoe == s_
+        N = lam[:, sel].sum(axis=1)
+        ext = contact_extent(contact, lam, s_)
+        span = np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0]))
+        nominal = abs(math.degrees(nominal_arcs[s_][1] - nominal_arcs[s_][0])) if 0 <= s_ < len(nominal_arcs) \
+            else math.nan
+        frames.append(pd.DataFrame({"rpm": np.asarray(rpm, dtype=float), "shoe": int(s_), "normal_force_N": N,
+                                    "torque_Nm": mu * R * N, "arc_start_deg": np.degrees(ext[:, 0]),
+                                    "arc_end_deg": np.degrees(ext[:, 1]), "contact_arc_deg": span,
+                                    "arc_fraction": span / nominal if nominal else math.nan}))
+    df = pd.concat(frames, ignore_index=True)
+    return df.sort_values(["rpm", "shoe"], kind="stable").reset_index(drop=True)
+
+
+def pressure_table(res: SweepResult, k: int) -> pd.DataFrame:
+    """Contact pressure along the contact surface at state k, ordered by shoe and angle."""
+    if res.contact is None:
+        return pd.DataFrame()
+    nd = res.contact.nodes
+    lam = res.lam[k]
+    p = res.contact.pressure(lam, res.thickness)
+    order = nd.by_arc
+    return pd.DataFrame({"shoe": nd.shoe[order], "angle_deg": np.degrees(nd.angle[order]),
+                         "x_m": nd.xy[0, order], "y_m": nd.xy[1, order],
+                         "force_N": lam[order], "pressure_Pa": p[order], "gap0_m": nd.gap0[order]})
+
+
+def first_touch(contact, node: int | None, nominal_arcs) -> tuple[str | None, float | None]:
+    """('root' | 'middle' | 'tip' | 'unknown', polar angle [deg]) of the first contact node."""
+    if node is None or contact is None:
+        return None, None
+    nd = contact.nodes
+    ang = float(nd.angle[node])
+    s_ = int(nd.shoe[node])
+    if s_ < 0 or s_ >= len(nominal_arcs):
+        return "unknown", math.degrees(ang)
+    root, tip = nominal_arcs[s_]
+    a = wrap_angle(ang, root)
+    frac = (a - root) / (tip - root)
+    where = "tip" if frac > 2 / 3 else ("root" if frac < 1 / 3 else "middle")
+    return where, math.degrees(ang)

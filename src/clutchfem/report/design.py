@@ -1,0 +1,359 @@
+"""Designer-facing plots, the summary table and the one-page report of analysed designs.
+
+Every plot labels its assumptions (engine curve shape, requirement factors a and b) and every
+number in :func:`summary_rows` carries its unit.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..clutch import BaselineClutch
+from ..core import figure
+from ..core import write as write_json
+
+__all__ = ["summary_rows", "torque_plot", "arc_stress_plot", "comparison_plot", "write_analysis",
+           "markdown_summary", "default_design_report"]
+
+_COLORS = {"concept1": "tab:blue", "concept4": "tab:red", "concept2": "tab:purple",
+           "concept3": "tab:brown", "concept3.1": "tab:olive", "concept5": "tab:cyan"}
+
+
+def _fmt(v, f: str, unit: str) -> str:
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "-"
+    return f"{v:{f}} {unit}".rstrip()
+
+
+def _err(an, key: str, scale: float = 1.0, unit: str | None = None, fmt: str = ".0f") -> str:
+    """' (+- x unit: discretisation d, model form m)' for an answer with an error estimate."""
+    e = (getattr(an, "errors", None) or {}).get(key)
+    if not e or e.get("total") is None or e.get("value") is None:
+        return ""
+    u = unit or e["unit"]
+    d = "n/a" if e["discretisation"] is None else f"{e['discretisation'] * scale:{fmt}}"
+    return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}})"
+
+
+def summary_rows(an) -> list[tuple[str, str]]:
+    """(quantity, value with unit) rows of the answers for one design (terminal and Markdown);
+    the main answers carry their error estimate (discretisation and model form)."""
+    req = an.requirements
+    rows = [
+        ("engagement speed (static, FE)", _fmt(an.engagement_rpm, ".0f", "rpm") + _err(an, "engagement_rpm")
+         if an.engagement_rpm is not None else "never engages"),
+        ("engagement speed with 2-stroke ripple (3 sigma cycle / typical cycle)",
+         f"{_fmt(an.engagement_rpm_with_ripple, '.0f', 'rpm')} / "
+         f"{_fmt(an.engagement_rpm_with_ripple_typical, '.0f', 'rpm')}"
+         if an.engagement_rpm_with_ripple is not None else "never engages"),
+        ("first contact on the shoe", str(an.first_touch)
+         + (f" (polar angle {an.first_touch_angle_deg:.1f} deg)"
+            if an.first_touch == "unknown" and getattr(an, "first_touch_angle_deg", None) is not None else "")),
+    ]
+    if an.slip_status in ("never holds", "never engages"):
+        rows.append(("slip speed (drum held, full throttle)", an.slip_status.upper()))
+    else:
+        rows.append(("slip speed (drum held, full throttle)", _fmt(an.slip_rpm, ".0f", "rpm") + _err(an, "slip_rpm")))
+    if len(an.slip_crossings_rpm) > 1:
+        rows.append(("clutch/engine torque crossings",
+                     ", ".join(f"{c['rpm']:.0f} rpm ({c['direction']})" for c in an.slip_crossings_rpm)))
+    rows += [
+        (f"clutch torque at {an.rpm_max_engine_torque:.0f} rpm (max engine torque "
+         f"{an.max_engine_torque_Nm:.2f} N m)", _fmt(an.torque_at_max_engine_torque_Nm, ".2f", "N m")
+         + _err(an, "torque_at_max_engine_torque_Nm", fmt=".2f")),
+        ("torque margin over max engine torque", _fmt(an.torque_margin_Nm, "+.2f", "N m")),
+        ("slip power (heat) at slip speed", _fmt(an.slip_power_W, ".0f", "W") if an.slip_power_W is not None
+         else f"- ({an.slip_status})"),
+        (f"max von Mises at {an.max_stress_rpm:.0f} rpm (engine max)", _fmt(an.max_von_mises_Pa / 1e6, ".0f", "MPa")
+         + _err(an, "max_von_mises_Pa", 1e-6, "MPa")),
+        (f"safety factor against yield ({an.yield_strength_Pa / 1e6:.0f} MPa)",
+         _fmt(an.safety_factor, ".2f", "(-)") + ("  ABOVE YIELD" if an.safety_factor < 1 else "")),
+    ]
+    rows += fatigue_rows(an)
+    per = an.shoe_character_per_shoe
+    if per:
+        rows.append((f"shoe character (FE: normal force with/without friction at {per[0]['rpm']:.0f} rpm)",
+                     "; ".join(f"shoe {p['shoe']}: {p['character']} (N ratio {p['normal_force_ratio']:.2f})"
+                               for p in per)))
+    else:
+        rows.append(("shoe character (FE, friction on vs off)", an.shoe_character))
+    s = an.mu_sensitivity
+    t = s.get("torque_Nm", {})
+    if "x0.7" in t and "x1.3" in t:
+        pct = s.get("torque_change_pct", {})
+        rows.append((f"torque at {s['rpm']:.0f} rpm, mu x0.7 / x1.0 / x1.3 (mu = {an.mu:.3g})",
+                     f"{t['x0.7']:.2f} / {t['x1.0']:.2f} / {t['x1.3']:.2f} N m"
+                     + (f" ({pct['x0.7']:+.0f} % / {pct['x1.3']:+.0f} %)" if pct else "")))
+        sl = s.get("slip_rpm", {})
+        rows.append(("slip speed, mu x0.7 / x1.0 / x1.3",
+                     " / ".join(_fmt(sl.get(k), ".0f", "rpm") if sl.get(k) is not None else "none"
+                                for k in ("x0.7", "x1.0", "x1.3"))))
+    m = an.torque_models_at_max_engine_torque_Nm
+    if getattr(an, "analytical_available", True):
+        rows.append((f"torque at {m['rpm']:.0f} rpm: FE / analytical FE arc / analytical nominal arc",
+                     " / ".join(_fmt(m[k], ".2f", "") or "-" for k in
+                                ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm")) + " N m"))
+        nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
+        rows.append((f"contact arc per shoe at {m['rpm']:.0f} rpm (nominal shoe arc)",
+                     f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg ({nominal:.0f} deg)"))
+    else:
+        rows.append(("analytical shoe model (eqs 2-8)",
+                     "not available (user mesh: no shoe pivot or nominal shoe arc)"))
+        rows.append((f"contact arc of shoe 0 at {m['rpm']:.0f} rpm", f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg"))
+    part = getattr(an, "part", None) or {}
+    if "mass_kg" in part:
+        rows.append((f"part mass (mesh area x rho x thickness {part['thickness_m'] * 1e3:g} mm)",
+                     _fmt(part["mass_kg"] * 1e3, ".1f", "g")))
+        if part.get("shoes"):
+            rows.append(("shoe zone mass / centre-of-mass radius (from the mesh)",
+                         "; ".join(f"shoe {s_['shoe']}: {s_['mass_kg'] * 1e3:.2f} g / {s_['R_Tp_m'] * 1e3:.2f} mm"
+                                   for s_ in part["shoes"])))
+    wh = getattr(an, "whirl", None) or {}
+    if wh:
+        rows.append(("crankshaft first critical speed (whirl; drum, sprocket, crankshaft ASSUMED)",
+                     f"{wh['rpm_crit_lowest']:,.0f} rpm ({100 * wh['margin']:+.0f} % over {wh['max_engine_rpm']:,.0f} rpm)"))
+    eng_chk = req.get("engagement_checked_rpm")
+    rows.append((f"requirement: engagement > a x idle = {req['a']:g} x {req['idle_rpm']:.0f} rpm",
+                 ("PASS" if req["engagement_ok"] else "FAIL")
+                 + (f" ({eng_chk:.0f} rpm vs {req['engagement_limit_rpm']:.0f} rpm)" if eng_chk else "")))
+    rows.append((f"requirement: slip < b x rpm(max torque) = {req['b']:g} x {req['rpm_max_torque']:.0f} rpm",
+                 ("PASS" if req["slip_ok"] else "FAIL")
+                 + (f" ({an.slip_rpm:.0f} rpm vs {req['slip_limit_rpm']:.0f} rpm)" if an.slip_rpm is not None
+                    else f" ({an.slip_status})")))
+    return rows
+
+
+def fatigue_rows(an) -> list[tuple[str, str]]:
+    """Rows of the fatigue check (analyze step 10): the safety factor with where and what
+    governs, and the cycles counted (every number with its unit)."""
+    f = getattr(an, "fatigue", None) or {}
+    if not f:
+        return []
+    if not f.get("available", True):
+        return [("fatigue safety factor", "not available: " + f.get("reason", ""))]
+    sf = an.fatigue_safety_factor
+    val = "infinite (no stress changes)" if sf is None or not math.isfinite(sf) else f"{sf:.2f} (-)"
+    if sf is not None and sf < 1:
+        val += "  BELOW 1"
+    rows = [("fatigue safety factor (load multiplier to Miner sum 1; Goodman, S_e "
+             f"{f['endurance_limit_Pa'] / 1e6:.0f} MPa, {f['params']['edge_finish']} edges)", val),
+            ("fatigue: worst point", str(an.fatigue_location)),
+            ("fatigue: governing cycle", str(an.fatigue_governing_cycle))]
+    cyc = f.get("cycles", {})
+    if cyc:
+        rows.append(("fatigue cycles counted", f"{cyc['start_stops']:.3g} start-stops (0 -> {cyc['max_speed_rpm']:.0f} rpm "
+                     f"-> 0), {cyc['revolutions']:.3g} revolutions at {cyc['operating_rpm']:.0f} rpm (ripple + load "
+                     f"torque, mean {cyc['cutting_torque_Nm']:.2f} N m)"))
+    return rows
+
+
+def _requirement_bands(ax, req, rpm_max, label=True):
+    ax.axvspan(0, req["engagement_limit_rpm"], color="red", alpha=0.07,
+               label=(f"engagement forbidden: below a x idle = {req['engagement_limit_rpm']:.0f} rpm "
+                      f"(a = {req['a']:g}{', ASSUMED' if 'ASSUMED' in req['assumed'] else ''})") if label else None)
+    ax.axvspan(req["slip_limit_rpm"], rpm_max, color="orange", alpha=0.08,
+               label=(f"slip forbidden: above b x rpm(max torque) = {req['slip_limit_rpm']:.0f} rpm "
+                      f"(b = {req['b']:g}{', ASSUMED' if 'ASSUMED' in req['assumed'] else ''})") if label else None)
+
+
+def _engine_line(ax, engine):
+    r = np.linspace(*engine.rpm_range, 300)
+    lab = "engine, full throttle" + (" (ASSUMED shape)" if engine.assumed else f" ({Path(engine.source).name})")
+    ax.plot(r, engine.torque_at(r), "g-", lw=2.5, label=lab)
+
+
+def torque_plot(an, engine, path: Path, title: str) -> Path:
+    """Torque vs rpm of one design: FE and both analytical curves, engine, baseline,
+    engagement and slip markers, requirement bands."""
+    c = an.curves
+    fig, ax = figure(figsize=(8.5, 5.5))
+    ax.plot(c["rpm"], c["fe_torque_Nm"], "k-", lw=2, label="FE (contact + friction)")
+    if getattr(an, "analytical_available", True):
+        ax.plot(c["rpm"], c["analytic_fe_arc_Nm"], "b--", label="analytical, FE contact arc")
+        ax.plot(c["rpm"], c["analytic_nominal_arc_Nm"], "r:", lw=2, label="analytical, nominal full arc (thesis)")
+    else:
+        ax.plot([], [], " ", label="analytical shoe model: not available (user mesh)")
+    _engine_line(ax, engine)
+    ax.plot(c["rpm"], BaselineClutch.new().torque_at_rpm(c["rpm"].to_numpy()), color="0.6", lw=1,
+            label="today's spring clutch, new shoes (seed 000)")
+    if an.engagement_rpm:
+        ax.axvline(an.engagement_rpm, color="m", ls="--", lw=1, label=f"engagement {an.engagement_rpm:.0f} rpm")
+    if an.engagement_rpm_with_ripple:
+        ax.axvline(an.engagement_rpm_with_ripple, color="m", ls=":", lw=1,
+                   label=f"engagement with ripple (3 sigma) {an.engagement_rpm_with_ripple:.0f} rpm")
+    if an.slip_rpm is not None:
+        ax.plot([an.slip_rpm], [engine.torque_at(an.slip_rpm)], "o", ms=9, mfc="none", mec="k", mew=2,
+                label=f"slip {an.slip_rpm:.0f} rpm")
+    else:
+        ax.text(0.98, 0.5, an.slip_status.upper(), transform=ax.transAxes, ha="right", color="k", fontsize=12)
+    _requirement_bands(ax, an.requirements, c["rpm"].max())
+    finite = c[["fe_torque_Nm", "analytic_fe_arc_Nm"]].replace([np.inf], np.nan).max().max()
+    ax.set_ylim(0, max(8.0, min(1.3 * float(finite or 8.0), 60)))
+    ax.set_xlim(0, c["rpm"].max())
+    ax.set_xlabel("engine speed [rpm]")
+    ax.set_ylabel("torque [N m]")
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    return Path(path)
+
+
+def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
+    """Contact arc per shoe vs rpm (with the nominal arc) and peak von Mises vs rpm (with yield)."""
+    c = an.curves
+    fig, (a1, a2) = figure(1, 2, figsize=(11, 4.2))
+    nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
+    arc = c["contact_arc_deg"].where(c["contact_arc_deg"] > 0)
+    a1.plot(c["rpm"], arc, "k-", label="FE contact arc per shoe (nodes in contact + half spacing)")
+    if math.isfinite(nominal):
+        a1.axhline(nominal, color="r", ls=":", label=f"nominal shoe arc {nominal:.0f} deg (thesis assumption)")
+        a1.axhline(nominal / 3, color="0.5", ls="--", lw=1, label="1/3 of the nominal arc (thesis prototypes)")
+    if an.engagement_rpm:
+        a1.axvline(an.engagement_rpm, color="m", ls="--", lw=1, label=f"engagement {an.engagement_rpm:.0f} rpm")
+    a1.set_xlabel("engine speed [rpm]")
+    a1.set_ylabel("contact arc per shoe [deg]")
+    a1.set_yscale("log")
+    a1.set_ylim(0.1, 200)
+    a1.set_xlim(0, c["rpm"].max())
+    a1.set_title("contact arc (shoe vs drum)")
+    a1.grid(alpha=0.3)
+    a1.legend(fontsize=7, loc="lower right")
+    a2.plot(c["rpm"], c["max_von_mises_Pa"] / 1e6, "r-", label="peak von Mises (FE)")
+    a2.axhline(an.yield_strength_Pa / 1e6, color="k", ls="--", label=f"yield {an.yield_strength_Pa / 1e6:.0f} MPa")
+    a2.plot([an.max_stress_rpm], [an.max_von_mises_Pa / 1e6], "ko", mfc="none",
+            label=f"{an.max_von_mises_Pa / 1e6:.0f} MPa at {an.max_stress_rpm:.0f} rpm, SF {an.safety_factor:.2f}")
+    if an.safety_factor < 1:
+        a2.text(0.03, 0.93, "ABOVE YIELD at engine max speed", transform=a2.transAxes, color="r",
+                fontweight="bold", fontsize=9)
+    a2.set_xlabel("engine speed [rpm]")
+    a2.set_ylabel("max von Mises [MPa]")
+    a2.set_title("peak stress")
+    a2.grid(alpha=0.3)
+    a2.legend(fontsize=7, loc="lower right")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    return Path(path)
+
+
+def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None,
+                    baseline: bool = True) -> Path:
+    """The thesis's figure 25: FE torque vs rpm of several designs and today's spring clutch
+    (new and worn shoes) against the engine curve, with engagement and slip markers and the
+    requirement bands of the first design's requirement factors."""
+    from ..analysis import slip_answer
+
+    fig, ax = figure(figsize=(9, 5.8))
+    rpm_max = engine.rpm_range[1]
+    r = np.linspace(0, rpm_max, 561)
+    ymax = 8.0
+    for i, (name, an) in enumerate(analyses.items()):
+        c = an.curves
+        col = _COLORS.get(name, f"C{i}")
+        ax.plot(c["rpm"], c["fe_torque_Nm"], "-", color=col, lw=2, label=f"{name} (FE)")
+        if an.engagement_rpm:
+            ax.plot([an.engagement_rpm], [0], "^", color=col, ms=9, clip_on=False,
+                    label=f"{name} engagement {an.engagement_rpm:.0f} rpm")
+        if an.slip_rpm is not None:
+            ax.plot([an.slip_rpm], [engine.torque_at(an.slip_rpm)], "o", color=col, ms=9, mfc="none", mew=2,
+                    label=f"{name} slip {an.slip_rpm:.0f} rpm")
+        else:
+            ax.plot([], [], " ", label=f"{name}: {an.slip_status}")
+        ymax = max(ymax, float(np.nanmax(c["fe_torque_Nm"].replace([np.inf], np.nan))))
+    if baseline:
+        for clutch, ls in ((BaselineClutch.new(), "-"), (BaselineClutch.worn(), "--")):
+            t = clutch.torque_at_rpm(r)
+            lab = f"today's spring clutch, {clutch.label} shoes (seed 000, k = {clutch.k})"
+            ax.plot(r, t, ls, color="0.45", lw=1.5, label=lab)
+            s = slip_answer(engine, clutch.torque_at_rpm, clutch.engagement_rpm)
+            if s.rpm is not None:
+                ax.plot([s.rpm], [engine.torque_at(s.rpm)], "s", color="0.45", ms=7, mfc="none", mew=1.5,
+                        label=f"spring clutch ({clutch.label}) slip {s.rpm:.0f} rpm")
+    _engine_line(ax, engine)
+    first = next(iter(analyses.values()), None)
+    if first is not None:
+        _requirement_bands(ax, first.requirements, rpm_max)
+    ax.set_xlim(0, rpm_max)
+    ax.set_ylim(0, min(1.1 * ymax, 25.0))
+    ax.set_xlabel("engine speed [rpm]")
+    ax.set_ylabel("clutch slip torque / engine torque [N m]")
+    ax.set_title(title or "Torque vs engine speed, drum held (cf. thesis fig. 25)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", ncol=1)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    return Path(path)
+
+
+def write_analysis(an, engine, out: Path, name: str) -> list[Path]:
+    """Plots (torque vs rpm; contact arc and stress vs rpm), the curves CSV and the JSON."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    files = [torque_plot(an, engine, out / f"{name}_torque_rpm.png", f"{name}: torque vs engine speed (drum held)"),
+             arc_stress_plot(an, out / f"{name}_arc_stress_rpm.png", f"{name}: contact arc and peak stress vs rpm")]
+    an.curves.to_csv(out / f"{name}_curves.csv", index=False)
+    files.append(out / f"{name}_curves.csv")
+    write_json(out / f"{name}_analysis.json", an.to_json(), indent=2)
+    files.append(out / f"{name}_analysis.json")
+    return files
+
+
+def markdown_summary(analyses: dict, engine, figures: dict | None = None) -> str:
+    """One-page Markdown report: a table of answers per design, warnings first."""
+    lines = ["# Clutch performance report", ""]
+    for name, an in analyses.items():
+        lines += [f"## {name}", ""]
+        for w in an.warnings:
+            lines += [f"> **WARNING:** {w}", ""]
+        lines += ["| quantity | value |", "|---|---|"]
+        lines += [f"| {q} | {v} |" for q, v in summary_rows(an)]
+        lines.append("")
+        for n in an.notes:
+            lines.append(f"* {n}")
+        lines.append("")
+    if figures:
+        lines += ["## Figures", ""]
+        lines += [f"![{k}]({v})" for k, v in figures.items()]
+        lines.append("")
+    return "\n".join(lines)
+
+
+def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None = None,
+                          mesh_size: float | None = None) -> list[Path]:
+    """Analyse the built-in default designs (concepts 1 and 4) and write, per design, the torque
+    and arc/stress plots, JSON and CSV, the comparison chart (thesis fig. 25, with today's
+    spring clutch) and a Markdown summary ``report.md``."""
+    from ..analysis import analyze
+    from ..clutch import EngineCurve
+    from ..geometry import MeshSettings, concepts
+    from ..loadcase import Design
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    if concept_names is None:
+        concept_names = tuple(n for n in ("concept1", "concept4") if n in concepts())
+    elif isinstance(concept_names, str):
+        concept_names = (concept_names,)
+    engine = EngineCurve.default()
+    analyses, files = {}, []
+    for name in concept_names:
+        ms = MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size)
+        an = analyze(Design.from_concept(name, mesh_settings=ms), engine=engine)
+        analyses[name] = an
+        files += write_analysis(an, engine, out, name)
+    fig25 = comparison_plot(analyses, engine, out / "clutch_torque_comparison.png")
+    files.insert(0, fig25)
+    figs = {"torque comparison (cf. thesis fig. 25)": fig25.name}
+    for name in analyses:
+        figs[f"{name} torque"] = f"{name}_torque_rpm.png"
+        figs[f"{name} contact arc and stress"] = f"{name}_arc_stress_rpm.png"
+    md = out / "report.md"
+    md.write_text(markdown_summary(analyses, engine, figs))
+    files.append(md)
+    return files

@@ -1,0 +1,259 @@
+"""One design point -> one row of answers, and the one function that evaluates batches:
+:func:`evaluate_many`, on the study engine of issue 10 (:mod:`clutchfem.study`).
+
+A *point* is a dict ``name -> --set text`` (``{"flexure_thickness": "2.13mm"}``) applied on
+top of a base design (:class:`EvalSettings`); the design evaluated is exactly the one
+``clutchfem analyze --concept C --set ...`` builds from the same texts
+(:mod:`clutchfem.targets.values`): the texts are read by the parameter set's own parser and
+the values handed to the study engine (:func:`clutchfem.study.evaluate`, the full
+:func:`~clutchfem.clutch.analyze.analyze` with ``errors=False``: a search ranks designs on
+one mesh each; the error of an answer is stated for the design it ends on).
+
+A *row* is a flat, JSON-ready dict: the point, a ``status`` and the answers the targets need
+(engagement with ripple, slip, torque, peak stress and safety factor at the engine's maximum
+speed, part mass, contact arc, the requirement checks), in SI units.  Statuses are the study
+engine's: ``ok``; ``refused`` (the concept's rules refuse the combination -- checked here,
+in this process, before anything is sent: a refusal costs microseconds -- or the geometry /
+mesh cannot be made); ``failed`` (a valid design without an answer: a solver refusal, or the
+worker process died, e.g. gmsh aborting on a high-order mesh fix-up).
+
+Scheduling: :func:`clutchfem.study.runner.run_points` -- a ``dask.distributed`` cluster of
+process workers with one thread each (or an existing cluster at ``scheduler``, or this
+process with ``workers=0``), each finished row committed to a SQLite store as it arrives.
+An optimisation sends many small batches (one per poll), so :func:`cluster` keeps one local
+cluster for the whole run instead of one per batch (measured: starting a 2-worker cluster
+and warming it up costs ~3 s, a poll of concept 4 ~10-20 s).  The store of a run with an
+output folder is ``<out>/results.sqlite``: every design evaluated is kept with its full
+inputs, and running the same command again reuses the finished designs (the study engine's
+resume).  Without an output folder the store is a temporary file.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..core import ParameterError
+
+#: the answers a row carries (name -> unit), in table order
+ANSWERS = {
+    "engagement_rpm": "rpm", "engagement_rpm_with_ripple": "rpm", "slip_rpm": "rpm",
+    "torque_at_max_engine_torque_Nm": "N m", "torque_margin_Nm": "N m", "max_von_mises_Pa": "Pa",
+    "safety_factor": "-", "fatigue_safety_factor": "-", "mass_kg": "kg", "contact_arc_deg": "deg", "contact_share": "-",
+}
+
+_ACTIVE: dict = {"scheduler": None, "workers": None}
+
+
+@dataclass(frozen=True)
+class EvalSettings:
+    """Everything but the point: the concept, the base design's ``--set`` texts, the mesh
+    size, the operating point overrides, the engine and the requirement factors; ``store``:
+    the study store file (None: a temporary one per batch); ``min_safety_factor`` enters the
+    study rows' own feasibility flag (and their design hash)."""
+
+    concept: str
+    base: tuple[str, ...] = ()
+    mesh_size: float | None = None
+    op: dict = field(default_factory=dict)
+    engine_csv: str | None = None
+    idle_rpm: float | None = None
+    a: float = 1.3
+    b: float = 1.0
+    min_safety_factor: float = 1.5
+    store: str | None = None
+
+    def params(self, point: dict | None = None):
+        """The concept's parameter set for ``point`` on the base (raises ParameterError)."""
+        from ..geometry import get_concept
+
+        P = get_concept(self.concept).Params
+        return P(**self.values(point))
+
+    def values(self, point: dict | None = None) -> dict:
+        """Parameter values (SI) of the base plus the point, as the parser reads the texts."""
+        from ..geometry import get_concept
+
+        P = get_concept(self.concept).Params
+        values = P.parse_assignments(list(self.base))
+        if point:
+            values.update(P.parse_assignments([f"{k}={v}" for k, v in point.items()]))
+        return values
+
+    def engine(self):
+        from ..clutch import EngineCurve
+
+        return EngineCurve.from_csv(self.engine_csv, idle_rpm=self.idle_rpm) if self.engine_csv \
+            else EngineCurve.default()
+
+    def operating_point(self):
+        from ..loadcase import OperatingPoint
+
+        return OperatingPoint(**self.op)
+
+    def mesh_settings(self):
+        from ..geometry import MeshSettings
+
+        return MeshSettings() if self.mesh_size is None else MeshSettings(size=self.mesh_size)
+
+    def set_args(self, point: dict | None = None) -> list[str]:
+        """The ``--set`` arguments of the base plus the point (the point wins)."""
+        names = set(point or {})
+        out = [a for a in self.base if a.split("=", 1)[0].strip() not in names]
+        return out + [f"{k}={v}" for k, v in (point or {}).items()]
+
+    def study(self):
+        """The study engine's :class:`clutchfem.study.Settings` (the base as fixed values)."""
+        from .point import Settings
+
+        fixed = tuple(sorted(self.values().items()))
+        return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
+                        engine=self.engine() if self.engine_csv else None, idle_rpm=self.idle_rpm, a=self.a,
+                        b=self.b, min_safety_factor=self.min_safety_factor)
+
+
+@contextlib.contextmanager
+def cluster(workers: int | None = None, scheduler: str | None = None):
+    """Keep one ``dask.distributed`` local cluster (``workers`` process workers, one thread
+    each, as the study engine starts its own) for every :func:`evaluate_many` inside the
+    block; ``scheduler``: use an existing cluster instead; ``workers=0``: this process."""
+    if scheduler is not None and workers is not None:
+        raise ParameterError("workers", workers, "no --workers with --scheduler (the cluster has its own)")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
+        raise ParameterError("workers", workers, "an integer >= 0 (0: in this process, no Dask)")
+    prev = dict(_ACTIVE)
+    local = None
+    try:
+        if scheduler is None and workers != 0:
+            import logging
+
+            import dask
+            from distributed import LocalCluster
+
+            n = workers or default_workers()
+            # the study engine's settings for its private cluster: no task retry after a
+            # worker died on a design, and glibc's dynamic mmap threshold left on (1.8x)
+            with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+                local = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                     dashboard_address=":0", scheduler_kwargs={"allowed_failures": 0},
+                                     silence_logs=logging.CRITICAL)
+            _ACTIVE.update(scheduler=local.scheduler_address, workers=None)
+        else:
+            _ACTIVE.update(scheduler=scheduler, workers=workers)
+        yield _ACTIVE.get("scheduler") or ("in process" if workers == 0 else None)
+    finally:
+        _ACTIVE.clear()
+        _ACTIVE.update(prev)
+        if local is not None:
+            local.close(timeout=10)
+
+
+def default_workers() -> int:
+    import os
+
+    try:
+        n = len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        n = os.cpu_count() or 1
+    return max(1, n)
+
+
+def _num(x):
+    if x is None:
+        return None
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) else None
+
+
+def from_study_row(r: dict, point: dict) -> dict:
+    """A study engine row (:data:`clutchfem.study.COLUMNS`, MPa and g) as a row of this
+    package (SI units, the point's ``--set`` texts)."""
+    row = {"params": dict(point), "status": r.get("status") or "failed", "message": r.get("message") or "",
+           "design_hash": r.get("design_hash"), "seconds": _num(r.get("t_total_s"))}
+    if row["status"] != "ok":
+        return row
+    mpa, g = _num(r.get("max_von_mises_MPa")), _num(r.get("part_mass_g"))
+    ys = _num(r.get("yield_strength_MPa"))
+    row.update({
+        "engagement_rpm": _num(r.get("engagement_rpm")), "engagement_rpm_with_ripple": _num(r.get("engagement_ripple_rpm")),
+        "slip_rpm": _num(r.get("slip_rpm")), "slip_status": r.get("slip_status"),
+        "torque_at_max_engine_torque_Nm": _num(r.get("torque_at_max_engine_torque_Nm")),
+        "torque_margin_Nm": _num(r.get("torque_margin_Nm")),
+        "max_von_mises_Pa": None if mpa is None else mpa * 1e6, "safety_factor": _num(r.get("safety_factor")),
+        "fatigue_safety_factor": _num(r.get("fatigue_safety_factor")), "fatigue_cycle": r.get("fatigue_cycle"),
+        "mass_kg": None if g is None else g * 1e-3, "contact_arc_deg": _num(r.get("contact_arc_deg")),
+        "contact_share": _num(r.get("contact_arc_fraction")),
+        "engagement_ok": bool(r.get("engagement_ok")), "slip_ok": bool(r.get("slip_ok")),
+        "engagement_limit_rpm": _num(r.get("engagement_limit_rpm")), "slip_limit_rpm": _num(r.get("slip_limit_rpm")),
+        "max_engine_rpm": _num(r.get("max_engine_rpm")), "rpm_max_engine_torque": _num(r.get("rpm_max_engine_torque")),
+        "max_engine_torque_Nm": _num(r.get("max_engine_torque_Nm")),
+        "yield_strength_Pa": None if ys is None else ys * 1e6,
+        "warnings": [w for w in (r.get("warnings") or "").split("\n") if w], "elements": r.get("n_elements"),
+        "worker": r.get("worker")})
+    return row
+
+
+def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | None = None, on_row=None,
+                  progress: bool = False) -> list[dict]:
+    """Evaluate ``points`` on the study engine (module docstring); rows in the order of the
+    points, each with its index ``i``.  Inside :func:`cluster` its cluster is used, else
+    ``workers`` (None: one per core; 0: this process) as the study engine starts them;
+    ``on_row(row)`` is called for every row once the batch is done; ``progress``: the study
+    engine's progress bar on stderr."""
+    from .hashing import design_hash
+    from .point import COLUMNS, model_version
+    from .runner import run_points
+    from .store import ResultStore
+
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
+        raise ParameterError("workers", workers, "an integer >= 0 (parallel design evaluations; 0: this process)")
+    rows: list[dict | None] = [None] * len(points)
+    st = settings.study()
+    todo, vals = [], {}
+    for i, pt in enumerate(points):  # refusals cost nothing: nothing is sent for them
+        try:
+            settings.params(pt)
+        except ParameterError as exc:
+            rows[i] = {"i": i, "params": dict(pt), "status": "refused", "message": str(exc),
+                       "refused_parameter": exc.name, "seconds": 0.0}
+            continue
+        from ..geometry import get_concept
+
+        P = get_concept(settings.concept).Params
+        vals[i] = P.parse_assignments([f"{k}={v}" for k, v in pt.items()])
+        todo.append(i)
+    if todo:
+        tmp = None
+        store = settings.store
+        if store is None:
+            tmp = tempfile.TemporaryDirectory(prefix="clutchfem-targets-")
+            store = str(Path(tmp.name) / "results.sqlite")
+        try:
+            sched = _ACTIVE.get("scheduler")
+            w = None if sched else (workers if workers is not None else _ACTIVE.get("workers"))
+            run_points([vals[i] for i in todo], st, store, workers=w, scheduler=sched, progress=progress,
+                       source="clutchfem.studies", desc="designs")
+            version = model_version(settings.concept)
+            keys = [design_hash(vals[i], st) for i in todo]
+            with ResultStore(store, COLUMNS) as rs:
+                df = rs.frame(version, sorted(set(keys)))
+            by_key = {r["design_hash"]: r for r in json.loads(df.to_json(orient="records"))}
+            for i, k in zip(todo, keys):
+                r = by_key.get(k)
+                rows[i] = from_study_row(r, points[i]) if r is not None else {
+                    "params": dict(points[i]), "status": "failed", "message": "no row in the study store"}
+        finally:
+            if tmp is not None:
+                tmp.cleanup()
+    for i, r in enumerate(rows):
+        r["i"] = i
+        if on_row:
+            on_row(r)
+    return rows  # type: ignore[return-value]

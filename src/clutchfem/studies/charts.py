@@ -1,0 +1,233 @@
+"""Charts of a study: every answer against every varied input, and parallel coordinates.
+
+* :func:`answers_vs_inputs`: one PNG per varied input, small multiples (one panel per
+  answer: engagement static and with ripple, slip speed, torque at the rpm of maximum engine
+  torque, peak von Mises and safety factor at the engine's maximum speed, shoe and part
+  mass, contact arc), the requirement limits drawn as dashed lines (a x idle, b x rpm of
+  max torque, the engine's maximum torque, yield / min safety factor), feasible designs
+  filled, the rest hollow, refused and failed inputs marked on the panel's floor;
+* :func:`parallel_coordinates`: one line per answered design over the varied inputs and
+  the main answers (each axis scaled to its own range, its ends labelled with units),
+  feasible designs in colour, the others in grey; the title counts them and names the
+  requirement that failed most often.
+
+Figures are drawn with matplotlib's Agg canvas chosen inside :func:`clutchfem.plotting.figure`
+(no backend is selected at import, no pyplot state is kept).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .point import ANSWERS
+
+#: panels of the answers-vs-input charts: (columns drawn, title, limit column, limit label)
+PANELS = (
+    (("engagement_rpm", "engagement_ripple_rpm"), "engagement [rpm]", "engagement_limit_rpm", "a x idle"),
+    (("slip_rpm",), "slip speed [rpm]", "slip_limit_rpm", "b x rpm(max torque)"),
+    (("torque_at_max_engine_torque_Nm",), "torque at rpm of max engine torque [N m]", "max_engine_torque_Nm",
+     "engine max torque"),
+    (("max_von_mises_MPa",), "peak von Mises at max rpm [MPa]", "_stress_limit", "yield / min SF"),
+    (("safety_factor",), "safety factor at max rpm [-]", "min_safety_factor", "min SF"),
+    (("shoe_mass_g",), "shoe mass [g]", None, None),
+    (("part_mass_g",), "part mass [g]", None, None),
+    (("contact_arc_deg",), "contact arc at max engine torque [deg]", None, None),
+)
+
+
+def _x(frame, axis):
+    """(x values as floats, tick labels or None) of a varied input; choices become indices."""
+    raw = [json.loads(p).get(axis.name) for p in frame["point_json"]]
+    if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in raw):
+        from .spec import display_value
+
+        return np.array([display_value(v, axis.unit) for v in raw], dtype=float), None
+    cats = list(dict.fromkeys(str(v) for v in raw))
+    return np.array([cats.index(str(v)) for v in raw], dtype=float), cats
+
+
+def _limit(frame, col):
+    if col == "_stress_limit":
+        y, s = frame["yield_strength_MPa"], frame["min_safety_factor"]
+        v = (y / s.where(s > 0)).dropna()
+    elif col is None or col not in frame:
+        return None
+    else:
+        v = frame[col].dropna()
+    return float(v.iloc[0]) if len(v) else None
+
+
+def _groups(frame, axis, spec):
+    """Series of one chart: rows that differ only in ``axis`` (one line each), and a colour
+    per row from the first other varied input (discrete for <= 8 values, else a colour map)."""
+    from matplotlib import colormaps
+
+    others = [a for a in spec.axes if a.name != axis.name]
+    pts = [json.loads(p) for p in frame["point_json"]]
+    keys = [tuple(str(p.get(a.name)) for a in others) for p in pts]
+    series: dict = {}
+    for i, k in enumerate(keys):
+        series.setdefault(k, []).append(i)
+    if not others:
+        return series, ["C0"] * len(pts), [], None
+    g = others[0]
+    gv, cats = _x(frame, g)
+    distinct = sorted(set(gv.tolist()))
+    if len(distinct) <= 8:
+        colours = [f"C{distinct.index(v)}" for v in gv]
+        handles = [(f"C{k}", f"{g.label()} = {cats[int(v)] if cats else f'{v:.4g}'}") for k, v in enumerate(distinct)]
+        return series, colours, handles, None
+    cmap = colormaps["viridis"]
+    lo, hi = min(distinct), max(distinct)
+    colours = [cmap((v - lo) / (hi - lo)) for v in gv]
+    return {k: [i] for k, idx in series.items() for i in idx}, colours, [], (g, lo, hi)
+
+
+def answers_vs_inputs(frame, spec, outdir: str | Path) -> list[Path]:
+    """One PNG per varied input (see module docstring); returns the paths."""
+    from matplotlib.lines import Line2D
+
+    from ..core import figure
+
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    ok = (frame["status"] == "ok").to_numpy()
+    feas = (frame["feasible"].fillna(0).astype(int) == 1).to_numpy()
+    bad = ~ok
+    paths = []
+    for axis in spec.axes:
+        x, cats = _x(frame, axis)
+        series, colours, handles, cmap_info = _groups(frame, axis, spec)
+        ncol = 4
+        nrow = math.ceil(len(PANELS) / ncol)
+        fig, axes = figure(nrow, ncol, figsize=(4.0 * ncol, 3.3 * nrow), squeeze=False)
+        for k, (cols, title, lim_col, lim_label) in enumerate(PANELS):
+            ax = axes.flat[k]
+            for j, col in enumerate(cols):
+                y = frame[col].to_numpy(dtype=float)
+                mk = "o" if j == 0 else "^"
+                for idx in series.values():
+                    idx = [i for i in idx if ok[i]]
+                    if not idx:
+                        continue
+                    idx = sorted(idx, key=lambda i: x[i])
+                    c = colours[idx[0]]
+                    if len(idx) > 1:
+                        ax.plot(x[idx], y[idx], color=c, lw=0.9, alpha=0.6, ls="-" if j == 0 else ":")
+                    for i in idx:
+                        ax.scatter([x[i]], [y[i]], marker=mk, s=24, zorder=3, edgecolors=[colours[i]],
+                                   facecolors=[colours[i]] if feas[i] else "none", linewidths=1.1)
+            lim = _limit(frame, lim_col)
+            if lim is not None and math.isfinite(lim):
+                ax.axhline(lim, color="C3", ls="--", lw=1.2)
+                ax.annotate(f"{lim_label} = {lim:.4g}", (1.0, lim), xycoords=("axes fraction", "data"),
+                            ha="right", va="bottom", fontsize=7, color="C3")
+            if bad.any():
+                ylo = ax.get_ylim()[0]
+                ax.scatter(x[bad], np.full(bad.sum(), ylo), marker="x", color="0.4", s=25, zorder=4, clip_on=False)
+            ax.set_title(title + ("  (o static, ^ with ripple)" if len(cols) > 1 else ""), fontsize=9)
+            ax.set_xlabel(axis.label(), fontsize=8)
+            ax.tick_params(labelsize=7)
+            if cats is not None:
+                ax.set_xticks(range(len(cats)), cats)
+            ax.grid(alpha=0.3)
+        legend = [Line2D([], [], color=c, marker="o", lw=0.9, label=lab) for c, lab in handles]
+        legend += [Line2D([], [], ls="", marker="o", color="0.3", label="feasible (filled)"),
+                   Line2D([], [], ls="", marker="o", mfc="none", color="0.3", label="not feasible (hollow)")]
+        if bad.any():
+            legend.append(Line2D([], [], ls="", marker="x", color="0.4",
+                                 label=f"refused / failed ({int(bad.sum())}), at the floor"))
+        axes.flat[0].legend(handles=legend, fontsize=6, loc="best")
+        if cmap_info is not None:
+            g, lo, hi = cmap_info
+            axes.flat[0].text(0.0, 1.12, f"colour: {g.label()} {lo:.4g} (purple) .. {hi:.4g} (yellow)",
+                              transform=axes.flat[0].transAxes, fontsize=7)
+        for ax in list(axes.flat)[len(PANELS):]:
+            ax.set_visible(False)
+        nfeas = int((ok & feas).sum())
+        fig.suptitle(f"{spec.design}: answers vs {axis.label()} ({int(ok.sum())} answered, {nfeas} feasible, "
+                     f"{int(bad.sum())} refused/failed)", fontsize=10)
+        fig.tight_layout()
+        path = outdir / f"answers_vs_{axis.name}.png"
+        fig.savefig(path, dpi=110)
+        paths.append(path)
+    return paths
+
+
+#: answers on the parallel-coordinates axes
+PC_ANSWERS = ("engagement_ripple_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_MPa",
+              "safety_factor", "shoe_mass_g", "contact_arc_deg")
+
+
+def parallel_coordinates(frame, spec, path: str | Path) -> Path:
+    """Parallel coordinates of the answered designs, feasible ones in colour (see module
+    docstring)."""
+    from matplotlib import colormaps
+
+    from ..core import figure
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    ok = frame[frame["status"] == "ok"].reset_index(drop=True)
+    labels = dict(ANSWERS)
+    cols, names = [], []
+    for a in spec.axes:
+        x, cats = _x(ok, a)
+        cols.append((x, cats))
+        names.append(a.label())
+    for c in PC_ANSWERS:
+        cols.append((ok[c].to_numpy(dtype=float), None))
+        names.append(labels.get(c, c))
+    fig, ax = figure(figsize=(max(8.0, 1.5 * len(cols)), 5.2))
+    n = len(ok)
+    feas = (ok["feasible"].fillna(0).astype(int) == 1).to_numpy() if n else np.zeros(0, bool)
+    scaled = np.full((n, len(cols)), np.nan)
+    limits = {c: _limit(ok, lc) for cs, _, lc, _ in PANELS for c in cs} if n else {}
+    box = {"fc": "white", "ec": "none", "pad": 0.6}
+    n_in = len(spec.axes)
+    for j, (v, cats) in enumerate(cols):
+        lo, hi = (np.nanmin(v), np.nanmax(v)) if n and np.isfinite(v).any() else (0.0, 1.0)
+        span = hi - lo if hi > lo else 1.0
+        scaled[:, j] = (v - lo) / span if hi > lo else 0.5
+        ax.axvline(j, color="0.3", lw=0.8)
+        fmt = (lambda q: cats[int(q)]) if cats else (lambda q: f"{q:.4g}")
+        if n and np.isfinite(v).any():
+            ax.text(j, 1.03, fmt(hi), ha="center", va="bottom", fontsize=7, bbox=box)
+            ax.text(j, -0.03, fmt(lo), ha="center", va="top", fontsize=7, bbox=box)
+        lim = limits.get(PC_ANSWERS[j - n_in]) if j >= n_in else None
+        if lim is not None and math.isfinite(lim) and n and np.isfinite(v).any():
+            if hi > lo and lo <= lim <= hi:  # the requirement limit on its axis
+                ax.plot([j - 0.12, j + 0.12], [(lim - lo) / span] * 2, color="C3", lw=2.2, zorder=4)
+            else:
+                where = "above" if lim > hi else "below"
+                ax.text(j, 1.09 if where == "above" else -0.09, f"limit {lim:.4g} {where}", ha="center",
+                        va="center", fontsize=6, color="C3")
+    xs = np.arange(len(cols))
+    for i in np.nonzero(~feas)[0]:
+        ax.plot(xs, scaled[i], color="0.75", lw=0.8, zorder=1)
+    cmap = colormaps["viridis"]
+    fi = np.nonzero(feas)[0]
+    for k, i in enumerate(fi):
+        ax.plot(xs, scaled[i], color=cmap(k / max(len(fi) - 1, 1)), lw=1.6, zorder=2)
+    ax.set_xticks(xs, names, rotation=25, ha="right", fontsize=8)
+    ax.set_yticks([])
+    ax.set_ylim(-0.14, 1.14)
+    ax.set_xlim(-0.3, len(cols) - 0.7)
+    for s in ("top", "right", "left"):
+        ax.spines[s].set_visible(False)
+    title = (f"{spec.design}: {len(fi)} of {n} answered designs feasible (colour; grey: not feasible); "
+             "red: requirement limits")
+    if n and not len(fi):
+        why = {"engagement": int((ok["engagement_ok"] == 0).sum()), "slip": int((ok["slip_ok"] == 0).sum()),
+               "stress": int((ok["stress_ok"] == 0).sum())}
+        worst = max(why, key=why.get)
+        title = (f"{spec.design}: no feasible design among {n} answered; requirements missed: "
+                 + ", ".join(f"{k} {v}" for k, v in why.items()) + f" (most often: {worst})")
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    return path

@@ -1,0 +1,466 @@
+"""Running a study's points on Dask, with resume, progress and a summary.
+
+:func:`run_points` is the study engine (the ``study`` and ``guidelines`` commands both run
+on it):
+
+1. every point gets its design hash (:mod:`.hashing`) and the run its model version
+   (:func:`~.point.model_version`); the store (:mod:`.store`) says which (hash, version)
+   pairs are finished: those are skipped (``retry_failed`` recomputes the *failed* ones);
+2. the rest run on ``dask.distributed``: by default a private ``LocalCluster`` of
+   ``workers`` **process** workers with one thread each (gmsh is a process-global C++
+   library and not thread-safe; one thread per process also keeps BLAS single-threaded,
+   the nannies set ``OMP/MKL/OPENBLAS_NUM_THREADS=1``), or an existing cluster at
+   ``scheduler`` (``tcp://HOST:PORT``) through exactly the same code (``Client.submit``,
+   ``as_completed``).  ``workers=0`` runs in this process, without Dask (examples, tests,
+   debugging; a crash of gmsh then ends the run);
+3. each finished point's row is committed to the store *by this process* as it arrives
+   (workers never touch the store, so remote workers need no shared disk);
+4. a progress bar (tqdm: rate, ETA and the ok/refused/failed counts) runs on stderr.
+
+Memory allocator: distributed's nannies set ``MALLOC_TRIM_THRESHOLD_=65536`` in their
+workers by default (to hand memory back to the OS sooner).  Setting it switches off glibc's
+dynamic mmap threshold, and every large numpy array is then mapped and unmapped afresh:
+measured here, a design took 1.8x as long (assembly 3x).  The private local cluster unsets
+it; for a remote cluster start the workers with
+``DASK_DISTRIBUTED__NANNY__PRE_SPAWN_ENVIRON__MALLOC_TRIM_THRESHOLD_=None dask worker ...``.
+
+Worker processes are reused for every point (imports, the concept's code and the
+process's gmsh library are loaded once: a warm-up runs on every worker before the first
+point); meshes go through the mesh cache (content hash), so a rerun of a design with other
+settings does not mesh again.
+
+Crashes: if a worker process dies while computing a design (gmsh segfault, out of memory),
+its nanny restarts it and the point is stored as *failed* with the scheduler's message.  On
+the private local cluster the scheduler marks the task failed at the first death
+(``allowed_failures=0``).  The client keeps only as many points in flight as the cluster
+has worker threads (the next is submitted when one finishes), so each worker holds one
+design at a time and a crash can only take its own design with it; the cost is one round
+trip (a few ms) per design, measured in the benchmark as scheduling time.  A remote scheduler keeps its own
+policy (by default a task is retried on 3 more workers before it is declared failed).
+
+Ctrl-C: the pending tasks are cancelled, the cluster is shut down (its worker processes
+ignore SIGINT, so that the client, not a signal race, stops them) and
+:class:`StudyInterrupted` is raised with the counts; every finished row is already
+committed, and running the same spec again resumes.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import signal
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..core import ClutchfemError, InputError
+from .hashing import design_hash
+from .point import COLUMNS, Settings, evaluate, failed_row, model_version, warm_up
+from .store import STORE_NAME, ResultStore
+
+log = logging.getLogger("clutchfem")
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """What :func:`run_points` did.  points: distinct designs asked for; done: those with a
+    stored row now (any status); computed: rows written by this run; skipped: finished
+    before this run; wall_s: this run's wall time (cluster start-up included); compute_s:
+    from the first submitted point to the last finished one."""
+
+    points: int
+    done: int
+    ok: int
+    refused: int
+    failed: int
+    computed: int
+    skipped: int
+    store: Path
+    model_version: str
+    wall_s: float
+    compute_s: float
+    workers: int | None
+    scheduler: str
+    keys: tuple[str, ...] = field(repr=False, default=())
+    interrupted: bool = False
+    error_keys: tuple[str, ...] = field(repr=False, default=())
+
+    @property
+    def designs_per_min(self) -> float | None:
+        """Designs computed per minute (start-up excluded), or None if none were computed."""
+        return 60.0 * self.computed / self.compute_s if self.computed and self.compute_s > 0 else None
+
+    def as_dict(self) -> dict:
+        return {"points": self.points, "done": self.done, "ok": self.ok, "refused": self.refused,
+                "failed": self.failed, "computed": self.computed, "skipped": self.skipped,
+                "store": str(self.store), "model_version": self.model_version, "wall_s": self.wall_s,
+                "compute_s": self.compute_s, "designs_per_min": self.designs_per_min, "workers": self.workers,
+                "scheduler": self.scheduler, "interrupted": self.interrupted}
+
+
+class StudyInterrupted(ClutchfemError):
+    """Ctrl-C during a run: finished rows are stored; ``result`` has the counts."""
+
+    def __init__(self, result: RunResult):
+        self.result = result
+        super().__init__(f"interrupted (Ctrl-C): {result.done} of {result.points} points are finished and stored "
+                         f"in {result.store} ({result.computed} in this run); run the same command again to "
+                         "compute the rest")
+
+
+def _counts(store: ResultStore, version: str, keys: list[str]) -> dict:
+    st = store.finished(version, keys)
+    vals = list(st.values())
+    return {"done": len(st), "ok": vals.count("ok"), "refused": vals.count("refused"),
+            "failed": vals.count("failed")}
+
+
+def run_points(points: list[dict], settings: Settings, store_path: str | Path, *, workers: int | None = None,
+               scheduler: str | None = None, retry_failed: bool = False, progress: bool = True,
+               source: str = "", spec_text: str = "", desc: str = "study", error_points=()) -> RunResult:
+    """Compute the rows of ``points`` not yet in the store (see module docstring).
+    ``error_points``: indices of the points whose answers also get their error estimate (a
+    finished row of such a point without one is computed again, with it)."""
+    t_start = time.perf_counter()
+    if scheduler is not None and workers is not None:
+        raise InputError("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
+        raise InputError(f"workers = {workers!r} is not allowed: an integer >= 0 (0: in this process, no Dask)")
+    version = model_version(settings.concept)
+    keys, tasks, hashes = [], {}, []
+    for p in points:
+        h = design_hash(p, settings)
+        hashes.append(h)
+        if h not in tasks:
+            keys.append(h)
+            tasks[h] = p
+    want_errors = {hashes[i] for i in error_points}
+    store = ResultStore(store_path, COLUMNS)
+    try:
+        finished = store.select(version, keys, ["status", "errors_estimated"])
+        todo = [h for h in keys if h not in finished or (retry_failed and finished[h][0] == "failed")
+                or (h in want_errors and finished[h][0] == "ok" and finished[h][1] != 1)]
+        run = store.start_run(source, version, len(keys), len(todo), spec_text)
+        n_workers = None if scheduler else (0 if workers == 0 else (workers or _default_workers()))
+        label = scheduler or (f"local cluster, {n_workers} process workers" if n_workers else "in process")
+        computed, interrupted, t_first, t_last = 0, False, None, None
+        bar = None
+        tally = {"ok": 0, "refused": 0, "failed": 0}
+        try:
+            if todo:
+                rows = (_in_process(todo, tasks, settings, want_errors) if n_workers == 0 and scheduler is None
+                        else _on_dask(todo, tasks, settings, version, n_workers, scheduler, want_errors))
+                for row in rows:
+                    if "__start__" in row:  # the back-end is up and the points are submitted
+                        n_workers = row["__start__"]
+                        t_first = time.perf_counter()
+                        bar = _bar(len(todo), desc, progress)
+                        continue
+                    if row.get("model_version") != version:
+                        row = failed_row(tasks[row["design_hash"]], settings, row["design_hash"], version,
+                                         f"the worker {row.get('worker')} runs model version "
+                                         f"{row.get('model_version')}, this client {version}: install the same "
+                                         "clutchfem on every worker")
+                    store.put(row)
+                    computed += 1
+                    tally[row["status"]] = tally.get(row["status"], 0) + 1
+                    t_last = time.perf_counter()
+                    if bar is not None:
+                        el = max(t_last - (t_first or t_last), 1e-9)
+                        bar.set_postfix_str(f"ok {tally['ok']}, refused {tally['refused']}, failed {tally['failed']}"
+                                            f"; {60 * computed / el:.0f} designs/min", refresh=False)
+                        bar.update(1)
+        except KeyboardInterrupt:
+            interrupted = True
+        except BaseException as exc:
+            store.end_run(run, computed, f"error: {type(exc).__name__}: {exc}"[:500])
+            raise
+        finally:
+            if bar is not None:
+                bar.close()
+        c = _counts(store, version, keys)
+        store.end_run(run, computed, "interrupted" if interrupted else "finished")
+    finally:
+        store.close()
+    compute_s = (t_last - t_first) if (t_first is not None and t_last is not None) else 0.0
+    res = RunResult(points=len(keys), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
+                    model_version=version, wall_s=time.perf_counter() - t_start, compute_s=compute_s,
+                    workers=n_workers, scheduler=label, keys=tuple(keys), interrupted=interrupted,
+                    error_keys=tuple(h for h in keys if h in want_errors), **c)
+    if interrupted:
+        raise StudyInterrupted(res)
+    return res
+
+
+def _default_workers() -> int:
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _bar(total: int, desc: str, progress: bool):
+    if not progress or total == 0:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit="design", file=sys.stderr, dynamic_ncols=True, mininterval=0.5,
+                smoothing=0.1)
+
+
+# ---------------------------------------------------------------------------------------
+# back-ends: in this process, or on dask.distributed
+# ---------------------------------------------------------------------------------------
+def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=frozenset()):
+    yield {"__start__": 0}
+    for h in todo:
+        yield evaluate(tasks[h], settings, h, h in want_errors)
+
+
+class _WorkerSetup:
+    """Worker plugin of the private local cluster: ignore SIGINT (the client stops the
+    cluster on Ctrl-C) and import the analysis stack once, on every worker, also on one a
+    nanny restarts after a crash."""
+
+    name = "clutchfem-study-setup"
+
+    def __init__(self, concept: str | None):
+        self.concept = concept
+
+    def setup(self, worker=None):
+        if threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+        warm_up(self.concept)
+
+    def teardown(self, worker=None):
+        pass
+
+
+def _killed_message(exc: BaseException) -> str:
+    name = type(exc).__name__
+    if name == "KilledWorker":
+        return ("the worker process died while computing this design (a crash in gmsh or the solver, or out of "
+                f"memory); its nanny restarted it and the study went on ({exc})")
+    return f"{name}: {exc}"
+
+
+def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_workers: int,
+             scheduler: str | None, want_errors=frozenset()):
+    """Rows as they finish, computed on a dask.distributed cluster (see module docstring)."""
+    import dask
+    from distributed import Client, LocalCluster, as_completed
+
+    cluster = client = None
+    futures: dict = {}
+    try:
+        if scheduler is not None:
+            try:
+                client = Client(scheduler, timeout="15s")
+            except (OSError, TimeoutError) as exc:
+                raise InputError(f"--scheduler {scheduler}: no dask scheduler answers there ({exc}); start one "
+                                 "with `dask scheduler` and workers with `dask worker ADDRESS --nthreads 1`") from None
+        else:
+            with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+                cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                       dashboard_address=None, scheduler_kwargs={"allowed_failures": 0},
+                                       silence_logs=logging.CRITICAL)
+            client = Client(cluster)
+            client.register_plugin(_as_worker_plugin(_WorkerSetup(settings.concept)))
+        versions = client.run(warm_up, settings.concept)
+        if not versions:
+            client.wait_for_workers(1, timeout=60)
+            versions = client.run(warm_up, settings.concept)
+        odd = {w: v for w, v in versions.items() if v != version}
+        if odd:
+            w, v = next(iter(odd.items()))
+            raise InputError(f"worker {w} runs clutchfem model version {v}, this client {version}: the workers "
+                             "must run the same clutchfem (same source, gmsh and scikit-fem versions)")
+        tag = version.rsplit("+", 1)[-1]
+        pending = iter(todo)
+        done = as_completed()
+
+        seen = {"n": 1, "at": -1.0}
+
+        def window() -> int:
+            """One task per worker thread (a crash takes only its own design); the thread
+            count is asked of the scheduler at most once a second (a round trip)."""
+            now = time.monotonic()
+            if now - seen["at"] > 1.0:
+                seen.update(n=max(1, sum(client.nthreads().values())), at=now)
+            return seen["n"]
+
+        def submit_more() -> None:
+            n = window()
+            while len(futures) < n:
+                h = next(pending, None)
+                if h is None:
+                    return
+                e = h in want_errors
+                fut = client.submit(evaluate, tasks[h], settings, h, e, key=f"clutchfem-point-{h}-{tag}{'-e' * e}")
+                futures[fut] = h
+                done.add(fut)
+
+        submit_more()
+        yield {"__start__": len(client.nthreads())}
+        for fut in done:
+            h = futures.pop(fut)
+            if fut.status == "finished":
+                row = fut.result()
+            else:
+                try:
+                    exc = fut.exception()
+                except Exception as e:  # noqa: BLE001 - cancelled by the scheduler, lost
+                    exc = e
+                row = failed_row(tasks[h], settings, h, version, _killed_message(exc))
+            fut.release()
+            submit_more()
+            yield row
+    finally:
+        if client is not None:
+            try:
+                if futures:
+                    client.cancel(list(futures), force=True)
+            except Exception:  # noqa: BLE001 - shutting down anyway
+                pass
+            client.close(timeout=10)
+        if cluster is not None:
+            cluster.close(timeout=10)
+
+
+def _as_worker_plugin(obj):
+    """Wrap :class:`_WorkerSetup` as a ``distributed`` WorkerPlugin (imported lazily, so the
+    module imports without distributed)."""
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    class Setup(WorkerPlugin):
+        name = obj.name
+
+        def __init__(self, concept):
+            self.concept = concept
+
+        def setup(self, worker):
+            _WorkerSetup(self.concept).setup(worker)
+
+    return Setup(obj.concept)
+
+
+# ---------------------------------------------------------------------------------------
+# a whole study: run, export, charts, summary
+# ---------------------------------------------------------------------------------------
+def default_out(spec_source: str) -> Path:
+    """Default output folder of a spec: ``<spec stem>-study`` beside the current folder."""
+    return Path(f"{Path(spec_source).stem}-study")
+
+
+def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: str | None = None,
+              retry_failed: bool = False, progress: bool = True, charts: bool = True) -> dict:
+    """Run ``spec`` (:class:`~.spec.StudySpec`) into ``out``: the store, ``results.csv`` (this
+    spec's rows, inputs in designers' units), the charts and ``summary.json``.  Returns the
+    summary (also on :class:`StudyInterrupted`, via its ``result``)."""
+    from ..core import write
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    points = spec.points()
+    res = run_points(points, spec.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
+                     retry_failed=retry_failed, progress=progress, source=spec.source, spec_text=spec.text,
+                     error_points=spec.error_points(len(points)))
+    summary = res.as_dict()
+    frame = table(spec, res)
+    summary["errors"] = error_summary(frame)
+    csv = out / "results.csv"
+    frame.to_csv(csv, index=False)
+    files = [csv]
+    if charts:
+        from .charts import answers_vs_inputs, parallel_coordinates
+
+        files += answers_vs_inputs(frame, spec, out / "charts")
+        files.append(parallel_coordinates(frame, spec, out / "charts" / "parallel_coordinates.png"))
+    summary.update(design=spec.design, method=spec.method, spec=spec.source, out=str(out),
+                   feasible=int(frame["feasible"].fillna(0).astype(int).sum()) if len(frame) else 0,
+                   files=[str(f) for f in files])
+    write(out / "summary.json", summary, indent=1)
+    summary["files"].append(str(out / "summary.json"))
+    return summary
+
+
+#: error columns of a row: (answer, total band, discretisation part, unit)
+ERROR_COLUMNS = (("engagement_rpm", "engagement_err_rpm", "engagement_disc_rpm", "rpm"),
+                 ("slip_rpm", "slip_err_rpm", "slip_disc_rpm", "rpm"),
+                 ("torque_at_max_engine_torque_Nm", "torque_err_Nm", "torque_disc_Nm", "N m"),
+                 ("max_von_mises_MPa", "stress_err_MPa", "stress_disc_MPa", "MPa"))
+
+
+def error_summary(frame) -> dict:
+    """The study's error from its sampled designs: per answer, the median and largest band
+    (discretisation + model form) relative to the answer [%], and the discretisation part."""
+    import numpy as np
+
+    sel = frame[(frame["status"] == "ok") & (frame["errors_estimated"].fillna(0) == 1)]
+    out: dict = {"sampled": int(len(sel)),
+                 "method": "designs evenly spaced in the spec, analysed again on a mesh twice as fine "
+                           "(discretisation 2|a_h - a_h/2|) plus the measured model-form terms (clutchfem.errorest)"}
+    for ans, tot, disc, unit in ERROR_COLUMNS:
+        v = sel[ans].astype(float).abs()
+        rel_t = (sel[tot].astype(float) / v * 100).replace([np.inf, -np.inf], np.nan).dropna()
+        rel_d = (sel[disc].astype(float) / v * 100).replace([np.inf, -np.inf], np.nan).dropna()
+        out[ans] = {"band_median_pct": float(rel_t.median()) if len(rel_t) else None,
+                    "band_max_pct": float(rel_t.max()) if len(rel_t) else None,
+                    "discretisation_median_pct": float(rel_d.median()) if len(rel_d) else None,
+                    "discretisation_max_pct": float(rel_d.max()) if len(rel_d) else None}
+    return out
+
+
+def table(spec, res: RunResult):
+    """This spec's rows (point order) with one column per varied input, in the units of the
+    charts (lengths in mm: ``flexure_thickness [mm]``), before the answers."""
+    import json
+
+    import pandas as pd
+
+    from .spec import display_value
+
+    with ResultStore(res.store, COLUMNS) as st:
+        df = st.frame(res.model_version, res.keys)
+    cols = {}
+    for a in spec.axes:
+        cols[a.label()] = [display_value(json.loads(p).get(a.name), a.unit) for p in df["point_json"]]
+    front = pd.DataFrame(cols, index=df.index)
+    return pd.concat([front, df], axis=1)
+
+
+def run_grid(concept: str, vary: dict, *, fixed: dict | None = None, mesh_size: float | None = None, op=None,
+             store: str | Path, workers: int | None = None, scheduler: str | None = None, progress: bool = False,
+             engine=None, a: float = 1.3, b: float = 1.0, min_safety_factor: float = 1.0):
+    """The API form of a grid study (no TOML): every combination of ``vary`` ({name: values}
+    in the parameters' units) of ``concept`` around ``fixed``, on the study engine, stored in
+    ``store``.  Returns a DataFrame: one row per point in grid order, the varied values in
+    columns named as the parameters (their own units) before the answers."""
+    import itertools
+    import json
+
+    import pandas as pd
+
+    from ..geometry import MeshSettings, get_concept
+    from ..loadcase import OperatingPoint
+
+    c = get_concept(concept)
+    P = c.Params
+    for name, value in (fixed or {}).items():
+        if name not in P.model_fields:
+            raise InputError(f"fixed parameter {name!r} is not a parameter of {c.name}")
+    settings = Settings(concept=c.name, fixed=tuple(sorted((fixed or {}).items())), op=op or OperatingPoint(),
+                        mesh=MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size), engine=engine,
+                        a=a, b=b, min_safety_factor=min_safety_factor)
+    names = list(vary)
+    points = [dict(zip(names, combo)) for combo in itertools.product(*(list(vary[n]) for n in names))]
+    res = run_points(points, settings, store, workers=workers, scheduler=scheduler, progress=progress,
+                     source=f"run_grid {c.name}")
+    with ResultStore(store, COLUMNS) as st:
+        df = st.frame(res.model_version, res.keys)
+    keyed = [design_hash(p, settings) for p in points]
+    df = df.set_index("design_hash").loc[keyed].reset_index()
+    front = pd.DataFrame([{n: json.loads(pj).get(n) for n in names} for pj in df["point_json"]])
+    return pd.concat([front, df], axis=1)

@@ -1,0 +1,131 @@
+"""The result store of a study: one SQLite file in WAL mode, one row per finished point.
+
+Why SQLite (and not Parquet parts):
+
+* **a transaction per row**: the client commits each row the moment its point finishes.
+  A ``kill -9`` of the study loses at most the points still computing; every committed row
+  is in the write-ahead log, which the next open replays.  Parquet has no append: a
+  crash-safe Parquet store is a folder of one-row part files (thousands of tiny files for a
+  large study, a compaction step, and a torn part file to detect on resume);
+* **keyed lookups**: resume asks "which of these (design hash, model version) pairs are
+  finished?", a primary-key query; the same store holds several specs' rows and several
+  model versions side by side, and rows are replaced (``--retry-failed``) in place;
+* **no new dependency**: ``sqlite3`` is in the standard library, and pandas reads it
+  (``read_sql``); the study also exports a CSV of its own rows for spreadsheets.
+
+Durability: ``journal_mode=WAL`` with ``synchronous=NORMAL``: a committed row survives the
+process being killed (the WAL is in the OS's page cache once ``COMMIT`` returns); on power
+loss the last few commits may be lost, which resume then simply recomputes.  Only the
+the study's client process writes (workers return rows, they never touch the file), so there
+is one writer; readers (a notebook, ``sqlite3`` on the command line) may read while it runs.
+
+The table's columns come from the caller (:data:`clutchfem.study.point.COLUMNS`); a store
+written by an older version gains any new columns on open (``ALTER TABLE ADD COLUMN``).
+"""
+
+from __future__ import annotations
+
+import sqlite3
+import time
+from pathlib import Path
+from typing import Iterable
+
+from ..core import InputError
+
+#: file name of the store inside a study's output folder
+STORE_NAME = "results.sqlite"
+_KEY = ("design_hash", "model_version")
+
+
+class ResultStore:
+    """Rows keyed by (design_hash, model_version); see module docstring."""
+
+    def __init__(self, path: str | Path, columns: Iterable[tuple[str, str, str]]):
+        self.path = Path(path)
+        self.columns = [(c, t) for c, t, *_ in columns]
+        names = [c for c, _ in self.columns]
+        for k in _KEY:
+            if k not in names:
+                raise ValueError(f"store columns must include {k}")
+        try:
+            self.db = sqlite3.connect(self.path, timeout=30.0, isolation_level=None)
+            self.db.execute("PRAGMA journal_mode=WAL")
+            self.db.execute("PRAGMA synchronous=NORMAL")
+            cols = ", ".join(f'"{c}" {t}' for c, t in self.columns)
+            self.db.execute(f"CREATE TABLE IF NOT EXISTS results ({cols}, PRIMARY KEY (design_hash, model_version))")
+            have = {r[1] for r in self.db.execute("PRAGMA table_info(results)")}
+            for c, t in self.columns:
+                if c not in have:
+                    self.db.execute(f'ALTER TABLE results ADD COLUMN "{c}" {t}')
+            self.db.execute("CREATE TABLE IF NOT EXISTS runs (run INTEGER PRIMARY KEY AUTOINCREMENT, "
+                            "started_at REAL, finished_at REAL, source TEXT, model_version TEXT, points INTEGER, "
+                            "todo INTEGER, computed INTEGER, outcome TEXT, spec TEXT)")
+        except sqlite3.DatabaseError as exc:
+            raise InputError(f"result store {self.path}: not a usable SQLite file ({exc}); move it away or "
+                             "choose another --out") from None
+        self.names = names
+
+    # -- writing --------------------------------------------------------------------------
+    def put(self, row: dict) -> None:
+        """Insert or replace one row and commit it (durable when this returns)."""
+        vals = [row.get(c) for c in self.names]
+        marks = ", ".join("?" for _ in self.names)
+        cols = ", ".join(f'"{c}"' for c in self.names)
+        self.db.execute(f"INSERT OR REPLACE INTO results ({cols}) VALUES ({marks})", vals)
+
+    def start_run(self, source: str, model_version: str, points: int, todo: int, spec: str = "") -> int:
+        cur = self.db.execute("INSERT INTO runs (started_at, source, model_version, points, todo, computed, outcome, "
+                              "spec) VALUES (?, ?, ?, ?, ?, 0, 'running', ?)",
+                              (time.time(), source, model_version, points, todo, spec))
+        return int(cur.lastrowid)
+
+    def end_run(self, run: int, computed: int, outcome: str) -> None:
+        self.db.execute("UPDATE runs SET finished_at = ?, computed = ?, outcome = ? WHERE run = ?",
+                        (time.time(), computed, outcome, run))
+
+    # -- reading --------------------------------------------------------------------------
+    def finished(self, model_version: str, keys: Iterable[str] | None = None) -> dict[str, str]:
+        """{design_hash: status} of the stored rows of ``model_version`` (among ``keys``)."""
+        cur = self.db.execute("SELECT design_hash, status FROM results WHERE model_version = ?", (model_version,))
+        got = {h: s for h, s in cur}
+        if keys is None:
+            return got
+        return {k: got[k] for k in keys if k in got}
+
+    def select(self, model_version: str, keys: Iterable[str], columns: list[str]) -> dict[str, tuple]:
+        """{design_hash: (values of ``columns``)} of the stored rows of ``model_version`` among ``keys``."""
+        cols = ", ".join(f'"{c}"' for c in columns)
+        cur = self.db.execute(f"SELECT design_hash, {cols} FROM results WHERE model_version = ?", (model_version,))
+        got = {r[0]: tuple(r[1:]) for r in cur}
+        return {k: got[k] for k in keys if k in got}
+
+    def frame(self, model_version: str | None = None, keys: Iterable[str] | None = None):
+        """The rows as a pandas DataFrame (of one model version, and only ``keys`` if given,
+        in the order of ``keys``)."""
+        import pandas as pd
+
+        q, args = "SELECT * FROM results", []
+        if model_version is not None:
+            q += " WHERE model_version = ?"
+            args.append(model_version)
+        df = pd.read_sql_query(q, self.db, params=args)
+        if keys is not None:
+            order = {k: i for i, k in enumerate(keys)}
+            df = df[df["design_hash"].isin(order)].copy()
+            df["_order"] = df["design_hash"].map(order)
+            df = df.sort_values("_order").drop(columns="_order").reset_index(drop=True)
+        return df
+
+    def runs(self):
+        import pandas as pd
+
+        return pd.read_sql_query("SELECT * FROM runs ORDER BY run", self.db)
+
+    def close(self) -> None:
+        self.db.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

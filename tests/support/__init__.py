@@ -1,0 +1,1 @@
+"""Test support: verification shapes and solver edge cases (never imported by the library)."""
