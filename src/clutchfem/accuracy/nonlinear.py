@@ -149,7 +149,7 @@ class NonlinearModel:
         self.R = drum_radius
         self.nodes = contact_nodes(fe, drum_radius) if drum_radius is not None else None
         self.timings: dict[str, float] = {}
-        self.scale = (fe.cm.n_shoes_total / fe.cm.n_shoes_model) if fe.cm.sector_angle else 1.0
+        self.scale = float(fe.cm.sector_copies)
         kdiag = self.kin.residual_and_tangent(np.zeros(fe.basis.N))[1].diagonal()
         self._c = float(np.mean(kdiag[kdiag > 0]))
         #: optional drum compliance C (m x m, [m/N]): the drum's inner wall moves out by C lam

@@ -84,6 +84,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..clutch import SEED_DRIVE_INERTIA
 from ..core import ParameterError, ParamSet, param
 from .fatigue import LoadCycle
 
@@ -91,9 +92,6 @@ __all__ = ["FatigueLoads", "DELTA_CLASSES", "SEED_DRIVE_INERTIA", "ripple_classe
            "reverse_capacity", "vm_gram", "longest_chord", "farthest_state", "ServiceStates",
            "service_cycles", "CycleSet"]
 
-#: J_b + m_p r_k^2 of seed 000 (Husqvarna 357 XP, 15" bar): drum and sprockets 85.10e-6 kg m^2,
-#: chain 0.273 kg on the 21.2 mm sprocket pitch radius (clutchfem.validation.wiesik.DriveData)
-SEED_DRIVE_INERTIA = 85.10e-6 + 0.273 * 0.0212 ** 2
 
 #: ripple classes: (z_lo, z_hi, z represented); z = (delta - mean) / std
 DELTA_CLASSES = ((-math.inf, 0.0, 0.0), (0.0, 1.0, 1.0), (1.0, 2.0, 2.0), (2.0, 3.0, 3.0), (3.0, math.inf, 4.0))

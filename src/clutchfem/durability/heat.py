@@ -699,7 +699,7 @@ def build_heat_model(cm: ClutchMesh, thickness: float, material: ThermalMaterial
         edges = edges[~hot]
     H["edge"] = robin(edges, env.edge_htc, Ta)
     P = _cyclic_map(cm, basis)
-    scale = (cm.n_shoes_total / cm.n_shoes_model) if cm.sector_angle is not None else 1.0
+    scale = float(cm.sector_copies)
     return HeatModel(cm=cm, thickness=h, material=material, env=env, basis=basis, M=M, K=K, H=H,
                      P=P, scale=float(scale), timings={"assemble_s": time.perf_counter() - t0})
 
@@ -1244,7 +1244,7 @@ def render_png(cm: ClutchMesh, result: SlipHeatResult, path: str | Path, *, titl
     val = np.asarray(result.nodal_max_C)
     copies = 1
     if full_part and cm.sector_angle is not None:
-        copies = cm.n_shoes_total // max(cm.n_shoes_model, 1)
+        copies = cm.sector_copies
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.2))
     vmin, vmax = float(val.min()), float(val.max())
     for c in range(copies):

@@ -230,9 +230,7 @@ class LoadCase:
     @property
     def scale(self) -> float:
         """Totals of the whole clutch / totals of the model (sector and mid-plane symmetry)."""
-        cm = self.model.cm
-        s = cm.n_shoes_total / cm.n_shoes_model if cm.sector_angle else 1.0
-        return s * getattr(self.model, "symmetry_factor", 1.0)
+        return self.model.cm.sector_copies * getattr(self.model, "symmetry_factor", 1.0)
 
 
 def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:

@@ -97,7 +97,7 @@ class Design:
     def contact(self, mu: float | None = None) -> DrumContact | None:
         if self.nodes is None:
             return None
-        sectors = self.cm.n_shoes_total // self.cm.n_shoes_model if self.cm.sector_angle else 1
+        sectors = self.cm.sector_copies
         return DrumContact(self.nodes, self.op.mu if mu is None else mu, self.op.rotation, drum=self.drum,
                            sectors=sectors)
 
@@ -118,9 +118,7 @@ class Design:
 
     @property
     def scale(self) -> float:
-        cm = self.cm
-        s = cm.n_shoes_total / cm.n_shoes_model if cm.sector_angle else 1.0
-        return s * getattr(self.model, "symmetry_factor", 1.0)
+        return self.cm.sector_copies * getattr(self.model, "symmetry_factor", 1.0)
 
     def _check_user_drum(self) -> None:
         b = self.cm.mesh.boundaries or {}

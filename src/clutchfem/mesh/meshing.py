@@ -67,6 +67,12 @@ class ClutchMesh:
     cached: bool = False
 
     @property
+    def sector_copies(self) -> int:
+        """How many copies of the model make the whole part (n_shoes_total / n_shoes_model for
+        a one-sector model, 1 for a full part)."""
+        return self.n_shoes_total // max(self.n_shoes_model, 1) if self.sector_angle is not None else 1
+
+    @property
     def n_elements(self) -> int:
         return int(self.mesh.t.shape[1])
 

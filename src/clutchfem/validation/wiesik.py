@@ -68,7 +68,17 @@ import numpy as np
 from scipy import integrate
 from scipy.stats import norm
 
-from ..clutch import BaselineClutch, EngineCurve, RippleModel, cycle_time, speed
+from ..clutch import (
+    SEED_CHAIN_MASS,
+    SEED_J_B,
+    SEED_SPROCKET_PITCH_RADIUS,
+    BaselineClutch,
+    EngineCurve,
+    RippleModel,
+    cycle_time,
+    reduced_inertia,
+    speed,
+)
 from ..core import ParameterError, SolverError, rpm_to_rad_s
 from .records import ValidationRecord
 
@@ -110,7 +120,7 @@ class ChainModel:
     loop length = 2 L_bar + extra_in [in], extra_in = 12 in (56 drive links on a 15" bar).
     """
 
-    m_ref: float = 0.273
+    m_ref: float = SEED_CHAIN_MASS
     bar_ref_in: float = 15.0
     extra_in: float = 12.0
 
@@ -131,8 +141,8 @@ class DriveData:
     (delta_mean + 3 s); bar_in: guide-bar length [in]; chain: chain-mass model.
     """
 
-    J_b: float = 85.10e-6
-    r_k: float = 0.0212
+    J_b: float = SEED_J_B
+    r_k: float = SEED_SPROCKET_PITCH_RADIUS
     omega_sr: float = 950.0
     M_o: float = 3.20
     s_p: float = 0.51
@@ -154,14 +164,6 @@ class DriveData:
 
     def with_(self, **changes) -> "DriveData":
         return replace(self, **changes)
-
-
-def reduced_inertia(J_b: float, m_p: float, r_k: float) -> float:
-    """``J_b + m_p r_k^2`` [kg m^2]: drum, sprockets and chain reduced to the clutch axis."""
-    for name, v in (("J_b", J_b), ("m_p", m_p), ("r_k", r_k)):
-        if not (math.isfinite(v) and v >= 0.0):
-            raise ParameterError(name, v, "finite and >= 0")
-    return J_b + m_p * r_k**2
 
 
 def inertia_load(t, J: float, delta, omega_sr: float):
