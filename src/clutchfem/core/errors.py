@@ -18,15 +18,18 @@ class ParameterError(ClutchfemError, ValueError):
     """A parameter is outside its declared range or inconsistent with others.
 
     ``name`` is the parameter, ``value`` its value, ``allowed`` a human-readable statement of
-    what is allowed (range with units, or the relation it must satisfy).
+    what is allowed (range with units, or the relation it must satisfy); ``shown`` the value
+    as the message shows it (as the user typed it, or in the parameter's display unit, e.g.
+    ``19 mm``; default: ``repr(value)``).
     """
 
-    def __init__(self, name: str, value: Any, allowed: str, context: str | None = None):
+    def __init__(self, name: str, value: Any, allowed: str, context: str | None = None, shown: str | None = None):
         self.name = name
         self.value = value
         self.allowed = allowed
         self.context = context
-        msg = f"parameter '{name}' = {value!r} is not allowed: {allowed}"
+        self.shown = shown if shown is not None else repr(value)
+        msg = f"parameter '{name}' = {self.shown} is not allowed: {allowed}"
         if context:
             msg = f"{context}: {msg}"
         super().__init__(msg)

@@ -7,8 +7,10 @@ both raise :class:`~clutchfem.errors.ParameterError`, which names the parameter,
 and what is allowed, before any geometry kernel runs.
 
 Units: lengths in metres, angles in degrees (the unit designers read on drawings; converted
-to radians where used), counts dimensionless.  ``--set`` strings accept a unit suffix
-(``1.8mm``, ``300um``, ``0.0018m``, ``80deg``).
+to radians where used), counts dimensionless.  A numeric field takes a number in its unit or
+a string with a unit suffix of its dimension, from ``--set`` and from Python alike
+(``1.8mm``, ``300um``, ``0.0018m``, ``80deg``; :func:`clutchfem.core.units.parse_quantity`);
+messages show values in the field's display unit (mm, MPa).
 """
 
 from __future__ import annotations
@@ -20,13 +22,9 @@ from typing import Any, ClassVar, Literal, get_args, get_origin
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from .errors import ClutchfemError, ParameterError
+from .units import UnitError, expected_text, format_quantity, parse_quantity
 
-_SUFFIX = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "cm": 1e-2, "deg": 1.0, "Pa": 1.0,
-           "MPa": 1e6, "GPa": 1e9, "rpm": 1.0}
-#: the dimension of each suffix (and unit): a suffix is accepted only on a field of its dimension
-_DIMENSION = {"m": "length", "mm": "length", "um": "length", "µm": "length", "cm": "length",
-              "deg": "angle", "Pa": "stress", "MPa": "stress", "GPa": "stress", "rpm": "speed"}
-
+_NUMBER_START = re.compile(r"\s*[-+]?(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 def param(default: Any, unit: str, lo: float | None = None, hi: float | None = None,
           doc: str = "", symbol: str = "") -> Any:
@@ -41,9 +39,7 @@ def choice(default: str, doc: str = "", symbol: str = "") -> Any:
 
 
 def _fmt(x: float, unit: str) -> str:
-    if unit == "m":
-        return f"{x * 1e3:g} mm"
-    return f"{x:g} {unit}" if unit not in ("-", "") else f"{x:g}"
+    return format_quantity(x, unit, digits=6)
 
 
 class ParamSet(BaseModel):
@@ -54,6 +50,9 @@ class ParamSet(BaseModel):
     context: ClassVar[str] = ""
 
     def __init__(self, **values: Any):
+        for name, v in list(values.items()):
+            if isinstance(v, str) and name in type(self).model_fields and type(self)._numeric(name):
+                values[name] = type(self).parse_value(name, v)  # "2.4mm", "80deg", "200GPa"
         for name, v in values.items():  # pydantic's lax mode would read True as 1
             if isinstance(v, bool) and name in type(self).model_fields:
                 ann = type(self).model_fields[name].annotation
@@ -82,7 +81,15 @@ class ParamSet(BaseModel):
         value = values.get(name, err.get("input"))
         what = cls.model_fields[name].description if name in cls.model_fields else ""
         allowed = cls.allowed(name) + (f" ({what})" if what else "")
-        return ParameterError(name, value, allowed, cls.context or cls.__name__)
+        return ParameterError(name, value, allowed, cls.context or cls.__name__, shown=cls.shown(name, value))
+
+    @classmethod
+    def shown(cls, name: str, value: Any) -> str:
+        """``value`` of field ``name`` as a message shows it: a number in the field's display
+        unit (``19 mm``), anything else as typed."""
+        if name in cls.model_fields and isinstance(value, (int, float)) and not isinstance(value, bool):
+            return format_quantity(value, cls.unit(name))
+        return repr(value)
 
     @classmethod
     def allowed(cls, name: str) -> str:
@@ -111,7 +118,8 @@ class ParamSet(BaseModel):
         """Cross-parameter consistency rules; subclasses raise :meth:`fail`."""
 
     def fail(self, name: str, allowed: str) -> None:
-        raise ParameterError(name, getattr(self, name), allowed, self.context or type(self).__name__)
+        value = getattr(self, name)
+        raise ParameterError(name, value, allowed, self.context or type(self).__name__, shown=self.shown(name, value))
 
     # -- introspection ------------------------------------------------------------------
     @classmethod
@@ -153,37 +161,32 @@ class ParamSet(BaseModel):
             if name in out:
                 raise ParameterError(name, raw, f"one value (it is given twice: also {name}="
                                      f"{out[name]!r})", cls.context or cls.__name__)
-            out[name] = cls._parse_value(name, raw)
+            out[name] = cls.parse_value(name, raw)
         return out
 
     @classmethod
-    def _parse_value(cls, name: str, raw: str) -> Any:
-        """A ``--set`` / CLI string to the field's type; numbers may carry a unit suffix of
-        the field's own dimension (``1.8mm`` for a length, ``80deg`` for an angle, ``8000rpm``
-        for a speed); any other suffix is refused, naming the unit expected."""
+    def _numeric(cls, name: str) -> bool:
         ann = cls.model_fields[name].annotation
         args = [a for a in get_args(ann) if a is not type(None)]
-        numeric = ann in (int, float) or (args and all(a in (int, float) for a in args))
-        if get_origin(ann) is Literal or not numeric:
+        return ann in (int, float) or bool(args and all(a in (int, float) for a in args))
+
+    @classmethod
+    def parse_value(cls, name: str, raw: str) -> Any:
+        """A ``--set`` / CLI / API string to the field's type; numbers may carry a unit suffix of
+        the field's own dimension (``1.8mm`` for a length, ``80deg`` for an angle, ``8000rpm``
+        for a speed: :func:`~clutchfem.core.units.parse_quantity`); any other suffix is
+        refused, naming the unit expected."""
+        ann = cls.model_fields[name].annotation
+        if get_origin(ann) is Literal or not cls._numeric(name):
             return raw
         ctx = cls.context or cls.__name__
-        m = re.fullmatch(r"\s*([-+0-9.eE]+|[-+]?inf|nan)\s*([a-zA-Zµ/^0-9]*)\s*", raw, flags=re.IGNORECASE)
-        if not m:
-            raise ParameterError(name, raw, cls.allowed(name), ctx)
-        number, suffix = m.groups()
-        try:
-            value = float(number)
-        except ValueError:
-            raise ParameterError(name, raw, cls.allowed(name), ctx) from None
         unit = cls.unit(name)
-        if suffix:
-            if suffix not in _SUFFIX or _DIMENSION.get(suffix) != _DIMENSION.get(unit, unit):
-                expected = {"m": "a length in m (suffix m, mm, um or cm)", "deg": "an angle in deg (suffix deg)",
-                            "rpm": "a speed in rpm (suffix rpm)", "Pa": "a stress in Pa (suffix Pa, MPa or GPa)"}.get(
-                    unit, f"a plain number in {unit} (no unit suffix)" if unit not in ("-", "")
-                    else "a plain number (dimensionless: no unit suffix)")
-                raise ParameterError(name, raw, expected, ctx)
-            value *= _SUFFIX[suffix]
+        try:
+            value = parse_quantity(raw, unit)
+        except UnitError:
+            if not _NUMBER_START.match(str(raw)):  # not a number at all
+                raise ParameterError(name, raw, cls.allowed(name), ctx) from None
+            raise ParameterError(name, raw, expected_text(unit), ctx) from None
         if ann is int:
             if not math.isfinite(value) or value != int(value):
                 raise ParameterError(name, raw, cls.allowed(name), ctx)
@@ -191,6 +194,8 @@ class ParamSet(BaseModel):
         if not math.isfinite(value):
             raise ParameterError(name, raw, cls.allowed(name), ctx)
         return value
+
+    _parse_value = parse_value
 
     @classmethod
     def from_assignments(cls, assignments: list[str] | tuple[str, ...] = ()):
