@@ -1,3 +1,93 @@
-"""clutchfem: FEM toolkit for one-piece compliant centrifugal clutches."""
+"""clutchfem: FEM toolkit for one-piece compliant centrifugal clutches.
 
-__version__ = "0.1.0"
+The public API, imported lazily (``import clutchfem`` loads no numerical library; a name is
+imported on first use)::
+
+    import clutchfem as cf
+
+    d = cf.Design.from_concept("concept1", flexure_thickness="2.4mm")   # mesh + FE model
+    r = d.sweep("0:14000:250")                  # a speed sweep: cf.SweepResult
+    a = cf.analyze(d)                           # every answer with its error: cf.Analysis
+    print(a.engagement_rpm, a.slip_rpm)
+
+Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``),
+:class:`OperatingPoint`, :class:`Material`, :class:`MeshSettings`.  Answers:
+:func:`analyze`, :class:`Analysis`, :class:`SweepResult`, :class:`EngineCurve`,
+:class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
+:func:`run_study`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
+:func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
+:func:`report`.  Checks: :func:`validate`.  Errors: :class:`ClutchfemError` and its kinds.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+__version__ = "0.2.0"
+
+#: public name -> (module it lives in, its name there)
+_API: dict[str, tuple[str, str]] = {
+    "concepts": ("clutchfem.geometry", "concepts"),
+    "get_concept": ("clutchfem.geometry", "get_concept"),
+    "MeshSettings": ("clutchfem.geometry", "MeshSettings"),
+    "Design": ("clutchfem.loadcase", "Design"),
+    "OperatingPoint": ("clutchfem.loadcase", "OperatingPoint"),
+    "SweepResult": ("clutchfem.loadcase", "SweepResult"),
+    "Material": ("clutchfem.core", "Material"),
+    "get_material": ("clutchfem.core", "get_material"),
+    "EngineCurve": ("clutchfem.clutch", "EngineCurve"),
+    "Requirements": ("clutchfem.analysis", "Requirements"),
+    "Analysis": ("clutchfem.analysis", "Analysis"),
+    "analyze": ("clutchfem.analysis", "analyze"),
+    "StudySpec": ("clutchfem.studies", "StudySpec"),
+    "load_study": ("clutchfem.studies", "load_spec"),
+    "run_study": ("clutchfem.studies", "run_study"),
+    "guidelines": ("clutchfem.studies", "run_guidelines"),
+    "Targets": ("clutchfem.studies", "Targets"),
+    "optimize": ("clutchfem.studies", "optimize"),
+    "tolerance": ("clutchfem.studies", "tolerance"),
+    "compensate": ("clutchfem.studies", "compensate"),
+    "SlipScenario": ("clutchfem.durability", "SlipScenario"),
+    "slip_heat": ("clutchfem.durability", "slip_heat"),
+    "report": ("clutchfem.report", "design_report"),
+    "validate": ("clutchfem.validation", "validate"),
+    "ClutchfemError": ("clutchfem.core", "ClutchfemError"),
+    "ParameterError": ("clutchfem.core", "ParameterError"),
+    "InputError": ("clutchfem.core", "InputError"),
+    "GeometryError": ("clutchfem.core", "GeometryError"),
+    "MeshError": ("clutchfem.core", "MeshError"),
+    "SolverError": ("clutchfem.core", "SolverError"),
+}
+
+__all__ = ["__version__", *_API]
+
+
+def __getattr__(name: str) -> Any:
+    """Import a public name on first use (PEP 562) and keep it."""
+    try:
+        module, attr = _API[name]
+    except KeyError:
+        raise AttributeError(f"module 'clutchfem' has no attribute {name!r}") from None
+    value = getattr(importlib.import_module(module), attr)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_API))
+
+
+if TYPE_CHECKING:  # the same names for type checkers and IDEs
+    from .analysis import Analysis, Requirements, analyze
+    from .clutch import EngineCurve
+    from .core import (ClutchfemError, GeometryError, InputError, Material, MeshError, ParameterError, SolverError,
+                       get_material)
+    from .durability import SlipScenario, slip_heat
+    from .geometry import MeshSettings, concepts, get_concept
+    from .loadcase import Design, OperatingPoint, SweepResult
+    from .report import design_report as report
+    from .studies import StudySpec, Targets, compensate, optimize, run_study, tolerance
+    from .studies import load_spec as load_study
+    from .studies import run_guidelines as guidelines
+    from .validation import validate
