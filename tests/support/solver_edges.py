@@ -125,7 +125,7 @@ def sliver_elements(tmp: Path) -> list[Outcome]:
                 q = _min_angle_deg(p[:, :nv], m.t)
                 o.inputs += f" (smallest angle {q:.2g} deg)"
                 mesh2 = mesh2.with_boundaries({k: v for k, v in (m.boundaries or {}).items()})
-                from clutchfem.mesh.meshing import _check_orientation
+                from clutchfem.mesh.generate import _check_orientation
                 _check_orientation(mesh2, "sliver mesh")
                 from dataclasses import replace
                 cm = replace(cm, mesh=mesh2)

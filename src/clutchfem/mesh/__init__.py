@@ -2,6 +2,6 @@
 cache, user ``.msh``/STEP import.
 """
 
-from .meshing import ClutchMesh, groups_msh_path, load_user_geometry, mesh_concept, source_hash
+from .generate import ClutchMesh, groups_msh_path, load_user_geometry, mesh_concept, source_hash
 
 __all__ = ["ClutchMesh", "groups_msh_path", "load_user_geometry", "mesh_concept", "source_hash"]

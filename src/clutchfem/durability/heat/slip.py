@@ -153,9 +153,9 @@ from scipy.special import erfc
 from skfem import Basis, BilinearForm, ElementTriP2, FacetBasis, LinearForm, asm
 from skfem.helpers import dot, grad
 
-from ..core import InputError, MeshError, ParameterError, ParamSet, choice, param
-from ..fe import factorize
-from ..mesh import ClutchMesh
+from ...core import InputError, MeshError, ParameterError, ParamSet, choice, param
+from ...fe import factorize
+from ...mesh import ClutchMesh
 
 __all__ = [
     "ThermalMaterial", "DrumThermal", "ThermalEnvironment", "SlipScenario", "SlipHeatLoad",
@@ -980,7 +980,7 @@ def _zone_of_node(cm: ClutchMesh, basis: Basis, node: int) -> str:
 def _describe(cm: ClutchMesh, basis: Basis, node: int) -> str:
     """Zone, position and boundary of a P2 node (:func:`clutchfem.durability.fatigue.name_location`
     with an element of the node's zone that holds it)."""
-    from .fatigue import name_location
+    from ..fatigue import name_location
 
     elems = np.nonzero((basis.element_dofs == node).any(axis=0))[0]
     zone = _zone_of_node(cm, basis, node)

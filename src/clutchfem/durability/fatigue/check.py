@@ -95,9 +95,9 @@ from typing import ClassVar, Literal
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..core import InputError, ParameterError, ParamSet, choice, param
-from ..fe import von_mises
-from ..mesh import ClutchMesh
+from ...core import InputError, ParameterError, ParamSet, choice, param
+from ...fe import von_mises
+from ...mesh import ClutchMesh
 
 __all__ = [
     "FatigueParams", "LoadCycle", "FatigueResult", "Location", "amplitude_mean",
