@@ -1,7 +1,16 @@
 """Meshing stage: gmsh model -> curved P2 ``ClutchMesh`` with named groups, the on-disk mesh
 cache, user ``.msh``/STEP import.
+
+* :mod:`.clutch_mesh` -- :class:`ClutchMesh`, the meshed part and its named groups;
+* :mod:`.convert` -- meshio -> scikit-fem ``MeshTri2``, the element orientation check;
+* :mod:`.generate` -- a concept meshed by gmsh, the on-disk cache and its keys, the size estimate;
+* :mod:`.user` -- a user's ``.msh`` or STEP file.
 """
 
-from .generate import ClutchMesh, groups_msh_path, load_user_geometry, mesh_concept, source_hash
+from .clutch_mesh import ClutchMesh
+from .convert import check_orientation, meshio_to_skfem, read_msh
+from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
+from .user import load_user_geometry
 
-__all__ = ["ClutchMesh", "groups_msh_path", "load_user_geometry", "mesh_concept", "source_hash"]
+__all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "estimate_elements",
+           "groups_msh_path", "load_user_geometry", "mesh_concept", "meshio_to_skfem", "read_msh", "source_hash"]
