@@ -4,13 +4,16 @@ cache, user ``.msh``/STEP import.
 * :mod:`.clutch_mesh` -- :class:`ClutchMesh`, the meshed part and its named groups;
 * :mod:`.convert` -- meshio -> scikit-fem ``MeshTri2``, the element orientation check;
 * :mod:`.generate` -- a concept meshed by gmsh, the on-disk cache and its keys, the size estimate;
-* :mod:`.user` -- a user's ``.msh`` or STEP file.
+* :mod:`.user` -- a user's ``.msh`` or STEP file;
+* :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model.
 """
 
 from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
+from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
 from .user import load_user_geometry
 
-__all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "estimate_elements",
+__all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
+           "estimate_elements",
            "groups_msh_path", "load_user_geometry", "mesh_concept", "meshio_to_skfem", "read_msh", "source_hash"]
