@@ -76,7 +76,7 @@ import scipy.sparse as sp
 from skfem import Basis, BilinearForm, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet1, MeshTet2, asm
 
 from ..core import Material, MeshError, ParamSet, SolverError, param
-from ..mesh import ClutchMesh, cyclic_pairing
+from ..mesh import ClutchMesh, cyclic_pairing, facet_lookup
 from .model import ConstrainedOperators
 from .stress import VertexStress3D, von_mises
 
@@ -187,7 +187,7 @@ def extrude(cm: ClutchMesh, thickness: float | None = None,
     la, lb = e[0] // nv, e[1] // nv
     mid = m3.doflocs.copy()
     inplane = va != vb
-    fkey = {(int(p), int(q)): f for f, (p, q) in enumerate(np.sort(m2.facets, axis=0).T)}
+    fkey = facet_lookup(m2)
     f2 = np.array([fkey[(min(p, q), max(p, q))] for p, q in zip(va[inplane], vb[inplane])],
                   dtype=np.int64)
     cols = nv3 + np.nonzero(inplane)[0]

@@ -17,6 +17,7 @@ from .topology import (
                        element_components,
                        element_set_area,
                        element_set_perimeter,
+                       facet_lookup,
                        facet_nodes,
                        is_quadratic,
                        p2_basis,
@@ -27,5 +28,5 @@ from .user import load_user_geometry
 
 __all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
            "element_components", "element_set_area", "element_set_perimeter", "estimate_elements",
-           "facet_nodes", "groups_msh_path", "is_quadratic", "load_user_geometry", "mesh_concept",
+           "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic", "load_user_geometry", "mesh_concept",
            "meshio_to_skfem", "p2_basis", "p2_cells", "p2_nodes", "read_msh", "source_hash"]

@@ -18,6 +18,7 @@ import numpy as np
 from skfem import Basis, ElementTriP0, MeshTri1, MeshTri2
 
 from ..core import MeshError
+from .topology import facet_lookup
 
 
 def read_msh(path: Path) -> meshio.Mesh:
@@ -29,11 +30,6 @@ def read_msh(path: Path) -> meshio.Mesh:
     if buf.getvalue().strip():
         warnings.warn(f"meshio ({path}): {buf.getvalue().strip()}", stacklevel=2)
     return m
-
-
-def _facet_lookup(mesh) -> dict[tuple[int, int], int]:
-    f = np.sort(mesh.facets, axis=0)
-    return {(int(a), int(b)): k for k, (a, b) in enumerate(f.T)}
 
 
 def meshio_to_skfem(m: meshio.Mesh, curve_groups: dict[str, set[int]],
@@ -90,7 +86,7 @@ def meshio_to_skfem(m: meshio.Mesh, curve_groups: dict[str, set[int]],
                 raw = np.where(line_map[pos] == raw, pos, -1)
             ends = np.where(raw >= 0, np.searchsorted(uniq, raw), -1)
             lab = np.concatenate([lv for _, lv in line_blocks])
-            lookup = _facet_lookup(mesh)
+            lookup = facet_lookup(mesh)
             facet = np.array([lookup.get((min(a, b), max(a, b)), -1) for a, b in ends], dtype=np.int64)
             for name, labs in curve_groups.items():
                 sel = np.isin(lab, list(labs))

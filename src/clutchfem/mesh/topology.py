@@ -1,5 +1,6 @@
 """Topology of a quadratic triangle mesh that several stages share: its P2 nodes, the nodes
-of every facet, the triangle6 cells, connected element sets, their area and perimeter.
+of every facet, the facet of a vertex pair, the triangle6 cells, connected element sets,
+their area and perimeter.
 
 Node numbering: the scalar P2 nodes of scikit-fem's ``ElementTriP2`` on a ``MeshTri2`` --
 the mesh vertices first (their own numbers), then one mid-edge node per facet
@@ -18,6 +19,12 @@ from skfem import Basis, ElementTriP2, MeshTri2
 
 #: P2 bases of the last meshes asked for (a mesh is immutable: its basis is built once)
 _P2_BASES: dict[int, tuple] = {}
+
+
+def facet_lookup(mesh) -> dict[tuple[int, int], int]:
+    """Facet number of every edge, keyed by its two vertex numbers (lower first)."""
+    f = np.sort(mesh.facets, axis=0)
+    return {(int(a), int(b)): k for k, (a, b) in enumerate(f.T)}
 
 
 def p2_basis(mesh: MeshTri2) -> Basis:
