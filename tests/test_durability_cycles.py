@@ -28,7 +28,8 @@ from clutchfem.durability import (
     single_cycle_factor,
 )
 from clutchfem.durability.cycles import longest_chord, reverse_capacity
-from clutchfem.durability.fatigue import _load_factor, von_mises
+from clutchfem.durability.fatigue.check import _load_factor
+from clutchfem.fe import von_mises
 from clutchfem.geometry import MeshSettings
 from clutchfem.loadcase import Design, LoadCase, OperatingPoint
 from support.shapes import load_annulus

@@ -378,12 +378,12 @@ def test_p2_nodes_of_a_quadratic_mesh_are_the_p2_basis_nodes():
     the same positions and facet node ids as scikit-fem's P2 basis."""
     from skfem import Basis, ElementTriP2
 
-    from clutchfem.durability import fatigue as fa
     from clutchfem.geometry import MeshSettings
     from clutchfem.loadcase import Design
+    from clutchfem.mesh import facet_nodes, is_quadratic, p2_nodes
 
     cm = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2.5e-3)).cm
     b = Basis(cm.mesh, ElementTriP2(), intorder=1)
-    assert fa._quadratic(cm)
-    np.testing.assert_array_equal(fa._p2_nodes(cm), b.doflocs)
-    np.testing.assert_array_equal(fa._facet_nodes(cm), np.vstack([cm.mesh.facets, b.facet_dofs[0]]))
+    assert is_quadratic(cm.mesh)
+    np.testing.assert_array_equal(p2_nodes(cm.mesh), b.doflocs)
+    np.testing.assert_array_equal(facet_nodes(cm.mesh), np.vstack([cm.mesh.facets, b.facet_dofs[0]]))

@@ -198,7 +198,7 @@ def test_corrupted_mesh_cache_is_rebuilt_with_a_warning():
     c = get_concept("concept1")
     p = c.params(flexure_thickness=2.1e-3)
     cm = mesh_concept(c, p, COARSE)
-    from clutchfem.mesh.meshing import cache_dir
+    from clutchfem.mesh import cache_dir
 
     (f,) = [x for x in cache_dir().glob("concept1-*.msh") if not x.name.endswith(".groups.msh")
             and x.stat().st_mtime >= cm.msh_path.stat().st_mtime and x == cm.msh_path]

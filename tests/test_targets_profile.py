@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from clutchfem.core import ParameterError
 from clutchfem.geometry import TABLE_FIELDS, TABLE_N, MeshSettings, get_concept
 from clutchfem.loadcase import Design
-from clutchfem.mesh.meshing import cache_key
+from clutchfem.mesh import cache_key
 from clutchfem.studies import values as V
 
 COARSE = MeshSettings(size=2.4e-3)

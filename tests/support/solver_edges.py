@@ -125,8 +125,8 @@ def sliver_elements(tmp: Path) -> list[Outcome]:
                 q = _min_angle_deg(p[:, :nv], m.t)
                 o.inputs += f" (smallest angle {q:.2g} deg)"
                 mesh2 = mesh2.with_boundaries({k: v for k, v in (m.boundaries or {}).items()})
-                from clutchfem.mesh.meshing import _check_orientation
-                _check_orientation(mesh2, "sliver mesh")
+                from clutchfem.mesh import check_orientation
+                check_orientation(mesh2, "sliver mesh")
                 from dataclasses import replace
                 cm = replace(cm, mesh=mesh2)
             d = Design(cm, OperatingPoint(drum_radius=b + c_gap, mu=0.3))

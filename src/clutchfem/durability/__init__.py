@@ -5,10 +5,12 @@
   shoe/drum heat partition, repeated slip events with cooling pauses, .vtu and PNG output.
 * :mod:`clutchfem.durability.fatigue` -- stress amplitude and mean from the extreme states
   of load cycles, Haigh (Goodman/Gerber) check with a Marin-corrected endurance limit,
-  Basquin S-N curve with its knee, Miner's sum over cycle types, and the location of the
-  worst point named from the mesh zones.
+  Basquin S-N curve with its knee, Miner's sum over cycle types.
+* :mod:`clutchfem.durability.cycles` -- the service load cycles built from solved FE states.
+* :mod:`clutchfem.durability.location` -- the name of a place in the clutch (zone, flexure
+  end, boundary): the worst fatigue point, the hottest points.
 
-Both modules take plain arrays (contact forces, stress states) and a
+Heat and fatigue take plain arrays (contact forces, stress states) and a
 :class:`~clutchfem.mesh.ClutchMesh`; they never run the elastic FE solver themselves.
 """
 

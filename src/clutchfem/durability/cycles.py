@@ -2,7 +2,7 @@
 factorisation, only linear combinations of contact states the design's load cases solve.
 
 Three kinds of stress cycle act on a compliant one-piece clutch (points = the raw element
-vertex stresses of the elastic model, :class:`clutchfem.stress.VertexStress`):
+vertex stresses of the elastic model, :class:`clutchfem.fe.VertexStress`):
 
 1. **Start-stop** (one per start of the saw): from rest (zero stress) to the farthest state
    the part reaches in that start and back.  Candidates: the state at the engine's maximum

@@ -3,7 +3,7 @@ one factorisation), stress recovery with the one von Mises, sparse direct solver
 ``.vtu`` field output."""
 
 from .geometric import Kinematics, geometric_stiffness
-from .linsolve import COUNTS, Solver, available, factorize
+from .linsolve import COUNTS, Solver, available, factorize, one_blas_thread
 from .model import ConstrainedOperators, FEModel, constraint_map, contact_weights
 from .model3d import (
                       ExtrudedMesh,
@@ -23,4 +23,4 @@ __all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings"
            "Kinematics", "geometric_stiffness",
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",
            "constraint_map", "contact_area_weights", "contact_weights", "extrude", "factorize",
-           "geometric_stiffness_3d", "lame_3d", "von_mises", "write_vtk"]
+           "geometric_stiffness_3d", "lame_3d", "one_blas_thread", "von_mises", "write_vtk"]

@@ -16,6 +16,7 @@ choice are in BENCHMARKS.md (benchmarks/bench_solvers.py).
 
 from __future__ import annotations
 
+import contextlib
 import os
 from collections import Counter
 from typing import Any, Callable, Union
@@ -44,7 +45,7 @@ class _SuperLU:
             return self._lu.solve(B)
         # multi-column triangular solves: blocks of 16 columns, one BLAS thread (multi-threaded
         # OpenBLAS gains nothing here and is up to 90x slower when the cores are shared)
-        with _one_blas_thread():
+        with one_blas_thread():
             return np.hstack([self._lu.solve(np.asfortranarray(B[:, j:j + _BLOCK]))
                               for j in range(0, B.shape[1], _BLOCK)])
 
@@ -52,12 +53,14 @@ class _SuperLU:
 _BLOCK = 16
 
 
-def _one_blas_thread():
+def one_blas_thread():
+    """Context: one BLAS thread inside (threadpoolctl), or nothing if it is not installed.
+    Loops of many small dense products or triangular solves (multi-column solves here, the
+    heat model's time steps) gain nothing from threaded BLAS and are up to ~1000x slower when
+    the cores are shared (measured on a 2-core machine)."""
     try:
         from threadpoolctl import threadpool_limits
     except ImportError:  # optional: without it the default BLAS threading applies
-        import contextlib
-
         return contextlib.nullcontext()
     return threadpool_limits(1, user_api="blas")
 

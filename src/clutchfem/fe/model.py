@@ -8,7 +8,7 @@ multiplied by h):
 * ``K``  stiffness.  *Plane stress* (thin plate, s_zz = 0): Lame pair (lambda*, mu) =
   (E nu / (1 - nu^2), E / (2 (1 + nu))).  *Plane strain* (long prism, e_zz = 0): (lambda, mu)
   = (E nu / ((1 + nu)(1 - 2 nu)), E / (2 (1 + nu))) and s_zz = nu (s_xx + s_yy).  Both are
-  computed in :class:`~clutchfem.materials.Material` (skfem's ``plane_stress`` helper changed
+  computed in :class:`~clutchfem.core.Material` (skfem's ``plane_stress`` helper changed
   meaning between releases).  The true 11 mm plate with 1.75 mm flexures lies between them;
   the model-form error is measured in BENCHMARKS.md;
 * ``M``  in-plane mass rho h int u.v: the *spin-softening* operator, because the centrifugal
@@ -19,7 +19,7 @@ multiplied by h):
 Constraints: the bore is clamped (u = 0); a one-sector model of n identical shoes gets the
 cyclic (rotated periodic) constraint u(cut_b) = R(2 pi/n) u(cut_a).  Both are applied by a
 sparse map ``T`` from independent dofs to all dofs, u = T a; the reduced stiffness T' K T is
-factorised once, on first use, by the injected sparse solver (:mod:`clutchfem.linsolve`).
+factorised once, on first use, by the injected sparse solver (:mod:`clutchfem.fe.linsolve`).
 """
 
 from __future__ import annotations
@@ -31,12 +31,11 @@ from typing import Literal
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.spatial import cKDTree
 from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm
 from skfem.helpers import ddot, dot, sym_grad, trace
 
 from ..core import Material, MeshError, ParameterError, SolverError
-from ..mesh import ClutchMesh
+from ..mesh import ClutchMesh, cyclic_pairing
 from .linsolve import COUNTS, Solver, factorize
 from .stress import VertexStress, von_mises
 
@@ -45,7 +44,7 @@ FORMULATIONS: tuple[str, ...] = ("plane-stress", "plane-strain")
 
 
 class ConstrainedOperators:
-    """What every FE model (2-D :class:`FEModel`, 3-D :class:`clutchfem.fem3d.FEModel3D`)
+    """What every FE model (2-D :class:`FEModel`, 3-D :class:`clutchfem.fe.FEModel3D`)
     derives the same way from its ``K``, ``M``, ``f1``, constraint map ``T``, ``basis`` and
     injected ``solver``: the reduced operators, the one factorisation, solves and u1."""
 
@@ -86,7 +85,7 @@ class FEModel(ConstrainedOperators):
     """Assembled operators of one meshed part, material, thickness and formulation.
 
     ``solver``: the sparse direct solver back-end (a name or a factory ``A -> .solve(B)``;
-    None: the default of :func:`clutchfem.linsolve.factorize`).  Built once per design; the
+    None: the default of :func:`clutchfem.fe.factorize`).  Built once per design; the
     factorisation of T' K T happens on the first :meth:`solve`.
     """
 
@@ -177,7 +176,7 @@ class FEModel(ConstrainedOperators):
     def stress_at_vertices(self, u: np.ndarray) -> np.ndarray:
         """Raw stresses (sxx, syy, sxy) [Pa] at each element's three vertices from
         scikit-fem's own interpolation: array (3, nelem, 3).  The reference for the fast
-        :class:`~clutchfem.stress.VertexStress` (which must equal it to round-off)."""
+        :class:`~clutchfem.fe.VertexStress` (which must equal it to round-off)."""
         g = self._vertex_basis.interpolate(u).grad  # (2, 2, nelem, 3)
         lam, mu = self.lame
         exx, eyy = g[0, 0], g[1, 1]
@@ -208,14 +207,9 @@ def constraint_map(cm: ClutchMesh, basis: Basis) -> sp.csr_matrix:
         bx = np.concatenate([db.nodal["u^1"], db.facet["u^1"]])
         by = np.concatenate([db.nodal["u^2"], db.facet["u^2"]])
         c, s = math.cos(cm.sector_angle), math.sin(cm.sector_angle)
-        xa = basis.doflocs[:, ax]
-        xb = basis.doflocs[:, bx]
-        rot = np.array([[c, -s], [s, c]]) @ xa
-        dist, idx = cKDTree(xb.T).query(rot.T)
-        scale = float(np.max(np.abs(basis.doflocs)))
-        if len(ax) != len(bx) or dist.max() > 1e-8 * scale:
-            raise MeshError(f"{cm.source}: the sector cut lines do not have matching nodes "
-                            f"(worst mismatch {dist.max():.3g} m)")
+        idx = cyclic_pairing(basis.doflocs[:, ax], basis.doflocs[:, bx], cm.sector_angle,
+                             scale=float(np.max(np.abs(basis.doflocs))),
+                             what=f"{cm.source}: the sector cut lines")
         master_x, master_y = ax, ay
         slave_x, slave_y = bx[idx], by[idx]
         # a pair where either side is clamped is clamped on both sides

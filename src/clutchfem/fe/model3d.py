@@ -49,8 +49,8 @@ saving, measured on concept 4 (2 layers in the half, 4 in the full thickness, sa
 55725 vs 100305 unknowns, factorisation 1.6 s vs 6.7 s (CHOLMOD), assembly 2.0 s vs 4.1 s,
 and the same centrifugal compliance to 2e-11 (``tests/test_fem3d.py`` checks the fields).
 
-Operators (the 3-D twins of :mod:`clutchfem.fem`)
-------------------------------------------------
+Operators (the 3-D twins of :mod:`clutchfem.fe.model`)
+------------------------------------------------------
 * ``K``  isotropic stiffness, lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu));
 * ``M``  in-plane mass rho int (u_x v_x + u_y v_y): the spin-softening operator
   (the centrifugal load rho w^2 (x + u)_perp has no axial part);
@@ -67,17 +67,16 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import ClassVar
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.spatial import cKDTree
 from skfem import Basis, BilinearForm, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet1, MeshTet2, asm
 
 from ..core import Material, MeshError, ParamSet, SolverError, param
-from ..mesh import ClutchMesh
+from ..mesh import ClutchMesh, cyclic_pairing, facet_lookup
 from .model import ConstrainedOperators
 from .stress import VertexStress3D, von_mises
 
@@ -188,14 +187,12 @@ def extrude(cm: ClutchMesh, thickness: float | None = None,
     la, lb = e[0] // nv, e[1] // nv
     mid = m3.doflocs.copy()
     inplane = va != vb
-    fkey = {(int(p), int(q)): f for f, (p, q) in enumerate(np.sort(m2.facets, axis=0).T)}
+    fkey = facet_lookup(m2)
     f2 = np.array([fkey[(min(p, q), max(p, q))] for p, q in zip(va[inplane], vb[inplane])],
                   dtype=np.int64)
     cols = nv3 + np.nonzero(inplane)[0]
     mid[:2, cols] = x2[:, nv + f2]
     mid[2, cols] = 0.5 * (z[la[inplane]] + z[lb[inplane]])
-    from dataclasses import replace
-
     m3 = replace(m3, doflocs=mid)
     # boundaries: side faces over 2-D boundary groups; top/bottom/mid faces by level
     bf = m3.boundary_facets()
@@ -242,7 +239,7 @@ def lame_3d(material: Material) -> tuple[float, float]:
 
 class FEModel3D(ConstrainedOperators):
     """Assembled 3-D operators of one extruded part (module docstring).  The same interface
-    as the 2-D :class:`clutchfem.fem.FEModel` (``cm, material, thickness, formulation,
+    as the 2-D :class:`clutchfem.fe.FEModel` (``cm, material, thickness, formulation,
     basis, K, f1, T, M, Kr, Mr, factor, solve, u1, stress, ndofs, timings``), so the contact,
     friction, spin-softening and sweep machinery runs on it unchanged; plus ``em`` (the
     extruded mesh) and ``symmetry_factor`` (totals / model); its contact nodes come from
@@ -417,13 +414,9 @@ def constraint_map_3d(em: ExtrudedMesh, basis: Basis,
         ax, ay, az = component_dofs(basis, em.boundary("cut_a"))
         bx, by, bz = component_dofs(basis, em.boundary("cut_b"))
         c, s = math.cos(em.sector_angle), math.sin(em.sector_angle)
-        xa, xb = basis.doflocs[:, ax], basis.doflocs[:, bx]
-        rot = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ xa
-        dist, idx = cKDTree(xb.T).query(rot.T)
-        scale = float(np.max(np.abs(basis.doflocs)))
-        if len(ax) != len(bx) or dist.max() > 1e-8 * scale:
-            raise MeshError(f"{em.cm.source}: the extruded sector cut faces do not have matching "
-                            f"nodes (worst mismatch {dist.max():.3g} m)")
+        idx = cyclic_pairing(basis.doflocs[:, ax], basis.doflocs[:, bx], em.sector_angle,
+                             scale=float(np.max(np.abs(basis.doflocs))),
+                             what=f"{em.cm.source}: the extruded sector cut faces")
         bx, by, bz = bx[idx], by[idx], bz[idx]
         isf = np.zeros(N, dtype=bool)
         isf[fixed] = True

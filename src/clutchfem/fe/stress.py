@@ -91,7 +91,7 @@ class VertexStress:
 
 
 class VertexStress3D:
-    """Raw stress recovery of a 3-D model: the 3-D twin of :class:`clutchfem.stress.VertexStress`
+    """Raw stress recovery of a 3-D model: the 3-D twin of :class:`clutchfem.fe.VertexStress`
     (``__call__(U)`` -> (6, npts[, ncols]) Voigt xx, yy, zz, yz, xz, xy; ``von_mises``;
     ``points`` (3, npts)).  The gradients of the 10 scalar P2 shape functions at each
     tetrahedron's 4 vertices are computed once through the curved map."""

@@ -1,6 +1,6 @@
 """Field output: .vtu files (meshio) that open in ParaView, and off-screen PNG renders.
 
-Written from a :class:`~clutchfem.results.SweepResult`'s stored states (no solving again):
+Written from a :class:`~clutchfem.loadcase.SweepResult`'s stored states (no solving again):
 displacement, stresses and von Mises on the quadratic triangle6 mesh, and the contact
 pressure at the contact nodes.
 """
@@ -12,17 +12,11 @@ from pathlib import Path
 import meshio
 import numpy as np
 
+from ..core import InputError
+from ..mesh import p2_cells
+
 #: deformation scale of the PNG renders (the .vtu holds the true displacement)
 RENDER_SCALE = 5.0
-
-
-def _p2_cells(fe_basis) -> tuple[np.ndarray, np.ndarray]:
-    """(points (n, 3), cells (ne, 6)) of the quadratic triangle mesh: every P2 node once, in
-    VTK's triangle6 order (3 corners, then mid-edges 01, 12, 20: scikit-fem's order too)."""
-    ed = fe_basis.element_dofs  # (12, ne); vector dof = 2 * node + component
-    cells = (ed[0::2] // 2).T
-    xy = fe_basis.doflocs[:, 0::2]
-    return np.column_stack([xy.T, np.zeros(xy.shape[1])]), cells
 
 
 def _p2_nodal_stress(stress, u: np.ndarray, cells: np.ndarray, n: int) -> np.ndarray:
@@ -49,13 +43,11 @@ def write_vtk(res, rpms, out: Path, render: bool = True) -> list[Path]:
     :data:`RENDER_SCALE` beside each file."""
     f_ = res.fields
     if f_.fe_basis.mesh.dim() != 2:
-        from ..core import InputError
-
         raise InputError("VTK output is written for the 2-D formulations only (the 3-D model's fields are "
                          "not exported yet): drop --vtk or use --formulation plane-stress/plane-strain")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    pts, cells = _p2_cells(f_.fe_basis)
+    pts, cells = p2_cells(f_.fe_basis.mesh)
     n = len(pts)
     files = []
     for rpm in rpms:

@@ -1,0 +1,66 @@
+"""The meshed part: :class:`ClutchMesh`, a scikit-fem ``MeshTri2`` with its named groups and
+what the FE stages need to know about it (sector, drum radius, thickness, gmsh data).
+
+Conventions: metres, the part in the x-y plane, the rotation axis through the origin.  A
+one-sector model of ``n_shoes_total`` identical shoes carries the boundary groups
+``cut_a``/``cut_b``, cut_b being cut_a rotated by +``sector_angle`` about z.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from skfem import MeshTri2
+
+from ..core import MeshError
+
+
+@dataclass
+class ClutchMesh:
+    """A meshed clutch (or any 2-D part) ready for the FE model.
+
+    ``mesh`` carries boundaries ``bore``, ``contact``, ``contact_<i>`` and, for a sector,
+    ``cut_a``/``cut_b``; subdomains ``solid``, ``shoe_<i>``, ``flexure_<i>``, ``hub``
+    where known.  ``sector_angle`` (rad) is set for a one-sector model of ``n_shoes_total``
+    identical shoes (cut_b is cut_a rotated by +sector_angle).
+    """
+
+    mesh: MeshTri2
+    source: str
+    n_shoes_total: int = 1
+    n_shoes_model: int = 1
+    sector_angle: float | None = None
+    drum_radius: float | None = None
+    thickness: float | None = None
+    params: dict = field(default_factory=dict)
+    mesh_settings: dict = field(default_factory=dict)
+    mass: dict = field(default_factory=dict)
+    pivots: list = field(default_factory=list)
+    contact_arcs: list = field(default_factory=list)
+    mirrored: bool = False
+    msh_path: Path | None = None
+    mesh_time_s: float = 0.0
+    cached: bool = False
+
+    @property
+    def sector_copies(self) -> int:
+        """How many copies of the model make the whole part (n_shoes_total / n_shoes_model for
+        a one-sector model, 1 for a full part)."""
+        return self.n_shoes_total // max(self.n_shoes_model, 1) if self.sector_angle is not None else 1
+
+    @property
+    def n_elements(self) -> int:
+        return int(self.mesh.t.shape[1])
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.mesh.doflocs.shape[1])
+
+    def boundary(self, name: str) -> np.ndarray:
+        b = self.mesh.boundaries or {}
+        if name not in b:
+            raise MeshError(f"mesh from {self.source} has no boundary group '{name}'; "
+                            f"available: {sorted(b)}")
+        return np.asarray(b[name])

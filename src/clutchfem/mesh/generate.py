@@ -1,0 +1,221 @@
+"""Meshing a concept: gmsh builds and meshes it with second-order curved triangles, the
+``.msh`` and a JSON side-car are cached on disk, and both are read back as a
+:class:`~clutchfem.mesh.ClutchMesh`.
+
+* The cache key is a content hash of (concept name, parameters, mesh settings, gmsh and
+  clutchfem versions, :func:`source_hash` of every source that shapes the mesh): a changed
+  input or code gives a new file, never a stale mesh.
+* Before meshing, the element count is estimated from the areas and local sizes
+  (:func:`estimate_elements`); a mesh above :data:`MAX_ELEMENTS` is refused with a size
+  that fits.
+* The cache file is saved with every element's entity tag and no physical groups (meshio's
+  msh4 reader wants all or none); the side-car maps entity tags to group names.  A second
+  file, :func:`groups_msh_path`, keeps the named physical groups for the user.
+
+gmsh is a process-global C++ library and not thread-safe: one model at a time per process,
+guarded by :func:`clutchfem.geometry.gmsh_session`; parallel sweeps use processes.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import json
+import logging
+import os
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+import gmsh
+import numpy as np
+
+from .. import __version__
+from ..core import GeometryError, MeshError
+from ..geometry import BuiltModel, Concept, ConceptParams, MeshSettings, build_model, gmsh_session
+from ..geometry import base as geometry_base
+from ..geometry import occ as geometry_occ
+from ..geometry import sketch as geometry_sketch
+from .clutch_mesh import ClutchMesh
+from .convert import meshio_to_skfem, read_msh
+
+#: meshes estimated above this many elements are refused (a one-sector default mesh has ~2-3
+#: thousand; 250 000 P2 triangles are ~1 M unknowns, minutes and GBs for one design)
+MAX_ELEMENTS = 250_000
+log = logging.getLogger("clutchfem")
+
+
+def cache_dir() -> Path:
+    """The mesh cache folder: ``$CLUTCHFEM_CACHE/meshes`` (default ``~/.cache/clutchfem/meshes``),
+    created on first use."""
+    d = Path(os.environ.get("CLUTCHFEM_CACHE", Path.home() / ".cache" / "clutchfem")) / "meshes"
+    d.mkdir(parents=True, exist_ok=True)
+    return d
+
+
+def source_hash(concept: Concept) -> str:
+    """Hash of every source that shapes the mesh: the concept's module file and those of its
+    base classes loaded from geometries/, plus the generic geometry code."""
+    h = hashlib.sha256()
+    files = {inspect.getfile(cls) for cls in type(concept).__mro__
+             if cls.__module__.startswith("clutchfem_geometries.")}
+    files |= {inspect.getfile(m) for m in (geometry_base, geometry_occ, geometry_sketch)}
+    # the meshing pipeline itself: generation (high-order fix-up) and meshio -> scikit-fem
+    files |= {__file__, inspect.getfile(meshio_to_skfem)}
+    for f in sorted(files):
+        h.update(Path(f).read_bytes())
+    return h.hexdigest()[:16]
+
+
+def cache_key(concept: Concept, p: ConceptParams, ms: MeshSettings) -> str:
+    """Content hash naming the cached mesh of ``concept`` with ``p`` and ``ms`` (module docstring)."""
+    payload = json.dumps({"concept": concept.name, "params": p.model_dump(), "mesh": ms.model_dump(),
+                          "gmsh": gmsh.__version__, "clutchfem": __version__,
+                          "source": source_hash(concept)}, sort_keys=True, default=str)
+    return hashlib.sha256(payload.encode()).hexdigest()[:24]
+
+
+def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = None, *,
+                 use_cache: bool = True, max_elements: int | None = None) -> ClutchMesh:
+    """Build and mesh ``concept`` with parameters ``p`` (cached on disk).
+
+    Before meshing, the element count is estimated from the areas and the local sizes
+    (:func:`estimate_elements`); above ``max_elements`` (default :data:`MAX_ELEMENTS`) the
+    mesh is refused with the estimate and a size that fits.  A cached file that cannot be
+    read (truncated, corrupted) is deleted, named in a warning, and rebuilt."""
+    ms = ms or MeshSettings()
+    if not isinstance(ms, MeshSettings):
+        raise MeshError(f"mesh settings must be a MeshSettings, not {type(ms).__name__}")
+    key = cache_key(concept, p, ms)
+    d = cache_dir()
+    msh, side = d / f"{concept.name}-{key}.msh", d / f"{concept.name}-{key}.json"
+    cached = use_cache and msh.exists() and side.exists()
+    if cached:
+        try:
+            meta = json.loads(side.read_text())
+            cm = _load_generated(msh, meta, concept.name)
+        except Exception as exc:  # noqa: BLE001 - a broken cache entry is rebuilt, not fatal
+            warnings.warn(f"mesh cache file {msh} is unreadable ({type(exc).__name__}: {exc}); "
+                          "deleted and rebuilt", stacklevel=2)
+            for f in (msh, side, groups_msh_path(msh)):
+                f.unlink(missing_ok=True)
+            cached = False
+    if not cached:
+        t0 = time.perf_counter()
+        built = _generate(concept, p, ms, msh, max_elements)
+        meta = {"entity_groups": built.entity_groups, "group_dims": built.group_dims,
+                "mass": built.mass, "pivots": built.pivots, "contact_arcs": built.contact_arcs,
+                "n_shoes_total": built.n_shoes_total, "n_shoes_model": built.n_shoes_model,
+                "sector_angle": built.sector_angle, "mirrored": built.mirrored,
+                "mesh_time_s": time.perf_counter() - t0}
+        tmp = side.with_suffix(".json.tmp")
+        tmp.write_text(json.dumps(meta))
+        tmp.replace(side)
+        cm = _load_generated(msh, meta, concept.name)
+    cm.params = p.model_dump()
+    cm.mesh_settings = ms.model_dump()
+    cm.drum_radius = p.drum_radius
+    cm.thickness = p.thickness
+    cm.cached = cached
+    cm.mesh_time_s = meta["mesh_time_s"]
+    return cm
+
+
+def estimate_elements(built: BuiltModel, p: ConceptParams, ms: MeshSettings) -> int:
+    """A lower estimate of the triangle count: ~2.3 equilateral-ish triangles per h^2 of area,
+    with the flexure zones at their own size (boundary refinement at fillets and on the
+    contact surface adds to it: the real count is 1-6x this, nearer 1x for fine meshes)."""
+    A = float(built.mass.get("solid", {}).get("area", 0.0))
+    Af = sum(float(v.get("area", 0.0)) for k, v in built.mass.items() if k.startswith("flexure"))
+    h = ms.size
+    ts = p.flexure_thicknesses()
+    hf = min(h, ms.flexure_factor * min(ts)) if ts else h
+    return int(2.3 * (max(A - Af, 0.0) / h ** 2 + Af / hf ** 2))
+
+
+def _check_size(name: str, n_est: int, ms: MeshSettings, max_elements: int | None) -> None:
+    limit = MAX_ELEMENTS if max_elements is None else max_elements
+    if n_est > limit:
+        fit = ms.size * (n_est / limit) ** 0.5
+        raise MeshError(f"{name}: mesh size {ms.size * 1e3:g} mm would give about {n_est:,} elements (estimate), "
+                        f"more than the limit {limit:,} (minutes of meshing and GBs of memory for one design); "
+                        f"use a mesh size of at least {fit * 1e3:.2g} mm, or raise the limit "
+                        "(max_elements=... in the API)")
+    if n_est > 20_000:
+        log.info("meshing %s: about %s elements (estimate)", name, f"{n_est:,}")
+
+
+def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
+              max_elements: int | None = None) -> BuiltModel:
+    with gmsh_session(concept.name):
+        gmsh.option.setNumber("Geometry.Tolerance", 1e-10)
+        gmsh.option.setNumber("Geometry.ToleranceBoolean", 1e-10)
+        try:
+            built = build_model(concept, p, ms)
+            _check_size(concept.name, estimate_elements(built, p, ms), ms, max_elements)
+            gmsh.option.setNumber("Mesh.Algorithm", 6)
+            gmsh.option.setNumber("Mesh.ElementOrder", ms.order)
+            gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+            gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
+            gmsh.model.mesh.generate(2)
+            if ms.order == 2:
+                _fix_invalid_high_order()
+            if built.mirrored:  # minus arrangement: reflect the canonical mesh, y -> -y
+                gmsh.model.mesh.affineTransform([1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0])
+        except (GeometryError, MeshError):
+            raise
+        except Exception as exc:  # gmsh raises bare Exceptions with its log message
+            raise GeometryError(f"gmsh failed to build/mesh concept '{concept.name}': {exc}",
+                                p.model_dump()) from None
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        # the user-facing file keeps the named physical groups ...
+        gmsh.option.setNumber("Mesh.SaveAll", 0)
+        _atomic_write(groups_msh_path(msh))
+        # ... the cache file is read back by meshio, whose msh4 reader wants all or no
+        # physical tags: save every element with its entity tag and no groups; the JSON
+        # side-car maps entity tags to group names
+        gmsh.model.removePhysicalGroups()
+        gmsh.option.setNumber("Mesh.SaveAll", 1)
+        _atomic_write(msh)
+    return built
+
+
+def groups_msh_path(msh: Path) -> Path:
+    """The ``.msh`` with named physical groups that sits beside a cached mesh."""
+    return msh.with_name(msh.stem + ".groups.msh")
+
+
+def _atomic_write(path: Path) -> None:
+    fd, tmp = tempfile.mkstemp(suffix=".msh", dir=path.parent)
+    os.close(fd)
+    gmsh.write(tmp)
+    os.replace(tmp, path)
+
+
+def _fix_invalid_high_order() -> None:
+    """Run gmsh's high-order optimiser if some curved element is invalid or nearly so
+    (scaled Jacobian < 0.2): a valid but nearly singular P2 element gives garbage raw vertex
+    stresses (several GPa where the field peaks at a few hundred MPa)."""
+    types, tags, _ = gmsh.model.mesh.getElements(2)
+    worst = 1.0
+    for t in tags:
+        q = gmsh.model.mesh.getElementQualities(t, "minSJ")
+        if len(q):
+            worst = min(worst, float(np.min(q)))
+    if worst < 0.2:
+        gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
+        gmsh.model.mesh.optimize("HighOrder")
+
+
+def _load_generated(msh: Path, meta: dict, source: str) -> ClutchMesh:
+    m = read_msh(msh)
+    groups, dims = meta["entity_groups"], meta["group_dims"]
+    curves = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 1}
+    surfaces = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 2}
+    mesh = meshio_to_skfem(m, curves, surfaces, "gmsh:geometrical", source)
+    return ClutchMesh(mesh=mesh, source=source, n_shoes_total=meta["n_shoes_total"],
+                      n_shoes_model=meta["n_shoes_model"], sector_angle=meta["sector_angle"],
+                      mass=meta["mass"], pivots=[tuple(p) for p in meta["pivots"]],
+                      contact_arcs=[tuple(a) for a in meta["contact_arcs"]], mirrored=meta["mirrored"],
+                      msh_path=msh)
