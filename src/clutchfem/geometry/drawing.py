@@ -26,7 +26,7 @@ import numpy as np
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..mesh import ClutchMesh
-    from .base import Concept, ConceptParams
+    from .concept import Concept, ConceptParams
 
 _ZONE_STYLE = {
     "shoe": dict(facecolor="#f4a582", edgecolor="#b2182b", hatch="///"),
@@ -72,7 +72,7 @@ def sample_concept(concept: "Concept", p: "ConceptParams", n_per_curve: int = 64
     ``flexure_i`` and ``hub`` to closed polylines (list of k x 2 arrays)."""
     import gmsh
 
-    from .base import MeshSettings, build_model
+    from .concept import MeshSettings, build_model
     from .session import gmsh_session
 
     flip = np.array([1.0, -1.0]) if p.arrangement == "minus" else np.array([1.0, 1.0])
@@ -137,7 +137,7 @@ def _nobreak(text: str) -> str:
 
 def _common_annotations(concept, p, geo) -> list:
     """Labels every concept gets (canonical frame, shoe 0): the clearance / shoe profile."""
-    from .base import Annotation
+    from .concept import Annotation
 
     root, tip = concept.shoe_arc(p)
     tm = root + 0.8 * (tip - root)  # off the shoe's middle, where the concepts label the shoe

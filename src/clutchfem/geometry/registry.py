@@ -16,7 +16,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..core import ParameterError
-from .base import Concept
+from .concept import Concept
 
 _PKG = Path(__file__).resolve().parent.parent
 

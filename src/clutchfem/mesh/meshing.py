@@ -210,7 +210,7 @@ def cache_dir() -> Path:
 def source_hash(concept: Concept) -> str:
     """Hash of every source that shapes the mesh: the concept's module file and those of its
     base classes loaded from geometries/, plus the generic geometry code."""
-    from ..geometry import base
+    from ..geometry import concept as base
     from ..geometry import occ as occmod
 
     h = hashlib.sha256()
