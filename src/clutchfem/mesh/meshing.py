@@ -1,6 +1,6 @@
 """Mesh pipeline: gmsh -> .msh -> meshio -> scikit-fem ``MeshTri2`` with named groups.
 
-* :func:`mesh_concept` builds a concept with gmsh (see :mod:`clutchfem.geometry.base`),
+* :func:`mesh_concept` builds a concept with gmsh (see :mod:`clutchfem.geometry.build`),
   meshes it with second-order curved triangles and caches the ``.msh`` plus a JSON side-car
   on disk under a content hash of (concept source, parameters, mesh settings, gmsh version).
 * :func:`load_msh` reads any ``.msh`` with meshio and returns a :class:`ClutchMesh`: the
@@ -36,7 +36,7 @@ from skfem import MeshTri1, MeshTri2
 
 from .. import __version__
 from ..core import GeometryError, MeshError
-from ..geometry import BuiltModel, Concept, ConceptParams, MeshSettings, build_model, gmsh_session
+from ..geometry import BuiltModel, Concept, ConceptParams, MeshSettings, build_model, gmsh_session, source_files
 
 
 @dataclass
@@ -210,20 +210,10 @@ def cache_dir() -> Path:
 def source_hash(concept: Concept) -> str:
     """Hash of every source that shapes the mesh: the concept's module file and those of its
     base classes loaded from geometries/, plus the generic geometry code."""
-    from ..geometry import concept as base
-    from ..geometry import occ as occmod
-
     h = hashlib.sha256()
     files = {inspect.getfile(cls) for cls in type(concept).__mro__
              if cls.__module__.startswith("clutchfem_geometries.")}
-    mods = [base, occmod]
-    try:
-        from ..geometry import sketch
-
-        mods.append(sketch)
-    except ImportError:
-        pass
-    files |= {inspect.getfile(m) for m in mods}
+    files |= {str(f) for f in source_files()}
     files.add(__file__)  # the meshing pipeline itself (high-order fix-up)
     for f in sorted(files):
         h.update(Path(f).read_bytes())

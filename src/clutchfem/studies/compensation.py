@@ -18,7 +18,7 @@ softening included) and G = -B (K - X^2 M)^-1 D the condensed contact compliance
 included: not symmetric; :mod:`clutchfem.softening`).  If every node of the target arc
 T = [s_a, s_a + f] touches, lam_T = G_TT^-1 (u_n,T - c_T) and the pressure is
 p_i = lam_i / (h w_i) (h thickness, w_i the node's tributary length).  The profile is the
-``table`` profile (:class:`clutchfem.geometry.base.ConceptParams`): c(s) = sum_k v_k phi_k(s),
+``table`` profile (:class:`clutchfem.geometry.ConceptParams`): c(s) = sum_k v_k phi_k(s),
 a C2 cubic spline through 9 control values v_k (phi_k its cardinal functions).  The best
 profile at this linearisation solves the small quadratic programme (10 unknowns, SLSQP)
 
