@@ -32,12 +32,20 @@ from __future__ import annotations
 
 import contextlib
 import json
+import logging
 import math
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..clutch import EngineCurve
 from ..core import ParameterError
+from ..geometry import MeshSettings, get_concept
+from ..loadcase import OperatingPoint
+from .hashing import design_hash
+from .point import COLUMNS, Settings, model_version
+from .runner import default_workers, run_points
+from .store import ResultStore
 
 #: the answers a row carries (name -> unit), in table order
 ANSWERS = {
@@ -69,15 +77,11 @@ class EvalSettings:
 
     def params(self, point: dict | None = None):
         """The concept's parameter set for ``point`` on the base (raises ParameterError)."""
-        from ..geometry import get_concept
-
         P = get_concept(self.concept).Params
         return P(**self.values(point))
 
     def values(self, point: dict | None = None) -> dict:
         """Parameter values (SI) of the base plus the point, as the parser reads the texts."""
-        from ..geometry import get_concept
-
         P = get_concept(self.concept).Params
         values = P.parse_assignments(list(self.base))
         if point:
@@ -85,19 +89,13 @@ class EvalSettings:
         return values
 
     def engine(self):
-        from ..clutch import EngineCurve
-
         return EngineCurve.from_csv(self.engine_csv, idle_rpm=self.idle_rpm) if self.engine_csv \
             else EngineCurve.default()
 
     def operating_point(self):
-        from ..loadcase import OperatingPoint
-
         return OperatingPoint(**self.op)
 
     def mesh_settings(self):
-        from ..geometry import MeshSettings
-
         return MeshSettings() if self.mesh_size is None else MeshSettings(size=self.mesh_size)
 
     def set_args(self, point: dict | None = None) -> list[str]:
@@ -108,8 +106,6 @@ class EvalSettings:
 
     def study(self):
         """The study engine's :class:`clutchfem.study.Settings` (the base as fixed values)."""
-        from .point import Settings
-
         fixed = tuple(sorted(self.values().items()))
         return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
                         engine=self.engine() if self.engine_csv else None, idle_rpm=self.idle_rpm, a=self.a,
@@ -129,8 +125,6 @@ def cluster(workers: int | None = None, scheduler: str | None = None):
     local = None
     try:
         if scheduler is None and workers != 0:
-            import logging
-
             import dask
             from distributed import LocalCluster
 
@@ -150,16 +144,6 @@ def cluster(workers: int | None = None, scheduler: str | None = None):
         _ACTIVE.update(prev)
         if local is not None:
             local.close(timeout=10)
-
-
-def default_workers() -> int:
-    import os
-
-    try:
-        n = len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not Linux
-        n = os.cpu_count() or 1
-    return max(1, n)
 
 
 def _num(x):
@@ -207,11 +191,6 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
     ``workers`` (None: one per core; 0: this process) as the study engine starts them;
     ``on_row(row)`` is called for every row once the batch is done; ``progress``: the study
     engine's progress bar on stderr."""
-    from .hashing import design_hash
-    from .point import COLUMNS, model_version
-    from .runner import run_points
-    from .store import ResultStore
-
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise ParameterError("workers", workers, "an integer >= 0 (parallel design evaluations; 0: this process)")
     rows: list[dict | None] = [None] * len(points)
@@ -224,8 +203,6 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
             rows[i] = {"i": i, "params": dict(pt), "status": "refused", "message": str(exc),
                        "refused_parameter": exc.name, "seconds": 0.0}
             continue
-        from ..geometry import get_concept
-
         P = get_concept(settings.concept).Params
         vals[i] = P.parse_assignments([f"{k}={v}" for k, v in pt.items()])
         todo.append(i)

@@ -56,7 +56,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import qmc
 
-from ..core import InputError, ParameterError
+from ..core import InputError, ParameterError, clean
+from ..geometry import ConceptParams
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
 
@@ -185,10 +186,7 @@ def make_space(P, free: list[str], ranges: dict | None = None, start=None) -> Sp
         if f.annotation is not float:
             raise ParameterError(n, None, "a real-valued parameter with a range (choices and counts are set with "
                                           "--set)", "--free")
-        a = b = None
-        for m in f.metadata:
-            a = m.ge if getattr(m, "ge", None) is not None else a
-            b = m.le if getattr(m, "le", None) is not None else b
+        a, b = V.param_bounds(P, n)
         if ranges and n in ranges:
             a, b = ranges[n]
         if a is None or b is None or not a < b:
@@ -212,8 +210,6 @@ def default_free(P) -> list[str]:
     strongest lever on the safety factor; on concept 4 the shape parameters alone reached a
     safety factor of 1.14 at best (300 analysed designs) against the 1.5 asked, with the clearance free
     the targets are met (docs/design_to_targets.md)."""
-    from ..geometry import ConceptParams
-
     common = set(ConceptParams.model_fields)
     own = [n for n, f in P.model_fields.items() if n not in common and f.annotation is float]
     for extra in ("fillet_radius", "clearance"):
@@ -241,8 +237,6 @@ class OptimizationResult:
     settings: EvalSettings | None = None
 
     def to_json(self) -> dict:
-        from ..core import clean
-
         a = self.best.get("assessment", {})
         return clean({
             "concept": self.concept, "feasible": self.feasible, "message": self.message,

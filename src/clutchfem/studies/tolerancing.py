@@ -51,9 +51,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core import InputError, ParameterError
+from ..core import InputError, ParameterError, clean
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
+from .optimization import Targets
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -152,8 +153,6 @@ class ToleranceResult:
     settings: EvalSettings | None = None
 
     def to_json(self) -> dict:
-        from ..core import clean
-
         return clean({"concept": self.concept, "tolerances_si": self.tolerances, "distribution": self.dist,
                       "n": self.n, "seed": self.seed, "nominal": _strip(self.nominal),
                       "spec": [{"name": a, "key": b, "limit": c, "sense": d} for a, b, c, d in self.spec],
@@ -189,8 +188,6 @@ def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: st
     """Monte Carlo of ``tolerances`` (name -> half-width in SI units) around the base design of
     ``settings``; ``targets``: a :class:`~clutchfem.targets.optimize.Targets` giving the spec
     (default: the requirement checks with safety factor >= 1.5).  See the module docstring."""
-    from .optimization import Targets
-
     t0 = time.perf_counter()
     if dist not in ("normal", "uniform"):
         raise ParameterError("dist", dist, "'normal' (tolerance = +-3 sigma) or 'uniform'", "tolerance")
