@@ -41,7 +41,7 @@ from typing import Literal
 import numpy as np
 
 from ..clutch import OverhungShaft, ShaftModel, fe_frequency_coefficients, frequency_coefficients
-from ..core import ParameterError, SolverError, rad_s_to_rpm
+from ..core import ParameterError, SolverError, figure, rad_s_to_rpm
 from .records import ValidationRecord
 
 MODULE = "shaft"
@@ -290,8 +290,6 @@ def _curve(fn, xs) -> np.ndarray:
 
 def figures(out_dir: Path) -> list[Path]:
     """Figs 2 (beta_1, beta_2 vs l2) and 3 (omega_1 vs l2 for the three discs); PNG paths."""
-    from ..core import figure
-
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     l2s = np.linspace(0.10, 0.30, 31)
