@@ -194,12 +194,14 @@ def tolerance_histograms(res, path) -> Path:
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3)
     fig.suptitle("\n".join(textwrap.wrap(f"{res.concept}: {res.n} parts ({res.dist}), tolerances "
-                                          + ", ".join(f"{k} +-{_tol_text(res, k)}" for k in res.tolerances), 110)),
+                                          + ", ".join(f"{k} +-{tolerance_text(res, k)}" for k in res.tolerances), 110)),
                  fontsize=9)
     return _save(fig, path)
 
 
-def _tol_text(res, name) -> str:
+def tolerance_text(res, name) -> str:
+    """The tolerance of parameter ``name`` in a tolerance study as designers write it
+    (``0.05 mm``, ``0.5 deg``, ``0.01``)."""
     P = get_concept(res.concept).Params
     t = res.tolerances[name]
     u = P.unit(name)
