@@ -1,6 +1,6 @@
-"""Pages (:mod:`.page`) for a design and for the design-to-targets runs: which answers go on
+"""Pages (:mod:`.html`) for a design and for the design-to-targets runs: which answers go on
 the first screen, which tables and charts below.  Each builder writes its charts into the
-output folder and returns the :class:`~.page.Page`; :func:`~.page.write_page` renders it."""
+output folder and returns the :class:`~.html.Page`; :func:`~.html.write_page` renders it."""
 
 from __future__ import annotations
 
@@ -58,7 +58,7 @@ def param_table(p, title: str = "Concept parameters") -> Table:
 
 
 def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_min: float = 1.5) -> Page:
-    """The page of one analysed design (everything :func:`clutchfem.clutch.analyze.analyze`
+    """The page of one analysed design (everything :func:`clutchfem.analysis.analyze`
     answers, the drawing, the parameters, the operating point and the material)."""
     folder = Path(folder)
     name = an.label or an.design

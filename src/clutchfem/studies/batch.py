@@ -1,12 +1,12 @@
 """One design point -> one row of answers, and the one function that evaluates batches:
-:func:`evaluate_many`, on the study engine of issue 10 (:mod:`clutchfem.study`).
+:func:`evaluate_many`, on the study engine of issue 10 (:mod:`clutchfem.studies`).
 
 A *point* is a dict ``name -> --set text`` (``{"flexure_thickness": "2.13mm"}``) applied on
 top of a base design (:class:`EvalSettings`); the design evaluated is exactly the one
 ``clutchfem analyze --concept C --set ...`` builds from the same texts
-(:mod:`clutchfem.targets.values`): the texts are read by the parameter set's own parser and
-the values handed to the study engine (:func:`clutchfem.study.evaluate`, the full
-:func:`~clutchfem.clutch.analyze.analyze` with ``errors=False``: a search ranks designs on
+(:mod:`clutchfem.studies.values`): the texts are read by the parameter set's own parser and
+the values handed to the study engine (:func:`clutchfem.studies.evaluate`, the full
+:func:`~clutchfem.analysis.analyze` with ``errors=False``: a search ranks designs on
 one mesh each; the error of an answer is stated for the design it ends on).
 
 A *row* is a flat, JSON-ready dict: the point, a ``status`` and the answers the targets need
@@ -17,7 +17,7 @@ in this process, before anything is sent: a refusal costs microseconds -- or the
 mesh cannot be made); ``failed`` (a valid design without an answer: a solver refusal, or the
 worker process died, e.g. gmsh aborting on a high-order mesh fix-up).
 
-Scheduling: :func:`clutchfem.study.runner.run_points` -- a ``dask.distributed`` cluster of
+Scheduling: :func:`clutchfem.studies.runner.run_points` -- a ``dask.distributed`` cluster of
 process workers with one thread each (or an existing cluster at ``scheduler``, or this
 process with ``workers=0``), each finished row committed to a SQLite store as it arrives.
 An optimisation sends many small batches (one per poll), so :func:`cluster` keeps one local
@@ -105,7 +105,7 @@ class EvalSettings:
         return out + [f"{k}={v}" for k, v in (point or {}).items()]
 
     def study(self):
-        """The study engine's :class:`clutchfem.study.Settings` (the base as fixed values)."""
+        """The study engine's :class:`clutchfem.studies.Settings` (the base as fixed values)."""
         fixed = tuple(sorted(self.values().items()))
         return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
                         engine=self.engine() if self.engine_csv else None, idle_rpm=self.idle_rpm, a=self.a,
@@ -157,7 +157,7 @@ def _num(x):
 
 
 def from_study_row(r: dict, point: dict) -> dict:
-    """A study engine row (:data:`clutchfem.study.COLUMNS`, MPa and g) as a row of this
+    """A study engine row (:data:`clutchfem.studies.COLUMNS`, MPa and g) as a row of this
     package (SI units, the point's ``--set`` texts)."""
     row = {"params": dict(point), "status": r.get("status") or "failed", "message": r.get("message") or "",
            "design_hash": r.get("design_hash"), "seconds": _num(r.get("t_total_s"))}

@@ -1,7 +1,7 @@
 """Design to targets: a derivative-free, parallel search for a design that meets the
 requirement checks at the least part mass (or the largest torque margin).
 
-Targets (defaults: the requirement checks of :func:`clutchfem.clutch.analyze.analyze`)
+Targets (defaults: the requirement checks of :func:`clutchfem.analysis.analyze`)
 
 * engagement with the 2-stroke ripple (3 sigma cycle) >= a x idle (a = 1.3, idle 2700 rpm:
   3510 rpm; both ASSUMED in the core), optionally <= an upper limit;
@@ -27,7 +27,7 @@ of COBYLA/COBYQA need a value everywhere and are misled by noise at small steps.
 refused or failed design is simply worse than all others and costs nothing (refusals are
 found before any meshing), its steps never fall below the parameters' snapping resolution
 (noise cannot be chased below it), and each poll (2 n designs) is one parallel batch of
-:func:`~clutchfem.targets.evaluate.evaluate_many`.
+:func:`~clutchfem.studies.batch.evaluate_many`.
 
 Comparison (a filter in its simplest form): a feasible design beats an infeasible one; two
 infeasible designs compare by h; two feasible ones by the objective.  An improvement counts
@@ -271,7 +271,7 @@ def optimize(settings: EvalSettings, targets: Targets, free: list[str] | None = 
     ``min_step`` of the ranges (1/256: ~0.1 mm on a 20 mm range, where the mesh noise of the
     answers is of the size of the steps' effect) or every parameter's resolution.  The
     designs run on the study engine: one local cluster of ``workers`` for the whole search,
-    or the cluster at ``scheduler`` (:func:`~clutchfem.targets.evaluate.cluster`)."""
+    or the cluster at ``scheduler`` (:func:`~clutchfem.studies.batch.cluster`)."""
     with cluster(workers, scheduler):
         return _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step, log)
 

@@ -1,10 +1,10 @@
-"""One design of a study -> one row: the only module of :mod:`clutchfem.study` that knows
+"""One design of a study -> one row: the only module of :mod:`clutchfem.studies` that knows
 the analysis API.
 
 :func:`evaluate` takes a *point* (the varied inputs, ``{name: value}`` in the parameter's
 own unit: m, deg, -) and the study's fixed :class:`Settings`, builds the design (concept
-parameters -> mesh -> :class:`~clutchfem.design.Design`, one FE model), runs the full
-:func:`clutchfem.clutch.analyze.analyze` and flattens the answers into one flat row of
+parameters -> mesh -> :class:`~clutchfem.loadcase.Design`, one FE model), runs the full
+:func:`clutchfem.analysis.analyze` and flattens the answers into one flat row of
 :data:`COLUMNS`.  Everything else in the package (spec, sampling, hashing, store,
 scheduling, resume, progress, charts, guidelines) sees only these rows, so a change of the
 analysis API is a change of this file alone (and :data:`COLUMNS` is the contract).
@@ -13,11 +13,11 @@ Status of a row (house rule, also in the CLI help):
 
 * ``ok``: answered;
 * ``refused``: the *input* was refused on purpose with a message (a
-  :class:`~clutchfem.errors.ParameterError` of the concept's cross-parameter rules, an
-  :class:`~clutchfem.errors.InputError`, a :class:`~clutchfem.errors.GeometryError` or
-  :class:`~clutchfem.errors.MeshError`: the parameters do not make a part);
+  :class:`~clutchfem.core.ParameterError` of the concept's cross-parameter rules, an
+  :class:`~clutchfem.core.InputError`, a :class:`~clutchfem.core.GeometryError` or
+  :class:`~clutchfem.core.MeshError`: the parameters do not make a part);
 * ``failed``: the design is valid but no answer came: a
-  :class:`~clutchfem.errors.SolverError` (the solver's own checks refuse to answer), any
+  :class:`~clutchfem.core.SolverError` (the solver's own checks refuse to answer), any
   other exception (a bug: its type and message are recorded), or the worker process died
   while computing it (a gmsh crash; recorded by the scheduler, :func:`failed_row`).
 
@@ -319,7 +319,7 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "", errors: boo
 
 
 def _fill(row: dict, an, design, settings: Settings, cm) -> None:
-    """The answers of one :class:`~clutchfem.clutch.analyze.Analysis` into ``row``."""
+    """The answers of one :class:`~clutchfem.analysis.Analysis` into ``row``."""
     req = an.requirements
     shoes = (an.part or {}).get("shoes") or []
     shoe_kg = shoes[0]["mass_kg"] if shoes else (an.coupling or {}).get("m_kg")

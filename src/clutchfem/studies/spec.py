@@ -31,14 +31,14 @@ shares, the requirement factors, and the varied parameters::
 Methods: ``grid`` is the full product of every parameter's values (a list, or a range
 with ``steps`` or ``step``); ``list`` zips lists of equal length (point i takes the i-th
 value of each: explicit designs); ``lhs`` and ``sobol`` draw ``samples`` seeded
-space-filling points (``scipy.stats.qmc``, ``seed``: :mod:`.sampling`) over the ranges jointly, crossed with
-any lists (e.g. a profile choice).  Sobol wants a power of 2 samples (its balance
+space-filling points (``scipy.stats.qmc``, ``seed``: :mod:`.sampling`) over the ranges
+jointly, crossed with any lists (e.g. a profile choice).  Sobol wants a power of 2 samples (its balance
 properties hold only then).  Integer parameters (``n_shoes``) take integer values.
 
 The study states its error from a sample (``[errors] sample``, default 3 designs evenly
 spaced in point order): those designs are also analysed on a mesh twice as fine, and their
 rows carry the error bands of engagement, slip, torque and peak stress (discretisation plus
-the measured model-form terms, :mod:`clutchfem.errorest`); every other point is analysed
+the measured model-form terms, :mod:`clutchfem.accuracy`); every other point is analysed
 without (the error estimate triples a design's time).  The sample is not part of a
 design's hash: changing it recomputes only the newly sampled points.
 

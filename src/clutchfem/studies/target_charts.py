@@ -1,4 +1,4 @@
-"""Charts of the design-to-targets runs (pyplot-free figures, :mod:`clutchfem.plotting`).
+"""Charts of the design-to-targets runs (pyplot-free figures, :func:`clutchfem.core.figure`).
 
 Every axis names its quantity and unit; limits of the targets are drawn where they apply.
 Figures are saved at a modest resolution (PNG under ~150 kB) because the report embeds them.

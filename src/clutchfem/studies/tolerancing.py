@@ -9,7 +9,7 @@ the binomial confidence interval of the out-of-spec share below needs independen
 Values are snapped to 1 um (0.01 deg, 1e-4 dimensionless), far below any tolerance, and
 every sample is exactly what ``analyze --set`` builds from its texts.
 
-Spec (defaults: the requirement checks, as in :mod:`clutchfem.targets.optimize`):
+Spec (defaults: the requirement checks, as in :mod:`clutchfem.studies.optimization`):
 engagement with ripple >= a x idle, slip <= b x rpm of max engine torque, safety factor at
 the engine's maximum speed >= 1.5.  A part is out of spec if it misses any of them; samples
 the concept refuses (inconsistent geometry) or whose analysis fails are counted apart and
@@ -186,7 +186,7 @@ def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: st
               targets=None, shifts: bool = True, workers: int | None = None, scheduler: str | None = None,
               log=None) -> ToleranceResult:
     """Monte Carlo of ``tolerances`` (name -> half-width in SI units) around the base design of
-    ``settings``; ``targets``: a :class:`~clutchfem.targets.optimize.Targets` giving the spec
+    ``settings``; ``targets``: a :class:`~clutchfem.studies.optimization.Targets` giving the spec
     (default: the requirement checks with safety factor >= 1.5).  See the module docstring."""
     t0 = time.perf_counter()
     if dist not in ("normal", "uniform"):
