@@ -21,6 +21,7 @@ from .compensation import Compensation, compensate
 from .guideline_charts import summary_table
 from .guideline_study import run_guidelines
 from .guidelines import GuidelineResult, GuidelineSettings
+from .hashing import design_hash
 from .optimization import DIMENSIONLESS, OptimizationResult, Targets, default_free, fatigue_note, optimize
 from .point import COLUMNS, Settings, evaluate, model_version
 from .resolve import load_spec, parse_spec
@@ -33,6 +34,6 @@ from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 __all__ = ["COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
            "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RunResult", "Settings",
            "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
-           "default_free", "default_out", "evaluate", "evaluate_many", "fatigue_note", "load_spec",
+           "default_free", "default_out", "design_hash", "evaluate", "evaluate_many", "fatigue_note", "load_spec",
            "model_version", "optimize", "parse_spec", "parse_tolerance", "run_grid", "run_guidelines",
            "run_points", "run_study", "summary_table", "target_charts", "tolerance"]
