@@ -9,9 +9,10 @@ import pytest
 
 from clutchfem.core import rpm_to_rad_s
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.geometry import table_cardinal as cardinal
 from clutchfem.loadcase import Design
 from clutchfem.studies import compensate
-from clutchfem.studies.compensation import cardinal, evenness, shoe_state
+from clutchfem.studies.compensation import evenness, shoe_state
 
 SIZE = 2.4e-3
 

@@ -1,4 +1,4 @@
-"""The table shoe profile (geometry/base.py) and --set texts that round-trip exactly."""
+"""The table shoe profile (geometry/concept.py, geometry/profile.py) and --set texts that round-trip exactly."""
 
 import math
 

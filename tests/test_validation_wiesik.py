@@ -11,7 +11,8 @@ from scipy.stats import norm
 from clutchfem.clutch import BaselineClutch, ripple
 from clutchfem.core import ParameterError
 from clutchfem.validation import wiesik
-from clutchfem.validation.wiesik import (
+from clutchfem.validation import wiesik_model as model
+from clutchfem.validation.wiesik_model import (
     ChainModel,
     DriveData,
     cycle_slip_energy,
@@ -231,9 +232,9 @@ def test_figures(tmp_path):
 
 def test_rounding_bound_of_a_linear_function_is_the_box():
     d = DriveData()
-    b = wiesik.rounding_bound(lambda dd, ms: 1000.0 * dd.delta_mean + ms, d, 10.0,
+    b = model.rounding_bound(lambda dd, ms: 1000.0 * dd.delta_mean + ms, d, 10.0,
                               constrain_mb2=False)
-    h = wiesik.PRINTED_INPUT_HALF_UNITS
+    h = model.PRINTED_INPUT_HALF_UNITS
     spread = 1000.0 * h["delta_mean"] + h["M_s"]
     assert b.nominal == pytest.approx(42.0)
     assert (b.lo, b.hi) == (pytest.approx(42.0 - spread), pytest.approx(42.0 + spread))
@@ -242,18 +243,18 @@ def test_rounding_bound_of_a_linear_function_is_the_box():
 def test_rounding_bound_constraint_holds_and_narrows():
     d = DriveData()
     ms = float(BaselineClutch.new().torque(950.0))
-    lo_c, hi_c = wiesik.MB2_CONSISTENT_N_M
+    lo_c, hi_c = model.MB2_CONSISTENT_N_M
     # M_b(2) itself under its own constraint stays in the consistent slab
-    mb = wiesik.rounding_bound(lambda dd, _ms: limit_inertia_load(dd), d, ms)
+    mb = model.rounding_bound(lambda dd, _ms: limit_inertia_load(dd), d, ms)
     assert lo_c - 1e-3 <= mb.lo <= mb.hi <= hi_c + 1e-3
-    free = wiesik.rounding_bound(lambda dd, _ms: limit_inertia_load(dd), d, ms,
+    free = model.rounding_bound(lambda dd, _ms: limit_inertia_load(dd), d, ms,
                                  constrain_mb2=False)
     assert free.hi - free.lo > 20 * (mb.hi - mb.lo)
 
     def p(dd, m):
         return 100 * slip_probability(m, dd)
 
-    con, unc = wiesik.rounding_bound(p, d, ms), wiesik.rounding_bound(p, d, ms, False)
+    con, unc = model.rounding_bound(p, d, ms), model.rounding_bound(p, d, ms, False)
     assert unc.lo < con.lo < con.nominal < con.hi < unc.hi
 
 
@@ -265,16 +266,16 @@ def test_rounding_bound_contains_random_consistent_inputs():
     def p(dd, m):
         return 100 * slip_probability(m, dd)
 
-    b = wiesik.rounding_bound(p, d, ms)
+    b = model.rounding_bound(p, d, ms)
     rng = np.random.default_rng(5)
-    h = wiesik.PRINTED_INPUT_HALF_UNITS
+    h = model.PRINTED_INPUT_HALF_UNITS
     x0 = {"delta_mean": d.delta_mean, "delta_std": d.delta_std, "J_b": d.J_b, "r_k": d.r_k,
           "m_ref": d.chain.m_ref, "M_o": d.M_o, "M_s": ms}
-    lo_c, hi_c = wiesik.MB2_CONSISTENT_N_M
+    lo_c, hi_c = model.MB2_CONSISTENT_N_M
     seen = []
     for _ in range(3000):
         x = {k: v + h[k] * rng.uniform(-1, 1) for k, v in x0.items()}
-        dd, m = wiesik._apply_inputs(d, ms, x)
+        dd, m = model._apply_inputs(d, ms, x)
         if lo_c <= limit_inertia_load(dd) <= hi_c:
             seen.append(p(dd, m))
     assert len(seen) > 50
@@ -283,7 +284,7 @@ def test_rounding_bound_contains_random_consistent_inputs():
 
 
 def test_rounding_bound_tolerance_sides():
-    b = wiesik.RoundingBound(nominal=4.0, lo=3.9, hi=4.4, constrained=True)
+    b = model.RoundingBound(nominal=4.0, lo=3.9, hi=4.4, constrained=True)
     assert b.tol_for(4.3, 0.05) == pytest.approx(0.45 / 4.3)  # paper above: upper side
     assert b.tol_for(3.8, 0.05) == pytest.approx(0.15 / 3.8)  # paper below: lower side
     # a paper value outside [lo - half unit, hi + half unit] cannot be reproduced

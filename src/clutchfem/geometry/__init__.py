@@ -1,11 +1,20 @@
 """Geometry stage: concepts as plug-ins (one file each in ``geometries/``), the generic gmsh
-OCC pipeline that turns a concept and its parameters into a meshable model, and drawings."""
+OCC pipeline that turns a concept and its parameters into a meshable model, and drawings.
 
-from .base import Annotation, BuiltModel, Concept, ConceptParams, MeshSettings, Shapes, build_model
+A concept file imports what it needs from here: the contract (:class:`Concept`,
+:class:`ConceptParams`, :class:`Shapes`, :class:`Annotation`) and the drawing toolkits
+:mod:`.occ` (rounded annular sectors and other OCC primitives) and :mod:`.sketch` (one
+analytic outline with exact tangent fillets)."""
+
+from . import occ, sketch
+from .build import BuiltModel, build_model, source_files
+from .concept import Annotation, Concept, ConceptParams, MeshSettings, Shapes
 from .drawing import draw_concept, draw_mesh, fmt_param_value
-from .profile import MIN_PROFILE_CLEARANCE, TABLE_FIELDS, TABLE_N, table_spline
+from .profile import MIN_PROFILE_CLEARANCE, TABLE_FIELDS, TABLE_N, table_cardinal, table_spline
 from .registry import concepts, get_concept, load_concept_file
 from .session import gmsh_session
 
-__all__ = ["MIN_PROFILE_CLEARANCE", "TABLE_FIELDS", "TABLE_N", "Annotation", "BuiltModel", "Concept", "ConceptParams", "MeshSettings",
-           "Shapes", "build_model", "concepts", "draw_concept", "draw_mesh", "fmt_param_value", "get_concept", "gmsh_session", "load_concept_file", "table_spline"]
+__all__ = ["MIN_PROFILE_CLEARANCE", "TABLE_FIELDS", "TABLE_N", "Annotation", "BuiltModel", "Concept", "ConceptParams",
+           "MeshSettings", "Shapes", "build_model", "concepts", "draw_concept", "draw_mesh", "fmt_param_value",
+           "get_concept", "gmsh_session", "load_concept_file", "occ", "sketch", "source_files", "table_cardinal",
+           "table_spline"]

@@ -1,14 +1,14 @@
 """Labelled drawings of concepts (PNG + SVG, matplotlib Agg) and quick mesh pictures.
 
 :func:`draw_concept` rebuilds the concept's OCC model (full 360 degrees) in a private gmsh
-session with :func:`~clutchfem.geometry.base.build_model`, samples every curve with
+session with :func:`~clutchfem.geometry.build.build_model`, samples every curve with
 ``gmsh.model.getValue`` and draws, in the *final* frame (reflected y -> -y for the minus
 arrangement, like the mesh):
 
 * the part outline, the bore, the drum circle (dashed) and the contact surfaces (red);
 * the shoe and flexure zones hatched in colour, the hub in grey;
 * each shoe's centroid (R_Tp) and nominal pivot;
-* the concept's :meth:`~clutchfem.geometry.base.Concept.annotations` (canonical frame,
+* the concept's :meth:`~clutchfem.geometry.concept.Concept.annotations` (canonical frame,
   mirrored here for minus);
 * the direction of rotation (ccw) with the arrangement, and a parameter table.
 
@@ -22,23 +22,22 @@ import textwrap
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import gmsh
 import numpy as np
+
+from ..core import figure
+from .build import build_model
+from .concept import Annotation, Concept, ConceptParams, MeshSettings
+from .session import gmsh_session
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..mesh import ClutchMesh
-    from .base import Concept, ConceptParams
 
 _ZONE_STYLE = {
     "shoe": dict(facecolor="#f4a582", edgecolor="#b2182b", hatch="///"),
     "flexure": dict(facecolor="#92c5de", edgecolor="#2166ac", hatch="xxx"),
     "hub": dict(facecolor="#e0e0e0", edgecolor="#808080", hatch=""),
 }
-
-
-def _figure(figsize):
-    from ..core import figure
-
-    return figure(figsize=figsize)
 
 
 def _chain(segments: list[np.ndarray], tol: float) -> list[np.ndarray]:
@@ -64,17 +63,12 @@ def _chain(segments: list[np.ndarray], tol: float) -> list[np.ndarray]:
     return loops
 
 
-def sample_concept(concept: "Concept", p: "ConceptParams", n_per_curve: int = 64) -> dict:
+def sample_concept(concept: Concept, p: ConceptParams, n_per_curve: int = 64) -> dict:
     """Sampled geometry of the full part in the final frame (metres).
 
     Returns ``{"curves": {tag: xy}, "groups": {name: [curve tags]}, "zones": {name: [loops]},
     "mass": ..., "pivots": ..., "contact_arcs": ...}`` where ``zones`` maps ``shoe_i``,
     ``flexure_i`` and ``hub`` to closed polylines (list of k x 2 arrays)."""
-    import gmsh
-
-    from .base import MeshSettings, build_model
-    from .session import gmsh_session
-
     flip = np.array([1.0, -1.0]) if p.arrangement == "minus" else np.array([1.0, 1.0])
     with gmsh_session(f"draw-{concept.name}"):
         gmsh.option.setNumber("Geometry.Tolerance", 1e-10)
@@ -137,8 +131,6 @@ def _nobreak(text: str) -> str:
 
 def _common_annotations(concept, p, geo) -> list:
     """Labels every concept gets (canonical frame, shoe 0): the clearance / shoe profile."""
-    from .base import Annotation
-
     root, tip = concept.shoe_arc(p)
     tm = root + 0.8 * (tip - root)  # off the shoe's middle, where the concepts label the shoe
     if p.profile == "linear":
@@ -232,7 +224,7 @@ def _place_labels(fig, ax, anns, flip, R_mm: float, lim: float, n: int) -> None:
                 break
 
 
-def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
+def draw_concept(concept: Concept, params: ConceptParams, out_stem: Path,
                  mesh: "ClutchMesh | None" = None, dpi: int = 110) -> list[Path]:
     """Draw ``concept`` with ``params``; write ``<out_stem>.png`` and ``<out_stem>.svg``.
 
@@ -249,7 +241,7 @@ def draw_concept(concept: "Concept", params: "ConceptParams", out_stem: Path,
     minus = p.arrangement == "minus"
     flip = np.array([1.0, -1.0]) if minus else np.array([1.0, 1.0])
 
-    fig, ax = _figure((12.0, 8.2))
+    fig, ax = figure(figsize=(12.0, 8.2))
     fig.subplots_adjust(left=0.04, right=0.70, top=0.88 if mesh is not None else 0.91, bottom=0.07)
     # zones (hatched)
     for name, loops in sorted(geo["zones"].items()):
@@ -349,7 +341,7 @@ def draw_mesh(cm: "ClutchMesh", path: Path, dpi: int = 120) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     m = cm.mesh
     mm = 1e3
-    fig, ax = _figure((8.0, 8.0))
+    fig, ax = figure(figsize=(8.0, 8.0))
     ax.triplot(m.p[0] * mm, m.p[1] * mm, m.t[:3].T, lw=0.25, color="0.35")
     colours = {"bore": "#2c7bb6", "cut_a": "#1a9641", "cut_b": "#a6611a"}
     seen = set()

@@ -12,7 +12,8 @@ from scipy.interpolate import CubicSpline
 
 from ..core import param
 
-__all__ = ["MIN_PROFILE_CLEARANCE", "Profile", "TABLE_FIELDS", "TABLE_N", "table_param", "table_spline"]
+__all__ = ["MIN_PROFILE_CLEARANCE", "Profile", "TABLE_FIELDS", "TABLE_N", "table_cardinal", "table_param",
+           "table_spline"]
 
 Profile = Literal["concentric", "eccentric", "linear", "table"]
 
@@ -28,11 +29,24 @@ TABLE_FIELDS = tuple(f"table_c{k}" for k in range(TABLE_N))
 MIN_PROFILE_CLEARANCE = 0.02e-3
 
 
+def _spline(values: np.ndarray) -> CubicSpline:
+    """The one spline of the table profile: cubic, not-a-knot (C2), through ``values`` (along
+    axis 0) at n equally spaced knots s = 0, 1/(n-1), ..., 1."""
+    return CubicSpline(np.linspace(0.0, 1.0, len(values)), values, bc_type="not-a-knot", axis=0)
+
+
 @lru_cache(maxsize=256)
 def table_spline(values: tuple[float, ...]) -> CubicSpline:
     """The clearance c(s) [m] of a table profile: a cubic spline (not-a-knot, C2) through the
     control values at s = 0, 1/(n-1), ..., 1 (s: arc fraction from root to tip)."""
-    return CubicSpline(np.linspace(0.0, 1.0, len(values)), np.asarray(values, dtype=float), bc_type="not-a-knot")
+    return _spline(np.asarray(values, dtype=float))
+
+
+def table_cardinal(s, n: int = TABLE_N) -> np.ndarray:
+    """(len(s), n) cardinal functions phi_k of the table spline at arc fractions ``s``: the
+    spline is linear in its control values, c(s) = sum_k v_k phi_k(s) (what shoe-profile
+    compensation fits)."""
+    return _spline(np.eye(n))(np.asarray(s))
 
 
 def table_param(k: int):

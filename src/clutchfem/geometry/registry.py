@@ -1,7 +1,7 @@
 """Discovery of concept geometries: one Python file per concept in ``geometries/``.
 
 A file ``geometries/<stem>.py`` defines ``CONCEPT``, an instance of a
-:class:`~clutchfem.geometry.base.Concept` subclass.  Search path, first hit wins:
+:class:`~clutchfem.geometry.Concept` subclass.  Search path, first hit wins:
 ``$CLUTCHFEM_GEOMETRIES`` (os.pathsep-separated folders), the repository's ``geometries/``
 (editable install) and the copy packaged in the wheel (``clutchfem/_geometries``).
 Dropping a new file into one of these folders adds a concept; nothing else to register.
@@ -16,7 +16,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..core import ParameterError
-from .base import Concept
+from .concept import Concept
 
 _PKG = Path(__file__).resolve().parent.parent
 

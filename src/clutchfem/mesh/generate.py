@@ -33,10 +33,7 @@ import numpy as np
 
 from .. import __version__
 from ..core import GeometryError, MeshError
-from ..geometry import BuiltModel, Concept, ConceptParams, MeshSettings, build_model, gmsh_session
-from ..geometry import base as geometry_base
-from ..geometry import occ as geometry_occ
-from ..geometry import sketch as geometry_sketch
+from ..geometry import BuiltModel, Concept, ConceptParams, MeshSettings, build_model, gmsh_session, source_files
 from .clutch_mesh import ClutchMesh
 from .convert import meshio_to_skfem, read_msh
 
@@ -60,7 +57,7 @@ def source_hash(concept: Concept) -> str:
     h = hashlib.sha256()
     files = {inspect.getfile(cls) for cls in type(concept).__mro__
              if cls.__module__.startswith("clutchfem_geometries.")}
-    files |= {inspect.getfile(m) for m in (geometry_base, geometry_occ, geometry_sketch)}
+    files |= {str(f) for f in source_files()}
     # the meshing pipeline itself: generation (high-order fix-up) and meshio -> scikit-fem
     files |= {__file__, inspect.getfile(meshio_to_skfem)}
     for f in sorted(files):

@@ -11,9 +11,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..clutch import BaselineClutch
+from ..analysis import analyze, slip_answer
+from ..clutch import BaselineClutch, EngineCurve
 from ..core import figure
 from ..core import write as write_json
+from ..geometry import MeshSettings, concepts
+from ..loadcase import Design
 
 __all__ = ["summary_rows", "torque_plot", "arc_stress_plot", "comparison_plot", "write_analysis",
            "markdown_summary", "default_design_report"]
@@ -247,8 +250,6 @@ def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None
     """The thesis's figure 25: FE torque vs rpm of several designs and today's spring clutch
     (new and worn shoes) against the engine curve, with engagement and slip markers and the
     requirement bands of the first design's requirement factors."""
-    from ..analysis import slip_answer
-
     fig, ax = figure(figsize=(9, 5.8))
     rpm_max = engine.rpm_range[1]
     r = np.linspace(0, rpm_max, 561)
@@ -329,11 +330,6 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
     """Analyse the built-in default designs (concepts 1 and 4) and write, per design, the torque
     and arc/stress plots, JSON and CSV, the comparison chart (thesis fig. 25, with today's
     spring clutch) and a Markdown summary ``report.md``."""
-    from ..analysis import analyze
-    from ..clutch import EngineCurve
-    from ..geometry import MeshSettings, concepts
-    from ..loadcase import Design
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     if concept_names is None:

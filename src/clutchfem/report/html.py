@@ -22,6 +22,8 @@ import math
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+import pandas as pd
+
 from ..core import clean
 from ..core import write as write_json
 
@@ -242,8 +244,6 @@ def folder_page(folder: Path) -> Page:
     spec = folder / "page.json"
     if spec.exists():
         return Page.from_json(json.loads(spec.read_text()))
-    import pandas as pd
-
     sections = []
     figs = [Figure(p.stem.replace("_", " "), p.name) for p in sorted(folder.glob("*.png"))]
     tabs = []

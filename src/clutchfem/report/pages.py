@@ -1,12 +1,18 @@
-"""Pages (:mod:`.page`) for a design and for the design-to-targets runs: which answers go on
+"""Pages (:mod:`.html`) for a design and for the design-to-targets runs: which answers go on
 the first screen, which tables and charts below.  Each builder writes its charts into the
-output folder and returns the :class:`~.page.Page`; :func:`~.page.write_page` renders it."""
+output folder and returns the :class:`~.html.Page`; :func:`~.html.write_page` renders it."""
 
 from __future__ import annotations
 
 import math
+from dataclasses import asdict
 from pathlib import Path
 
+from ..analysis import WHIRL_MARGIN
+from ..geometry import draw_concept, draw_mesh, fmt_param_value, get_concept
+from ..studies import DIMENSIONLESS, fatigue_note
+from ..studies import target_charts as charts
+from .design import arc_stress_plot, summary_rows, torque_plot
 from .html import Figure, Page, Table, Text
 
 
@@ -32,16 +38,12 @@ def design_verdicts(an, sf_min: float = 1.5) -> list:
         v.append(["fatigue safety factor >= 1 (ASSUMED duty)", bool(fsf >= 1.0), f"{fsf:.2f}"])
     wh = getattr(an, "whirl", None) or {}
     if wh:
-        from ..analysis import WHIRL_MARGIN
-
         v.append([f"crankshaft whirl margin >= {100 * WHIRL_MARGIN:.0f} %", bool(wh["margin"] >= WHIRL_MARGIN),
                   f"{100 * wh['margin']:+.0f} %"])
     return v
 
 
 def param_table(p, title: str = "Concept parameters") -> Table:
-    from ..geometry import fmt_param_value
-
     P = type(p)
     rows = []
     for name in P.model_fields:
@@ -56,10 +58,8 @@ def param_table(p, title: str = "Concept parameters") -> Table:
 
 
 def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_min: float = 1.5) -> Page:
-    """The page of one analysed design (everything :func:`clutchfem.clutch.analyze.analyze`
+    """The page of one analysed design (everything :func:`clutchfem.analysis.analyze`
     answers, the drawing, the parameters, the operating point and the material)."""
-    from .design import arc_stress_plot, summary_rows, torque_plot
-
     folder = Path(folder)
     name = an.label or an.design
     torque = torque_plot(an, engine, folder / "torque_rpm.png", f"{an.design}: torque vs engine speed (drum held)")
@@ -67,13 +67,9 @@ def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_
     sections = []
     draw = []
     if concept is not None and params is not None:
-        from ..geometry import draw_concept
-
         png = draw_concept(concept, params, folder / "drawing", mesh=design.cm, dpi=80)[0]
         draw.append(Figure("drawing (canonical frame, dimensions of the parameters)", png.name))
     else:
-        from ..geometry import draw_mesh
-
         png = draw_mesh(design.cm, folder / "mesh.png", dpi=80)
         draw.append(Figure("the user mesh and its named boundaries", png.name))
     warn = [Text("", list(an.warnings), "warn")] if an.warnings else []
@@ -119,9 +115,6 @@ def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_
 # optimisation
 # ---------------------------------------------------------------------------------------
 def optimization_page(res, final_an, folder: Path) -> Page:
-    from ..studies import DIMENSIONLESS, fatigue_note
-    from ..studies import target_charts as charts
-
     folder = Path(folder)
     path_png = charts.optimization_path(res, folder / "optimization_path.png")
     a = res.best["assessment"]
@@ -177,8 +170,6 @@ def optimization_page(res, final_an, folder: Path) -> Page:
     sections = [("Final design", [cons, prm] + ([Table("other parameters (fixed, from --set)", ["parameter", "value"],
                                                        other)] if other else []) + [verify])]
     if final_an is not None:
-        from .design import summary_rows
-
         sections.append(("Final design, full analysis (with error estimate)",
                          [Table("", ["quantity", "value"], [list(x) for x in summary_rows(final_an)])]))
     sections.append(("Path", [path_t]))
@@ -198,8 +189,6 @@ def optimization_page(res, final_an, folder: Path) -> Page:
 
 
 def _run_inputs(settings) -> dict:
-    from dataclasses import asdict
-
     return asdict(settings) if settings is not None else {}
 
 
@@ -207,8 +196,6 @@ def _run_inputs(settings) -> dict:
 # tolerances
 # ---------------------------------------------------------------------------------------
 def tolerance_page(res, folder: Path, inputs: dict) -> Page:
-    from ..studies import target_charts as charts
-
     folder = Path(folder)
     hist = charts.tolerance_histograms(res, folder / "tolerance_histograms.png")
     rank = charts.tolerance_ranking(res, folder / "tolerance_ranking.png")
@@ -261,7 +248,7 @@ def tolerance_page(res, folder: Path, inputs: dict) -> Page:
                                                        else "uniform over +-tolerance") + f"), seed {res.seed}",
         "share out of spec: Wilson score interval, 95 %",
         "ranking: standardised regression coefficients with R^2, 95 % percentile bootstrap (1000 resamples)"])]))
-    tol_txt = ", ".join(f"{k} +-{charts._tol_text(res, k)}" for k in res.tolerances)
+    tol_txt = ", ".join(f"{k} +-{charts.tolerance_text(res, k)}" for k in res.tolerances)
     return Page(title=f"{res.concept}: manufacturing tolerances (Monte Carlo)",
                 subtitle=f"{res.n} parts, {tol_txt}; {res.seconds:.0f} s", verdicts=verdicts, headline=head,
                 hero=[Figure("distributions of the answers", hist.name)], sections=sections, inputs=inputs,
@@ -272,12 +259,8 @@ def tolerance_page(res, folder: Path, inputs: dict) -> Page:
 # compensation
 # ---------------------------------------------------------------------------------------
 def compensation_page(comp, before, after, engine, folder: Path, inputs: dict) -> Page:
-    from ..studies import target_charts as charts
-
     folder = Path(folder)
     prof = charts.compensation_profile(comp, folder / "compensation_profile.png")
-    from ..geometry import get_concept
-
     root, tip = get_concept(comp.concept).shoe_arc(comp.before)
     torq = charts.compensation_torque(before, after, engine, folder / "compensation_torque.png", comp.rpm,
                                       math.degrees(abs(tip - root)))

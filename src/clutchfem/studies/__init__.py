@@ -1,30 +1,39 @@
 """Studies over many designs, all on one study engine (Dask, local or remote, with a
 resumable SQLite store):
 
-* parameter studies: :mod:`.spec` (a TOML spec -> validated :class:`StudySpec` -> points),
+* parameter studies: :mod:`.spec` (the resolved :class:`StudySpec` and its points),
+  :mod:`.schema` (the raw TOML structure and its errors), :mod:`.resolve` (a TOML spec ->
+  a validated :class:`StudySpec`), :mod:`.sampling` (Latin hypercube, Sobol),
   :mod:`.point` (one point -> one row: the only module that calls the analysis),
   :mod:`.hashing`, :mod:`.store`, :mod:`.runner` (scheduling, resume, progress, summary),
   :mod:`.charts`;
-* :mod:`.guidelines`: elasticities with a step-stability check, one-at-a-time sweeps;
-* design to targets: :mod:`.evaluate` (batches of designs), :mod:`.optimize` (targets and a
-  derivative-free search), :mod:`.tolerance` (Monte Carlo of manufacturing tolerances),
-  :mod:`.compensate` (shoe-profile compensation), :mod:`.values` (values that survive
-  ``--set``), :mod:`.target_charts`.
+* design guidelines: :mod:`.guidelines` (elasticities with a step-stability check,
+  one-at-a-time sweeps), :mod:`.guideline_study` (running one), :mod:`.guideline_charts`;
+* design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets and
+  a derivative-free search), :mod:`.tolerancing` (Monte Carlo of manufacturing
+  tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
+  that survive ``--set``), :mod:`.target_charts`.
 """
 
+from . import target_charts
 from .batch import EvalSettings, evaluate_many
 from .compensation import Compensation, compensate
-from .guidelines import GuidelineResult, GuidelineSettings, run_guidelines, summary_table
+from .guideline_charts import summary_table
+from .guideline_study import run_guidelines
+from .guidelines import GuidelineResult, GuidelineSettings
+from .hashing import design_hash
 from .optimization import DIMENSIONLESS, OptimizationResult, Targets, default_free, fatigue_note, optimize
 from .point import COLUMNS, Settings, evaluate, model_version
+from .resolve import load_spec, parse_spec
 from .runner import RunResult, StudyInterrupted, default_out, run_grid, run_points, run_study
-from .spec import EXAMPLE_SPEC, SpecError, StudySpec, load_spec, parse_spec
+from .schema import SpecError
+from .spec import EXAMPLE_SPEC, StudySpec
 from .store import STORE_NAME, ResultStore
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 
 __all__ = ["COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
            "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RunResult", "Settings",
            "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
-           "default_free", "default_out", "evaluate", "evaluate_many", "fatigue_note", "load_spec",
+           "default_free", "default_out", "design_hash", "evaluate", "evaluate_many", "fatigue_note", "load_spec",
            "model_version", "optimize", "parse_spec", "parse_tolerance", "run_grid", "run_guidelines",
-           "run_points", "run_study", "summary_table", "tolerance"]
+           "run_points", "run_study", "summary_table", "target_charts", "tolerance"]

@@ -1,12 +1,12 @@
 """One design point -> one row of answers, and the one function that evaluates batches:
-:func:`evaluate_many`, on the study engine of issue 10 (:mod:`clutchfem.study`).
+:func:`evaluate_many`, on the study engine of issue 10 (:mod:`clutchfem.studies`).
 
 A *point* is a dict ``name -> --set text`` (``{"flexure_thickness": "2.13mm"}``) applied on
 top of a base design (:class:`EvalSettings`); the design evaluated is exactly the one
 ``clutchfem analyze --concept C --set ...`` builds from the same texts
-(:mod:`clutchfem.targets.values`): the texts are read by the parameter set's own parser and
-the values handed to the study engine (:func:`clutchfem.study.evaluate`, the full
-:func:`~clutchfem.clutch.analyze.analyze` with ``errors=False``: a search ranks designs on
+(:mod:`clutchfem.studies.values`): the texts are read by the parameter set's own parser and
+the values handed to the study engine (:func:`clutchfem.studies.evaluate`, the full
+:func:`~clutchfem.analysis.analyze` with ``errors=False``: a search ranks designs on
 one mesh each; the error of an answer is stated for the design it ends on).
 
 A *row* is a flat, JSON-ready dict: the point, a ``status`` and the answers the targets need
@@ -17,7 +17,7 @@ in this process, before anything is sent: a refusal costs microseconds -- or the
 mesh cannot be made); ``failed`` (a valid design without an answer: a solver refusal, or the
 worker process died, e.g. gmsh aborting on a high-order mesh fix-up).
 
-Scheduling: :func:`clutchfem.study.runner.run_points` -- a ``dask.distributed`` cluster of
+Scheduling: :func:`clutchfem.studies.runner.run_points` -- a ``dask.distributed`` cluster of
 process workers with one thread each (or an existing cluster at ``scheduler``, or this
 process with ``workers=0``), each finished row committed to a SQLite store as it arrives.
 An optimisation sends many small batches (one per poll), so :func:`cluster` keeps one local
@@ -32,12 +32,20 @@ from __future__ import annotations
 
 import contextlib
 import json
+import logging
 import math
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..clutch import EngineCurve
 from ..core import ParameterError
+from ..geometry import MeshSettings, get_concept
+from ..loadcase import OperatingPoint
+from .hashing import design_hash
+from .point import COLUMNS, Settings, model_version
+from .runner import default_workers, run_points
+from .store import ResultStore
 
 #: the answers a row carries (name -> unit), in table order
 ANSWERS = {
@@ -69,15 +77,11 @@ class EvalSettings:
 
     def params(self, point: dict | None = None):
         """The concept's parameter set for ``point`` on the base (raises ParameterError)."""
-        from ..geometry import get_concept
-
         P = get_concept(self.concept).Params
         return P(**self.values(point))
 
     def values(self, point: dict | None = None) -> dict:
         """Parameter values (SI) of the base plus the point, as the parser reads the texts."""
-        from ..geometry import get_concept
-
         P = get_concept(self.concept).Params
         values = P.parse_assignments(list(self.base))
         if point:
@@ -85,19 +89,13 @@ class EvalSettings:
         return values
 
     def engine(self):
-        from ..clutch import EngineCurve
-
         return EngineCurve.from_csv(self.engine_csv, idle_rpm=self.idle_rpm) if self.engine_csv \
             else EngineCurve.default()
 
     def operating_point(self):
-        from ..loadcase import OperatingPoint
-
         return OperatingPoint(**self.op)
 
     def mesh_settings(self):
-        from ..geometry import MeshSettings
-
         return MeshSettings() if self.mesh_size is None else MeshSettings(size=self.mesh_size)
 
     def set_args(self, point: dict | None = None) -> list[str]:
@@ -107,9 +105,7 @@ class EvalSettings:
         return out + [f"{k}={v}" for k, v in (point or {}).items()]
 
     def study(self):
-        """The study engine's :class:`clutchfem.study.Settings` (the base as fixed values)."""
-        from .point import Settings
-
+        """The study engine's :class:`clutchfem.studies.Settings` (the base as fixed values)."""
         fixed = tuple(sorted(self.values().items()))
         return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
                         engine=self.engine() if self.engine_csv else None, idle_rpm=self.idle_rpm, a=self.a,
@@ -129,8 +125,6 @@ def cluster(workers: int | None = None, scheduler: str | None = None):
     local = None
     try:
         if scheduler is None and workers != 0:
-            import logging
-
             import dask
             from distributed import LocalCluster
 
@@ -152,16 +146,6 @@ def cluster(workers: int | None = None, scheduler: str | None = None):
             local.close(timeout=10)
 
 
-def default_workers() -> int:
-    import os
-
-    try:
-        n = len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not Linux
-        n = os.cpu_count() or 1
-    return max(1, n)
-
-
 def _num(x):
     if x is None:
         return None
@@ -173,7 +157,7 @@ def _num(x):
 
 
 def from_study_row(r: dict, point: dict) -> dict:
-    """A study engine row (:data:`clutchfem.study.COLUMNS`, MPa and g) as a row of this
+    """A study engine row (:data:`clutchfem.studies.COLUMNS`, MPa and g) as a row of this
     package (SI units, the point's ``--set`` texts)."""
     row = {"params": dict(point), "status": r.get("status") or "failed", "message": r.get("message") or "",
            "design_hash": r.get("design_hash"), "seconds": _num(r.get("t_total_s"))}
@@ -207,11 +191,6 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
     ``workers`` (None: one per core; 0: this process) as the study engine starts them;
     ``on_row(row)`` is called for every row once the batch is done; ``progress``: the study
     engine's progress bar on stderr."""
-    from .hashing import design_hash
-    from .point import COLUMNS, model_version
-    from .runner import run_points
-    from .store import ResultStore
-
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise ParameterError("workers", workers, "an integer >= 0 (parallel design evaluations; 0: this process)")
     rows: list[dict | None] = [None] * len(points)
@@ -224,8 +203,6 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
             rows[i] = {"i": i, "params": dict(pt), "status": "refused", "message": str(exc),
                        "refused_parameter": exc.name, "seconds": 0.0}
             continue
-        from ..geometry import get_concept
-
         P = get_concept(settings.concept).Params
         vals[i] = P.parse_assignments([f"{k}={v}" for k, v in pt.items()])
         todo.append(i)

@@ -11,7 +11,7 @@
   feasible designs in colour, the others in grey; the title counts them and names the
   requirement that failed most often.
 
-Figures are drawn with matplotlib's Agg canvas chosen inside :func:`clutchfem.plotting.figure`
+Figures are drawn with matplotlib's Agg canvas chosen inside :func:`clutchfem.core.figure`
 (no backend is selected at import, no pyplot state is kept).
 """
 
@@ -23,7 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core import figure
 from .point import ANSWERS
+from .spec import display_value
 
 #: panels of the answers-vs-input charts: (columns drawn, title, limit column, limit label)
 PANELS = (
@@ -43,8 +45,6 @@ def _x(frame, axis):
     """(x values as floats, tick labels or None) of a varied input; choices become indices."""
     raw = [json.loads(p).get(axis.name) for p in frame["point_json"]]
     if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in raw):
-        from .spec import display_value
-
         return np.array([display_value(v, axis.unit) for v in raw], dtype=float), None
     cats = list(dict.fromkeys(str(v) for v in raw))
     return np.array([cats.index(str(v)) for v in raw], dtype=float), cats
@@ -90,8 +90,6 @@ def _groups(frame, axis, spec):
 def answers_vs_inputs(frame, spec, outdir: str | Path) -> list[Path]:
     """One PNG per varied input (see module docstring); returns the paths."""
     from matplotlib.lines import Line2D
-
-    from ..core import figure
 
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -167,8 +165,6 @@ def parallel_coordinates(frame, spec, path: str | Path) -> Path:
     """Parallel coordinates of the answered designs, feasible ones in colour (see module
     docstring)."""
     from matplotlib import colormaps
-
-    from ..core import figure
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

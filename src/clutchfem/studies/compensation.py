@@ -18,9 +18,10 @@ softening included) and G = -B (K - X^2 M)^-1 D the condensed contact compliance
 included: not symmetric; :mod:`clutchfem.softening`).  If every node of the target arc
 T = [s_a, s_a + f] touches, lam_T = G_TT^-1 (u_n,T - c_T) and the pressure is
 p_i = lam_i / (h w_i) (h thickness, w_i the node's tributary length).  The profile is the
-``table`` profile (:class:`clutchfem.geometry.base.ConceptParams`): c(s) = sum_k v_k phi_k(s),
-a C2 cubic spline through 9 control values v_k (phi_k its cardinal functions).  The best
-profile at this linearisation solves the small quadratic programme (10 unknowns, SLSQP)
+``table`` profile (:class:`clutchfem.geometry.ConceptParams`): c(s) = sum_k v_k phi_k(s),
+a C2 cubic spline through the TABLE_N = 17 control values v_k (phi_k its cardinal
+functions, :func:`clutchfem.geometry.table_cardinal`).  The best profile at this
+linearisation solves the small quadratic programme (10 unknowns, SLSQP)
 
     min_{v, P}  sum_T w_i (p_i(v) - P)^2 / sum_T w_i            (even pressure at a level P)
     s.t.   mean_T c(v) = c_mean                                   (level rule, below)
@@ -56,10 +57,11 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.interpolate import CubicSpline
+from scipy.optimize import lsq_linear
 
-from ..core import InputError, ParameterError, SolverError, rpm_to_rad_s
-from ..geometry import TABLE_FIELDS, TABLE_N
+from ..core import InputError, ParameterError, SolverError, rpm_to_rad_s, wrap_angle
+from ..geometry import TABLE_FIELDS, TABLE_N, MeshSettings, get_concept, table_cardinal
+from ..loadcase import Design, contact_extent
 from . import values as V
 
 #: the control values are kept this far inside the table's declared range [m]
@@ -127,12 +129,6 @@ class Compensation:
         return V.assignments(self.after_texts)
 
 
-def cardinal(s: np.ndarray, n: int = TABLE_N) -> np.ndarray:
-    """(len(s), n) cardinal functions of the table spline at arc fractions ``s`` (the same
-    spline as the geometry's: not-a-knot cubic through n equally spaced knots)."""
-    return CubicSpline(np.linspace(0.0, 1.0, n), np.eye(n), bc_type="not-a-knot", axis=0)(np.asarray(s))
-
-
 def shoe_state(design, omega: float, case=None) -> tuple[ShoeState, dict]:
     """The contact of shoe 0 at ``omega`` [rad/s] and the operators of its linearisation
     (``idx`` node indices root->tip, ``G`` (k x k) compliance incl. an elastic drum, ``un``
@@ -144,8 +140,6 @@ def shoe_state(design, omega: float, case=None) -> tuple[ShoeState, dict]:
     nd = c.nodes
     root, tip = design.cm.contact_arcs[0]
     sel = np.nonzero(nd.shoe == 0)[0]
-    from ..core import wrap_angle
-
     ang = wrap_angle(nd.angle[sel], 0.5 * (root + tip))
     s = (ang - root) / (tip - root)
     order = np.argsort(s)
@@ -157,8 +151,7 @@ def shoe_state(design, omega: float, case=None) -> tuple[ShoeState, dict]:
         G = G + c.drum_compliance[np.ix_(idx, idx)]
     w = nd.weight[idx]
     p = lam[idx] / (design.thickness * w)
-    from ..loadcase import contact_extent  # the results' half-spacing convention
-
+    # the contact extent by the results' half-spacing convention
     e = contact_extent(c, lam[None, :], 0)[0]
     share = 0.0 if not np.isfinite(e[0]) else abs(e[1] - e[0]) / abs(tip - root)
     N = float(lam.sum() * case.scale)
@@ -193,11 +186,9 @@ def _programme(st: ShoeState, ops: dict, arc, h: float, c_mean: float, lo: float
 
     Returns (v [m], P [Pa], rms misfit over T [m], predicted pressure cv): the cv the misfit
     leaves in the linearised contact (p error = G_TT^-1 misfit / (h w))."""
-    from scipy.optimize import lsq_linear
-
     s, w, un, G = st.s, st.weight_m, ops["un"], ops["G"]
     T = (s >= arc[0] - 1e-9) & (s <= arc[1] + 1e-9)
-    Phi = cardinal(s)
+    Phi = table_cardinal(s)
     lam1 = np.where(T, h * w, 0.0)
     g1 = G @ lam1  # gap opened by a unit uniform pressure on T [m/Pa]
     mT = w[T] / w[T].sum()
@@ -206,7 +197,7 @@ def _programme(st: ShoeState, ops: dict, arc, h: float, c_mean: float, lo: float
         raise SolverError(f"profile compensation: at a mean clearance of {c_mean * 1e3:.3f} mm over the target arc "
                           f"the shoe does not touch at this speed (its free mean displacement there is "
                           f"{mT @ un[T] * 1e3:.3f} mm): lower --mean-clearance or raise --rpm")
-    corr = st.clearance_m - cardinal(s) @ v_cur  # mesh profile vs spline (geometry representation)
+    corr = st.clearance_m - table_cardinal(s) @ v_cur  # mesh profile vs spline (geometry representation)
     target = un - P * g1 - corr
     sw = np.sqrt(mT)
     fit = lsq_linear(Phi[T] * sw[:, None], target[T] * 1e6 * sw, bounds=(lo * 1e6, hi * 1e6), method="bvls")
@@ -254,9 +245,6 @@ def compensate(concept, params=None, rpm: float = 8000.0, target_arc: float = 0.
     ``mean_clearance`` [m] overrides the level rule; the fixed point stops when no control
     value moves more than ``tol`` [m] (or after ``max_iter`` rebuilds).  See the module
     docstring."""
-    from ..geometry import MeshSettings, get_concept
-    from ..loadcase import Design
-
     t_start = time.perf_counter()
     c = get_concept(concept) if isinstance(concept, str) else concept
     p0 = params if params is not None else c.params()
@@ -272,9 +260,7 @@ def compensate(concept, params=None, rpm: float = 8000.0, target_arc: float = 0.
     if isinstance(max_iter, bool) or not (isinstance(max_iter, int) and 1 <= max_iter <= 50):
         raise ParameterError("max_iter", max_iter, "an integer in [1, 50]", "compensate")
     P = type(p0)
-    f0 = P.model_fields[TABLE_FIELDS[0]]
-    lo_r = max(m.ge for m in f0.metadata if getattr(m, "ge", None) is not None)
-    hi_r = min(m.le for m in f0.metadata if getattr(m, "le", None) is not None)
+    lo_r, hi_r = V.param_bounds(P, TABLE_FIELDS[0])
     lo, hi = lo_r + RANGE_MARGIN, hi_r - RANGE_MARGIN
     if mean_clearance is not None and not (isinstance(mean_clearance, (int, float)) and lo <= mean_clearance <= hi):
         raise ParameterError("mean_clearance", mean_clearance, f"a clearance in [{lo * 1e3:.2f} mm, "

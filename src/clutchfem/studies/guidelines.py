@@ -9,7 +9,11 @@ von Mises at the engine's maximum speed, shoe mass, contact arc), the **local el
 
 and a **one-at-a-time sweep** of x over x0 (1 -+ span) within its declared range, the other
 parameters at the design point.  Everything runs on the study engine
-(:func:`clutchfem.study.runner.run_points`: Dask, store, resume).
+(:func:`clutchfem.studies.runner.run_points`: Dask, store, resume): :mod:`.guideline_study`
+runs a guideline study and writes its tables, :mod:`.guideline_charts` draws them.  This
+module holds the method: what is studied (:class:`GuidelineSettings`), the designs it takes
+(:func:`plan`), the elasticity with its stability check (:func:`elasticity`) and the result
+(:class:`GuidelineResult`).
 
 Finite differences against mesh noise.  Every design is meshed anew and the mesh topology
 changes with the parameters, so A(x) carries a small, non-smooth noise eps (relative) on
@@ -41,8 +45,12 @@ from typing import Any, Literal, get_origin
 
 import numpy as np
 
-from ..core import InputError, ParameterError
+from ..clutch import EngineCurve
+from ..core import ParameterError, clean
+from ..geometry import MeshSettings, get_concept
+from ..loadcase import OperatingPoint
 from .point import Settings
+from .values import param_bounds, round12
 
 #: answers of the guidelines: (row column, label with unit)
 ANSWERS: tuple[tuple[str, str], ...] = (
@@ -87,9 +95,6 @@ class GuidelineSettings:
                b: float = 1.0, min_safety_factor: float = 1.0) -> "GuidelineSettings":
         """Validated settings (API); ``base`` concept parameters in their units, ``params``
         names (default: every continuous parameter with a non-zero design value)."""
-        from ..geometry import MeshSettings, get_concept
-        from ..loadcase import OperatingPoint
-
         c = get_concept(concept)
         base = dict(base or {})
         p0 = c.Params(**base)  # the design point must itself be valid
@@ -129,10 +134,6 @@ class GuidelineSettings:
 
     @classmethod
     def from_cli(cls, concept, set_, params, *, step, points, span, mesh_size, mu, material, engine):
-        from ..clutch import EngineCurve
-        from ..geometry import MeshSettings, get_concept
-        from ..loadcase import OperatingPoint
-
         c = get_concept(concept)
         base = c.Params.parse_assignments(set_)
         names = None if params is None else [s.strip() for s in params.split(",") if s.strip()]
@@ -167,24 +168,14 @@ def _continuous(P, p0) -> list[str]:
     return out
 
 
-def _bounds(P, name):
-    from .spec import _bounds as b
-
-    return b(P, name)
-
-
 # ---------------------------------------------------------------------------------------
 # points
 # ---------------------------------------------------------------------------------------
-def _clean(x: float) -> float:
-    return float(f"{x:.12g}")
-
-
 def fd_values(x0: float, h: float) -> list[float]:
     """The finite-difference abscissae: x0 (1 -+ r) for r in h/2, h, 2h (ascending)."""
     out = [x0]
     for f in STEP_FACTORS:
-        out += [_clean(x0 * (1 - f * h)), _clean(x0 * (1 + f * h))]
+        out += [round12(x0 * (1 - f * h)), round12(x0 * (1 + f * h))]
     return sorted(out)
 
 
@@ -195,19 +186,17 @@ def oat_values(x0: float, lo, hi, span: float, n: int) -> list[float]:
         a, b = b, a
     a = max(a, lo) if lo is not None else a
     b = min(b, hi) if hi is not None else b
-    return sorted({_clean(v) for v in np.linspace(a, b, n)} | {x0})
+    return sorted({round12(v) for v in np.linspace(a, b, n)} | {x0})
 
 
 def plan(gs: GuidelineSettings) -> tuple[list[dict], dict]:
     """All points of a guideline study and, per parameter, its FD and OAT values."""
-    from ..geometry import get_concept
-
     P = get_concept(gs.concept).Params
     p0 = P(**gs.base)
     points, per = [{}], {}
     for n in gs.params:
         x0 = float(getattr(p0, n))
-        lo, hi = _bounds(P, n)
+        lo, hi = param_bounds(P, n)
         fd = fd_values(x0, gs.step)
         inside = [v for v in fd if (lo is None or v >= lo) and (hi is None or v <= hi)]
         oat = oat_values(x0, lo, hi, gs.span, gs.points)
@@ -256,7 +245,7 @@ def elasticity(x0: float, h: float, value_at) -> dict:
     ys = {x: v(x) for x in fd_values(x0, h)}
 
     def at(f):
-        return ys.get(_clean(x0 * (1 + f * h)), math.nan)
+        return ys.get(round12(x0 * (1 + f * h)), math.nan)
 
     est = {f: central(at(-f), at(f), f * h) for f in STEP_FACTORS}
     method = "central"
@@ -312,8 +301,6 @@ class GuidelineResult:
     base_errors: dict = field(default_factory=dict)
 
     def as_json(self) -> dict:
-        from ..core import clean
-
         return clean({"concept": self.concept, "design_point": self.base, "step": self.step,
                       "stability_rule": f"E_h/2, E_2h and E_fit within {STABLE_ABS} + {STABLE_REL:.0%} of |E_h| "
                                         "(verdicts: stable, unstable, unchecked, no answer)",
@@ -321,205 +308,3 @@ class GuidelineResult:
                       "design_point_errors": self.base_errors,
                       "run": self.run.as_dict() if self.run is not None else None,
                       "files": [str(f) for f in self.files]})
-
-
-def run_guidelines(gs: GuidelineSettings, out: str | Path, *, workers: int | None = None,
-                   scheduler: str | None = None, progress: bool = True, charts: bool = True) -> GuidelineResult:
-    """Run the guideline study ``gs`` on the study engine into ``out`` (store, tables, charts)."""
-    import pandas as pd
-
-    from ..core import write
-    from .hashing import design_hash
-    from .point import COLUMNS
-    from .runner import run_points
-    from .store import STORE_NAME, ResultStore
-
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    points, per = plan(gs)
-    run = run_points(points, gs.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
-                     progress=progress, source=f"guidelines {gs.concept}", desc="guidelines",
-                     error_points=[0] if gs.errors else [])
-    with ResultStore(out / STORE_NAME, COLUMNS) as st:
-        df = st.frame(run.model_version, run.keys)
-    by_hash = {r["design_hash"]: r for r in df.to_dict("records")}
-    base_row = by_hash.get(design_hash({}, gs.settings))
-    notes = list(gs.notes)
-    if base_row is None or base_row["status"] != "ok":
-        msg = base_row["message"] if base_row is not None else "not computed"
-        raise InputError(f"guidelines {gs.concept}: the design point itself has no answer ({msg})")
-    base_errors = {}
-    if base_row.get("errors_estimated") == 1:
-        from .runner import ERROR_COLUMNS
-
-        for ans, tot, disc, unit in ERROR_COLUMNS:
-            base_errors[ans] = {"value": base_row[ans], "band": base_row[tot], "discretisation": base_row[disc],
-                                "unit": unit}
-            if base_row[tot] is not None and base_row[ans]:
-                notes.append(f"design point: {ans} = {base_row[ans]:.4g} +- {base_row[tot]:.3g} {unit} (mesh "
-                             f"+- {base_row[disc]:.3g} {unit}, the rest model form): an elasticity says how an answer "
-                             "moves, this band how far its value may be off")
-
-    def row_at(name, x):
-        if x == per[name]["x0"]:
-            return base_row
-        return by_hash.get(design_hash({name: x}, gs.settings))
-
-    table = []
-    for n in gs.params:
-        x0, unit = per[n]["x0"], per[n]["unit"]
-        if per[n]["fd_outside"]:
-            notes.append(f"{n}: finite-difference values outside its declared range ({per[n]['fd_outside']}): "
-                         "those steps are not evaluated")
-        refused = [x for x in per[n]["fd"] if (r := row_at(n, x)) is None or r["status"] != "ok"]
-        if refused:
-            notes.append(f"{n}: no answer at {', '.join(f'{x:.6g}' for x in refused)} {unit} (refused/failed): "
-                         "the derivative uses the steps that were answered")
-        for col, label in ANSWERS:
-            def value_at(x, col=col, n=n):
-                r = row_at(n, x)
-                return None if r is None or r["status"] != "ok" else r[col]
-
-            e = elasticity(x0, gs.step, value_at)
-            a0 = e["value_at_x0"]
-            per_unit, du = _per_unit(unit)
-            slope = e["E"] * a0 / x0 * du if math.isfinite(e["E"]) and a0 else math.nan
-            table.append({"parameter": n, "unit": unit, "x0": x0, "answer": col, "label": label, **e,
-                          f"change_per_{per_unit.replace(' ', '_')}": slope, "per": per_unit})
-    # ranking: largest |E| over the answers whose derivative is not unstable
-    score = {}
-    for n in gs.params:
-        es = [abs(t["E"]) for t in table if t["parameter"] == n and t["verdict"] in ("stable", "unchecked")
-              and math.isfinite(t["E"])]
-        score[n] = max(es) if es else 0.0
-    ranking = sorted(gs.params, key=lambda n: -score[n])
-    # one-at-a-time table
-    oat_rows = []
-    for n in gs.params:
-        for x in per[n]["oat"]:
-            r = row_at(n, x)
-            rec = {"parameter": n, "unit": per[n]["unit"], "value": x, "relative": x / per[n]["x0"],
-                   "status": None if r is None else r["status"], "message": None if r is None else r["message"]}
-            for col, _ in ANSWERS:
-                rec[col] = None if r is None or r["status"] != "ok" else r[col]
-            oat_rows.append(rec)
-    oat = pd.DataFrame(oat_rows)
-    files = []
-    tpath = out / "guidelines.csv"
-    pd.DataFrame(table).to_csv(tpath, index=False)
-    opath = out / "one_at_a_time.csv"
-    oat.to_csv(opath, index=False)
-    files += [tpath, opath]
-    res = GuidelineResult(concept=gs.concept, base=gs.base, step=gs.step, table=table, ranking=ranking, oat=oat,
-                          files=files, notes=notes, run=run, base_errors=base_errors)
-    if charts:
-        files.append(oat_chart(res, out / "one_at_a_time.png"))
-        files.append(elasticity_chart(res, out / "elasticities.png"))
-    jpath = out / "guidelines.json"
-    write(jpath, res.as_json(), indent=1)
-    files.append(jpath)
-    return res
-
-
-def _per_unit(unit: str) -> tuple[str, float]:
-    """(the designers' step of a unit, its size in the unit): 0.1 mm, 1 deg, 0.1."""
-    return {"m": ("0.1 mm", 1e-4), "deg": ("1 deg", 1.0)}.get(unit, ("0.1", 0.1))
-
-
-def summary_table(res: GuidelineResult):
-    """A rich table: parameters ranked, elasticity of each answer (~: unstable derivative)."""
-    from rich.markup import escape
-    from rich.table import Table
-
-    from .spec import display_value
-
-    t = Table(title=escape(f"{res.concept}: elasticities d ln(answer) / d ln(parameter) at the design point"),
-              caption=escape(f"engage: engagement rpm; slip: slip rpm; torque: at the rpm of max engine torque; "
-                             f"stress: peak von Mises at max rpm; shoe m: shoe mass; arc: contact arc.  "
-                             f"Step h = {res.step:.0%}; ~: unstable (E at h/2, 2h or the fit differs from E at h "
-                             f"by more than {STABLE_ABS} + {STABLE_REL:.0%}); ?: unchecked (a step has no answer); "
-                             "1: one-sided (one side refused); -: no answer"))
-    t.add_column("rank")
-    t.add_column("parameter", no_wrap=True)
-    t.add_column("value", justify="right")
-    for col, _ in ANSWERS:
-        t.add_column(SHORT[col], justify="right")
-    for k, n in enumerate(res.ranking, start=1):
-        cells = []
-        unit = x0 = None
-        for col, _ in ANSWERS:
-            e = next(r for r in res.table if r["parameter"] == n and r["answer"] == col)
-            unit, x0 = e["unit"], e["x0"]
-            v = e["E"]
-            mark = {"stable": "", "unchecked": "?", "unstable": "~"}.get(e["verdict"], "")
-            side = "" if e["method"] == "central" else "1"
-            cells.append("-" if not math.isfinite(v) else f"{mark}{v:+.2f}{side}")
-        shown = {"m": "mm", "-": ""}.get(unit, unit)
-        t.add_row(str(k), escape(n), escape(f"{display_value(x0, unit):.4g} {shown}".strip()), *cells)
-    return t
-
-
-def oat_chart(res: GuidelineResult, path: str | Path) -> Path:
-    """Small multiples, one panel per answer: the answer against x / x0 for every parameter."""
-    from matplotlib import colormaps
-
-    from ..core import figure
-
-    path = Path(path)
-    oat = res.oat
-    cmap = colormaps["tab20"]
-    fig, axes = figure(2, 3, figsize=(14.0, 7.5), squeeze=False)
-    for k, (col, label) in enumerate(ANSWERS):
-        ax = axes.flat[k]
-        for j, n in enumerate(res.ranking):
-            d = oat[oat["parameter"] == n]
-            okd = d[d["status"] == "ok"]
-            y = okd[col].astype(float)
-            colour = cmap((2 * j) % 20 + (j // 10) % 2)
-            ax.plot(okd["relative"], y, "-o", ms=3, lw=1.1, color=colour, label=n if k == 0 else None)
-            bad = d[d["status"] != "ok"]
-            if len(bad):
-                for xr in bad["relative"]:
-                    ax.axvline(xr, color=colour, lw=0.5, ls=":", alpha=0.6)
-        ax.axvline(1.0, color="0.3", lw=0.8)
-        ax.set_title(label, fontsize=9)
-        ax.set_xlabel("parameter / design value [-]", fontsize=8)
-        ax.grid(alpha=0.3)
-        ax.tick_params(labelsize=7)
-    axes.flat[0].legend(fontsize=7, loc="best")
-    fig.suptitle(f"{res.concept}: one parameter at a time around the design point (dotted: no answer there)",
-                 fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    return path
-
-
-def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
-    """Small multiples, one per answer: the elasticity of each parameter as a bar with the
-    spread of the step check as its error bar (hatched: unstable)."""
-    from ..core import figure
-
-    path = Path(path)
-    fig, axes = figure(2, 3, figsize=(14.0, 7.5), squeeze=False)
-    names = res.ranking
-    for k, (col, label) in enumerate(ANSWERS):
-        ax = axes.flat[k]
-        rows = [next(r for r in res.table if r["parameter"] == n and r["answer"] == col) for n in names]
-        e = np.array([r["E"] for r in rows], dtype=float)
-        sp = np.array([r["spread"] for r in rows], dtype=float)
-        y = np.arange(len(names))
-        colours = [{"stable": "C0", "unchecked": "C1"}.get(r["verdict"], "0.7") for r in rows]
-        ax.barh(y, np.nan_to_num(e), xerr=np.nan_to_num(sp), color=colours, ecolor="0.3", capsize=2,
-                hatch=None)
-        ax.set_yticks(y, names, fontsize=7)
-        ax.invert_yaxis()
-        ax.axvline(0, color="0.3", lw=0.8)
-        ax.set_title(f"{label}: d ln A / d ln x", fontsize=9)
-        ax.grid(alpha=0.3, axis="x")
-        ax.tick_params(labelsize=7)
-    fig.suptitle(f"{res.concept}: elasticities at the design point (blue: stable; orange: unchecked, a step "
-                 f"refused; grey: unstable against mesh noise; error bar: spread of E over h/2, 2h and the fit)",
-                 fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    return path

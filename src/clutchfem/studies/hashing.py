@@ -14,7 +14,7 @@ meshing it):
 
 Floats are written with 12 significant digits, so ``1.5mm`` parsed as 0.0015000000000000002
 and 0.0015 typed in metres are one design.  The model version (see
-:func:`clutchfem.study.point.model_version`) is kept apart: the same design under a new
+:func:`clutchfem.studies.point.model_version`) is kept apart: the same design under a new
 model is a new row, not a changed hash.
 """
 
@@ -25,6 +25,11 @@ import json
 import math
 from typing import Any
 
+from ..core import get_material
+from ..geometry import get_concept
+from .point import split_point
+from .values import round12
+
 
 def _norm(x: Any) -> Any:
     if isinstance(x, bool) or x is None or isinstance(x, str):
@@ -32,7 +37,7 @@ def _norm(x: Any) -> Any:
     if isinstance(x, int):
         return x
     if isinstance(x, float):
-        return float(f"{x:.12g}") if math.isfinite(x) else str(x)
+        return round12(x) if math.isfinite(x) else str(x)
     if isinstance(x, dict):
         return {str(k): _norm(v) for k, v in sorted(x.items())}
     if isinstance(x, (list, tuple)):
@@ -44,14 +49,10 @@ def _norm(x: Any) -> Any:
 
 def canonical_inputs(point: dict, settings) -> dict:
     """The canonical document hashed for ``point`` under ``settings`` (see module docstring)."""
-    from .point import split_point
-
     base = settings.canonical()
     geo, opv = split_point(point, settings)
     doc: dict = {"design": base["concept"], "mesh_file_sha256": base["mesh_file_sha256"]}
     if settings.concept is not None:
-        from ..geometry import get_concept
-
         fields = get_concept(settings.concept).Params.model_fields
         params = {k: f.default for k, f in fields.items()}
         params.update(dict(settings.fixed))
@@ -60,8 +61,6 @@ def canonical_inputs(point: dict, settings) -> dict:
     op = dict(base["op"])
     for k, v in opv.items():
         if k == "material" and isinstance(v, str):
-            from ..core import get_material
-
             v = get_material(v).model_dump(mode="json")
         op[k] = v
     doc.update(op=op, mesh=base["mesh"], engine=base["engine"], idle_rpm=base["idle_rpm"],

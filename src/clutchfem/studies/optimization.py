@@ -1,7 +1,7 @@
 """Design to targets: a derivative-free, parallel search for a design that meets the
 requirement checks at the least part mass (or the largest torque margin).
 
-Targets (defaults: the requirement checks of :func:`clutchfem.clutch.analyze.analyze`)
+Targets (defaults: the requirement checks of :func:`clutchfem.analysis.analyze`)
 
 * engagement with the 2-stroke ripple (3 sigma cycle) >= a x idle (a = 1.3, idle 2700 rpm:
   3510 rpm; both ASSUMED in the core), optionally <= an upper limit;
@@ -27,7 +27,7 @@ of COBYLA/COBYQA need a value everywhere and are misled by noise at small steps.
 refused or failed design is simply worse than all others and costs nothing (refusals are
 found before any meshing), its steps never fall below the parameters' snapping resolution
 (noise cannot be chased below it), and each poll (2 n designs) is one parallel batch of
-:func:`~clutchfem.targets.evaluate.evaluate_many`.
+:func:`~clutchfem.studies.batch.evaluate_many`.
 
 Comparison (a filter in its simplest form): a feasible design beats an infeasible one; two
 infeasible designs compare by h; two feasible ones by the objective.  An improvement counts
@@ -56,7 +56,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import qmc
 
-from ..core import InputError, ParameterError
+from ..core import InputError, ParameterError, clean
+from ..geometry import ConceptParams
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
 
@@ -185,10 +186,7 @@ def make_space(P, free: list[str], ranges: dict | None = None, start=None) -> Sp
         if f.annotation is not float:
             raise ParameterError(n, None, "a real-valued parameter with a range (choices and counts are set with "
                                           "--set)", "--free")
-        a = b = None
-        for m in f.metadata:
-            a = m.ge if getattr(m, "ge", None) is not None else a
-            b = m.le if getattr(m, "le", None) is not None else b
+        a, b = V.param_bounds(P, n)
         if ranges and n in ranges:
             a, b = ranges[n]
         if a is None or b is None or not a < b:
@@ -212,8 +210,6 @@ def default_free(P) -> list[str]:
     strongest lever on the safety factor; on concept 4 the shape parameters alone reached a
     safety factor of 1.14 at best (300 analysed designs) against the 1.5 asked, with the clearance free
     the targets are met (docs/design_to_targets.md)."""
-    from ..geometry import ConceptParams
-
     common = set(ConceptParams.model_fields)
     own = [n for n, f in P.model_fields.items() if n not in common and f.annotation is float]
     for extra in ("fillet_radius", "clearance"):
@@ -241,8 +237,6 @@ class OptimizationResult:
     settings: EvalSettings | None = None
 
     def to_json(self) -> dict:
-        from ..core import clean
-
         a = self.best.get("assessment", {})
         return clean({
             "concept": self.concept, "feasible": self.feasible, "message": self.message,
@@ -277,7 +271,7 @@ def optimize(settings: EvalSettings, targets: Targets, free: list[str] | None = 
     ``min_step`` of the ranges (1/256: ~0.1 mm on a 20 mm range, where the mesh noise of the
     answers is of the size of the steps' effect) or every parameter's resolution.  The
     designs run on the study engine: one local cluster of ``workers`` for the whole search,
-    or the cluster at ``scheduler`` (:func:`~clutchfem.targets.evaluate.cluster`)."""
+    or the cluster at ``scheduler`` (:func:`~clutchfem.studies.batch.cluster`)."""
     with cluster(workers, scheduler):
         return _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step, log)
 

@@ -1,10 +1,10 @@
-"""One design of a study -> one row: the only module of :mod:`clutchfem.study` that knows
+"""One design of a study -> one row: the only module of :mod:`clutchfem.studies` that knows
 the analysis API.
 
 :func:`evaluate` takes a *point* (the varied inputs, ``{name: value}`` in the parameter's
 own unit: m, deg, -) and the study's fixed :class:`Settings`, builds the design (concept
-parameters -> mesh -> :class:`~clutchfem.design.Design`, one FE model), runs the full
-:func:`clutchfem.clutch.analyze.analyze` and flattens the answers into one flat row of
+parameters -> mesh -> :class:`~clutchfem.loadcase.Design`, one FE model), runs the full
+:func:`clutchfem.analysis.analyze` and flattens the answers into one flat row of
 :data:`COLUMNS`.  Everything else in the package (spec, sampling, hashing, store,
 scheduling, resume, progress, charts, guidelines) sees only these rows, so a change of the
 analysis API is a change of this file alone (and :data:`COLUMNS` is the contract).
@@ -13,11 +13,11 @@ Status of a row (house rule, also in the CLI help):
 
 * ``ok``: answered;
 * ``refused``: the *input* was refused on purpose with a message (a
-  :class:`~clutchfem.errors.ParameterError` of the concept's cross-parameter rules, an
-  :class:`~clutchfem.errors.InputError`, a :class:`~clutchfem.errors.GeometryError` or
-  :class:`~clutchfem.errors.MeshError`: the parameters do not make a part);
+  :class:`~clutchfem.core.ParameterError` of the concept's cross-parameter rules, an
+  :class:`~clutchfem.core.InputError`, a :class:`~clutchfem.core.GeometryError` or
+  :class:`~clutchfem.core.MeshError`: the parameters do not make a part);
 * ``failed``: the design is valid but no answer came: a
-  :class:`~clutchfem.errors.SolverError` (the solver's own checks refuse to answer), any
+  :class:`~clutchfem.core.SolverError` (the solver's own checks refuse to answer), any
   other exception (a bug: its type and message are recorded), or the worker process died
   while computing it (a gmsh crash; recorded by the scheduler, :func:`failed_row`).
 
@@ -44,7 +44,16 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from ..core import ClutchfemError, GeometryError, InputError, MeshError, ParameterError
+import gmsh
+import skfem
+
+from .. import __version__
+from ..analysis import Requirements, analyze
+from ..clutch import EngineCurve
+from ..core import ClutchfemError, GeometryError, InputError, MeshError, ParameterError, dumps, tune_malloc
+from ..geometry import MeshSettings, get_concept
+from ..loadcase import Design, OperatingPoint
+from ..mesh import load_user_geometry, mesh_concept, source_hash
 
 #: the row: (column, SQL type, meaning with unit).  The store creates its table from it.
 COLUMNS: tuple[tuple[str, str, str], ...] = (
@@ -154,9 +163,6 @@ class Settings:
 
     def canonical(self) -> dict:
         """The defining fixed inputs as plain JSON data (for the design hash and the row)."""
-        from ..geometry import MeshSettings
-        from ..loadcase import OperatingPoint
-
         op = self.op if self.op is not None else OperatingPoint()
         ms = self.mesh if self.mesh is not None else MeshSettings()
         eng = None
@@ -184,11 +190,6 @@ def model_version(concept: str | None = None) -> str:
     (the package without its presentation modules, plus this adapter), the concept's
     geometry source and the gmsh and scikit-fem versions.  Stored results are reused only
     under the same model version, so editing the core never serves stale answers."""
-    import gmsh
-    import skfem
-
-    from .. import __version__
-
     root = Path(__file__).resolve().parents[1]
     h = hashlib.sha256()
     files = []
@@ -200,9 +201,6 @@ def model_version(concept: str | None = None) -> str:
         h.update(rel.encode())
         h.update(f.read_bytes())
     if concept:
-        from ..geometry import get_concept
-        from ..mesh import source_hash
-
         h.update(source_hash(get_concept(concept)).encode())
     h.update(f"gmsh {gmsh.__version__} scikit-fem {getattr(skfem, '__version__', '?')}".encode())
     return f"{__version__}+{h.hexdigest()[:12]}"
@@ -212,8 +210,6 @@ def model_version(concept: str | None = None) -> str:
 # one point
 # ---------------------------------------------------------------------------------------
 def _json(obj) -> str:
-    from ..core import dumps
-
     return dumps(obj, sort_keys=True)
 
 
@@ -240,8 +236,6 @@ def split_point(point: dict, settings: Settings) -> tuple[dict, dict]:
     mesh every name is an operating-point field."""
     if settings.concept is None:
         return {}, dict(point)
-    from ..geometry import get_concept
-
     fields = get_concept(settings.concept).Params.model_fields
     geo = {k: v for k, v in point.items() if k in fields}
     return geo, {k: v for k, v in point.items() if k not in fields}
@@ -271,12 +265,6 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "", errors: boo
     raises for a bad design: the status and message say what happened.  ``errors``: also
     estimate the error of the main answers (analyze's step 10: the design again on a mesh
     twice as fine, about 3x the time; a study does it for a sample of its points)."""
-    from ..analysis import Requirements, analyze
-    from ..clutch import EngineCurve
-    from ..geometry import get_concept
-    from ..loadcase import Design
-    from ..mesh import load_user_geometry, mesh_concept
-
     t0, c0 = time.perf_counter(), time.process_time()
     version = model_version(settings.concept)
     row = _base_row(point, settings, design_hash, version)
@@ -331,7 +319,7 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "", errors: boo
 
 
 def _fill(row: dict, an, design, settings: Settings, cm) -> None:
-    """The answers of one :class:`~clutchfem.clutch.analyze.Analysis` into ``row``."""
+    """The answers of one :class:`~clutchfem.analysis.Analysis` into ``row``."""
     req = an.requirements
     shoes = (an.part or {}).get("shoes") or []
     shoe_kg = shoes[0]["mass_kg"] if shoes else (an.coupling or {}).get("m_kg")
@@ -380,17 +368,11 @@ def _fill(row: dict, an, design, settings: Settings, cm) -> None:
 
 
 def warm_up(concept: str | None = None) -> str:
-    """Import the analysis stack (and load the concept) in a fresh worker, so that the first
-    point does not pay for it; returns the worker's model version."""
-    from ..analysis import pipeline as analyze  # noqa: F401
-    from ..core import tune_malloc
-    from ..loadcase import Design  # noqa: F401
-    from ..mesh import mesh_concept  # noqa: F401
-
+    """Prepare a fresh worker, so that the first point does not pay for it: the analysis
+    stack is imported with this module (the worker imports it to run :func:`warm_up`), the
+    allocator is tuned and the concept loaded; returns the worker's model version."""
     tune_malloc()  # a worker process runs design after design: freed arrays stay for the next
 
     if concept:
-        from ..geometry import get_concept
-
         get_concept(concept)
     return model_version(concept)

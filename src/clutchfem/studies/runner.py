@@ -46,6 +46,8 @@ committed, and running the same spec again resumes.
 
 from __future__ import annotations
 
+import itertools
+import json
 import logging
 import os
 import signal
@@ -55,9 +57,17 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..core import ClutchfemError, InputError
+import numpy as np
+import pandas as pd
+from tqdm import tqdm
+
+from ..core import ClutchfemError, InputError, write
+from ..geometry import MeshSettings, get_concept
+from ..loadcase import OperatingPoint
+from .charts import answers_vs_inputs, parallel_coordinates
 from .hashing import design_hash
 from .point import COLUMNS, Settings, evaluate, failed_row, model_version, warm_up
+from .spec import display_value
 from .store import STORE_NAME, ResultStore
 
 log = logging.getLogger("clutchfem")
@@ -143,7 +153,7 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         todo = [h for h in keys if h not in finished or (retry_failed and finished[h][0] == "failed")
                 or (h in want_errors and finished[h][0] == "ok" and finished[h][1] != 1)]
         run = store.start_run(source, version, len(keys), len(todo), spec_text)
-        n_workers = None if scheduler else (0 if workers == 0 else (workers or _default_workers()))
+        n_workers = None if scheduler else (0 if workers == 0 else (workers or default_workers()))
         label = scheduler or (f"local cluster, {n_workers} process workers" if n_workers else "in process")
         computed, interrupted, t_first, t_last = 0, False, None, None
         bar = None
@@ -194,7 +204,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
     return res
 
 
-def _default_workers() -> int:
+def default_workers() -> int:
+    """One worker process per core this process may run on (its CPU affinity)."""
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # pragma: no cover - not Linux
@@ -204,8 +215,6 @@ def _default_workers() -> int:
 def _bar(total: int, desc: str, progress: bool):
     if not progress or total == 0:
         return None
-    from tqdm import tqdm
-
     return tqdm(total=total, desc=desc, unit="design", file=sys.stderr, dynamic_ncols=True, mininterval=0.5,
                 smoothing=0.1)
 
@@ -359,8 +368,6 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     """Run ``spec`` (:class:`~.spec.StudySpec`) into ``out``: the store, ``results.csv`` (this
     spec's rows, inputs in designers' units), the charts and ``summary.json``.  Returns the
     summary (also on :class:`StudyInterrupted`, via its ``result``)."""
-    from ..core import write
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     points = spec.points()
@@ -374,8 +381,6 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     frame.to_csv(csv, index=False)
     files = [csv]
     if charts:
-        from .charts import answers_vs_inputs, parallel_coordinates
-
         files += answers_vs_inputs(frame, spec, out / "charts")
         files.append(parallel_coordinates(frame, spec, out / "charts" / "parallel_coordinates.png"))
     summary.update(design=spec.design, method=spec.method, spec=spec.source, out=str(out),
@@ -396,8 +401,6 @@ ERROR_COLUMNS = (("engagement_rpm", "engagement_err_rpm", "engagement_disc_rpm",
 def error_summary(frame) -> dict:
     """The study's error from its sampled designs: per answer, the median and largest band
     (discretisation + model form) relative to the answer [%], and the discretisation part."""
-    import numpy as np
-
     sel = frame[(frame["status"] == "ok") & (frame["errors_estimated"].fillna(0) == 1)]
     out: dict = {"sampled": int(len(sel)),
                  "method": "designs evenly spaced in the spec, analysed again on a mesh twice as fine "
@@ -416,12 +419,6 @@ def error_summary(frame) -> dict:
 def table(spec, res: RunResult):
     """This spec's rows (point order) with one column per varied input, in the units of the
     charts (lengths in mm: ``flexure_thickness [mm]``), before the answers."""
-    import json
-
-    import pandas as pd
-
-    from .spec import display_value
-
     with ResultStore(res.store, COLUMNS) as st:
         df = st.frame(res.model_version, res.keys)
     cols = {}
@@ -438,14 +435,6 @@ def run_grid(concept: str, vary: dict, *, fixed: dict | None = None, mesh_size: 
     in the parameters' units) of ``concept`` around ``fixed``, on the study engine, stored in
     ``store``.  Returns a DataFrame: one row per point in grid order, the varied values in
     columns named as the parameters (their own units) before the answers."""
-    import itertools
-    import json
-
-    import pandas as pd
-
-    from ..geometry import MeshSettings, get_concept
-    from ..loadcase import OperatingPoint
-
     c = get_concept(concept)
     P = c.Params
     for name, value in (fixed or {}).items():

@@ -19,7 +19,7 @@ loss the last few commits may be lost, which resume then simply recomputes.  Onl
 the study's client process writes (workers return rows, they never touch the file), so there
 is one writer; readers (a notebook, ``sqlite3`` on the command line) may read while it runs.
 
-The table's columns come from the caller (:data:`clutchfem.study.point.COLUMNS`); a store
+The table's columns come from the caller (:data:`clutchfem.studies.point.COLUMNS`); a store
 written by an older version gains any new columns on open (``ALTER TABLE ADD COLUMN``).
 """
 
@@ -29,6 +29,8 @@ import sqlite3
 import time
 from pathlib import Path
 from typing import Iterable
+
+import pandas as pd
 
 from ..core import InputError
 
@@ -102,8 +104,6 @@ class ResultStore:
     def frame(self, model_version: str | None = None, keys: Iterable[str] | None = None):
         """The rows as a pandas DataFrame (of one model version, and only ``keys`` if given,
         in the order of ``keys``)."""
-        import pandas as pd
-
         q, args = "SELECT * FROM results", []
         if model_version is not None:
             q += " WHERE model_version = ?"
@@ -117,8 +117,7 @@ class ResultStore:
         return df
 
     def runs(self):
-        import pandas as pd
-
+        """The runs table (one row per run: started, finished, source, counts, outcome)."""
         return pd.read_sql_query("SELECT * FROM runs ORDER BY run", self.db)
 
     def close(self) -> None:

@@ -1,4 +1,4 @@
-"""Charts of the design-to-targets runs (pyplot-free figures, :mod:`clutchfem.plotting`).
+"""Charts of the design-to-targets runs (pyplot-free figures, :func:`clutchfem.core.figure`).
 
 Every axis names its quantity and unit; limits of the targets are drawn where they apply.
 Figures are saved at a modest resolution (PNG under ~150 kB) because the report embeds them.
@@ -7,11 +7,14 @@ Figures are saved at a modest resolution (PNG under ~150 kB) because the report 
 from __future__ import annotations
 
 import math
+import textwrap
 from pathlib import Path
 
 import numpy as np
 
 from ..core import figure
+from ..geometry import get_concept
+from .optimization import DIMENSIONLESS, better
 
 DPI = 90
 C_BEFORE, C_AFTER = "tab:gray", "tab:red"
@@ -121,8 +124,6 @@ def optimization_path(res, path) -> Path:
     ax.scatter(n[~feas], y[~feas], s=12, facecolors="none", edgecolors="tab:gray", label="infeasible")
     ax.scatter(n[feas], y[feas], s=14, color="tab:green", label="meets every target")
     inc_n, inc_y, best = [], [], None
-    from .optimization import DIMENSIONLESS, better
-
     for r, yy in zip(rows, y):
         if better(r["assessment"], None if best is None else best["assessment"]):
             best = r
@@ -192,17 +193,15 @@ def tolerance_histograms(res, path) -> Path:
         ax.set_ylabel("parts")
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3)
-    import textwrap
-
     fig.suptitle("\n".join(textwrap.wrap(f"{res.concept}: {res.n} parts ({res.dist}), tolerances "
-                                          + ", ".join(f"{k} +-{_tol_text(res, k)}" for k in res.tolerances), 110)),
+                                          + ", ".join(f"{k} +-{tolerance_text(res, k)}" for k in res.tolerances), 110)),
                  fontsize=9)
     return _save(fig, path)
 
 
-def _tol_text(res, name) -> str:
-    from ..geometry import get_concept
-
+def tolerance_text(res, name) -> str:
+    """The tolerance of parameter ``name`` in a tolerance study as designers write it
+    (``0.05 mm``, ``0.5 deg``, ``0.01``)."""
     P = get_concept(res.concept).Params
     t = res.tolerances[name]
     u = P.unit(name)

@@ -9,7 +9,7 @@ the binomial confidence interval of the out-of-spec share below needs independen
 Values are snapped to 1 um (0.01 deg, 1e-4 dimensionless), far below any tolerance, and
 every sample is exactly what ``analyze --set`` builds from its texts.
 
-Spec (defaults: the requirement checks, as in :mod:`clutchfem.targets.optimize`):
+Spec (defaults: the requirement checks, as in :mod:`clutchfem.studies.optimization`):
 engagement with ripple >= a x idle, slip <= b x rpm of max engine torque, safety factor at
 the engine's maximum speed >= 1.5.  A part is out of spec if it misses any of them; samples
 the concept refuses (inconsistent geometry) or whose analysis fails are counted apart and
@@ -51,9 +51,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core import InputError, ParameterError
+from ..core import InputError, ParameterError, clean
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
+from .optimization import Targets
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -152,8 +153,6 @@ class ToleranceResult:
     settings: EvalSettings | None = None
 
     def to_json(self) -> dict:
-        from ..core import clean
-
         return clean({"concept": self.concept, "tolerances_si": self.tolerances, "distribution": self.dist,
                       "n": self.n, "seed": self.seed, "nominal": _strip(self.nominal),
                       "spec": [{"name": a, "key": b, "limit": c, "sense": d} for a, b, c, d in self.spec],
@@ -187,10 +186,8 @@ def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: st
               targets=None, shifts: bool = True, workers: int | None = None, scheduler: str | None = None,
               log=None) -> ToleranceResult:
     """Monte Carlo of ``tolerances`` (name -> half-width in SI units) around the base design of
-    ``settings``; ``targets``: a :class:`~clutchfem.targets.optimize.Targets` giving the spec
+    ``settings``; ``targets``: a :class:`~clutchfem.studies.optimization.Targets` giving the spec
     (default: the requirement checks with safety factor >= 1.5).  See the module docstring."""
-    from .optimization import Targets
-
     t0 = time.perf_counter()
     if dist not in ("normal", "uniform"):
         raise ParameterError("dist", dist, "'normal' (tolerance = +-3 sigma) or 'uniform'", "tolerance")

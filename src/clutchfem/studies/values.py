@@ -5,12 +5,16 @@ them, types them into ``clutchfem analyze --set ...`` and must get *the same des
 for bit (the mesh cache key is a hash of the parameters: 2.1000000000000001 mm is another
 mesh).  So every proposed value is snapped to a resolution, written as text with its unit
 suffix (``"2.13mm"``, ``"31.4deg"``, ``"1.285"``) and read back through the parameter set's
-own parser (:meth:`clutchfem.params.ParamSet._parse_value`); the design that is evaluated
+own parser (:meth:`clutchfem.core.ParamSet._parse_value`); the design that is evaluated
 is the one built from that text.
 
 Resolutions (ASSUMED, a drawing's usual precision): lengths 0.01 mm (clearances 0.001 mm;
-the table profile's clearances 1 nm, a model input: see :mod:`clutchfem.targets.compensate`
+the table profile's clearances 1 nm, a model input: see :mod:`clutchfem.studies.compensation`
 for why), angles 0.1 deg, dimensionless 0.001.
+
+Also here, for every study: a parameter's declared range (:func:`param_bounds`) and the
+12-significant-digit rounding (:func:`round12`) that makes ``"1.8mm"`` the value 0.0018
+(not 0.0018000000000000002) in a spec, a grid, a finite-difference step and a design hash.
 """
 
 from __future__ import annotations
@@ -24,8 +28,23 @@ RESOLUTION = {"m": 1e-5, "deg": 0.1, "-": 1e-3, "": 1e-3}
 #: finer resolution for these parameters
 FINE = {"m": 1e-6}
 #: the table profile's clearances: 1 nm (the contact pressure on a rigid drum moves by
-#: ~7 MPa per um of profile error on concept 4: see clutchfem.targets.compensate)
+#: ~7 MPa per um of profile error on concept 4: see clutchfem.studies.compensation)
 TABLE = 1e-9
+
+
+def round12(x: float) -> float:
+    """``x`` rounded to 12 significant digits: the float arithmetic of a unit suffix, a grid
+    or a step (0.0018000000000000002) falls back on the value typed (0.0018)."""
+    return float(f"{x:.12g}")
+
+
+def param_bounds(P, name: str) -> tuple[float | None, float | None]:
+    """(lo, hi) of parameter ``name`` of ParamSet ``P``: its declared range (None: open)."""
+    lo = hi = None
+    for m in P.model_fields[name].metadata:
+        lo = m.ge if getattr(m, "ge", None) is not None else lo
+        hi = m.le if getattr(m, "le", None) is not None else hi
+    return lo, hi
 
 
 def resolution(P, name: str) -> float:

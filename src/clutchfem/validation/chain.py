@@ -54,7 +54,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
-from ..core import ParameterError
+from ..core import ParameterError, figure
 from .records import ValidationRecord
 
 MODULE = "chain"
@@ -316,8 +316,6 @@ def records() -> list[ValidationRecord]:
 
 def figures(out_dir: Path) -> list[Path]:
     """Reproduce figs 3 (N_u2 vs psi) and 4 (N_u1 vs psi) for z = 6, 8, 10; returns PNG paths."""
-    from ..core import figure
-
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     ex = EXAMPLE

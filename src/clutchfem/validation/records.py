@@ -1,9 +1,11 @@
-"""The record every validation module returns: one reproduced (or not) paper number."""
+"""The record every validation module returns: one reproduced (or not) paper number, with the
+tolerance a printed number carries (:func:`printed_value`)."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
+from decimal import Decimal
 from typing import Literal
 
 Status = Literal["reproduced", "differs", "computed"]
@@ -48,3 +50,12 @@ class ValidationRecord:
         d = asdict(self)
         d["rel_diff"] = None if math.isnan(self.rel_diff) else self.rel_diff
         return d
+
+
+def printed_value(printed: str) -> tuple[float, float]:
+    """(value, relative tol) of a number as the paper prints it (rule R1 of the paper
+    modules): half a unit of its last printed digit, relative to the value (``"10.23"`` ->
+    0.005 / 10.23; ``"1.52e-7"`` -> 0.005e-7 / 1.52e-7)."""
+    d = Decimal(printed)
+    v = float(d)
+    return v, abs(0.5 * 10.0 ** d.as_tuple().exponent / v)

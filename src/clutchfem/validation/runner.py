@@ -46,6 +46,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
 
+from rich import box
+from rich.console import Console, Group
+from rich.table import Table
+from rich.text import Text
+
 from .records import ValidationRecord
 
 PACKAGE = "clutchfem.validation"
@@ -307,11 +312,6 @@ def render_table(records: Sequence[ValidationRecord], *, title: str = "clutchfem
     """The records as one compact :class:`rich.table.Table` per module, each followed by the
     reasons of its ``differs`` rows (wrapped), so that it reads in an 80-column terminal;
     a :class:`rich.console.Group`.  Status is coloured; the id column folds when narrow."""
-    from rich import box
-    from rich.console import Group
-    from rich.table import Table
-    from rich.text import Text
-
     colour = {"reproduced": "green", "differs": "bold red", "computed": "cyan"}
     parts: list = [Text(title, style="bold")]
     for name in dict.fromkeys(r.module for r in records):
@@ -353,8 +353,6 @@ rich_table = render_table
 
 def print_table(records: Sequence[ValidationRecord], console=None) -> None:
     """Print :func:`render_table` to ``console`` (a new rich Console by default)."""
-    from rich.console import Console
-
     (console or Console()).print(render_table(records))
 
 

@@ -2,7 +2,7 @@
 
 Validation module for the Ukrainian paper *Modelling of transverse oscillations of the
 cutting mechanism of a circular-saw machine* (OCR'd): its tables and conclusions against
-the overhung-shaft mechanics of :mod:`clutchfem.shaft` (model, equations and the
+the overhung-shaft mechanics of :mod:`clutchfem.clutch.shaft` (model, equations and the
 well-conditioned determinant are documented there).  The chainsaw application of the same
 mechanics, the crankshaft whirl with a design's clutch on the overhang, is a design
 analysis: :mod:`clutchfem.clutch.crankshaft`.
@@ -23,7 +23,7 @@ What the paper printed, and how we read it (all checked against Tables 1-2):
   ``I_p``, ``I_p/2``, 0, ``-I_p/2``; either printed error alone) reproduces any column.
 * The physical model (``model="physical"``) with the diametral inertia ``J = I_d = I_p/2``
   (thin disc at rest) is cross-checked by an independent Hermite beam FE model
-  (:func:`clutchfem.shaft.fe_frequency_coefficients`).  For a spinning disc in synchronous
+  (:func:`clutchfem.clutch.fe_frequency_coefficients`).  For a spinning disc in synchronous
   forward whirl (critical speed) the gyroscopic moment turns ``J`` into ``I_d - I_p``
   (negative for a disc): the ``forward_whirl`` reading of :class:`Disc`.
 * ``I_z = pi d^4/32`` written in the paper is the polar second moment; bending needs
@@ -41,7 +41,7 @@ from typing import Literal
 import numpy as np
 
 from ..clutch import OverhungShaft, ShaftModel, fe_frequency_coefficients, frequency_coefficients
-from ..core import ParameterError, SolverError, rad_s_to_rpm
+from ..core import ParameterError, SolverError, figure, rad_s_to_rpm
 from .records import ValidationRecord
 
 MODULE = "shaft"
@@ -290,8 +290,6 @@ def _curve(fn, xs) -> np.ndarray:
 
 def figures(out_dir: Path) -> list[Path]:
     """Figs 2 (beta_1, beta_2 vs l2) and 3 (omega_1 vs l2 for the three discs); PNG paths."""
-    from ..core import figure
-
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     l2s = np.linspace(0.10, 0.30, 31)

@@ -14,8 +14,8 @@
   (:data:`ILLUSTRATIVE_SHOE`); its rows are 'computed' (no paper value) and serve as
   consistency checks: grid engagement vs eq 1, grid slip vs the engine-curve bisection.
 
-Tolerance rule (as in :mod:`clutchfem.validation.wiesik`): half a unit in the last printed
-digit, relative.
+Tolerance rule (R1, as in :mod:`clutchfem.validation.wiesik`:
+:func:`~.records.printed_value`): half a unit in the last printed digit, relative.
 """
 
 from __future__ import annotations
@@ -38,8 +38,8 @@ from ..clutch import (
     slip_rpm,
     torque_factor,
 )
-from ..core import ParameterError, rad_s_to_rpm, rpm_to_rad_s
-from .records import ValidationRecord
+from ..core import ParameterError, figure, rad_s_to_rpm, rpm_to_rad_s
+from .records import ValidationRecord, printed_value
 
 MODULE = "thesis"
 #: report heading and position (clutchfem.validation.runner: ascending ORDER, then name)
@@ -160,14 +160,6 @@ def matlab_appendix(
     return MatlabResult(x, M, F, eng, slip)
 
 
-def _r1(printed: str) -> tuple[float, float]:
-    from decimal import Decimal
-
-    d = Decimal(printed)
-    v = float(d)
-    return v, abs(0.5 * 10.0 ** d.as_tuple().exponent / v)
-
-
 def _rec(id_, quantity, paper, computed, unit, tol, note) -> ValidationRecord:
     return ValidationRecord(id=f"{MODULE}.{id_}", module=MODULE, quantity=quantity, paper=paper,
                             computed=float(computed), unit=unit, tol=tol, note=note)
@@ -177,10 +169,10 @@ def records() -> list[ValidationRecord]:
     """Thesis numbers (eqs 9-10) and the appendix-script example (computed rows)."""
     out: list[ValidationRecord] = []
     dt, db = rod_tension_deflection(), rod_bending_deflection()
-    v, t = _r1("1.52e-7")
+    v, t = printed_value("1.52e-7")
     out.append(_rec("rod_tension", "rod elongation under 100 N (eq 9)", v, dt, "m", t,
                     "P L / (E pi r^2)"))
-    v, t = _r1("2.02e-5")
+    v, t = printed_value("2.02e-5")
     out.append(_rec("rod_bending", "cantilever tip deflection under 100 N (eq 10)", v, db, "m", t,
                     "P L^3 / (3 E I), I = pi (2r)^4/64"))
     out.append(_rec("rod_ratio", "bending / tension deflection", None, db / dt, "-", 0.0,
@@ -221,11 +213,12 @@ def records() -> list[ValidationRecord]:
     return out
 
 
-def _figure(size=(7.0, 4.5)):
-    from matplotlib.figure import Figure
+#: resolution of the figures [dots per inch]
+DPI = 120
 
-    fig = Figure(figsize=size, dpi=120)
-    return fig, fig.add_subplot(111)
+
+def _figure(size=(7.0, 4.5)):
+    return figure(figsize=size)  # Agg canvas, no global pyplot state
 
 
 def figures(out_dir: Path) -> list[Path]:
@@ -257,7 +250,7 @@ def figures(out_dir: Path) -> list[Path]:
            title="Thesis appendix 1 script, ILLUSTRATIVE shoe data")
     ax.legend(fontsize=8)
     paths.append(out_dir / "thesis_appendix_torque_rpm.png")
-    fig.savefig(paths[-1])
+    fig.savefig(paths[-1], dpi=DPI)
 
     fig, ax = _figure()
     mus = np.linspace(0.0, 0.6, 301)
@@ -270,5 +263,5 @@ def figures(out_dir: Path) -> list[Path]:
            title="Plus vs minus shoe sensitivity to mu (thesis fig. 5 style)")
     ax.legend(fontsize=8)
     paths.append(out_dir / "thesis_plus_minus_mu.png")
-    fig.savefig(paths[-1])
+    fig.savefig(paths[-1], dpi=DPI)
     return paths

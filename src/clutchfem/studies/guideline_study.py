@@ -1,0 +1,120 @@
+"""Running a guideline study (:mod:`.guidelines`) on the study engine: its designs, the
+elasticity table, the ranking, the one-at-a-time table and the files.
+
+:func:`run_guidelines` sends every design of :func:`~.guidelines.plan` to
+:func:`~.runner.run_points` (Dask, the SQLite store, resume; the design point also gets its
+error estimate), reads the rows back by design hash and computes, per parameter and
+answer, the elasticity (:func:`~.guidelines.elasticity`) and the change per designers' step
+(0.1 mm, 1 deg, 0.1).  Parameters are ranked by their largest |E| whose derivative is not
+unstable.  Written to the output folder: ``guidelines.csv`` (one row per parameter and
+answer), ``one_at_a_time.csv``, the charts (:mod:`.guideline_charts`) and
+``guidelines.json``.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pandas as pd
+
+from ..core import InputError, write
+from .guideline_charts import elasticity_chart, oat_chart
+from .guidelines import ANSWERS, GuidelineResult, GuidelineSettings, elasticity, plan
+from .hashing import design_hash
+from .point import COLUMNS
+from .runner import ERROR_COLUMNS, run_points
+from .store import STORE_NAME, ResultStore
+
+
+def run_guidelines(gs: GuidelineSettings, out: str | Path, *, workers: int | None = None,
+                   scheduler: str | None = None, progress: bool = True, charts: bool = True) -> GuidelineResult:
+    """Run the guideline study ``gs`` on the study engine into ``out`` (store, tables, charts)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    points, per = plan(gs)
+    run = run_points(points, gs.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
+                     progress=progress, source=f"guidelines {gs.concept}", desc="guidelines",
+                     error_points=[0] if gs.errors else [])
+    with ResultStore(out / STORE_NAME, COLUMNS) as st:
+        df = st.frame(run.model_version, run.keys)
+    by_hash = {r["design_hash"]: r for r in df.to_dict("records")}
+    base_row = by_hash.get(design_hash({}, gs.settings))
+    notes = list(gs.notes)
+    if base_row is None or base_row["status"] != "ok":
+        msg = base_row["message"] if base_row is not None else "not computed"
+        raise InputError(f"guidelines {gs.concept}: the design point itself has no answer ({msg})")
+    base_errors = {}
+    if base_row.get("errors_estimated") == 1:
+        for ans, tot, disc, unit in ERROR_COLUMNS:
+            base_errors[ans] = {"value": base_row[ans], "band": base_row[tot], "discretisation": base_row[disc],
+                                "unit": unit}
+            if base_row[tot] is not None and base_row[ans]:
+                notes.append(f"design point: {ans} = {base_row[ans]:.4g} +- {base_row[tot]:.3g} {unit} (mesh "
+                             f"+- {base_row[disc]:.3g} {unit}, the rest model form): an elasticity says how an answer "
+                             "moves, this band how far its value may be off")
+
+    def row_at(name, x):
+        if x == per[name]["x0"]:
+            return base_row
+        return by_hash.get(design_hash({name: x}, gs.settings))
+
+    table = []
+    for n in gs.params:
+        x0, unit = per[n]["x0"], per[n]["unit"]
+        if per[n]["fd_outside"]:
+            notes.append(f"{n}: finite-difference values outside its declared range ({per[n]['fd_outside']}): "
+                         "those steps are not evaluated")
+        refused = [x for x in per[n]["fd"] if (r := row_at(n, x)) is None or r["status"] != "ok"]
+        if refused:
+            notes.append(f"{n}: no answer at {', '.join(f'{x:.6g}' for x in refused)} {unit} (refused/failed): "
+                         "the derivative uses the steps that were answered")
+        for col, label in ANSWERS:
+            def value_at(x, col=col, n=n):
+                r = row_at(n, x)
+                return None if r is None or r["status"] != "ok" else r[col]
+
+            e = elasticity(x0, gs.step, value_at)
+            a0 = e["value_at_x0"]
+            per_unit, du = _per_unit(unit)
+            slope = e["E"] * a0 / x0 * du if math.isfinite(e["E"]) and a0 else math.nan
+            table.append({"parameter": n, "unit": unit, "x0": x0, "answer": col, "label": label, **e,
+                          f"change_per_{per_unit.replace(' ', '_')}": slope, "per": per_unit})
+    # ranking: largest |E| over the answers whose derivative is not unstable
+    score = {}
+    for n in gs.params:
+        es = [abs(t["E"]) for t in table if t["parameter"] == n and t["verdict"] in ("stable", "unchecked")
+              and math.isfinite(t["E"])]
+        score[n] = max(es) if es else 0.0
+    ranking = sorted(gs.params, key=lambda n: -score[n])
+    # one-at-a-time table
+    oat_rows = []
+    for n in gs.params:
+        for x in per[n]["oat"]:
+            r = row_at(n, x)
+            rec = {"parameter": n, "unit": per[n]["unit"], "value": x, "relative": x / per[n]["x0"],
+                   "status": None if r is None else r["status"], "message": None if r is None else r["message"]}
+            for col, _ in ANSWERS:
+                rec[col] = None if r is None or r["status"] != "ok" else r[col]
+            oat_rows.append(rec)
+    oat = pd.DataFrame(oat_rows)
+    files = []
+    tpath = out / "guidelines.csv"
+    pd.DataFrame(table).to_csv(tpath, index=False)
+    opath = out / "one_at_a_time.csv"
+    oat.to_csv(opath, index=False)
+    files += [tpath, opath]
+    res = GuidelineResult(concept=gs.concept, base=gs.base, step=gs.step, table=table, ranking=ranking, oat=oat,
+                          files=files, notes=notes, run=run, base_errors=base_errors)
+    if charts:
+        files.append(oat_chart(res, out / "one_at_a_time.png"))
+        files.append(elasticity_chart(res, out / "elasticities.png"))
+    jpath = out / "guidelines.json"
+    write(jpath, res.as_json(), indent=1)
+    files.append(jpath)
+    return res
+
+
+def _per_unit(unit: str) -> tuple[str, float]:
+    """(the designers' step of a unit, its size in the unit): 0.1 mm, 1 deg, 0.1."""
+    return {"m": ("0.1 mm", 1e-4), "deg": ("1 deg", 1.0)}.get(unit, ("0.1", 0.1))
