@@ -3,5 +3,7 @@ cache, user ``.msh``/STEP import.
 """
 
 from .meshing import ClutchMesh, groups_msh_path, load_user_geometry, mesh_concept, source_hash
+from .properties import element_moments, mesh_area_properties, mesh_mass_properties
 
-__all__ = ["ClutchMesh", "groups_msh_path", "load_user_geometry", "mesh_concept", "source_hash"]
+__all__ = ["ClutchMesh", "groups_msh_path", "load_user_geometry", "mesh_concept", "source_hash",
+           "element_moments", "mesh_area_properties", "mesh_mass_properties"]
