@@ -7,7 +7,7 @@ and where each design's time goes.
 1. **Per-step split, in process** (``--steps`` designs, no Dask, one BLAS thread): the
    designs' wall time split into mesh (geometry + gmsh + reading), assembly, solve
    (factorisation, unit load, spin-softening set-up) and the analysis steps of
-   :func:`clutchfem.clutch.analyze.analyze` (timed by wrapping each step function of the
+   :func:`clutchfem.analysis.analyze` (timed by wrapping each step function of the
    module for this run only: slip, FE sweep, character, mu sensitivity, coupling, stress,
    whirl, mass properties).
 2. **Scaling 1 -> 2 workers**: the first ``--scaling-points`` points on a local cluster of 1
@@ -66,7 +66,7 @@ def per_step(n: int, size: float) -> dict:
     """In-process split of ``n`` designs (see module docstring)."""
     from threadpoolctl import threadpool_limits
 
-    import clutchfem.clutch.analyze as A
+    import clutchfem.analysis.pipeline as A
     from clutchfem.studies import evaluate
     from clutchfem.studies.hashing import design_hash
 

@@ -26,7 +26,7 @@ from matplotlib.colors import LogNorm  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
 from clutchfem.analysis import analyze
-from clutchfem.analysis.pipeline import fatigue_cycles, fatigue_step  # noqa: E402
+from clutchfem.analysis import fatigue_cycles, fatigue_step  # noqa: E402
 from clutchfem.cli.slip_heat_cmd import run_slip_heat  # noqa: E402
 from clutchfem.clutch import EngineCurve  # noqa: E402
 from clutchfem.core import rpm_to_rad_s  # noqa: E402

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from clutchfem.analysis import analyze
-from clutchfem.analysis.pipeline import shoe_kind
+from clutchfem.clutch import shoe_kind
 from clutchfem.geometry import MeshSettings, get_concept
 from clutchfem.loadcase import Design, OperatingPoint
 from clutchfem.mesh import mesh_concept

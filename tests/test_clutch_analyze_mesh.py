@@ -14,11 +14,11 @@ import sys
 import numpy as np
 import pytest
 
-from clutchfem.analysis import analyze, mesh_mass_properties
+from clutchfem.analysis import analyze
 from clutchfem.core import ParameterError, get_material
 from clutchfem.geometry import MeshSettings, get_concept
 from clutchfem.loadcase import Design, OperatingPoint
-from clutchfem.mesh import load_user_geometry, mesh_concept
+from clutchfem.mesh import load_user_geometry, mesh_concept, mesh_mass_properties
 from support.shapes import load_annulus, load_cantilever
 
 CLI = [sys.executable, "-m", "clutchfem.cli"]

@@ -14,7 +14,7 @@ from clutchfem.clutch import crankshaft as W
 from clutchfem.core import ParameterError
 from clutchfem.geometry import MeshSettings, get_concept
 from clutchfem.loadcase import Design, OperatingPoint
-from clutchfem.mesh import mesh_concept
+from clutchfem.mesh import mesh_area_properties, mesh_concept
 
 
 @pytest.fixture(scope="module")
@@ -208,9 +208,9 @@ def test_mesh_area_properties_of_two_shoes_sector_and_full():
     c = get_concept("concept1")
     p = c.params(n_shoes=2)
     ms = MeshSettings(size=1.5e-3, fillet_factor=0.3)
-    sec = W.mesh_area_properties(mesh_concept(c, p, ms))
+    sec = mesh_area_properties(mesh_concept(c, p, ms))
     full_cm = mesh_concept(c, p, ms.replace(model="full"))
-    full, occ = W.mesh_area_properties(full_cm), full_cm.mass["solid"]
+    full, occ = mesh_area_properties(full_cm), full_cm.mass["solid"]
     assert abs(sec["Ixx_origin"] / sec["Iyy_origin"] - 1) > 0.02  # really anisotropic
     for k in ("area", "Ixx_origin", "Iyy_origin", "J_origin", "J_centroid"):
         assert sec[k] == pytest.approx(occ[k], rel=1e-6), k
@@ -233,7 +233,7 @@ def test_mesh_area_properties_of_a_ring(tmp_path):
     area, J = math.pi * (b * b - a * a), math.pi * (b**4 - a**4) / 2
     for sector in (None, 30.0):
         cm = load_annulus(tmp_path / f"ring{sector}.msh", a, b, 0.003, thickness=h, sector_deg=sector)
-        props = W.mesh_area_properties(cm)
+        props = mesh_area_properties(cm)
         assert props["area"] == pytest.approx(area, rel=1e-5)
         assert props["J_origin"] == pytest.approx(J, rel=1e-5)
         assert props["Ixx_origin"] == pytest.approx(J / 2, rel=1e-5)

@@ -26,8 +26,7 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.contact import DrumWall, RingDrum
-from clutchfem.contact.ring import annulus_harmonic_compliance, lame_free_ring_expansion
+from clutchfem.contact import DrumWall, RingDrum, annulus_harmonic_compliance, lame_free_ring_expansion
 from clutchfem.core import Material, ParameterError, get_material
 
 RD = 0.0344

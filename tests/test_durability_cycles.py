@@ -12,8 +12,7 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from clutchfem.analysis import analyze
-from clutchfem.analysis.pipeline import _stresses, fatigue_cycles, fatigue_step, secondary_case
+from clutchfem.analysis import analyze, fatigue_cycles, fatigue_step, secondary_case
 from clutchfem.clutch import EngineCurve, RippleModel
 from clutchfem.core import ParameterError, rpm_to_rad_s
 from clutchfem.durability import (
@@ -217,7 +216,7 @@ def test_reverse_capacity_line_against_a_solved_reverse_state(name):
     line = reverse_capacity(M0, Mf)
     print(f"\n{name}: M0 {M0:.3f}, Mf {Mf:.3f}, Mr solved {Mr:.3f}, line {line:.3f} ({100 * (line / Mr - 1):+.2f} %)")
     assert line == pytest.approx(Mr, rel=0.015)
-    S0, Sf, Sr = (_stresses(c, [w], x[None])[..., 0] for c, x in zip((c0, cf, cr), lam))
+    S0, Sf, Sr = (c.stresses([w], x[None])[..., 0] for c, x in zip((c0, cf, cr), lam))
     S_line = S0 - line * (Sf - S0) / Mf
     r = np.hypot(*d.model.stress.points)
     far = r < R - 0.6e-3 - 2e-3

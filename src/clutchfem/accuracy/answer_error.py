@@ -14,7 +14,7 @@ report 732 MPa where the error is ~60 MPa.  A user mesh has a single level: not 
 **Model form** (``benchmarks/results_modelform.md``; each term relative, with its sign where
 the measurements give one):
 
-* axial thickness (plane stress vs 3-D): :func:`clutchfem.modelerror.plane_stress_estimate`
+* axial thickness (plane stress vs 3-D): :func:`clutchfem.accuracy.plane_stress_estimate`
   from h / L_f gives the engagement shift dw0/w0 (and its band); the slip speed moves by
   (w0/ws)^2 dw0/w0 (a torque curve ~ (w^2 - w0^2) shifted at engagement: measured 0.5-0.6 %
   for 2.2 % in engagement), the torque at a speed w by -2 (dw0/w0) w0^2 / (w^2 - w0^2), the
@@ -34,6 +34,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
+from ..geometry import MeshSettings, get_concept
+from ..loadcase import Design
+from ..mesh import mesh_concept
+from .plane_stress import plane_stress_estimate
 
 NOT_ESTIMATED = {False: "discretisation not estimated: a user mesh has one mesh level",
                   True: "discretisation not estimated for 3-D (a refined 3-D model costs minutes); measured: "
@@ -76,10 +81,6 @@ class AnswerError:
 
 def refined_design(design):
     """The same design on a mesh twice as fine (None for a user mesh and for 3-D)."""
-    from ..geometry import MeshSettings, get_concept
-    from ..loadcase import Design
-    from ..mesh import mesh_concept
-
     if design.params is None or design.op.formulation == "3d":
         return None  # a user mesh has one level; a refined 3-D model costs minutes
     ms = MeshSettings(**design.cm.mesh_settings)
@@ -92,8 +93,6 @@ def refined_design(design):
 def model_form(design, answer: str, value: float | None, *, w0: float | None = None,
                w: float | None = None) -> tuple[dict, tuple]:
     """Signed relative model-form terms of one answer (see module docstring)."""
-    from .plane_stress import plane_stress_estimate
-
     terms: dict = {}
     notes = []
     if value is None:

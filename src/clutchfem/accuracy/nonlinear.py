@@ -3,7 +3,7 @@ load on the deformed position and contact with the exact drum circle.
 
 What it is for
 --------------
-The fast path (:mod:`clutchfem.solver`) is linear: small displacements, the gap measured
+The fast path (:mod:`clutchfem.loadcase`) is linear: small displacements, the gap measured
 along the initial normal, the centrifugal load on the undeformed position (plus the
 spin-softening term -w^2 M u).  This module drops those assumptions to *measure* their
 error over the speed range; it is a reference, not the production path.
@@ -66,7 +66,7 @@ import scipy.sparse.linalg as spla
 
 from ..contact import contact_nodes
 from ..core import ParameterError, ParamSet, SolverError, param, rad_s_to_rpm
-from ..fe import Kinematics
+from ..fe import Kinematics, von_mises
 
 __all__ = ["NonlinearSettings", "NonlinearModel", "NLState", "second_order_engagement"]
 
@@ -121,7 +121,7 @@ def second_order_engagement(gap0: np.ndarray, un: np.ndarray, ut: np.ndarray,
 
 class NonlinearModel:
     """Total-Lagrangian reference of a 2-D (plane-stress) model ``fe`` (a
-    :class:`clutchfem.fem.FEModel`: basis, M, f1, T, material, thickness, cm) against a rigid
+    :class:`clutchfem.fe.FEModel`: basis, M, f1, T, material, thickness, cm) against a rigid
     drum of radius ``drum_radius`` (None: free part); see the module docstring."""
 
     def __init__(self, fe, drum_radius: float | None = None, mu: float = 0.0,
@@ -153,7 +153,7 @@ class NonlinearModel:
         kdiag = self.kin.residual_and_tangent(np.zeros(fe.basis.N))[1].diagonal()
         self._c = float(np.mean(kdiag[kdiag > 0]))
         #: optional drum compliance C (m x m, [m/N]): the drum's inner wall moves out by C lam
-        #: (the gap gains C lam); see :mod:`clutchfem.drum`
+        #: (the gap gains C lam); see :mod:`clutchfem.contact.ring`
         self.Cd = None if drum_compliance is None else np.asarray(drum_compliance, dtype=float)
         self.drum_free = None  # optional (m,) free drum expansion [m] (spinning drum)
 
@@ -380,8 +380,7 @@ class NonlinearModel:
         F, _, S = self.kin.stress(H)
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         sig = np.einsum("eqca,eqab,eqdb->eqcd", F, S, F) / J[..., None, None]
-        sxx, syy, sxy = sig[..., 0, 0], sig[..., 1, 1], sig[..., 0, 1]
-        return np.sqrt(np.maximum(sxx * sxx - sxx * syy + syy * syy + 3 * sxy * sxy, 0.0)).ravel()
+        return von_mises(np.stack([sig[..., 0, 0], sig[..., 1, 1], sig[..., 0, 1]])).ravel()
 
 
 class _NoConvergence(Exception):

@@ -11,11 +11,13 @@ from .shaft import OverhungShaft, ShaftModel, fe_frequency_coefficients, frequen
 from .shoe import (
     CentrifugalShoe,
     ShoeGeometry,
+    apply_force,
     arc_torque,
     lining_integrals,
+    shoe_kind,
     shoe_torque,
     simplified_torque,
     torque_factor,
 )
 
-__all__ = ["SEED_CHAIN_MASS", "SEED_DRIVE_INERTIA", "SEED_J_B", "SEED_SPROCKET_PITCH_RADIUS", "reduced_inertia", "ShaftModel", "holds", "ChainsawLayout", "WhirlAnswer", "crankshaft_whirl", "whirl", "BaselineClutch", "CentrifugalShoe", "EngineCurve", "OverhungShaft", "RippleModel", "ShoeGeometry", "arc_torque", "cycle_time", "effective_engagement_rpm", "fe_frequency_coefficients", "first_slip_rpm", "frequency_coefficients", "lining_integrals", "shoe_torque", "simplified_torque", "slip_rpm", "speed", "torque_crossings", "torque_factor"]
+__all__ = ["SEED_CHAIN_MASS", "SEED_DRIVE_INERTIA", "SEED_J_B", "SEED_SPROCKET_PITCH_RADIUS", "reduced_inertia", "ShaftModel", "holds", "ChainsawLayout", "WhirlAnswer", "crankshaft_whirl", "whirl", "BaselineClutch", "CentrifugalShoe", "EngineCurve", "OverhungShaft", "RippleModel", "ShoeGeometry", "apply_force", "arc_torque", "cycle_time", "effective_engagement_rpm", "fe_frequency_coefficients", "first_slip_rpm", "frequency_coefficients", "lining_integrals", "shoe_kind", "shoe_torque", "simplified_torque", "slip_rpm", "speed", "torque_crossings", "torque_factor"]

@@ -2,11 +2,11 @@
 carrying the design's clutch, the drum and the sprocket on its overhang.
 
 A design analysis (like the slip speed or the stress check), not a paper comparison: the
-mechanics is the overhung shaft of :mod:`clutchfem.shaft` (validated against the seed-004
+mechanics is the overhung shaft of :mod:`clutchfem.clutch.shaft` (validated against the seed-004
 paper in :mod:`clutchfem.validation.shaft`); this module supplies the rotor.
 
 * **Clutch** (:func:`whirl`): mass and inertia of the design's *own* mesh, by quadrature
-  over its curved P2 triangles (:func:`mesh_area_properties`), no extra meshing.  A
+  over its curved P2 triangles (:func:`clutchfem.mesh.mesh_area_properties`), no extra meshing.  A
   one-sector model of n identical sectors is completed to the whole part by cyclic
   symmetry: the sector's second-moment tensor is rotated by ``k 2 pi / n`` and summed, which
   for n >= 3 gives I_xx = I_yy = J/2 about the axis (and the centroid on the axis); a full
@@ -28,8 +28,8 @@ SI units throughout; speeds in rpm where designers expect them.
 
 Usage::
 
-    from clutchfem.design import Design
-    from clutchfem.clutch.crankshaft import whirl
+    from clutchfem.loadcase import Design
+    from clutchfem.clutch import whirl
     ans = whirl(Design.from_concept("concept4"))
     print(ans.summary())
 """
@@ -40,10 +40,11 @@ import math
 from dataclasses import dataclass, replace
 from typing import Literal
 
-import numpy as np
-
-from ..core import MeshError, ParameterError, SolverError, rad_s_to_rpm
-from .shaft import OverhungShaft, _beam_system, finite_param, first_frequency_coefficient
+from ..core import ParameterError, SolverError, get_material, rad_s_to_rpm
+from ..geometry import MeshSettings, concepts, get_concept
+from ..loadcase import Design
+from ..mesh import mesh_area_properties, mesh_concept
+from .shaft import OverhungShaft, clear_beam_cache, finite_param, first_frequency_coefficient
 
 Spin = Literal["crank", "drum"]
 Gyro = Literal["engaged", "drum_held", "none"]
@@ -152,7 +153,7 @@ def clutch_part_from_mass_properties(mass: dict, thickness_m: float, rho: float,
     (x, y) [m], ``J_centroid`` = int ((x - x_c)^2 + (y - y_c)^2) dA, ``Ixx_origin`` =
     int y^2 dA and ``Iyy_origin`` = int x^2 dA [m^4] of the *whole* part: either the
     geometry module's OCC-exact values of a full model (``ClutchMesh.mass``) or the
-    quadrature over any mesh of the part (:func:`mesh_area_properties`, same keys).  For the
+    quadrature over any mesh of the part (:func:`clutchfem.mesh.mesh_area_properties`, same keys).  For the
     plate of thickness h: m = rho h A, I_p = rho h J_c (about the centre of mass), I_d about
     the in-plane axes through the centre of mass: rho h (Ixx - A y_c^2) + m h^2/12 (and the
     same with x); the whirl model is axisymmetric, so the mean of the two is used (equal
@@ -205,55 +206,6 @@ class Rotor:
 
 
 
-# --------------------------------------------------------------------------------------
-# The clutch's area properties from its mesh
-# --------------------------------------------------------------------------------------
-
-
-def mesh_area_properties(cm) -> dict:
-    """Area properties of the *whole* part per unit density and thickness, from its mesh.
-
-    Quadrature over the (curved) P2 triangles of ``cm.mesh`` (a
-    :class:`~clutchfem.mesh.ClutchMesh`) with degree 6: x^2 times the Jacobian of a
-    quadratic map is a degree-6 polynomial, so the integrals are exact on the mesh's
-    geometry (the only error is the P2 arcs against the true circles).  Returned keys, as the
-    geometry module's OCC-exact ``cm.mass["solid"]``: ``area`` [m^2], ``centroid`` (x, y)
-    [m], ``Ixx_origin`` = int y^2 dA, ``Iyy_origin`` = int x^2 dA, ``Ixy_origin`` =
-    int x y dA, ``J_origin`` = Ixx + Iyy, ``J_centroid`` = J_origin - A |c|^2 [m^4].
-
-    One-sector model (``cm.sector_angle`` set): the part is ``k = n_shoes_total /
-    n_shoes_model`` copies of the sector rotated by ``i sector_angle``, i = 0..k-1.  A copy
-    rotated by theta has ``int y^2 = Ixx c^2 + Iyy s^2 + 2 Ixy s c`` and ``int x^2 = Iyy c^2
-    + Ixx s^2 - 2 Ixy s c`` (c, s = cos, sin theta); summed over the copies,
-    ``sum c^2 = sum s^2 = k/2`` and ``sum s c = 0`` for k >= 3, so I_xx = I_yy = J/2 exactly
-    (cyclic symmetry) and the centroid lies on the axis; k = 2 and k = 1 follow from the
-    same sums.  A full model uses its actual moments and centroid.
-    """
-    from skfem import Basis, ElementTriP0
-
-    basis = Basis(cm.mesh, ElementTriP0(), intorder=6)
-    dx = basis.dx  # (nelem, nqp) quadrature weights x |det J|
-    x, y = basis.mapping.F(basis.X)  # (nelem, nqp) each
-    a = float(dx.sum())
-    sx, sy = float((x * dx).sum()), float((y * dx).sum())
-    ixx, iyy, ixy = float((y * y * dx).sum()), float((x * x * dx).sum()), float((x * y * dx).sum())
-    if cm.sector_angle:
-        k = cm.n_shoes_total // cm.n_shoes_model
-        if k < 1 or cm.n_shoes_total % cm.n_shoes_model or abs(k * cm.sector_angle - 2 * math.pi) > 1e-9:
-            raise MeshError(f"mesh from {cm.source}: a sector of {math.degrees(cm.sector_angle):g} deg with "
-                            f"{cm.n_shoes_model} of {cm.n_shoes_total} shoes does not close the circle "
-                            "(n_shoes_total / n_shoes_model sectors must span 360 deg)")
-        th = cm.sector_angle * np.arange(k)
-        c, s = np.cos(th), np.sin(th)
-        a, sx, sy = k * a, float((c * sx - s * sy).sum()), float((s * sx + c * sy).sum())
-        ixx, iyy, ixy = (float((ixx * c * c + iyy * s * s + 2 * ixy * s * c).sum()),
-                         float((iyy * c * c + ixx * s * s - 2 * ixy * s * c).sum()),
-                         float(((iyy - ixx) * s * c + ixy * (c * c - s * s)).sum()))
-    cx, cy = sx / a, sy / a
-    return {"area": a, "centroid": (cx, cy), "Ixx_origin": ixx, "Iyy_origin": iyy,
-            "Ixy_origin": ixy, "J_origin": ixx + iyy, "J_centroid": ixx + iyy - a * (cx * cx + cy * cy)}
-
-
 def clutch_axial_position(thickness_m: float, layout: ChainsawLayout = CHAINSAW_LAYOUT) -> float:
     """Axial position [m] of the clutch's mid-plane from the clutch-side main bearing: inner
     face of the drum end wall + its thickness + ``drum_gap_m`` + half the clutch thickness."""
@@ -297,10 +249,6 @@ def concept_rotor(concept: str | None = None, params=None, rho: float | None = N
     thesis.  The full model is meshed once and cached on disk by
     :func:`clutchfem.mesh.mesh_concept`.
     """
-    from ..core import get_material
-    from ..geometry import MeshSettings, concepts, get_concept
-    from ..mesh import mesh_concept
-
     if concept is None:
         concept = "concept4" if "concept4" in concepts() else "concept1"
     c = get_concept(concept)
@@ -342,7 +290,7 @@ def crankshaft_whirl(rotor: Rotor, layout: ChainsawLayout = CHAINSAW_LAYOUT, *,
                      gyroscopic: Gyro = "engaged") -> WhirlResult:
     """First critical speed of a crankshaft carrying ``rotor`` on its overhang.
 
-    Same model as the saw shaft of seed 004 (:mod:`clutchfem.shaft`): crankshaft pinned at
+    Same model as the saw shaft of seed 004 (:mod:`clutchfem.clutch.shaft`): crankshaft pinned at
     the two main bearings (span ``layout.bearing_span_m``), rotor lumped as one rigid body
     at its composite centre of mass (overhang = :attr:`Rotor.cg_m`).  The critical speed is the lowest speed at which
     a natural whirl frequency equals the spin: unbalance excites *synchronous forward*
@@ -445,8 +393,8 @@ class WhirlAnswer:
 
 def whirl(design, layout: ChainsawLayout = CHAINSAW_LAYOUT, *,
           max_rpm: float | None = None) -> WhirlAnswer:
-    """Crankshaft whirl of a :class:`~clutchfem.design.Design`: its clutch (mass and
-    inertia of ``design.cm`` by quadrature, :func:`mesh_area_properties`; one sector is
+    """Crankshaft whirl of a :class:`~clutchfem.loadcase.Design`: its clutch (mass and
+    inertia of ``design.cm`` by quadrature, :func:`clutchfem.mesh.mesh_area_properties`; one sector is
     completed by cyclic symmetry; density ``design.model.material.rho``, thickness
     ``design.thickness``) with the ASSUMED drum (on ``design.drum_radius``), sprocket and
     crankshaft of ``layout``, at the three gyroscopic readings (:func:`crankshaft_whirl`).
@@ -456,8 +404,6 @@ def whirl(design, layout: ChainsawLayout = CHAINSAW_LAYOUT, *,
     without a drum radius (a user mesh without ``--drum-radius``) is refused: the drum wall
     sits on it.
     """
-    from ..loadcase import Design
-
     if not isinstance(design, Design):
         raise ParameterError("design", type(design).__name__, "a clutchfem.design.Design")
     if design.drum_radius is None:
@@ -482,7 +428,7 @@ def whirl(design, layout: ChainsawLayout = CHAINSAW_LAYOUT, *,
     rotor = chainsaw_rotor(clutch, design.drum_radius, h, layout)
     # the three readings differ only in the disc's rotary inertia: they share the beam model's
     # matrices (cached for this design only, so that every design pays its own)
-    _beam_system.cache_clear()
+    clear_beam_cache()
     res = tuple(crankshaft_whirl(rotor, layout, gyroscopic=g) for g in READINGS)
     worst = min(res, key=lambda r: r.rpm_crit)
     ds = [p for p in rotor.parts if p.spins == "drum"]

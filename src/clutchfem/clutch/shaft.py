@@ -306,6 +306,13 @@ def _beam_system(l1: float, l2: float, EI: float, mu: float, tip_mass: float, el
     return Kf, Mf, int(np.searchsorted(free, 2 * nn - 1))
 
 
+def clear_beam_cache() -> None:
+    """Forget the beam matrices cached by :func:`fe_frequency_coefficients` (they are kept
+    while one design's readings share them; a new design starts from an empty cache, so that
+    each pays its own assembly and the cache never holds another design's matrices)."""
+    _beam_system.cache_clear()
+
+
 def first_frequency_coefficient(shaft: OverhungShaft, rtol: float = 1e-5,
                                 elements: int = 12) -> tuple[float, float]:
     """(beta_1 from the exact determinant, beta_1 from the FE model) [1/m].

@@ -59,6 +59,7 @@ _KINDS = ("plus", "minus")
 
 __all__ = [
     "ShoeKind",
+    "shoe_kind",
     "LiningIntegrals",
     "ShoeGeometry",
     "TorqueFactor",
@@ -82,6 +83,15 @@ def _check_kind(kind: str) -> ShoeKind:
     if kind not in _KINDS:
         raise ParameterError("kind", kind, "'plus' (self-energising) or 'minus'")
     return kind  # type: ignore[return-value]
+
+
+def shoe_kind(arrangement: str, rotation: str) -> ShoeKind:
+    """The kind of a concept's shoe: its flexure ``arrangement`` ('plus' or 'minus', named for
+    a hub turning ccw) turning in ``rotation`` ('ccw' or 'cw').  A 'minus' arrangement turning
+    ccw is a minus shoe; flipping either flips the kind (the pivot then leads instead of
+    trailing, module docstring)."""
+    plus = (arrangement == "plus") == (rotation == "ccw")
+    return "plus" if plus else "minus"
 
 
 def _check_positive(name: str, value: float, unit: str, allow_zero: bool = False) -> float:

@@ -1,10 +1,13 @@
 """Contact stage: the contact nodes on the exact drum circle, the drum as a load-case part
-(friction, condensed compliance), the small contact LCP and the elastic drum ring."""
+(friction, condensed compliance), the small contact LCP and the elastic drum ring (with the
+annulus it is verified against)."""
 
+from .annulus import annulus_harmonic_compliance
 from .drum import Compliance, DrumContact
 from .lcp import lazy, lcp_residual, solve_lcp
 from .nodes import ContactNodes, build_contact_nodes, check_drum_radius, contact_nodes
-from .ring import DrumWall, RingDrum
+from .ring import DrumWall, RingDrum, lame_free_ring_expansion
 
-__all__ = ["Compliance", "ContactNodes", "DrumContact", "DrumWall", "RingDrum", "build_contact_nodes",
-           "check_drum_radius", "contact_nodes", "lazy", "lcp_residual", "solve_lcp"]
+__all__ = ["Compliance", "ContactNodes", "DrumContact", "DrumWall", "RingDrum", "annulus_harmonic_compliance",
+           "build_contact_nodes", "check_drum_radius", "contact_nodes", "lame_free_ring_expansion", "lazy",
+           "lcp_residual", "solve_lcp"]

@@ -2,7 +2,7 @@
 condensed contact compliance.
 
 The drum is coaxial, of inner radius R_d, rigid unless an elastic drum is given
-(:mod:`clutchfem.drum`: its wall moves out by u_d(w) + C_d lam, which opens the gaps).  Contact is node-to-circle at the P2 nodes
+(:mod:`clutchfem.contact.ring`: its wall moves out by u_d(w) + C_d lam, which opens the gaps).  Contact is node-to-circle at the P2 nodes
 (vertices and mid-edge nodes) of the ``contact`` boundary: node i at x_i has the exact
 initial gap g0_i = R_d - |x_i| and outward normal n_i = x_i/|x_i| (the drum's, evaluated on
 the exact circle, so a coarse chord does not eat the 0.6 mm clearance).  With small
@@ -17,7 +17,7 @@ Coulomb friction adds -s mu lam_i t_i (t_i = e_theta).  The *load operator* is t
 linear in mu, so two condensed sets span the compliance K^-1 D(mu) of every friction
 coefficient (mu +-30 %, friction off) of one design: they reuse the same back-substitutions
 (:class:`Compliance`).  Columns are condensed lazily, only for
-the nodes the LCP (:mod:`clutchfem.lcp`) makes active, with the nodes likely asked for next
+the nodes the LCP (:mod:`clutchfem.contact.lcp`) makes active, with the nodes likely asked for next
 in the same blocked solve: the shoes touch the drum on a short arc.
 """
 
@@ -52,7 +52,7 @@ class DrumContact:
     nodes: ContactNodes
     mu: float = 0.0
     rotation: Rotation = "ccw"
-    #: elastic drum (:class:`clutchfem.drum.RingDrum`) or None (rigid); ``sectors``: the number
+    #: elastic drum (:class:`clutchfem.contact.RingDrum`) or None (rigid); ``sectors``: the number
     #: of identical sectors the model stands for (its loads repeat around the drum)
     drum: object = None
     sectors: int = 1

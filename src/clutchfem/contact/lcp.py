@@ -12,7 +12,7 @@ from the previous speed) and falls back to Lemke's complementary pivoting.  ``G`
 dense matrix or a *lazy* column provider (:func:`lazy`): the active-set method only ever asks
 for the columns of the nodes it makes active (a handful of the m candidates: the shoes touch
 the drum on a short arc), so the columns of the others are never condensed.  A result that
-does not satisfy the conditions to tolerance raises :class:`~clutchfem.errors.SolverError`.
+does not satisfy the conditions to tolerance raises :class:`~clutchfem.core.SolverError`.
 """
 
 from __future__ import annotations

@@ -51,7 +51,7 @@ shear terms like k^-2 times the smearing factor's ~2 / (k w_j), so the truncatio
 ~2e-6 of the diagonal for 0.6 deg arcs (measured in tests/test_drum.py).
 
 Verified (tests/test_drum.py) harmonic by harmonic against a condensed scikit-fem annulus
-(plane stress, P2, the same wall), :func:`annulus_harmonic_compliance`: the two agree to
+(plane stress, P2, the same wall), :func:`~clutchfem.contact.annulus.annulus_harmonic_compliance`: the two agree to
 <1 % for the default drum (t / R_d = 0.06) up to k ~ 15 and to ~1e-3 for a thin ring; the
 ring misses the local through-thickness squeeze under the load (2-D elasticity's
 logarithmic point-load term), which grows with k and is measured there.
@@ -75,9 +75,9 @@ from typing import ClassVar, Literal
 import numpy as np
 from pydantic import field_validator
 
-from ..core import Material, ParamSet, choice, get_material, param
+from ..core import Material, ParameterError, ParamSet, choice, get_material, param
 
-__all__ = ["DrumWall", "RingDrum", "annulus_harmonic_compliance", "lame_free_ring_expansion"]
+__all__ = ["DrumWall", "RingDrum", "lame_free_ring_expansion"]
 
 
 class DrumWall(ParamSet):
@@ -114,8 +114,6 @@ class RingDrum:
     KMAX_PER_N = 400
 
     def __init__(self, radius: float, wall: DrumWall | None = None):
-        from ..core import ParameterError
-
         if not (isinstance(radius, (int, float)) and math.isfinite(radius) and radius > 0):
             raise ParameterError("drum_radius", radius, "a radius > 0 m")
         self.wall = wall or DrumWall()
@@ -174,8 +172,6 @@ class RingDrum:
         """(C_rr, C_rt) [m/N], m x m, at the polar ``angles`` [rad] for the n-fold cyclic load
         pattern (n = number of identical sectors; 1: the loads of all shoes are listed);
         ``arc`` [rad]: each node's tributary arc (None: point loads).  See module docstring."""
-        from ..core import ParameterError
-
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
             raise ParameterError("n", n, "an integer number of identical sectors >= 1")
         th = np.asarray(angles, dtype=float)
@@ -214,116 +210,3 @@ class RingDrum:
         Crr, Crt = self.compliance(ang, n, arc_u)
         C = Crr if friction == 0.0 else Crr + friction * Crt
         return C[np.ix_(inv, inv)]
-
-
-def annulus_harmonic_compliance(radius: float, wall: DrumWall, ks, size: float | None = None,
-                                tmpdir=None) -> dict:
-    """Verification model: a plane-stress P2 annulus R_d <= r <= R_d + t of width b
-    (scikit-fem, curved elements), free, loaded on its inner surface by the radial traction
-    cos k theta and, separately, the tangential traction sin k theta (per unit inner length);
-    rigid-body modes removed by Lagrange multipliers (the loads are self-equilibrated for
-    k != 1).  Returns per k the cos k theta amplitude of the inner wall's radial displacement,
-    converted to the ring's convention (load per unit centroid length):
-    {k: (a_k, b_k)} comparable with :meth:`RingDrum.harmonics`."""
-    import tempfile
-    from pathlib import Path
-
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spla
-    from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm
-    from skfem.helpers import ddot, sym_grad, trace
-
-    from ..geometry import gmsh_session
-    from ..mesh import load_user_geometry
-
-    t, b = wall.wall_thickness, wall.width
-    a_in, a_out = radius, radius + t
-    size = size or t / 3
-    d = Path(tmpdir or tempfile.mkdtemp())
-    path = d / f"drum_{a_in:.6g}_{t:.6g}_{size:.6g}.msh"
-    import gmsh
-
-    with gmsh_session("drum"):
-        occ = gmsh.model.occ
-        outer = occ.addDisk(0, 0, 0, a_out, a_out)
-        inner = occ.addDisk(0, 0, 0, a_in, a_in)
-        (surf,), _ = occ.cut([(2, outer)], [(2, inner)])
-        occ.synchronize()
-        bore, rim = [], []
-        for _, c in gmsh.model.getBoundary([surf], oriented=False):
-            xmin, ymin, _, xmax, ymax, _ = gmsh.model.getBoundingBox(1, abs(c))
-            (bore if max(xmax, ymax) < 0.5 * (a_in + a_out) else rim).append(abs(c))
-        gmsh.model.addPhysicalGroup(1, bore, name="bore")
-        gmsh.model.addPhysicalGroup(1, rim, name="contact")
-        gmsh.model.addPhysicalGroup(2, [surf[1]], name="solid")
-        gmsh.option.setNumber("Mesh.MeshSizeMax", size)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
-        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-        gmsh.option.setNumber("Mesh.Algorithm", 6)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
-        gmsh.model.mesh.generate(2)
-        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        gmsh.option.setNumber("Mesh.SaveAll", 0)
-        gmsh.write(str(path))
-    cm = load_user_geometry(path, thickness=b)
-    mesh = cm.mesh
-    m = wall.material
-    lam, mu = m.lame_plane_stress()
-    basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)
-
-    @BilinearForm
-    def stiff(u, v, w):
-        eu, ev = sym_grad(u), sym_grad(v)
-        return b * (2 * mu * ddot(eu, ev) + lam * trace(eu) * trace(ev))
-
-    K = asm(stiff, basis).tocsr()
-    X = basis.doflocs
-    N = basis.N
-    # rigid modes: x-, y-translation, rotation
-    Rm = np.zeros((N, 3))
-    Rm[0::2, 0] = 1.0
-    Rm[1::2, 1] = 1.0
-    Rm[0::2, 2] = -X[1, 0::2]
-    Rm[1::2, 2] = X[0, 1::2]
-    Rm /= np.linalg.norm(Rm, axis=0)
-    A = sp.bmat([[K, sp.csr_matrix(Rm)], [sp.csr_matrix(Rm.T), None]], format="csc")
-    lu = spla.splu(A)
-    fb = FacetBasis(mesh, basis.elem, facets=cm.boundary("bore"), intorder=8)
-    loads = []
-    ks = [int(k) for k in ks]
-    for k in ks:
-        @LinearForm
-        def radial(v, w, k=k):
-            th = np.arctan2(w.x[1], w.x[0])
-            return np.cos(k * th) * (np.cos(th) * v[0] + np.sin(th) * v[1])
-
-        @LinearForm
-        def tangential(v, w, k=k):
-            th = np.arctan2(w.x[1], w.x[0])
-            return np.sin(k * th) * (-np.sin(th) * v[0] + np.cos(th) * v[1])
-
-        loads += [asm(radial, fb), asm(tangential, fb)]
-    F = np.column_stack(loads)
-    U = lu.solve(np.vstack([F, np.zeros((3, F.shape[1]))]))[:N]
-    # radial displacement of the inner-wall nodes, projected on cos k theta
-    dd = basis.get_dofs(cm.boundary("bore"))
-    ix = np.concatenate([dd.nodal["u^1"], dd.facet["u^1"]])
-    iy = ix + 1
-    th = np.arctan2(X[1, ix], X[0, ix])
-    order = np.argsort(th)
-    th = th[order]
-    out = {}
-    scale = radius / (radius + t / 2)  # per unit inner length -> per unit centroid length
-    for q, k in enumerate(ks):
-        res = []
-        for col in (2 * q, 2 * q + 1):
-            u = U[:, col]
-            ur = (np.cos(th) * u[ix[order]] + np.sin(th) * u[iy[order]])
-            # least-squares amplitude of cos k theta on the (non-uniform) node angles
-            basis_f = np.column_stack([np.cos(k * th), np.sin(k * th)] + ([np.ones_like(th)] if k else []))
-            coef = np.linalg.lstsq(basis_f if k else np.ones((len(th), 1)), ur, rcond=None)[0]
-            res.append(coef[0] / scale)
-        out[k] = tuple(res)
-    return out

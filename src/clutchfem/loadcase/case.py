@@ -10,11 +10,11 @@ factorisation and its condensed contact columns).  It answers
   softening the root of min_i (g0_i - B u_free(w)_i) is bracketed from w0 and refined with
   ``brentq`` (1e-10 relative);
 * the **contact state at a speed**: below engagement nothing is solved; above it the small
-  LCP of :mod:`clutchfem.lcp` with q = g0 - B u_free(w), warm-started from the previous speed.
+  LCP of :mod:`clutchfem.contact.lcp` with q = g0 - B u_free(w), warm-started from the previous speed.
 
-:func:`sweep` solves a list of speeds and returns a frozen :class:`~clutchfem.results.SweepResult`
+:func:`sweep` solves a list of speeds and returns a frozen :class:`~clutchfem.loadcase.SweepResult`
 with the curve, per-shoe table and every state's displacement (reduced basis), and checks
-itself (:mod:`clutchfem.checks`: equilibrium residual and torque balance at every speed,
+itself (:mod:`clutchfem.loadcase.checks`: equilibrium residual and torque balance at every speed,
 condition estimate; past their thresholds it refuses instead of answering).
 """
 
@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 import time
 from functools import cached_property
+from itertools import combinations
 
 import numpy as np
 
@@ -187,8 +188,6 @@ class LoadCase:
             else:
                 act[bad_w[np.argmin(w[bad_w])]] = True
                 visited.add(int(bad_w[np.argmin(w[bad_w])]))
-        from itertools import combinations
-
         U = sorted(visited)
         if len(U) > 12:
             raise SolverError("the contact state past the divergence speed did not converge")
@@ -225,7 +224,27 @@ class LoadCase:
         if self.contact is None:
             return 0.0
         lam, _ = self.solve(omega, active0)
-        return float(self.contact.mu * self.contact.drum_radius * lam.sum() * self.scale)
+        return self.friction_torque(lam)
+
+    def friction_torque(self, lam: np.ndarray, mu: float | None = None) -> float:
+        """Friction torque [N m] of the whole clutch for this case's nodal contact forces
+        ``lam`` [N]: M = mu R_d sum(lam) x (n_total / n_model), the one definition (full slip,
+        the forces act on the drum circle).  ``mu``: default the case's own; another value
+        reads the torque a state would carry with that friction (the frictionless case's
+        forces give M_0 = mu R_d N_0).  0 without a drum."""
+        if self.contact is None:
+            return 0.0
+        mu = self.contact.mu if mu is None else mu
+        return float(mu * self.contact.drum_radius * lam.sum() * self.scale)
+
+    def stresses(self, omegas, lams) -> np.ndarray:
+        """Vertex stresses (3, npts, n) of this case's solved contact states (speeds ``omegas``
+        [rad/s], nodal forces ``lams`` (n, m)) from its reduced-basis fields: no new
+        factorisation."""
+        om = np.atleast_1d(np.asarray(omegas, dtype=float))
+        basis, coef, U = self.response.fields(om, np.asarray(lams))
+        u = U if U is not None else basis @ coef
+        return self.model.stress(u).reshape(3, -1, len(om))
 
     @property
     def scale(self) -> float:

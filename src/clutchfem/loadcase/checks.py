@@ -22,7 +22,7 @@
   displacements large against the part (the small-displacement model is stretched), speeds
   near the divergence speed of the free part, no drum at all.
 
-Past the thresholds below a sweep fails loudly (:class:`~clutchfem.errors.SolverError`)
+Past the thresholds below a sweep fails loudly (:class:`~clutchfem.core.SolverError`)
 instead of returning a number nobody can trust.
 """
 

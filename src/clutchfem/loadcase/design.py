@@ -1,7 +1,7 @@
 """One design -> one FE model -> several load cases.
 
 A :class:`Design` is a meshed part (a concept with its parameters, or a user mesh) at an
-:class:`~clutchfem.operating.OperatingPoint`.  It builds the FE model (K, f1, constraints,
+:class:`~clutchfem.loadcase.OperatingPoint`.  It builds the FE model (K, f1, constraints,
 one factorisation) and the contact nodes once, and hands out load cases by (mu, spin
 softening) that all share them: a sweep, friction off, mu +-30 %, a tolerance sample's
 other speeds never re-assemble or re-factorise.  A sweep point, an optimiser step and a
@@ -15,10 +15,11 @@ from functools import cached_property
 
 import numpy as np
 
-from ..contact import DrumContact, contact_nodes
+from ..contact import DrumContact, DrumWall, RingDrum, contact_nodes
 from ..core import ParameterError
-from ..fe import FEModel, Solver
-from ..mesh import ClutchMesh
+from ..fe import ExtrusionSettings, FEModel, FEModel3D, Solver
+from ..geometry import get_concept
+from ..mesh import ClutchMesh, mesh_concept
 from ..softening import get_softening
 from .case import LoadCase, sweep
 from .operating import OperatingPoint
@@ -56,8 +57,6 @@ class Design:
         if params is None and self.drum_radius is not None:
             self._check_user_drum()
         if op.formulation == "3d":
-            from ..fe import ExtrusionSettings, FEModel3D
-
             self.model = FEModel3D(cm, op.material, self.thickness, settings=ExtrusionSettings(layers=op.layers),
                                    solver=solver)
         else:
@@ -68,9 +67,6 @@ class Design:
     def from_concept(cls, concept, params=None, op: OperatingPoint | None = None, mesh_settings=None, *,
                      solver: Solver = None) -> "Design":
         """Mesh ``concept`` (name or Concept) with ``params`` (defaults) and build the design."""
-        from ..geometry import get_concept
-        from ..mesh import mesh_concept
-
         c = get_concept(concept) if isinstance(concept, str) else concept
         p = params if params is not None else c.params()
         cm = mesh_concept(c, p, mesh_settings)
@@ -86,15 +82,15 @@ class Design:
 
     @cached_property
     def drum(self):
-        """The elastic drum (:class:`clutchfem.drum.RingDrum`), or None for a rigid drum."""
+        """The elastic drum (:class:`clutchfem.contact.RingDrum`), or None for a rigid drum."""
         if self.drum_radius is None or self.op.drum_wall is None:
             return None
-        from ..contact import DrumWall, RingDrum
-
         return RingDrum(self.drum_radius, DrumWall(wall_thickness=self.op.drum_wall, state=self.op.drum_state,
                                                    material=self.op.material))
 
     def contact(self, mu: float | None = None) -> DrumContact | None:
+        """The drum as a load-case part with friction ``mu`` (default: the operating point's),
+        None without a drum."""
         if self.nodes is None:
             return None
         sectors = self.cm.sector_copies
@@ -118,6 +114,7 @@ class Design:
 
     @property
     def scale(self) -> float:
+        """Totals of the whole clutch / totals of the model (sector and mid-plane symmetry)."""
         return self.cm.sector_copies * getattr(self.model, "symmetry_factor", 1.0)
 
     def _check_user_drum(self) -> None:

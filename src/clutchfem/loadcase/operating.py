@@ -4,7 +4,7 @@ the solver alike.
 Drum radius, friction coefficient, sense of rotation, axial thickness, material, spin
 softening, formulation (plane stress, plane strain, 3-D with its layers), the drum's
 elasticity (rigid, or a ring wall, held or spinning) and the speeds: one default, one range and one error message
-for each (:mod:`clutchfem.params`).  ``None`` for the drum radius and the thickness means
+for each (:mod:`clutchfem.core.params`).  ``None`` for the drum radius and the thickness means
 "the concept's value" (a user mesh has no drum: its radius must be given).
 
 The friction coefficient mu = 0.165 is seed 000's value for the spring clutch's shoe lining

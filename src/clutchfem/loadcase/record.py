@@ -15,8 +15,12 @@ import json
 from functools import lru_cache
 from pathlib import Path
 
+import gmsh
+import skfem
+
 from .. import __version__
 from ..core import clean
+from ..geometry import MeshSettings
 
 
 def _file_sha256(path) -> str | None:
@@ -32,9 +36,6 @@ def _file_sha256(path) -> str | None:
 
 def design_inputs(design) -> dict:
     """The inputs that define ``design``'s answers (JSON-ready)."""
-    import gmsh
-    import skfem
-
     cm = design.cm
     d: dict = {"name": design.name, "clutchfem": __version__, "gmsh": gmsh.__version__,
                "scikit-fem": getattr(skfem, "__version__", "?")}
@@ -75,6 +76,4 @@ def design_label(design) -> str:
 @lru_cache(maxsize=64)
 def _defaults(params_type, op_type):
     """The default parameter set, operating point and mesh settings (frozen: built once)."""
-    from ..geometry import MeshSettings
-
     return params_type(), op_type(), MeshSettings(model="sector").model_dump()

@@ -16,7 +16,7 @@ Conventions of the tables (one meaning everywhere):
 * ``max_von_mises_Pa``: raw (unaveraged) vertex stresses, the peak over the part;
 * angles: polar angles of the drum frame [deg];
 * ``residual``: relative equilibrium residual of the state, ``torque_balance_error``: bore
-  reaction moment against the applied moment (:mod:`clutchfem.checks`).
+  reaction moment against the applied moment (:mod:`clutchfem.loadcase.checks`).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..core import InputError, wrap_angle
+from ..core import InputError, clean, wrap_angle
 
 #: speeds per block when stresses and displacements of many speeds are post-processed
 #: (bounds the memory of a sweep over many speeds)
@@ -42,7 +42,7 @@ class Fields:
     basis: np.ndarray | None  # (ndofs, nb)
     coef: np.ndarray | None  # (nb, ns)
     U: np.ndarray | None  # (ndofs, ns) explicit (exact softening)
-    stress: object  # clutchfem.stress.VertexStress
+    stress: object  # clutchfem.fe.VertexStress
     fe_basis: object  # skfem Basis of the P2 vector field (dof layout, node positions)
 
     @property
@@ -89,9 +89,9 @@ class SweepResult:
     curve: pd.DataFrame
     shoes: pd.DataFrame
     fields: Fields
-    #: 1-norm condition estimate of the reduced stiffness (clutchfem.checks)
+    #: 1-norm condition estimate of the reduced stiffness (clutchfem.loadcase.checks)
     condition: float = float("nan")
-    #: numerical warnings of the solve (model-applicability warnings: clutchfem.checks.model_warnings)
+    #: numerical warnings of the solve (model-applicability warnings: clutchfem.loadcase.model_warnings)
     warnings: list = field(default_factory=list)
     timings: dict = field(default_factory=dict)
 
@@ -99,11 +99,17 @@ class SweepResult:
     def mu(self) -> float:
         return 0.0 if self.contact is None else self.contact.mu
 
+    def find(self, rpm: float) -> int | None:
+        """Index of the sweep speed equal to ``rpm`` (within 1e-9 relative), None if that
+        speed was not solved."""
+        k = int(np.argmin(np.abs(self.rpm - rpm)))
+        return None if abs(self.rpm[k] - rpm) > 1e-9 * max(1.0, abs(rpm)) else k
+
     def index(self, rpm: float) -> int:
         """Index of the sweep speed equal to ``rpm`` (within 1e-9 relative); refuses a speed
         that was not solved (no silent nearest-speed answer)."""
-        k = int(np.argmin(np.abs(self.rpm - rpm)))
-        if abs(self.rpm[k] - rpm) > 1e-9 * max(1.0, abs(rpm)):
+        k = self.find(rpm)
+        if k is None:
             raise InputError(f"{rpm:g} rpm is not a speed of this sweep (solved: {_speeds(self.rpm)}); "
                              "sweep it first")
         return k
@@ -143,8 +149,6 @@ def _speeds(rpm: np.ndarray) -> str:
 
 def records(df: pd.DataFrame) -> list[dict]:
     """DataFrame rows as JSON-safe dicts (NaN and +-inf become null: strict JSON)."""
-    from ..core import clean
-
     return clean(df.to_dict("records"))
 
 

@@ -6,27 +6,21 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.generate` -- a concept meshed by gmsh, the on-disk cache and its keys, the size estimate;
 * :mod:`.user` -- a user's ``.msh`` or STEP file;
 * :mod:`.topology` -- P2 nodes, facet nodes and cells, areas and perimeters of element sets;
-* :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model.
+* :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model;
+* :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
 """
 
 from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
-from .topology import (
-                       element_components,
-                       element_set_area,
-                       element_set_perimeter,
-                       facet_lookup,
-                       facet_nodes,
-                       is_quadratic,
-                       p2_basis,
-                       p2_cells,
-                       p2_nodes,
-)
+from .properties import element_moments, mesh_area_properties, mesh_mass_properties
+from .topology import (element_components, element_set_area, element_set_perimeter, facet_lookup, facet_nodes,
+                       is_quadratic, p2_basis, p2_cells, p2_nodes)
 from .user import load_user_geometry
 
 __all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
-           "element_components", "element_set_area", "element_set_perimeter", "estimate_elements",
-           "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic", "load_user_geometry", "mesh_concept",
-           "meshio_to_skfem", "p2_basis", "p2_cells", "p2_nodes", "read_msh", "source_hash"]
+           "element_components", "element_moments", "element_set_area", "element_set_perimeter",
+           "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
+           "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem",
+           "p2_basis", "p2_cells", "p2_nodes", "read_msh", "source_hash"]
