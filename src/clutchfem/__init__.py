@@ -81,8 +81,16 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .analysis import Analysis, Requirements, analyze
     from .clutch import EngineCurve
-    from .core import (ClutchfemError, GeometryError, InputError, Material, MeshError, ParameterError, SolverError,
-                       get_material)
+    from .core import (
+        ClutchfemError,
+        GeometryError,
+        InputError,
+        Material,
+        MeshError,
+        ParameterError,
+        SolverError,
+        get_material,
+    )
     from .durability import SlipScenario, slip_heat
     from .geometry import MeshSettings, concepts, get_concept
     from .loadcase import Design, OperatingPoint, SweepResult

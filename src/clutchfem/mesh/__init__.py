@@ -15,8 +15,17 @@ from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
-from .topology import (element_components, element_set_area, element_set_perimeter, facet_lookup, facet_nodes,
-                       is_quadratic, p2_basis, p2_cells, p2_nodes)
+from .topology import (
+                       element_components,
+                       element_set_area,
+                       element_set_perimeter,
+                       facet_lookup,
+                       facet_nodes,
+                       is_quadratic,
+                       p2_basis,
+                       p2_cells,
+                       p2_nodes,
+)
 from .user import load_user_geometry
 
 __all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
