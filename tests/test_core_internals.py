@@ -223,3 +223,19 @@ def test_tune_malloc_is_idempotent_and_takes_on_glibc():
         import platform
 
         assert first == (platform.libc_ver()[0] == "glibc")
+
+
+def test_one_quantity_parser_for_every_unit():
+    """--set, CLI options and the API read quantities through one parser (core.units): the
+    field's own dimension only, converted exactly, refusals naming the accepted suffixes."""
+    from clutchfem.core.units import UnitError, format_quantity, parse_quantity
+
+    assert parse_quantity("9mm", "m") == 0.009  # exact decimal conversion, no float noise
+    assert parse_quantity("400C", "C") == 400.0 and parse_quantity("673.15K", "C") == pytest.approx(400.0)
+    assert parse_quantity("200GPa", "Pa") == 200e9 and parse_quantity("1250 N/mm2", "Pa") == 1250e6
+    assert parse_quantity("2700rpm", "rpm") == 2700.0 and parse_quantity("3.4 N m", "N m") == 3.4
+    assert parse_quantity("2.5 lbf ft", "N m") == pytest.approx(3.3895448708)
+    for raw, unit in (("400mm", "C"), ("2deg", "m"), ("3 N m", "-"), ("12 parsecs", "m"), ("", "m")):
+        with pytest.raises(UnitError):
+            parse_quantity(raw, unit)
+    assert format_quantity(0.019, "m") == "19 mm" and format_quantity(1.25e9, "Pa") == "1250 MPa"

@@ -159,7 +159,7 @@ def test_never_holds_slips_at_the_engine_maximum():
     (["--thermal", "conductivity=10"], ["ambiguous", "part.conductivity", "drum.conductivity"]),
     (["--thermal", "bogus=1"], ["unknown", "face_htc"]),
     (["--thermal", "face_htc=-1"], ["face_htc", "W/(m^2 K)"]),
-    (["--thermal", "limit_temperature=400C"], ["limit_temperature", "no unit suffix"]),
+    (["--thermal", "limit_temperature=400mm"], ["limit_temperature", "a temperature in C"]),
     (["--thermal", "face_htc"], ["name=value"]),
     (["--thermal", "drum.wall_thickness=1km"], ["wall_thickness", "length"]),
     (["--seconds", "3", "--thermal", "seconds=4"], ["give it once"]),
