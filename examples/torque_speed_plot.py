@@ -39,7 +39,7 @@ def main(argv=None):
     analyses = {}
     for name in ("concept1", "concept4"):
         ms = MeshSettings() if args.mesh_size is None else MeshSettings(size=args.mesh_size)
-        analyses[name] = an = analyze(Design.from_concept(name, mesh_settings=ms), engine=engine, requirements=req)
+        analyses[name] = an = analyze(Design.from_concept(name, mesh=ms), engine=engine, requirements=req)
         print(f"\n{name}")
         for q, v in summary_rows(an):
             print(f"  {q:<75} {v}")

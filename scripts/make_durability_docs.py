@@ -1,6 +1,6 @@
 """Write docs/durability.md and docs/img/durability/*.png from fresh runs (issue 14).
 
-Slip heat (``clutchfem slip-heat``'s own function, :func:`clutchfem.cli.slip_heat_cmd.run_slip_heat`)
+Slip heat (``clutchfem slip-heat``'s own function, :func:`clutchfem.analysis.slip_heat`)
 and fatigue (``analyze``'s step 10) of concepts 1, 2 and 4 at their default parameters
 (default mesh, 51CrV4, mu = 0.165, built-in ASSUMED engine curve), plus concept 4 with a
 linear shoe profile that moves the contact towards its flexure.  Every number of the page
@@ -27,7 +27,7 @@ from matplotlib.tri import Triangulation  # noqa: E402
 
 from clutchfem.analysis import analyze
 from clutchfem.analysis import fatigue_cycles, fatigue_step  # noqa: E402
-from clutchfem.cli.slip_heat_cmd import run_slip_heat  # noqa: E402
+from clutchfem.analysis import slip_heat  # noqa: E402
 from clutchfem.clutch import EngineCurve  # noqa: E402
 from clutchfem.core import rpm_to_rad_s  # noqa: E402
 from clutchfem.durability import (  # noqa: E402  # noqa: E402
@@ -116,8 +116,8 @@ def main(argv=None) -> None:
     runs = {}
     for name, base, ov in [(n, n, {}) for n in CONCEPTS] + [VARIANT]:
         c, p, ms, design = build(name, base, ov, size)
-        rep, r_rep, _ = run_slip_heat(c, p, design.op, ms, engine, scenario=REPEATED, design=design)
-        cont, r_cont, _ = run_slip_heat(c, p, design.op, ms, engine, scenario=CONTINUOUS, design=design)
+        rep, r_rep = (lambda r: (r.doc, r.result))(slip_heat(design, engine, scenario=REPEATED))
+        cont, r_cont = (lambda r: (r.doc, r.result))(slip_heat(design, engine, scenario=CONTINUOUS))
         dist, ang = contact_to_flexure_mm(design, rep["slip_rpm"])
         an = analyze(design, engine=engine)
         runs[name] = dict(design=design, rep=rep, r_rep=r_rep, cont=cont, r_cont=r_cont, dist=dist, ang=ang, an=an,

@@ -13,7 +13,7 @@ from clutchfem.loadcase import Design, drum_intrusion
 
 @pytest.fixture(scope="module")
 def res():
-    d = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2e-3))
+    d = Design.from_concept("concept4", mesh=MeshSettings(size=2e-3))
     return d.sweep([0.0, 6000.0, 9000.0, 12000.0])
 
 

@@ -25,8 +25,9 @@ def test_geometry_list_and_params():
 
 def test_geometry_builds_files(tmp_path):
     run("geometry", "concept1", "--set", "flexure_thickness=1.8mm", "--out", str(tmp_path), "--mesh-size", "0.002")
-    assert (tmp_path / "concept1.msh").stat().st_size > 1000
-    info = json.loads((tmp_path / "concept1.json").read_text())
+    (msh,) = tmp_path.glob("concept1-*.msh")  # a design off the defaults: its label carries the hash
+    assert msh.stat().st_size > 1000
+    info = json.loads(msh.with_suffix(".json").read_text())
     assert info["params"]["flexure_thickness"] == pytest.approx(1.8e-3)
 
 
@@ -37,7 +38,7 @@ def test_geometry_bad_parameter_is_clear(tmp_path):
 
 
 def test_solve_json_contract(tmp_path):
-    r = run("solve", "--concept", "concept1", "--mesh-size", "0.002", "--rpm", "0:8000:2000", "--json")
+    r = run("solve", "concept1", "--mesh-size", "0.002", "--rpm", "0:8000:2000", "--json")
     d = json.loads(r.stdout)
     assert d["engagement_rpm"] is not None and 1000 < d["engagement_rpm"] < 8000
     recs = d["curve"]
@@ -51,7 +52,7 @@ def test_solve_json_contract(tmp_path):
 @pytest.mark.parametrize("args,word", [(["--rpm", "abc"], "rpm"), (["--rpm", "-5"], "rpm"),
                                        (["--mu", "-0.1"], "mu"), (["--drum-radius", "0.02"], "drum radius")])
 def test_solve_bad_input(args, word):
-    r = run("solve", "--concept", "concept1", "--mesh-size", "0.002", *args, ok=False)
+    r = run("solve", "concept1", "--mesh-size", "0.002", *args, ok=False)
     assert r.returncode == 2 and word in r.stderr and "Traceback" not in r.stderr
 
 
@@ -61,11 +62,13 @@ def test_solve_vtk_fields_and_render(tmp_path):
     import meshio
     import numpy as np
 
-    run("solve", "--concept", "concept4", "--mesh-size", "0.002", "--rpm", "0:10000:2000", "--vtk",
+    run("solve", "concept4", "--mesh-size", "0.002", "--rpm", "0:10000:2000", "--vtk",
         "--vtk-rpm", "4000,10000", "--out", str(tmp_path))
-    curve = {row["rpm"]: row for row in json.loads((tmp_path / "result.json").read_text())["curve"]}
+    (res,) = tmp_path.glob("concept4-*_result.json")  # every file named after the design's label
+    label = res.name.removesuffix("_result.json")
+    curve = {row["rpm"]: row for row in json.loads(res.read_text())["curve"]}
     for rpm in (4000, 10000):
-        m = meshio.read(tmp_path / f"fields_{rpm}rpm.vtu")
+        m = meshio.read(tmp_path / f"{label}_fields_{rpm}rpm.vtu")
         assert m.cells[0].type == "triangle6"
         used = np.unique(m.cells[0].data)
         assert len(used) == len(m.points)  # every P2 node belongs to an element
@@ -75,4 +78,4 @@ def test_solve_vtk_fields_and_render(tmp_path):
         assert np.all(np.isfinite(vm)) and 0 < vm.max() <= curve[rpm]["max_von_mises_Pa"] * (1 + 1e-9)
         press = m.point_data["contact_pressure_Pa"]
         assert (press > 0).any() == (curve[rpm]["normal_force_N"] > 0)
-        assert (tmp_path / f"fields_{rpm}rpm.png").stat().st_size > 10_000
+        assert (tmp_path / f"{label}_fields_{rpm}rpm.png").stat().st_size > 10_000

@@ -47,7 +47,8 @@ def c4():
 def c4_msh(tmp_path_factory, c4):
     out = tmp_path_factory.mktemp("c4")
     run("geometry", "concept4", "--out", str(out), "--model", "full", "--mesh-size", SIZE, "--no-drawing")
-    return out / "concept4.msh"
+    (msh,) = out.glob("concept4-*.msh")  # named after the design's label (not the defaults: another mesh size)
+    return msh
 
 
 @pytest.fixture(scope="module")
@@ -89,7 +90,7 @@ def test_mesh_answers_equal_concept_path_on_the_same_mesh(mesh_json, concept_ful
 
 def test_mesh_answers_close_to_default_sector_concept(mesh_json):
     """The concept's default one-sector model is a different mesh of the same part."""
-    r = run("analyze", "--concept", "concept4", "--mesh-size", SIZE, "--rpm", RPM, "--json")
+    r = run("analyze", "concept4", "--mesh-size", SIZE, "--rpm", RPM, "--json")
     s = json.loads(r.stdout)
     for k in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
         assert mesh_json[k] == pytest.approx(s[k], rel=2e-3), k
@@ -163,9 +164,9 @@ def test_mesh_bad_input_is_clear(c4_msh, args, needle):
 
 
 def test_concept_and_mesh_options_do_not_mix(c4_msh):
-    r = run("analyze", "--concept", "concept4", "--drum-radius", "0.035", ok=False)
+    r = run("analyze", "concept4", "--drum-radius", "0.035", ok=False)
     assert r.returncode == 2 and "--set drum_radius" in r.stderr
-    r = run("analyze", "--concept", "concept4", "--mesh", str(c4_msh), "--drum-radius", "0.035", ok=False)
+    r = run("analyze", "concept4", "--mesh", str(c4_msh), "--drum-radius", "0.035", ok=False)
     assert r.returncode == 2 and "exactly one" in r.stderr
     r = run("analyze", ok=False)
     assert r.returncode == 2 and "exactly one" in r.stderr

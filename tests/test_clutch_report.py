@@ -35,7 +35,7 @@ def flat(text: str) -> str:
 @pytest.fixture(scope="module")
 def c4(tmp_path_factory):
     out = tmp_path_factory.mktemp("c4")
-    r = invoke("analyze", "--concept", "concept4", *MESH, "--json", "--out", str(out))
+    r = invoke("analyze", "concept4", *MESH, "--json", "--out", str(out))
     assert r.exit_code == 0, r.output
     doc = json.loads(r.output.strip().splitlines()[-1])
     return doc, out
@@ -127,7 +127,7 @@ def test_out_writes_plots_and_tables(c4):
 
 def test_two_designs_in_one_folder_are_told_apart(tmp_path):
     for t in ("1.7mm", "1.8mm"):
-        r = invoke("analyze", "--concept", "concept4", *MESH, "--set", f"flexure_thickness={t}", "--out",
+        r = invoke("analyze", "concept4", *MESH, "--set", f"flexure_thickness={t}", "--out",
                    str(tmp_path))
         assert r.exit_code == 0, r.output
     files = sorted(tmp_path.glob("concept4-*_analysis.json"))
@@ -138,7 +138,7 @@ def test_two_designs_in_one_folder_are_told_apart(tmp_path):
 
 def test_terminal_table_has_units_and_warning(c4):
     d, _ = c4
-    r = invoke("analyze", "--concept", "concept4", *MESH)
+    r = invoke("analyze", "concept4", *MESH)
     assert r.exit_code == 0, r.output
     t = flat(r.output)
     for frag in ("rpm", "N m", "MPa", " W ", "(-)", "PASS" if d["requirements"]["slip_ok"] else "FAIL",
@@ -179,7 +179,7 @@ def test_comparison_chart_with_baseline(c4, tmp_path):
 def test_engine_curve_below_engagement_never_engages(tmp_path):
     e = tmp_path / "low.csv"
     e.write_text("rpm,torque\n1000,1.0\n2000,2.0\n")
-    r = invoke("analyze", "--concept", "concept4", *MESH, "--engine", str(e), "--idle-rpm", "800", "--json")
+    r = invoke("analyze", "concept4", *MESH, "--engine", str(e), "--idle-rpm", "800", "--json")
     assert r.exit_code == 0, r.output
     d = json.loads(r.output.strip().splitlines()[-1])
     assert d["slip_status"] == "never engages" and d["slip_rpm"] is None and d["engagement_rpm"] is None
@@ -191,7 +191,7 @@ def test_strong_engine_never_holds(tmp_path):
     used to say 'never slips', the opposite)."""
     e = tmp_path / "big.csv"
     e.write_text("rpm,torque\n2000,100\n14000,100\n")
-    r = invoke("analyze", "--concept", "concept4", *MESH, "--engine", str(e), "--json")
+    r = invoke("analyze", "concept4", *MESH, "--engine", str(e), "--json")
     assert r.exit_code == 0, r.output
     d = json.loads(r.output.strip().splitlines()[-1])
     assert d["slip_status"] == "never holds" and d["slip_rpm"] is None
@@ -222,7 +222,7 @@ def test_bad_input_clear_error(tmp_path, csv, args, fragments):
         p = tmp_path / "engine.csv"
         p.write_text(csv)
         extra += ["--engine", str(p)]
-    r = invoke("analyze", "--concept", "concept4", *MESH, *extra)
+    r = invoke("analyze", "concept4", *MESH, *extra)
     assert r.exit_code == 2
     t = flat(r.output)
     assert "error:" in t and "Traceback" not in t

@@ -187,7 +187,7 @@ def test_whirl_from_the_mesh_equals_the_occ_reference(name, model):
     size; a sector completed by cyclic symmetry, a full model with its actual moments) equal
     the geometry module's OCC-exact values of the full part (measured: <= 4e-7), and so do
     the critical speeds; drum, sprocket and overhang follow the same layout."""
-    ans = W.whirl(Design.from_concept(name, mesh_settings=MeshSettings(model=model)))
+    ans = W.whirl(Design.from_concept(name, mesh=MeshSettings(model=model)))
     _, ref = W.concept_rotor(name)
     clutch = ref.parts[0]
     assert ans.clutch_mass_kg == pytest.approx(clutch.mass_kg, rel=1e-6)

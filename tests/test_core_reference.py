@@ -20,7 +20,7 @@ TOL = 1e-9
 
 @pytest.fixture(scope="module", params=["concept1", "concept4"])
 def design(request):
-    return Design.from_concept(request.param, mesh_settings=MeshSettings())
+    return Design.from_concept(request.param, mesh=MeshSettings())
 
 
 def _rel(a, b) -> float:
@@ -46,7 +46,7 @@ def test_analyze_assembles_and_factorises_once(monkeypatch):
     from clutchfem.analysis import analyze
     from clutchfem.fe import COUNTS
 
-    d = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2e-3))
+    d = Design.from_concept("concept4", mesh=MeshSettings(size=2e-3))
     before = COUNTS.copy()
     an = analyze(d, errors=False)
     assert an.slip_rpm is not None and an.mu_sensitivity["slip_rpm"]["x1.3"] is not None
@@ -56,7 +56,7 @@ def test_analyze_assembles_and_factorises_once(monkeypatch):
     assert used.get("K", 0) == 1  # one factorisation for the sweep, friction off and mu +-30 %
     assert used.get("shifted", 0) == 0
     # the error estimate adds exactly one more design: the same one on a mesh twice as fine
-    d2 = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2e-3))
+    d2 = Design.from_concept("concept4", mesh=MeshSettings(size=2e-3))
     before = COUNTS.copy()
     an2 = analyze(d2)
     used = COUNTS - before

@@ -206,7 +206,7 @@ def test_reverse_capacity_line_against_a_solved_reverse_state(name):
     9072 rpm; the stress field on the line within 1.5 % of the peak farther than 2 mm from
     the contact surface (the contact node moves with the friction direction: the patch's own
     stresses differ more)."""
-    d = Design.from_concept(name, mesh_settings=COARSE)
+    d = Design.from_concept(name, mesh=COARSE)
     c0, cf = secondary_case(d, 0.0), secondary_case(d, d.op.mu)
     cr = LoadCase(d.model, replace(d.contact(), rotation="cw"), c0.softening)
     mu, R = d.op.mu, d.drum_radius
@@ -268,7 +268,7 @@ def test_candidate_screen_finds_the_same_worst_point():
 # ---------------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def an4():
-    return analyze(Design.from_concept("concept4", mesh_settings=COARSE))
+    return analyze(Design.from_concept("concept4", mesh=COARSE))
 
 
 def test_analyze_has_fatigue_answer_with_a_named_location(an4):
@@ -299,7 +299,7 @@ def test_analyze_has_fatigue_answer_with_a_named_location(an4):
 def test_fatigue_settings_change_the_answer_as_they_should():
     """A better edge (wire EDM: k_a 0.655 vs laser 0.310) raises the factor; fewer starts
     raise it while start-stop governs; a speed outside the engine curve is refused."""
-    d = Design.from_concept("concept4", mesh_settings=COARSE)
+    d = Design.from_concept("concept4", mesh=COARSE)
     res = d.sweep(np.union1d(np.arange(0, 14001, 1000.0), [8000.0]))
     base = fatigue_step(d, res, ENGINE)
     edm = fatigue_step(d, res, ENGINE, params=FatigueParams(edge_finish="wire_edm"))
@@ -315,7 +315,7 @@ def test_fatigue_settings_change_the_answer_as_they_should():
 
 
 def test_material_without_fatigue_data_is_not_available():
-    d = Design.from_concept("concept4", op=OperatingPoint(material="aluminium"), mesh_settings=COARSE)
+    d = Design.from_concept("concept4", operating=OperatingPoint(material="aluminium"), mesh=COARSE)
     res = d.sweep([8000.0, 14000.0])
     fa = fatigue_step(d, res, ENGINE)
     assert fa.safety_factor is None and "7075" in fa.details["reason"]
@@ -334,7 +334,7 @@ def test_analyze_cli_json_has_fatigue_keys_and_settings_act():
     def inv(*a):
         return CliRunner().invoke(app, list(a), catch_exceptions=False)
 
-    r = inv("analyze", "--concept", "concept4", "--mesh-size", "2.5mm", "--json", "--fatigue", "edge_finish=wire_edm")
+    r = inv("analyze", "concept4", "--mesh-size", "2.5mm", "--json", "--fatigue", "edge_finish=wire_edm")
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["fatigue_safety_factor"] > 0
@@ -345,7 +345,7 @@ def test_analyze_cli_json_has_fatigue_keys_and_settings_act():
     for bad, word in (("bogus=1", "unknown"), ("start_stops=0", "start_stops"), ("samples=10", "multiple of 4"),
                       ("operating_rpm=20000", "engine curve"), ("miner=never", "haibach")):
         t0 = time.perf_counter()
-        r = inv("analyze", "--concept", "concept4", "--fatigue", bad)
+        r = inv("analyze", "concept4", "--fatigue", bad)
         assert r.exit_code == 2 and "--fatigue" in r.output and word in r.output, (bad, r.output)
         assert time.perf_counter() - t0 < 3.0
     r = inv("analyze", "--list-fatigue")
@@ -363,7 +363,7 @@ def test_screened_fatigue_step_equals_checking_every_point(concept, loads):
     upper bounds of each cycle's amplitude and mean) can reach the smallest factor: the same
     factor, worst point, governing cycle and location as building them at every point; the
     bounds hold at every point; L(p) <= the point's factor everywhere."""
-    d = Design.from_concept(concept, mesh_settings=COARSE)
+    d = Design.from_concept(concept, mesh=COARSE)
     res = d.sweep(np.union1d(np.arange(0, 14001, 1000.0), [8000.0]))
     fa = fatigue_step(d, res, ENGINE, loads=loads)
     cs = fatigue_cycles(d, res, ENGINE, loads=loads)

@@ -382,7 +382,7 @@ def test_p2_nodes_of_a_quadratic_mesh_are_the_p2_basis_nodes():
     from clutchfem.loadcase import Design
     from clutchfem.mesh import facet_nodes, is_quadratic, p2_nodes
 
-    cm = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2.5e-3)).cm
+    cm = Design.from_concept("concept4", mesh=MeshSettings(size=2.5e-3)).cm
     b = Basis(cm.mesh, ElementTriP2(), intorder=1)
     assert is_quadratic(cm.mesh)
     np.testing.assert_array_equal(p2_nodes(cm.mesh), b.doflocs)

@@ -33,8 +33,8 @@ from clutchfem.durability import (
     ThermalEnvironment,
     ThermalMaterial,
     heat_partition,
+    heat_transient,
     render_png,
-    slip_heat,
     slip_heat_load,
     write_vtu,
 )
@@ -87,7 +87,7 @@ def strip_load(cm):
 
 
 def run_strip(cm, steps, t_end, **kw):
-    return slip_heat(cm, H, STEEL, strip_load(cm), seconds=t_end, env=INSULATED, heat_fraction=1.0,
+    return heat_transient(cm, H, STEEL, strip_load(cm), seconds=t_end, env=INSULATED, heat_fraction=1.0,
                      scenario=SlipScenario(steps_per_event=steps, error_estimate=False), **kw)
 
 
@@ -164,7 +164,7 @@ def test_face_convection_lumped_decay(tmp_path_factory):
     tau = RC * H / (2 * 50.0)
     errs = []
     for n in (8, 16, 32):
-        r = slip_heat(cm, H, STEEL, strip_load(cm), seconds=200.0, env=env, heat_fraction=0.0,
+        r = heat_transient(cm, H, STEEL, strip_load(cm), seconds=200.0, env=env, heat_fraction=0.0,
                       scenario=SlipScenario(steps_per_event=n, error_estimate=False))
         exact = 25.0 + 275.0 * math.exp(-200.0 / tau)
         assert np.ptp(r.final_field_C) < 1e-9 * 275
@@ -226,7 +226,7 @@ def test_energy_conservation_concept1_cycles():
     |stored - (input - losses)| / input measured 1e-15."""
     cm, p = concept("concept1")
     load = tip_load(cm, p)
-    r = slip_heat(cm, p.thickness, STEEL, load, seconds=5.0, cycles=2, pause=5.0)
+    r = heat_transient(cm, p.thickness, STEEL, load, seconds=5.0, cycles=2, pause=5.0)
     gamma = r.partition.fraction_part
     assert 0.0 < gamma < 1.0
     n = cm.n_shoes_total / cm.n_shoes_model
@@ -297,8 +297,8 @@ def test_sector_equals_full_part(tmp_path):
     sec = load_annulus(tmp_path / "sec.msh", 0.007, 0.03, 2.5e-3, thickness=H_, sector_deg=120.0)
     full = _replicate_sector(sec, H_)
     env = ThermalEnvironment(edge_htc=20.0)
-    rs = slip_heat(sec, H_, STEEL, _annulus_load(sec, 1, H_), seconds=4.0, cycles=2, pause=3.0, env=env)
-    rf = slip_heat(full, H_, STEEL, _annulus_load(full, 3, H_), seconds=4.0, cycles=2, pause=3.0, env=env)
+    rs = heat_transient(sec, H_, STEEL, _annulus_load(sec, 1, H_), seconds=4.0, cycles=2, pause=3.0, env=env)
+    rf = heat_transient(full, H_, STEEL, _annulus_load(full, 3, H_), seconds=4.0, cycles=2, pause=3.0, env=env)
     d, j = cKDTree(_nodes(full).T).query(_nodes(sec).T)
     assert d.max() < 1e-12
     diff = max(np.abs(rs.final_field_C - rf.final_field_C[j]).max(), np.abs(rs.nodal_max_C - rf.nodal_max_C[j]).max())
@@ -318,7 +318,7 @@ def test_concept1_sector_vs_full_mesh():
     res = {}
     for model in ("sector", "full"):
         cm, p = concept("concept1", model)
-        res[model] = slip_heat(cm, p.thickness, STEEL, tip_load(cm, p), seconds=10.0)
+        res[model] = heat_transient(cm, p.thickness, STEEL, tip_load(cm, p), seconds=10.0)
     s, f = res["sector"], res["full"]
     assert s.heat_into_part_J == pytest.approx(f.heat_into_part_J, rel=2e-3)
     for k in ("flexure_C", "hub_C", "shoe_face_C"):
@@ -333,7 +333,7 @@ def test_concept1_probes_limit_and_outputs(tmp_path):
     crosses the limit temperature; the crossing time interpolates the series; the yield
     strength left follows EN 1993-1-2 k_p at 400 C (0.42); .vtu and PNG are written."""
     cm, p = concept("concept2")
-    r = slip_heat(cm, p.thickness, STEEL, tip_load(cm, p, pressure=2e7), seconds=30.0)
+    r = heat_transient(cm, p.thickness, STEEL, tip_load(cm, p, pressure=2e7), seconds=30.0)
     assert r.flexure_C is not None and "flexure_0" in r.probe_definitions["flexure_C"]
     t = r.time_to_limit_s
     assert t is not None and 0 < t < 30.0
@@ -438,12 +438,12 @@ def test_partition_with_fe_shoe_side_is_blok_matched():
     """With the part's own response, the slip heat result's partition satisfies Blok's
     condition: gamma R_s = (1 - gamma) R_d."""
     cm, p = concept("concept4")
-    r = slip_heat(cm, p.thickness, STEEL, tip_load(cm, p), seconds=5.0)
+    r = heat_transient(cm, p.thickness, STEEL, tip_load(cm, p), seconds=5.0)
     g = r.partition
     assert g.shoe_side == "fe"
     Rd = g.r_drum_track_K_m2_W + g.r_drum_flash_K_m2_W
     assert g.fraction_part * g.r_shoe_K_m2_W == pytest.approx((1 - g.fraction_part) * Rd, rel=1e-12)
-    semi = slip_heat(cm, p.thickness, STEEL, tip_load(cm, p), seconds=5.0, shoe_side="semi_infinite")
+    semi = heat_transient(cm, p.thickness, STEEL, tip_load(cm, p), seconds=5.0, shoe_side="semi_infinite")
     assert semi.partition.r_shoe_K_m2_W == pytest.approx(2 * math.sqrt(5.0 / math.pi) / STEEL.effusivity)
 
 
@@ -495,15 +495,15 @@ def test_bad_loads_are_refused():
     cm, p = concept("concept1")
     n = Basis(cm.mesh, ElementTriP2()).N
     far = SlipHeatLoad(**ok | {"node_index": [1, n + 5]})
-    e = _raises(ParameterError, "node_index", lambda: slip_heat(cm, p.thickness, STEEL, far, seconds=1.0))
+    e = _raises(ParameterError, "node_index", lambda: heat_transient(cm, p.thickness, STEEL, far, seconds=1.0))
     assert str(n) in e.allowed
     good = tip_load(cm, p)
-    _raises(ParameterError, "heat_fraction", lambda: slip_heat(cm, p.thickness, STEEL, good, heat_fraction=1.5))
-    _raises(ParameterError, "thickness", lambda: slip_heat(cm, -0.01, STEEL, good))
-    _raises(ParameterError, "cycles", lambda: slip_heat(cm, p.thickness, STEEL, good, cycles=0))
-    _raises(ParameterError, "shoe_side", lambda: slip_heat(cm, p.thickness, STEEL, good, shoe_side="both"))
+    _raises(ParameterError, "heat_fraction", lambda: heat_transient(cm, p.thickness, STEEL, good, heat_fraction=1.5))
+    _raises(ParameterError, "thickness", lambda: heat_transient(cm, -0.01, STEEL, good))
+    _raises(ParameterError, "cycles", lambda: heat_transient(cm, p.thickness, STEEL, good, cycles=0))
+    _raises(ParameterError, "shoe_side", lambda: heat_transient(cm, p.thickness, STEEL, good, shoe_side="both"))
     with pytest.raises(InputError):
-        slip_heat(cm, p.thickness, STEEL, {"lam": 1})
+        heat_transient(cm, p.thickness, STEEL, {"lam": 1})
     kw = dict(slip_speed_m_s=25.0, patch_length_m=0.01, drum_radius_m=0.0344, n_patches=3, t_ref_s=1.0)
     _raises(ParameterError, "n_patches", lambda: heat_partition(STEEL, DrumThermal(), **kw | {"n_patches": 0}))
     _raises(ParameterError, "slip_speed_m_s", lambda: heat_partition(STEEL, DrumThermal(), **kw | {"slip_speed_m_s": -1}))

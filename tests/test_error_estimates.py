@@ -21,7 +21,7 @@ def test_discretisation_estimate_bounds_the_error_against_a_finer_mesh():
     d = Design.from_concept("concept4")
     an = analyze(d)
     ref_ms = MeshSettings(size=0.3e-3, flexure_factor=0.1, fillet_factor=0.125)  # 1/4 of the default
-    ref = analyze(Design.from_concept("concept4", mesh_settings=ref_ms), errors=False)
+    ref = analyze(Design.from_concept("concept4", mesh=ref_ms), errors=False)
     for key in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
         e = an.errors[key]
         true = abs(getattr(an, key) - getattr(ref, key))
@@ -31,7 +31,7 @@ def test_discretisation_estimate_bounds_the_error_against_a_finer_mesh():
 
 
 def test_model_form_terms_follow_the_measurements():
-    d = Design.from_concept("concept4", mesh_settings=MeshSettings(size=2.5e-3))
+    d = Design.from_concept("concept4", mesh=MeshSettings(size=2.5e-3))
     t, _ = model_form(d, "engagement_rpm", 4200.0)
     assert -0.035 < t["thickness_3d"] < -0.01  # plane stress engages early (3-D measured +2.2 %)
     assert abs(t["geometric_nonlinearity"]) <= 0.001  # prestress: 0.1 % from the non-linear reference
@@ -45,14 +45,14 @@ def test_model_form_terms_follow_the_measurements():
 
 
 def test_analyze_and_solve_report_errors(tmp_path):
-    r = CliRunner().invoke(app, ["analyze", "--concept", "concept1", "--mesh-size", "2.5mm", "--json"])
+    r = CliRunner().invoke(app, ["analyze", "concept1", "--mesh-size", "2.5mm", "--json"])
     doc = json.loads(r.output.strip().splitlines()[-1])
     for key in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
         e = doc["errors"][key]
         assert e["total"] > 0 and e["discretisation"] is not None and e["model_form_relative"]
-    r = CliRunner().invoke(app, ["analyze", "--concept", "concept1", "--mesh-size", "2.5mm"])
+    r = CliRunner().invoke(app, ["analyze", "concept1", "--mesh-size", "2.5mm"])
     assert "+-" in r.output and "mesh" in r.output
-    r = CliRunner().invoke(app, ["solve", "--concept", "concept1", "--mesh-size", "2.5mm", "--rpm", "0:14000:7000",
+    r = CliRunner().invoke(app, ["solve", "concept1", "--mesh-size", "2.5mm", "--rpm", "0:14000:7000",
                                  "--json"])
     doc = json.loads(r.output)
     assert doc["errors"]["engagement_rpm"]["total"] > 0 and doc["errors"]["at_rpm"] == 14000

@@ -321,7 +321,7 @@ def test_3d_drum_contact_plane_strain_closed_form(sectors, softening):
 
 @pytest.mark.slow
 def test_concept4_3d_cli_json(tmp_path):
-    """``clutchfem solve --concept concept4 --formulation 3d --json`` answers; the 3-D
+    """``clutchfem solve concept4 --formulation 3d --json`` answers; the 3-D
     engagement lies between plane stress and plane strain."""
     import json
 
@@ -331,7 +331,7 @@ def test_concept4_3d_cli_json(tmp_path):
 
     out = {}
     for form in ("plane-stress", "plane-strain", "3d"):
-        r = CliRunner().invoke(app, ["solve", "--concept", "concept4", "--formulation", form,
+        r = CliRunner().invoke(app, ["solve", "concept4", "--formulation", form,
                                      "--rpm", "5000,8000", "--json"])
         assert r.exit_code == 0, r.output
         out[form] = json.loads(r.stdout)["engagement_rpm"]

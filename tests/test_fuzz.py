@@ -111,7 +111,7 @@ OPTIONS = {
 @given(cmd=st.sampled_from(["solve", "analyze"]),
        opts=st.dictionaries(st.sampled_from(sorted(OPTIONS)), st.integers(0, 5), max_size=3))
 def test_cli_never_tracebacks(cmd, opts):
-    args = [cmd, "--concept", "concept1"]
+    args = [cmd, "concept1"]
     if "--mesh-size" not in opts:
         args += ["--mesh-size", "3mm"]
     for k, i in opts.items():

@@ -83,21 +83,21 @@ def test_answers_do_not_depend_on_the_speed_grid(c1, rpm):
 def test_misread_engine_curves_are_refused(tmp_path, csv, fragment):
     f = tmp_path / "engine.csv"
     f.write_text(csv)
-    r = invoke("analyze", "--concept", "concept1", *MESH, "--engine", str(f))
+    r = invoke("analyze", "concept1", *MESH, "--engine", str(f))
     assert r.exit_code == 2 and fragment in flat(r.output) and "Traceback" not in r.output
 
 
 def test_binary_engine_file_is_refused(tmp_path):
     f = tmp_path / "engine.csv"
     f.write_bytes(bytes(range(256)) * 8)
-    r = invoke("analyze", "--concept", "concept1", *MESH, "--engine", str(f))
+    r = invoke("analyze", "concept1", *MESH, "--engine", str(f))
     assert r.exit_code == 2 and "not a text CSV" in flat(r.output)
 
 
 def test_first_point_zero_torque_is_not_holds_at_start(tmp_path, c1):
     f = tmp_path / "engine.csv"
     f.write_text("rpm,torque\n500,0\n2500,1.9\n8000,3.4\n14000,1.3\n")
-    r = invoke("analyze", "--concept", "concept1", *MESH, "--engine", str(f), "--json")
+    r = invoke("analyze", "concept1", *MESH, "--engine", str(f), "--json")
     d = strict_json(r.output.strip().splitlines()[-1])
     assert d["slip_status"] == "slips" and d["slip_rpm"] > d["engagement_rpm"]
 
@@ -151,18 +151,18 @@ def test_past_divergence_the_drum_holds_the_shoe():
 def test_solve_without_drum_says_free_spin(tmp_path):
     msh = tmp_path / "c1.msh"
     assert invoke("geometry", "concept1", *MESH, "--out", str(tmp_path), "--no-drawing").exit_code == 0
-    (tmp_path / "concept1.msh").rename(msh)
+    next(tmp_path.glob("concept1-*.msh")).rename(msh)  # geometry names files after the design's label
     r = invoke("solve", "--mesh", str(msh), "--rpm", "0:8000:4000")
     assert r.exit_code == 0 and "no drum" in flat(r.output) and "never touches" not in r.output
 
 
 def test_solve_refuses_a_drum_that_is_not_the_concepts():
-    r = invoke("solve", "--concept", "concept1", *MESH, "--drum-radius", "0.050")
+    r = invoke("solve", "concept1", *MESH, "--drum-radius", "0.050")
     assert r.exit_code == 2 and "drum radius" in flat(r.output) and "--set drum_radius" in flat(r.output)
 
 
 def test_solve_warns_like_analyze():
-    r = invoke("solve", "--concept", "concept4", *MESH, "--rpm", "0:14000:7000", "--json")
+    r = invoke("solve", "concept4", *MESH, "--rpm", "0:14000:7000", "--json")
     d = strict_json(r.output)
     assert any("STRESS ABOVE YIELD" in w for w in d["warnings"])
     assert d["max_residual"] < 1e-4 and d["condition_estimate"] > 1
@@ -179,8 +179,8 @@ def test_plus_shoe_at_high_mu_is_flagged(c1):
 # ---------------------------------------------------------------------------------------
 # raw tracebacks: paths, files, caches, huge inputs, wrong types in the API
 # ---------------------------------------------------------------------------------------
-@pytest.mark.parametrize("cmd", [["geometry", "concept1"], ["solve", "--concept", "concept1"],
-                                 ["analyze", "--concept", "concept1"], ["demo"],
+@pytest.mark.parametrize("cmd", [["geometry", "concept1"], ["solve", "concept1"],
+                                 ["analyze", "concept1"], ["demo"],
                                  ["validate", "--docs", "docs.md"]])
 @pytest.mark.parametrize("where", ["file", "inside-file"])
 def test_bad_out_folder_is_refused_before_any_work(tmp_path, cmd, where):
@@ -210,7 +210,7 @@ def test_corrupted_mesh_cache_is_rebuilt_with_a_warning():
 
 
 def test_huge_speed_lists_are_refused_not_exhausting_memory():
-    r = invoke("solve", "--concept", "concept1", *MESH, "--rpm", "0:14000:0.001")
+    r = invoke("solve", "concept1", *MESH, "--rpm", "0:14000:0.001")
     assert r.exit_code == 2 and "at most" in flat(r.output)
 
 
@@ -265,18 +265,18 @@ def test_ctrl_c_stops_meshing_cleanly(tmp_path):
 # output other tools must read; exit codes and units
 # ---------------------------------------------------------------------------------------
 def test_json_outputs_are_strict_json(tmp_path):
-    r = invoke("solve", "--concept", "concept1", *MESH, "--rpm", "0,8000", "--json", "--out", str(tmp_path))
-    strict_json(r.output)
-    strict_json((tmp_path / "result.json").read_text())  # rpm 0: safety factor inf -> null
-    r = invoke("analyze", "--concept", "concept1", *MESH, "--json")
+    r = invoke("solve", "concept1", *MESH, "--rpm", "0,8000", "--json", "--out", str(tmp_path))
+    strict_json(r.stdout)  # stdout: the JSON document; stderr: the files written
+    strict_json(next(tmp_path.glob("concept1-*_result.json")).read_text())  # rpm 0: safety factor inf -> null
+    r = invoke("analyze", "concept1", *MESH, "--json")
     strict_json(r.output.strip().splitlines()[-1])
 
 
 def test_units_survive_in_help_and_tables():
     h = invoke("solve", "--help").output
-    assert "[m]" in h or "(m;" in h
+    assert "34.4mm" in h and "LENGTH" in h  # lengths are asked for with their unit
     assert "rpm" in h
-    r = invoke("solve", "--concept", "concept1", *MESH, "--rpm", "0,8000")
+    r = invoke("solve", "concept1", *MESH, "--rpm", "0,8000")
     assert "[deg]" in r.output and "[MPa]" in r.output and "[mm]" in r.output
 
 
@@ -287,7 +287,7 @@ def test_units_survive_in_help_and_tables():
 ])
 def test_unit_suffixes_on_length_options(tmp_path, args, fragment):
     assert invoke("geometry", "concept1", *MESH, "--out", str(tmp_path), "--no-drawing").exit_code == 0
-    r = invoke("solve", "--mesh", str(tmp_path / "concept1.msh"), *args, "--rpm", "8000",
+    r = invoke("solve", "--mesh", str(next(tmp_path.glob("concept1-*.msh"))), *args, "--rpm", "8000",
                *([] if "--drum-radius" in args else ["--drum-radius", "0.0344"]))
     if fragment is None:
         assert r.exit_code == 0, r.output
@@ -302,7 +302,7 @@ def test_unit_suffixes_on_length_options(tmp_path, args, fragment):
 ])
 def test_set_values_are_checked_for_units_and_repeats(sets, fragment):
     args = [a for s in sets for a in ("--set", s)]
-    r = invoke("solve", "--concept", "concept1", *MESH, *args)
+    r = invoke("solve", "concept1", *MESH, *args)
     assert r.exit_code == 2 and fragment in flat(r.output)
 
 
@@ -312,5 +312,5 @@ def test_validate_docs_path_that_is_a_folder_is_refused(tmp_path):
 
 
 def test_validate_unknown_option_exits_nonzero():
-    r = CliRunner().invoke(app, ["validate", "--concept", "banana"])
+    r = CliRunner().invoke(app, ["validate", "banana"])
     assert r.exit_code != 0

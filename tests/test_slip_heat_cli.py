@@ -208,15 +208,12 @@ def test_part_mean_temperature_is_the_heat_content():
     n_model) equals the stored energy of the independent energy tally (1e-9)."""
     from skfem import Basis, ElementTriP2, Functional
 
-    from clutchfem.cli.slip_heat_cmd import run_slip_heat
-    from clutchfem.clutch import EngineCurve
-    from clutchfem.durability import SlipScenario, ThermalMaterial
-    from clutchfem.geometry import MeshSettings, get_concept
-    from clutchfem.loadcase import OperatingPoint
+    import clutchfem as cf
+    from clutchfem.durability import ThermalMaterial
 
-    c = get_concept("concept4")
-    doc, r, d = run_slip_heat(c, c.params(), OperatingPoint(), MeshSettings(size=2.5e-3), EngineCurve.default(),
-                              scenario=SlipScenario(seconds=2.0, cycles=2, pause=2.0, steps_per_event=20))
+    run = cf.slip_heat(cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size=2.5e-3)),
+                       scenario=cf.SlipScenario(seconds=2.0, cycles=2, pause=2.0, steps_per_event=20))
+    doc, r, d = run.doc, run.result, run.design
     m = ThermalMaterial()
     area = Functional(lambda w: 1.0 + 0 * w.x[0]).assemble(Basis(d.cm.mesh, ElementTriP2(), intorder=4))
     n = d.cm.n_shoes_total / d.cm.n_shoes_model

@@ -87,7 +87,7 @@ def test_optimize_json_params_are_confirmed_by_analyze(tmp_path):
     start = [c for c in res["constraints"] if c["key"] == "slip_rpm"][0]
     assert start["value"] <= 8150
     sets = [x for k, v in res["params"].items() for x in ("--set", f"{k}={v}")]
-    an = json.loads(run("analyze", "--concept", "concept4", *sets, "--mesh-size", SIZE, "--json").stdout)
+    an = json.loads(run("analyze", "concept4", *sets, "--mesh-size", SIZE, "--json").stdout)
     assert an["engagement_rpm_with_ripple"] >= an["requirements"]["engagement_limit_rpm"]
     assert an["slip_rpm"] <= 8150
     assert an["safety_factor"] >= 0.5

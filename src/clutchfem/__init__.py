@@ -16,7 +16,7 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``),
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
 :func:`run_study`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
-:func:`report`.  Checks: :func:`validate`.  Errors: :class:`ClutchfemError` and its kinds.
+:func:`write_report`.  Checks: :func:`validate`.  Errors: :class:`ClutchfemError` and its kinds.
 """
 
 from __future__ import annotations
@@ -49,8 +49,8 @@ _API: dict[str, tuple[str, str]] = {
     "tolerance": ("clutchfem.studies", "tolerance"),
     "compensate": ("clutchfem.studies", "compensate"),
     "SlipScenario": ("clutchfem.durability", "SlipScenario"),
-    "slip_heat": ("clutchfem.durability", "slip_heat"),
-    "report": ("clutchfem.report", "design_report"),
+    "slip_heat": ("clutchfem.analysis", "slip_heat"),
+    "write_report": ("clutchfem.report", "design_report"),
     "validate": ("clutchfem.validation", "validate"),
     "ClutchfemError": ("clutchfem.core", "ClutchfemError"),
     "ParameterError": ("clutchfem.core", "ParameterError"),
@@ -79,7 +79,7 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # the same names for type checkers and IDEs
-    from .analysis import Analysis, Requirements, analyze
+    from .analysis import Analysis, Requirements, analyze, slip_heat
     from .clutch import EngineCurve
     from .core import (
         ClutchfemError,
@@ -91,10 +91,10 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
         SolverError,
         get_material,
     )
-    from .durability import SlipScenario, slip_heat
+    from .durability import SlipScenario
     from .geometry import MeshSettings, concepts, get_concept
     from .loadcase import Design, OperatingPoint, SweepResult
-    from .report import design_report as report
+    from .report import design_report as write_report
     from .studies import StudySpec, Targets, compensate, optimize, run_study, tolerance
     from .studies import load_spec as load_study
     from .studies import run_guidelines as guidelines

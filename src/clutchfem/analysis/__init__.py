@@ -6,8 +6,9 @@ Modules, one job each: :mod:`.pipeline` (:func:`analyze`: the steps in order),
 :mod:`.answers` (the frozen answer records and :class:`Analysis`), :mod:`.torque` (slip,
 FE sweep, engagement, character, mu sensitivity), :mod:`.coupling` (the analytical shoe
 model next to the FE torque, the answer's curves), :mod:`.strength` (stress and fatigue),
-:mod:`.requirements` (the designer's factors, crankshaft whirl), :mod:`.errors` (the error of
-the main answers), :mod:`.messages` (warnings and notes)."""
+:mod:`.requirements` (the designer's factors, crankshaft whirl), :mod:`.error_band` (the error of
+the main answers), :mod:`.messages` (warnings and notes), :mod:`.slip_heat` (the slip test's
+temperatures)."""
 
 from ..mesh import mesh_mass_properties  # (its home is clutchfem.mesh; exported here as before)
 from .answers import (
@@ -23,10 +24,11 @@ from .answers import (
     StressAnswer,
 )
 from .coupling import answer_curves, coupling_step, torque_models
-from .errors import error_step
+from .error_band import error_step
 from .messages import SELF_ENERGISING_WARN, design_notes, design_warnings
 from .pipeline import analyze
 from .requirements import DEFAULT_IDLE_RPM, WHIRL_MARGIN, idle_speed, requirements_step, whirl_step
+from .slip_heat import SlipHeatRun, slip_heat
 from .strength import fatigue_cycles, fatigue_step, stress_step
 from .torque import (
     GRID_RPM,
@@ -44,7 +46,7 @@ from .torque import (
     slip_step,
 )
 
-__all__ = ["DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
+__all__ = ["SlipHeatRun", "slip_heat", "DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
            "WHIRL_MARGIN", "Analysis", "CharacterAnswer", "EngagementAnswer", "FETorque", "FatigueAnswer",
            "MuSensitivity", "Requirements", "SlipAnswer", "StressAnswer", "analyze", "answer_curves", "bracket_grid",
            "character_step", "check_speeds", "coupling_step", "design_notes", "design_warnings", "engagement_step",

@@ -46,7 +46,7 @@ from ..loadcase import Design, design_inputs, design_label
 from ..mesh import mesh_mass_properties
 from .answers import Analysis, Requirements
 from .coupling import answer_curves, coupling_step, torque_models
-from .errors import error_step
+from .error_band import error_step
 from .messages import design_notes, design_warnings
 from .requirements import idle_speed, requirements_step, whirl_step
 from .strength import fatigue_step, stress_step

@@ -1,40 +1,79 @@
-"""Command line: a thin layer over the Python API (parse, call, print).
+"""Command line: a thin face over the Python API (parse, call, print).
 
-One module per subcommand; :mod:`.common` holds the shared plumbing.
+One grammar for every command that takes a design: ``clutchfem COMMAND CONCEPT [--set
+name=value ...]`` or ``clutchfem COMMAND --mesh FILE``; every quantity option takes a unit
+suffix (``--drum-radius 34.4mm``); every file written is listed (``wrote PATH`` on stderr)
+and carries the design's label.  One module per command, :mod:`.options` the shared
+options, :mod:`.common` the plumbing.
 """
 
 from __future__ import annotations
 
+import logging
+import signal
+import sys
+from typing import Annotated, Optional
+
 import typer
 
+from .. import __version__
 from .analyze_cmd import analyze
+from .compensate_cmd import compensate
 from .demo_cmd import demo
 from .geometry_cmd import geometry
+from .optimize_cmd import optimize
+from .report_cmd import report
 from .slip_heat_cmd import slip_heat
 from .solve_cmd import solve
 from .study_cmd import guidelines, study
-from .targets_cmd import compensate, optimize, report, tolerance
+from .tolerance_cmd import tolerance
 from .validate_cmd import validate
 
-app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
-                  help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).")
-for _cmd in (geometry, solve, analyze, validate, demo, study, guidelines, optimize, tolerance, compensate, report):
-    app.command()(_cmd)
-app.command("slip-heat")(slip_heat)
+app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode="rich",
+                  help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).\n\n"
+                       "A design is a CONCEPT with --set overrides (clutchfem geometry --list) or --mesh FILE; "
+                       "every quantity takes a unit suffix (2.4mm, 80deg, 2700rpm, 200GPa).")
+
+#: (command, name, panel, example)
+_COMMANDS = [
+    (geometry, "geometry", "Design", "clutchfem geometry concept4 --set flexure_thickness=2mm --out out/c4"),
+    (analyze, "analyze", "Design", "clutchfem analyze concept4 --set flexure_thickness=2mm --out out/c4"),
+    (solve, "solve", "Design", "clutchfem solve concept1 --rpm 0:14000:250 --vtk --out out/c1"),
+    (report, "report", "Design", "clutchfem report concept4 --out out/c4-report"),
+    (slip_heat, "slip-heat", "Design", "clutchfem slip-heat concept2 --cycles 3 --pause 20s --out out/heat"),
+    (optimize, "optimize", "Design to targets", "clutchfem optimize concept4 --out out/opt"),
+    (tolerance, "tolerance", "Design to targets",
+     "clutchfem tolerance concept4 --tol flexure_thickness=+-0.05mm --tol clearance=+-0.02mm --n 100"),
+    (compensate, "compensate", "Design to targets", "clutchfem compensate concept4 --rpm 8000 --out out/comp"),
+    (study, "study", "Studies", "clutchfem study --example > study.toml && clutchfem study study.toml"),
+    (guidelines, "guidelines", "Studies", "clutchfem guidelines concept4 --params flexure_thickness,shoe_arc"),
+    (validate, "validate", "Checks", "clutchfem validate --docs docs/validation.md --out docs/img/validation"),
+    (demo, "demo", "Checks", "clutchfem demo --out out/demo"),
+]
+for _fn, _name, _panel, _example in _COMMANDS:
+    app.command(_name, rich_help_panel=_panel, epilog=f"Example: {_example}")(_fn)
+
+
+def _version(value: bool) -> None:
+    if value:
+        print(f"clutchfem {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(version: Annotated[Optional[bool], typer.Option(
+        "--version", callback=_version, is_eager=True, help="print the version and exit")] = None) -> None:
+    """clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model)."""
 
 
 def main() -> None:
     """Entry point: progress notes (clutchfem's INFO log) on stderr; Ctrl-C stops with exit
     code 130 and one line, not a traceback (gmsh, while meshing, exits with 130 itself)."""
-    import logging
-    import sys
-
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("%(message)s"))
     log = logging.getLogger("clutchfem")
     log.addHandler(handler)
     log.setLevel(logging.INFO)
-    import signal
 
     def interrupted(signum, frame):  # one line, exit 130, finally-blocks still run
         print("\ninterrupted (Ctrl-C): unfinished work is not written", file=sys.stderr)

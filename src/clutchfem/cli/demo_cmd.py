@@ -1,4 +1,5 @@
-"""``clutchfem demo``: every concept at its defaults, then the default design's report."""
+"""``clutchfem demo``: every concept at its defaults, then the default designs' answers and
+the torque-speed comparison against today's spring clutch."""
 
 from __future__ import annotations
 
@@ -8,13 +9,15 @@ import typer
 
 from ..core import ClutchfemError
 from ..core import write as write_json
-from .common import check_out_dir, console, fail
-from .geometry_cmd import _geometry_table, build_geometry
+from .common import check_out_dir, fail, wrote
+from .geometry_cmd import build_geometry, geometry_table
 
 
 def demo(out: Path = typer.Option(Path("out/demo"), "--out", help="output folder")):
-    """Build every concept at its defaults, then sweep the default design and plot torque vs rpm."""
+    """Build every concept at its defaults, then analyse the default designs of concepts 1 and
+    4 and plot torque vs rpm against the engine and today's spring clutch."""
     from ..geometry import concepts
+    from ..report import default_design_report
 
     try:
         check_out_dir(out)
@@ -23,16 +26,13 @@ def demo(out: Path = typer.Option(Path("out/demo"), "--out", help="output folder
     rows = []
     for name, c in concepts().items():
         try:
-            rows.append(build_geometry(c, c.params(), out / "geometry", None, "full", True))
+            rows.append(build_geometry(c, [], out / "geometry", None, "full", True))
         except ClutchfemError as exc:  # record and go on
             rows.append({"concept": name, "error": str(exc)})
-    _geometry_table(rows)
-    write_json(out / "geometry" / "summary.json", rows, indent=2)
-    from ..report import default_design_report
-
+    geometry_table(rows)
+    summary = write_json(out / "geometry" / "summary.json", rows, indent=2)
+    wrote([f for r in rows for f in r.get("files", [])] + [summary])
     try:
-        files = default_design_report(out / "design")
-        for f in files:
-            console.print(f"wrote {f}")
+        wrote(default_design_report(out / "design"))
     except ClutchfemError as exc:
         fail(exc)

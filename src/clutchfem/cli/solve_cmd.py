@@ -1,10 +1,10 @@
-"""``clutchfem solve``: FE speed sweep of a concept or a user mesh."""
+"""``clutchfem solve``: the FE speed sweep of a design (a concept or a user mesh)."""
 
 from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import List, Optional
+from typing import Optional
 
 import numpy as np
 import typer
@@ -12,82 +12,83 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..core import ClutchfemError
-from ..loadcase import OperatingPoint as _OP
-from .common import check_out_dir, console, fail, length_option, load_design, material_from, operating_point
+from . import options as O
+from .common import check_out_dir, console, design_from, fail, material_from, operating_point, wrote
 
 
 def solve(
-    concept: Optional[str] = typer.Option(None, "--concept", help="concept name"),
-    set_: List[str] = typer.Option([], "--set", help="concept parameter override name=value (unit suffix: mm, deg)"),
-    mesh: Optional[Path] = typer.Option(None, "--mesh", help="user mesh (.msh with groups bore/contact) or STEP"),
-    drum_radius: Optional[str] = typer.Option(None, "--drum-radius", help=_OP.help("drum_radius")),
-    mu: Optional[str] = typer.Option(None, "--mu", help=_OP.help("mu")),
-    rotation: Optional[str] = typer.Option(None, "--rotation", help=_OP.help("rotation")),
-    material: Optional[str] = typer.Option(None, "--material", help=_OP.help("material")),
-    E: Optional[float] = typer.Option(None, "--E", help="Young's modulus [Pa] (overrides the material's)"),
-    nu: Optional[float] = typer.Option(None, "--nu", help="Poisson's ratio [-] (overrides the material's)"),
-    rho: Optional[float] = typer.Option(None, "--rho", help="density [kg/m^3] (overrides the material's)"),
-    thickness: Optional[str] = typer.Option(None, "--thickness", help=_OP.help("thickness")),
-    rpm: str = typer.Option("0:14000:250", "--rpm", help="speeds [rpm]: 8000 | 1000,2000 | start:stop:step"),
-    vtk: bool = typer.Option(False, "--vtk", help="write .vtu fields (and PNG renders) for the speeds in --vtk-rpm"),
-    vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds [rpm] for VTK output (default: max of --rpm)"),
-    out: Optional[Path] = typer.Option(None, "--out", help="output folder for tables/fields"),
-    json_: bool = typer.Option(False, "--json", help="print one JSON object to stdout"),
-    mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm)"),
-    model: str = typer.Option("sector", "--model", help="sector (cyclic) or full"),
-    softening: Optional[str] = typer.Option(None, "--spin-softening", help=_OP.help("softening")),
-    formulation: Optional[str] = typer.Option(None, "--formulation", help=_OP.help("formulation")),
-    layers: Optional[str] = typer.Option(None, "--layers", help=_OP.help("layers")),
-    drum_wall: Optional[str] = typer.Option(None, "--drum-wall", help=_OP.help("drum_wall")),
-    drum_state: Optional[str] = typer.Option(None, "--drum-state", help=_OP.help("drum_state")),
-    no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery"),
-    no_errors: bool = typer.Option(False, "--no-errors", help="skip the error estimate (a mesh twice as fine)"),
+    concept: O.Concept = None,
+    set_: O.Set = [],
+    mesh: O.Mesh = None,
+    mesh_size: O.MeshSize = None,
+    model: O.Model = "sector",
+    drum_radius: O.DrumRadius = None,
+    thickness: O.Thickness = None,
+    mu: O.Mu = None,
+    rotation: O.Rotation = None,
+    material: O.MaterialName = None,
+    E: O.E = None,
+    nu: O.Nu = None,
+    rho: O.Rho = None,
+    drum_wall: O.DrumWall = None,
+    drum_state: O.DrumState = None,
+    softening: O.Softening = None,
+    formulation: O.Formulation = None,
+    layers: O.Layers = None,
+    rpm: str = typer.Option("0:14000:250", "--rpm", help="speeds in rpm: 8000 | 1000,2000 | start:stop:step",
+                            rich_help_panel=O.OPERATING),
+    no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery", rich_help_panel=O.MODEL),
+    no_errors: bool = typer.Option(False, "--no-errors", help="skip the error estimate (a mesh twice as fine)",
+                                   rich_help_panel=O.MODEL),
+    vtk: bool = typer.Option(False, "--vtk", help="write .vtu fields (and PNG renders) for the speeds in --vtk-rpm",
+                             rich_help_panel=O.OUTPUT),
+    vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds in rpm for the .vtu fields (default: the "
+                                          "highest of --rpm)", rich_help_panel=O.OUTPUT),
+    out: O.Out = None,
+    json_: O.Json = False,
 ):
-    """Speed sweep: engagement, contact forces and arc, friction torque (drum held), stresses."""
+    """Speed sweep of a design: engagement, contact forces and arc, friction torque (drum
+    held), stresses, each speed solved exactly (the answers do not depend on the grid)."""
     from ..accuracy import sweep_errors
     from ..core import dumps, write
-    from ..loadcase import design_inputs, model_warnings, parse_rpm
+    from ..fe import write_vtk
+    from ..loadcase import design_inputs, design_label, model_warnings, parse_rpm
 
     try:
         check_out_dir(out)
         mat = material_from(material, E, nu, rho)
-        op = operating_point(mat, drum_radius=drum_radius, mu=mu, rotation=rotation, thickness=thickness,
-                             softening=softening, formulation=formulation, rpm=rpm,
-                             layers=layers, drum_wall=drum_wall, drum_state=drum_state)
+        op = operating_point(mu=mu, rotation=rotation, softening=softening, formulation=formulation, rpm=rpm,
+                             layers=layers, drum_wall=drum_wall, drum_state=drum_state, material=mat)
         speeds = op.speeds()
         which = parse_rpm(vtk_rpm) if vtk_rpm else np.array([float(speeds.max())])
         if vtk:
             speeds = np.union1d(speeds, which)
-        if concept is not None and op.drum_radius is not None:
-            raise ClutchfemError("the drum radius of a concept is one of its geometry parameters (its "
-                                 "clearance is built against it): use --set drum_radius=...; --drum-radius "
-                                 "applies to --mesh only")
-        size = length_option("size", mesh_size)
-        design, c, p = load_design(concept, set_, mesh, size, model, op)
+        design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model, drum_radius=drum_radius,
+                             thickness=thickness)
         res = design.sweep(speeds, stresses=not no_stress)
         warns = list(res.warnings) + model_warnings(res, design.model.material.yield_strength)
         errs = sweep_errors(design, res) if not no_errors and res.contact is not None else {}
-        doc = {**res.to_json(), "warnings": warns, "errors": errs, "inputs": design_inputs(design)}
+        label = design_label(design)
+        doc = {**res.to_json(), "label": label, "warnings": warns, "errors": errs, "inputs": design_inputs(design)}
+        files = []
         if out is not None:
-            res.curve.to_csv(out / "curve.csv", index=False)
+            res.curve.to_csv(out / f"{label}_curve.csv", index=False)
+            files.append(out / f"{label}_curve.csv")
             if not res.shoes.empty:
-                res.shoes.to_csv(out / "shoes.csv", index=False)
-            write(out / "result.json", doc, indent=2)
+                res.shoes.to_csv(out / f"{label}_shoes.csv", index=False)
+                files.append(out / f"{label}_shoes.csv")
+            files.append(write(out / f"{label}_result.json", doc, indent=2))
         if vtk:
-            from ..fe import write_vtk
-
             target = check_out_dir(out or Path("out/solve"))
-            files = write_vtk(res, which, target)
-            if not json_:
-                for f in files:
-                    console.print(f"wrote {escape(str(f))}")
+            files += write_vtk(res, which, target, stem=label)
+        wrote(files)
         if json_:
             print(dumps(doc))
-        else:
-            _print_sweep(res, mat)
-            _print_errors(errs)
-            for w in warns:
-                console.print(f"[bold red]WARNING:[/] {escape(w)}")
+            return
+        _print_sweep(res, mat)
+        _print_errors(errs)
+        for w in warns:
+            console.print(f"[bold red]WARNING:[/] {escape(w)}")
     except ClutchfemError as exc:
         fail(exc)
 
@@ -116,7 +117,6 @@ def _print_sweep(res, mat) -> None:
     tm = res.timings
     console.print(f"wall time: model {tm.get('assemble_s', 0) + tm.get('factorize_s', 0):.2f} s, "
                   f"sweep {tm['sweep_s']:.2f} s")
-
 
 
 def _print_errors(errs: dict) -> None:

@@ -8,14 +8,15 @@ import signal
 import sys
 import threading
 from pathlib import Path
-from typing import List, Optional
+from typing import Optional
 
 import typer
 from rich.markup import escape
 from rich.table import Table
 
 from ..core import ClutchfemError
-from .common import check_out_dir, console, err, fail
+from . import options as O
+from .common import check_out_dir, console, design_from, engine_from, err, fail, material_from, operating_point, wrote
 
 
 @contextlib.contextmanager
@@ -33,18 +34,17 @@ def _ctrl_c_as_keyboard_interrupt():
         signal.signal(signal.SIGINT, previous)
 
 
-_WORKERS_HELP = "local cluster of N process workers (default: one per core; 0: in this process, no Dask)"
-_SCHED_HELP = "address of an existing dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of --workers)"
 
 
 def study(
     spec: Optional[Path] = typer.Argument(None, help="study spec (TOML); see --example"),
     example: bool = typer.Option(False, "--example", help="print a commented example spec (12 designs of "
                                  "concept 4) that runs as it is, and exit"),
-    workers: Optional[int] = typer.Option(None, "--workers", help=_WORKERS_HELP),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=_SCHED_HELP),
+    workers: O.Workers = None,
+    scheduler: O.Scheduler = None,
     out: Optional[Path] = typer.Option(None, "--out", help="output folder: results.sqlite (the store), results.csv, "
-                                       "charts/, summary.json (default: ./<spec name>-study)"),
+                                       "charts/, summary.json (default: ./<spec name>-study)",
+                                       rich_help_panel=O.OUTPUT),
     retry_failed: bool = typer.Option(False, "--retry-failed", help="recompute the points stored as failed "
                                       "(finished points are otherwise skipped)"),
     charts: bool = typer.Option(True, "--charts/--no-charts", help="draw the charts at the end"),
@@ -120,31 +120,29 @@ def _print_summary(s: dict) -> None:
     for q, v in rows:
         t.add_row(escape(q), escape(v))
     console.print(t)
-    for f in s.get("files", []):
-        err.print(f"wrote {escape(f)}")
+    wrote(s.get("files", []))
 
 
 def guidelines(
-    concept: str = typer.Argument(..., help="concept name (concept4, 4, ...)"),
-    set_: List[str] = typer.Option([], "--set", help="design point: concept parameter name=value "
-                                   "(unit suffix: mm, deg)"),
+    concept: O.Concept = None,
+    set_: O.Set = [],
+    mesh_size: O.MeshSize = None,
+    mu: O.Mu = None,
+    material: O.MaterialName = None,
+    engine: O.Engine = None,
     params: Optional[str] = typer.Option(None, "--params", help="parameters to study, comma separated (default: "
-                                         "every continuous parameter with a non-zero value)"),
-    step: float = typer.Option(0.02, "--step", help="relative finite-difference step h [-]: central differences at "
-                               "h, h/2 and 2h and a fit decide whether the derivative is stable"),
-    points: int = typer.Option(7, "--points", help="points of each one-at-a-time sweep [-]"),
-    span: float = typer.Option(0.5, "--span", help="one-at-a-time range: design value x (1 -+ span), within "
-                               "the parameter's declared range [-]"),
-    mesh_size: Optional[str] = typer.Option(None, "--mesh-size", help="global element size [m] (unit suffix: mm; "
-                                            "default 1.2mm)"),
-    mu: Optional[str] = typer.Option(None, "--mu", help="shoe-drum friction coefficient (default 0.165)"),
-    material: Optional[str] = typer.Option(None, "--material", help="material (default 51CrV4)"),
-    engine: Optional[Path] = typer.Option(None, "--engine", help="engine torque CSV (columns rpm, torque [N m])"),
-    workers: Optional[int] = typer.Option(None, "--workers", help=_WORKERS_HELP),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=_SCHED_HELP),
-    out: Optional[Path] = typer.Option(None, "--out", help="output folder: store, guidelines.csv/json, charts "
-                                       "(default: ./<concept>-guidelines)"),
-    json_: bool = typer.Option(False, "--json", help="print the ranked table as JSON"),
+                                         "every continuous parameter with a non-zero value)",
+                                         rich_help_panel="Guidelines"),
+    step: float = typer.Option(0.02, "--step", help="relative finite-difference step h: central differences at h, "
+                               "h/2 and 2h and a fit decide whether the derivative is stable",
+                               rich_help_panel="Guidelines"),
+    points: int = typer.Option(7, "--points", help="points of each one-at-a-time sweep", rich_help_panel="Guidelines"),
+    span: float = typer.Option(0.5, "--span", help="one-at-a-time range: design value x (1 -+ span), within the "
+                               "parameter's declared range", rich_help_panel="Guidelines"),
+    workers: O.Workers = None,
+    scheduler: O.Scheduler = None,
+    out: O.Out = None,
+    json_: O.Json = False,
 ):
     """Design guidelines: per parameter, elasticities d ln(answer) / d ln(parameter) of
     engagement, slip rpm, torque at max engine torque, peak stress, shoe mass and contact arc
@@ -155,8 +153,11 @@ def guidelines(
     try:
         if workers is not None and scheduler is not None:
             raise _usage("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
-        gs = GuidelineSettings.from_cli(concept, set_, params, step=step, points=points, span=span,
-                                        mesh_size=mesh_size, mu=mu, material=material, engine=engine)
+        eng = engine_from(engine)[0] if engine is not None else None
+        design = design_from(concept, set_, None, op=operating_point(mu=mu, material=material_from(material)),
+                             mesh_size=mesh_size, mesh_allowed=False)
+        names = None if params is None else [x.strip() for x in params.split(",") if x.strip()]
+        gs = GuidelineSettings.from_design(design, names, engine=eng, step=step, points=points, span=span)
         out = check_out_dir(out if out is not None else Path(f"{gs.concept}-guidelines"))
         try:
             with _ctrl_c_as_keyboard_interrupt():
@@ -172,7 +173,6 @@ def guidelines(
         console.print(summary_table(res))
         for n in res.notes:
             console.print(f"[dim]note: {escape(n)}[/]")
-        for f in res.files:
-            err.print(f"wrote {escape(str(f))}")
+        wrote(res.files)
     except ClutchfemError as exc:
         fail(exc)

@@ -35,8 +35,8 @@ from .heat import (
                       ThermalEnvironment,
                       ThermalMaterial,
                       heat_partition,
+                      heat_transient,
                       render_png,
-                      slip_heat,
                       slip_heat_load,
                       write_vtu,
 )

@@ -35,7 +35,7 @@ def _p2_nodal_stress(stress, u: np.ndarray, cells: np.ndarray, n: int) -> np.nda
     return acc
 
 
-def write_vtk(res, rpms, out: Path, render: bool = True) -> list[Path]:
+def write_vtk(res, rpms, out: Path, render: bool = True, stem: str = "") -> list[Path]:
     """One .vtu per speed of ``res`` (a SweepResult; each rpm must be one of its speeds) on
     the quadratic (triangle6) mesh: displacement, stresses and von Mises (averaged to the
     nodes: the raw element-vertex peak is in the sweep table), and the contact pressure at
@@ -64,7 +64,7 @@ def write_vtk(res, rpms, out: Path, render: bool = True) -> list[Path]:
         m = meshio.Mesh(pts, [("triangle6", cells)],
                         point_data={"displacement_m": disp, "sxx_Pa": s[0], "syy_Pa": s[1], "sxy_Pa": s[2],
                                     "von_mises_Pa": f_.stress.von_mises(s), "contact_pressure_Pa": press})
-        f = out / f"fields_{int(round(float(rpm)))}rpm.vtu"
+        f = out / f"{stem + '_' if stem else ''}fields_{int(round(float(rpm)))}rpm.vtu"
         m.write(f)
         files.append(f)
         if render:

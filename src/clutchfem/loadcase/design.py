@@ -12,18 +12,21 @@ from __future__ import annotations
 
 import math
 from functools import cached_property
+from pathlib import Path
 
 import numpy as np
 
 from ..contact import DrumContact, DrumWall, RingDrum, contact_nodes
 from ..core import ParameterError
 from ..fe import ExtrusionSettings, FEModel, FEModel3D, Solver
-from ..geometry import get_concept
-from ..mesh import ClutchMesh, mesh_concept
+from ..geometry import MeshSettings, get_concept
+from ..mesh import ClutchMesh, load_user_geometry, mesh_concept
 from ..softening import get_softening
 from .case import LoadCase, sweep
 from .operating import OperatingPoint
 
+#: axial thickness of a user mesh when none is given [m] (ASSUMED: the thesis's 10-12 mm)
+USER_THICKNESS = 11e-3
 #: a user mesh's drum radius may exceed the contact surface's outer radius by at most this
 #: factor (a units check: a gap of half the part's radius cannot close elastically)
 DRUM_GAP_LIMIT = 1.5
@@ -38,7 +41,7 @@ class Design:
     """
 
     def __init__(self, cm: ClutchMesh, op: OperatingPoint | None = None, *, params=None,
-                 solver: Solver = None, name: str = ""):
+                 solver: Solver = None, name: str = "", concept=None):
         if not isinstance(cm, ClutchMesh):
             raise ParameterError("cm", type(cm).__name__, "a ClutchMesh (from clutchfem.mesh.mesh_concept "
                                  "or load_user_geometry)")
@@ -48,6 +51,8 @@ class Design:
         self.cm = cm
         self.op = op
         self.params = params
+        #: the concept (geometry plug-in) of a concept design, None for a user mesh
+        self.concept = concept
         self.name = name or cm.source
         self.drum_radius = _first(op.drum_radius, getattr(params, "drum_radius", None), cm.drum_radius)
         self.thickness = _first(op.thickness, getattr(params, "thickness", None), cm.thickness)
@@ -64,13 +69,117 @@ class Design:
         self._cases: dict = {}
 
     @classmethod
-    def from_concept(cls, concept, params=None, op: OperatingPoint | None = None, mesh_settings=None, *,
-                     solver: Solver = None) -> "Design":
-        """Mesh ``concept`` (name or Concept) with ``params`` (defaults) and build the design."""
+    def from_concept(cls, concept, params=None, operating: OperatingPoint | None = None, mesh=None, *,
+                     solver: Solver = None, **values) -> "Design":
+        """Mesh a concept and build its design (FE model, contact nodes; load cases on demand).
+
+        Parameters
+        ----------
+        concept : str or Concept
+            The concept's name (:func:`clutchfem.concepts` lists them) or the concept itself.
+        params : ConceptParams, optional
+            A full parameter set of the concept (default: its defaults); ``values`` change it.
+        operating : OperatingPoint, optional
+            The operating point (friction, rotation, material, model choices); default:
+            :class:`OperatingPoint` ``()``.  The drum radius and the thickness of a concept are
+            geometry parameters (``drum_radius=...``, ``thickness=...``).
+        mesh : MeshSettings, optional
+            Element sizes and sector or full model (default: ``MeshSettings()``).
+        solver : str or callable, optional
+            Sparse solver back-end: ``"cholmod"``, ``"superlu"`` or a factory ``A -> .solve(B)``.
+        **values
+            Concept parameters (``flexure_thickness="2.4mm"``, SI floats or strings with a
+            unit suffix) and operating-point fields that are not geometry (``mu=0.2``,
+            ``rotation="cw"``, ``material="titanium"``, ``softening="ritz"``, ...).
+
+        Returns
+        -------
+        Design
+            The meshed design; refusals are :class:`~clutchfem.ParameterError` naming the
+            parameter, its value and the allowed range.
+
+        Examples
+        --------
+        >>> import clutchfem as cf
+        >>> d = cf.Design.from_concept("concept1", flexure_thickness="2.4mm", mu=0.2)
+        >>> d.params.flexure_thickness, d.op.mu
+        (0.0024, 0.2)
+        >>> round(d.case().engagement_rpm, -1) > 3000
+        True
+        """
         c = get_concept(concept) if isinstance(concept, str) else concept
+        geometry, op_values = {}, {}
+        for name, value in values.items():
+            if name in c.Params.model_fields:
+                geometry[name] = value
+            elif name in OperatingPoint.model_fields:
+                op_values[name] = value
+            else:
+                raise ParameterError(name, value, "a parameter of the concept (" + ", ".join(c.Params.model_fields)
+                                     + ") or of the operating point (" + ", ".join(
+                                         n for n in OperatingPoint.model_fields if n not in ("drum_radius",
+                                                                                             "thickness")) + ")",
+                                     c.name)
+        if params is not None and not isinstance(params, c.Params):
+            raise ParameterError("params", type(params).__name__, f"a {c.Params.__name__} of {c.name} (or None)")
         p = params if params is not None else c.params()
-        cm = mesh_concept(c, p, mesh_settings)
-        return cls(cm, op, params=p, solver=solver, name=c.name)
+        if geometry:
+            p = p.replace(**geometry)
+        if operating is not None and not isinstance(operating, OperatingPoint):
+            raise ParameterError("operating", type(operating).__name__, "an OperatingPoint (or None)")
+        op = operating if operating is not None else OperatingPoint()
+        if op_values:
+            op = op.replace(**op_values)
+        if mesh is not None and not isinstance(mesh, MeshSettings):
+            raise ParameterError("mesh", type(mesh).__name__, "a MeshSettings (or None)")
+        cm = mesh_concept(c, p, mesh)
+        return cls(cm, op, params=p, solver=solver, name=c.name, concept=c)
+
+    @classmethod
+    def from_mesh(cls, path, *, drum_radius=None, thickness=None, operating: OperatingPoint | None = None,
+                  mesh_size=None, solver: Solver = None, **op_values) -> "Design":
+        """A design from your own part: a gmsh ``.msh`` or a STEP file.
+
+        Parameters
+        ----------
+        path : str or Path
+            The mesh (2-D in x-y, metres, rotation axis at the origin, physical curve groups
+            ``bore`` and ``contact``; ``contact_0``, ``contact_1``, ... for per-shoe answers) or
+            a STEP file (meshed here; the bore is the loop around the origin).
+        drum_radius : float or str
+            The drum's inner radius (``"34.4mm"``): a part has no drum of its own.  Required
+            for every answer that involves the drum.
+        thickness : float or str, optional
+            The part's axial thickness (default 11 mm, ASSUMED: :data:`USER_THICKNESS`).
+        operating : OperatingPoint, optional
+            The operating point; ``drum_radius``/``thickness`` given here override its own.
+        mesh_size : float or str, optional
+            Element size for a STEP file (``"1mm"``).
+        **op_values
+            Further operating-point fields (``mu=0.2``, ...).
+
+        Returns
+        -------
+        Design
+
+        Examples
+        --------
+        >>> import clutchfem as cf
+        >>> cf.Design.from_mesh("no-such-part.msh", drum_radius="34.4mm")
+        Traceback (most recent call last):
+        ...
+        clutchfem.core.errors.MeshError: mesh file no-such-part.msh does not exist
+        """
+        if operating is not None and not isinstance(operating, OperatingPoint):
+            raise ParameterError("operating", type(operating).__name__, "an OperatingPoint (or None)")
+        op = operating if operating is not None else OperatingPoint()
+        given = {k: v for k, v in (("drum_radius", drum_radius), ("thickness", thickness)) if v is not None}
+        op = op.replace(**given, **op_values) if (given or op_values) else op
+        if op.thickness is None:
+            op = op.replace(thickness=USER_THICKNESS)
+        size = MeshSettings.parse_value("size", mesh_size) if isinstance(mesh_size, str) else mesh_size
+        cm = load_user_geometry(path, mesh_size=size, thickness=op.thickness, drum_radius=op.drum_radius)
+        return cls(cm, op, solver=solver, name=Path(path).name.rsplit(".", 1)[0])
 
     # -- contact and load cases ---------------------------------------------------------
     @cached_property

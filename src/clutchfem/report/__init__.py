@@ -22,8 +22,16 @@ from .pages import (
                      param_table,
                      tolerance_page,
 )
+from .runs import (
+                     compensation_json,
+                     compensation_report,
+                     design_report,
+                     optimization_report,
+                     slip_heat_files,
+                     tolerance_report,
+)
 
-__all__ = ["Figure", "Page", "Table", "Text", "arc_stress_plot", "compare_rows", "comparison_plot",
+__all__ = ["compensation_json", "compensation_report", "design_report", "optimization_report", "slip_heat_files", "tolerance_report", "Figure", "Page", "Table", "Text", "arc_stress_plot", "compare_rows", "comparison_plot",
            "compensation_page", "default_design_report", "design_page", "design_verdicts", "fatigue_rows",
            "folder_page", "markdown_summary", "optimization_page", "param_table", "render_html", "render_md",
            "summary_rows", "tolerance_page", "torque_plot", "write_analysis", "write_page"]

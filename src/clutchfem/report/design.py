@@ -340,7 +340,7 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
     analyses, files = {}, []
     for name in concept_names:
         ms = MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size)
-        an = analyze(Design.from_concept(name, mesh_settings=ms), engine=engine)
+        an = analyze(Design.from_concept(name, mesh=ms), engine=engine)
         analyses[name] = an
         files += write_analysis(an, engine, out, name)
     fig25 = comparison_plot(analyses, engine, out / "clutch_torque_comparison.png")

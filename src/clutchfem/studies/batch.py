@@ -39,13 +39,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..clutch import EngineCurve
-from ..core import ParameterError
+from ..core import InputError, ParameterError
 from ..geometry import MeshSettings, get_concept
-from ..loadcase import OperatingPoint
+from ..loadcase import Design, OperatingPoint
 from .hashing import design_hash
 from .point import COLUMNS, Settings, model_version
 from .runner import default_workers, run_points
 from .store import ResultStore
+from .values import changed_texts
 
 #: the answers a row carries (name -> unit), in table order
 ANSWERS = {
@@ -74,6 +75,39 @@ class EvalSettings:
     b: float = 1.0
     min_safety_factor: float = 1.5
     store: str | None = None
+    #: an engine curve given as an object (the API); wins over ``engine_csv``
+    curve: EngineCurve | None = None
+
+    @classmethod
+    def from_design(cls, design, *, engine=None, idle_rpm: float | None = None, requirements=None,
+                    min_safety_factor: float = 1.5, store: str | None = None) -> "EvalSettings":
+        """The settings whose base design is ``design`` (a concept's :class:`~clutchfem.Design`:
+        its parameters as exact ``--set`` texts, its operating point and mesh size), with the
+        engine (an :class:`~clutchfem.EngineCurve` or the path of its CSV; default: the
+        built-in curve), the idle speed and the requirement factors of ``requirements``
+        (default: a = 1.3, b = 1.0)."""
+        if not isinstance(design, Design):
+            raise InputError(f"a design study needs a clutchfem Design (Design.from_concept), not "
+                             f"{type(design).__name__}")
+        if design.params is None:
+            raise InputError(f"{design.name}: a user mesh has no concept parameters to vary; studies, optimisation "
+                             "and tolerances work on a concept's design (Design.from_concept)")
+        P = type(design.params)
+        base = tuple(f"{k}={v}" for k, v in changed_texts(design.params).items())
+        op0 = OperatingPoint()
+        op = {k: getattr(design.op, k) for k in OperatingPoint.model_fields
+              if getattr(design.op, k) != getattr(op0, k) and k not in ("rpm",)}
+        if "material" in op:
+            op["material"] = op["material"].model_dump()
+        size = (design.cm.mesh_settings or {}).get("size")
+        size = None if size is None or size == MeshSettings().size else float(size)
+        req_a = getattr(requirements, "a", 1.3)
+        req_b = getattr(requirements, "b", 1.0)
+        P(**P.parse_assignments(list(base)))  # the texts read back as this design
+        csv = str(engine) if isinstance(engine, (str, Path)) else None
+        curve = engine if isinstance(engine, EngineCurve) else None
+        return cls(concept=design.name, base=base, mesh_size=size, op=op, engine_csv=csv, idle_rpm=idle_rpm, a=req_a,
+                   b=req_b, min_safety_factor=min_safety_factor, store=store, curve=curve)
 
     def params(self, point: dict | None = None):
         """The concept's parameter set for ``point`` on the base (raises ParameterError)."""
@@ -89,6 +123,8 @@ class EvalSettings:
         return values
 
     def engine(self):
+        if self.curve is not None:
+            return self.curve
         return EngineCurve.from_csv(self.engine_csv, idle_rpm=self.idle_rpm) if self.engine_csv \
             else EngineCurve.default()
 
@@ -108,7 +144,7 @@ class EvalSettings:
         """The study engine's :class:`clutchfem.studies.Settings` (the base as fixed values)."""
         fixed = tuple(sorted(self.values().items()))
         return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
-                        engine=self.engine() if self.engine_csv else None, idle_rpm=self.idle_rpm, a=self.a,
+                        engine=self.engine() if (self.engine_csv or self.curve is not None) else None, idle_rpm=self.idle_rpm, a=self.a,
                         b=self.b, min_safety_factor=self.min_safety_factor)
 
 

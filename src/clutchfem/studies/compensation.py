@@ -236,15 +236,56 @@ def mean_over(st: ShoeState, arc) -> float:
     return float(st.weight_m[T] @ st.clearance_m[T] / st.weight_m[T].sum())
 
 
-def compensate(concept, params=None, rpm: float = 8000.0, target_arc: float = 0.8, *,
+def compensate(design, params=None, rpm: float = 8000.0, target_arc: float = 0.8, *,
                arc_start: float | None = None, mean_clearance: float | None = None, op=None,
                mesh_settings=None, max_iter: int = 8, tol: float = 5e-9, log=None) -> Compensation:
-    """Compensate the shoe profile of ``concept`` (name or Concept) with ``params`` (default:
-    its defaults) at ``rpm`` over ``target_arc`` (a share of the nominal arc, placed by
-    :func:`place_arc` unless ``arc_start`` gives its start as an arc fraction);
-    ``mean_clearance`` [m] overrides the level rule; the fixed point stops when no control
-    value moves more than ``tol`` [m] (or after ``max_iter`` rebuilds).  See the module
-    docstring."""
+    """The shoe profile (a table of clearances) that spreads the contact pressure evenly over
+    a target share of the shoe at one speed (module docstring).
+
+    Parameters
+    ----------
+    design : Design, str or Concept
+        The design (a concept's :class:`~clutchfem.Design`: its concept, parameters,
+        operating point and mesh), or a concept (name or object) with ``params``, ``op`` and
+        ``mesh_settings``.
+    params : ConceptParams, optional
+        With a concept: its parameter set (default: the defaults).
+    rpm : float
+        The speed [rpm] at which the pressure should be even.
+    target_arc : float
+        The share of the nominal shoe arc to load evenly (0.05 to 1).
+    arc_start : float, optional
+        Its start as an arc fraction from the root (default: placed for the most even pressure).
+    mean_clearance : float, optional
+        Mean clearance [m] over the target arc (default: the design's own there).
+    max_iter, tol, log
+        The fixed point stops when no control value moves more than ``tol`` [m] or after
+        ``max_iter`` rebuilds; ``log`` receives one line per iteration.
+
+    Returns
+    -------
+    Compensation
+        The profile (``after_texts``: ``--set`` texts), the pressure states before and
+        after, every step of the fixed point.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="2.5mm"))
+    >>> c = cf.compensate(d, rpm=8000, target_arc=0.8, max_iter=2)
+    >>> c.after_texts["profile"], c.state_after.contact_share > c.state_before.contact_share
+    ('table', True)
+    """
+    if isinstance(design, Design):
+        if design.params is None:
+            raise InputError(f"{design.name}: a user mesh has no shoe profile parameters to compensate")
+        params = design.params if params is None else params
+        op = design.op if op is None else op
+        mesh_settings = MeshSettings(**design.cm.mesh_settings) if mesh_settings is None and design.cm.mesh_settings \
+            else mesh_settings
+        concept = design.concept or design.name
+    else:
+        concept = design
     t_start = time.perf_counter()
     c = get_concept(concept) if isinstance(concept, str) else concept
     p0 = params if params is not None else c.params()

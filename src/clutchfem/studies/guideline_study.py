@@ -19,6 +19,7 @@ from pathlib import Path
 import pandas as pd
 
 from ..core import InputError, write
+from ..loadcase import Design
 from .guideline_charts import elasticity_chart, oat_chart
 from .guidelines import ANSWERS, GuidelineResult, GuidelineSettings, elasticity, plan
 from .hashing import design_hash
@@ -27,9 +28,47 @@ from .runner import ERROR_COLUMNS, run_points
 from .store import STORE_NAME, ResultStore
 
 
-def run_guidelines(gs: GuidelineSettings, out: str | Path, *, workers: int | None = None,
+def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirements=None, workers: int | None = None,
                    scheduler: str | None = None, progress: bool = True, charts: bool = True) -> GuidelineResult:
-    """Run the guideline study ``gs`` on the study engine into ``out`` (store, tables, charts)."""
+    """Design guidelines: which parameter moves which answer, and by how much.
+
+    Per parameter, the elasticity d ln(answer) / d ln(x) of every answer at the design (a
+    central difference with a step-stability check) and a one-at-a-time sweep over its
+    range, run on the study engine into ``out`` (store, tables, charts).
+
+    Parameters
+    ----------
+    gs : Design or GuidelineSettings
+        The design point (a concept's :class:`~clutchfem.Design`), or full settings.
+    out : path
+        The folder of the store, ``guidelines.csv``/``.json`` and the charts.
+    params : list of str, optional
+        With a ``design``: the parameters to study (default: every continuous one with a
+        non-zero value).
+    engine, requirements : optional
+        With a ``design``: the engine curve and the requirement factors.
+    workers, scheduler, progress, charts
+        Study engine controls (``workers=0``: in this process).
+
+    Returns
+    -------
+    GuidelineResult
+        The elasticities (with their step-stability verdict) and the one-at-a-time rows.
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> g = cf.guidelines(d, tempfile.mkdtemp(), params=["flexure_thickness"], workers=0, progress=False,
+    ...                   charts=False)
+    >>> e = next(r for r in g.table if r["answer"] == "engagement_rpm")
+    >>> e["parameter"], e["E"] > 0, e["verdict"]     # a thicker flexure engages later
+    ('flexure_thickness', True, 'stable')
+    """
+    if isinstance(gs, Design):
+        gs = GuidelineSettings.from_design(gs, params=params, engine=engine, requirements=requirements)
+    elif not isinstance(gs, GuidelineSettings):
+        raise InputError(f"guidelines: a Design or GuidelineSettings, not {type(gs).__name__}")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     points, per = plan(gs)

@@ -45,7 +45,6 @@ from typing import Any, Literal, get_origin
 
 import numpy as np
 
-from ..clutch import EngineCurve
 from ..core import ParameterError, clean
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import OperatingPoint
@@ -133,24 +132,17 @@ class GuidelineSettings:
                    span=float(span), notes=tuple(notes))
 
     @classmethod
-    def from_cli(cls, concept, set_, params, *, step, points, span, mesh_size, mu, material, engine):
-        c = get_concept(concept)
-        base = c.Params.parse_assignments(set_)
-        names = None if params is None else [s.strip() for s in params.split(",") if s.strip()]
-        mesh = MeshSettings()
-        if mesh_size is not None:
-            try:
-                mesh = MeshSettings(size=MeshSettings._parse_value("size", mesh_size))
-            except ParameterError as exc:
-                raise ParameterError(exc.name, exc.value, exc.allowed, "option --mesh-size") from None
-        given = {k: v for k, v in (("mu", mu), ("material", material)) if v is not None}
-        try:
-            values = OperatingPoint.parse_assignments([f"{k}={v}" for k, v in given.items()])
-            op = OperatingPoint(**values)
-        except ParameterError as exc:
-            raise ParameterError(exc.name, exc.value, exc.allowed, f"option --{exc.name}") from None
-        eng = EngineCurve.from_csv(engine) if engine is not None else None
-        return cls.create(c.name, base, names, step=step, points=points, span=span, mesh=mesh, op=op, engine=eng)
+    def from_design(cls, design, params=None, *, engine=None, requirements=None, **kw) -> "GuidelineSettings":
+        """The settings of a concept's :class:`~clutchfem.Design` (its parameters, operating
+        point and mesh) with the engine curve and requirement factors; ``kw`` as :meth:`create`."""
+        if design.params is None:
+            raise ParameterError("design", design.name, "a concept's design (a user mesh has no parameters to vary)",
+                                 "guidelines")
+        P = type(design.params)
+        base = {k: v for k, v in design.params.model_dump().items() if v != P.model_fields[k].default}
+        mesh = MeshSettings(**design.cm.mesh_settings) if design.cm.mesh_settings else None
+        return cls.create(design.name, base, params, mesh=mesh, op=design.op, engine=engine,
+                          a=getattr(requirements, "a", 1.3), b=getattr(requirements, "b", 1.0), **kw)
 
 
 def _continuous(P, p0) -> list[str]:

@@ -56,6 +56,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import qmc
 
+from ..analysis import DEFAULT_IDLE_RPM
 from ..core import InputError, ParameterError, clean
 from ..geometry import ConceptParams
 from . import values as V
@@ -93,6 +94,15 @@ class Targets:
         if self.engage_rpm_lo and self.engage_rpm_hi and self.engage_rpm_lo >= self.engage_rpm_hi:
             raise ParameterError("engage_rpm", f"{self.engage_rpm_lo:g}:{self.engage_rpm_hi:g}",
                                  "LO:HI with LO < HI [rpm]", "optimize")
+
+    @classmethod
+    def defaults(cls, settings, safety_factor_min: float = 1.5, objective: str = "mass") -> "Targets":
+        """The requirement checks of ``settings`` (:class:`~clutchfem.studies.EvalSettings`):
+        engagement with ripple >= a x idle rpm, slip <= b x rpm of max engine torque, and
+        the safety factor against yield >= ``safety_factor_min``."""
+        eng = settings.engine()
+        idle = settings.idle_rpm or eng.idle_rpm or DEFAULT_IDLE_RPM
+        return cls(settings.a * idle, None, settings.b * float(eng.rpm_max_torque), safety_factor_min, objective)
 
     def constraints(self) -> list[tuple[str, str, float, str]]:
         """(name, answer key, limit, sense '>=' or '<=')."""
@@ -261,17 +271,54 @@ class OptimizationResult:
         })
 
 
-def optimize(settings: EvalSettings, targets: Targets, free: list[str] | None = None, *,
-             ranges: dict | None = None, sample: int = 32, max_evals: int = 300, workers: int | None = None,
-             scheduler: str | None = None, seed: int = 0, min_step: float = 1.0 / 256,
+def optimize(design, targets: Targets | None = None, free: list[str] | None = None, *,
+             engine=None, requirements=None, ranges: dict | None = None, sample: int = 32, max_evals: int = 300,
+             workers: int | None = None, scheduler: str | None = None, seed: int = 0, min_step: float = 1.0 / 256,
              log=None) -> OptimizationResult:
-    """Search (module docstring) from the base design of ``settings``; ``sample`` Sobol points
-    first (0: none; rounded to a power of 2), then the pattern search, within ``max_evals``
-    FE evaluations (refusals are free and not counted), until the poll step falls below
-    ``min_step`` of the ranges (1/256: ~0.1 mm on a 20 mm range, where the mesh noise of the
-    answers is of the size of the steps' effect) or every parameter's resolution.  The
-    designs run on the study engine: one local cluster of ``workers`` for the whole search,
-    or the cluster at ``scheduler`` (:func:`~clutchfem.studies.batch.cluster`)."""
+    """Find the design that meets the targets at least part mass (or largest torque margin).
+
+    A space-filling (Sobol) sample, then a pattern search (module docstring), from the base
+    design, within ``max_evals`` FE evaluations (refusals are free and not counted), until
+    the poll step falls below ``min_step`` of the ranges (1/256: ~0.1 mm on a 20 mm range,
+    where the mesh noise of the answers is of the size of the steps' effect) or every
+    parameter's resolution.  The designs run on the study engine: one local cluster of
+    ``workers`` for the whole search, or the cluster at ``scheduler``.
+
+    Parameters
+    ----------
+    design : Design or EvalSettings
+        The start design (a concept's :class:`~clutchfem.Design`), or the study settings.
+    targets : Targets, optional
+        Default: engagement with ripple >= a x idle, slip <= b x rpm of max engine torque,
+        safety factor >= 1.5 (the requirement checks).
+    free : list of str, optional
+        The parameters to vary (default: the concept's shape parameters).
+    engine, requirements : optional
+        With a ``design``: the engine curve and the requirement factors (defaults: the
+        built-in curve, a = 1.3, b = 1.0; all ASSUMED).
+    ranges : dict, optional
+        ``name -> (lo, hi)`` search ranges in SI (default: the declared ranges).
+    sample, max_evals, workers, scheduler, seed, min_step, log
+        Search and engine controls (``workers=0``: in this process, no Dask).
+
+    Returns
+    -------
+    OptimizationResult
+        The best design (``best``, ``params_texts``, ``set_args``), the binding
+        constraints, the path of every evaluation and the message.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
+    >>> r = cf.optimize(d, free=["flexure_thickness"], sample=0, max_evals=4, workers=0)
+    >>> r.free, sum(r.evaluations.values()) <= 4 + 2
+    (['flexure_thickness'], True)
+    """
+    settings = design if isinstance(design, EvalSettings) else EvalSettings.from_design(
+        design, engine=engine, requirements=requirements)
+    if targets is None:
+        targets = Targets.defaults(settings)
     with cluster(workers, scheduler):
         return _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step, log)
 

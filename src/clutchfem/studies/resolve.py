@@ -32,7 +32,7 @@ from pydantic import ValidationError
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, InputError, ParameterError, get_material
 from ..geometry import MeshSettings, concepts, get_concept
-from ..loadcase import OperatingPoint
+from ..loadcase import USER_THICKNESS, OperatingPoint
 from .point import Settings
 from .schema import MAX_POINTS, MISSING, AxisTable, SpecError, SpecTable, translate_error
 from .spec import Axis, StudySpec
@@ -42,8 +42,6 @@ from .values import param_bounds, round12
 _OP_EXCLUDED = ("rpm",)
 #: settings that are not operating-point fields
 _EXTRA_SETTINGS = ("engine", "idle_rpm", "mesh_size", "mesh_model")
-#: thickness of a user mesh when the spec gives none [m] (as the CLI's analyze --mesh)
-USER_THICKNESS = 11e-3
 
 
 def load_spec(path: str | Path) -> StudySpec:

@@ -182,12 +182,55 @@ def _in_spec(row: dict, spec) -> dict:
     return out
 
 
-def tolerance(settings: EvalSettings, tolerances: dict, *, n: int = 64, dist: str = "normal", seed: int = 1,
-              targets=None, shifts: bool = True, workers: int | None = None, scheduler: str | None = None,
-              log=None) -> ToleranceResult:
-    """Monte Carlo of ``tolerances`` (name -> half-width in SI units) around the base design of
-    ``settings``; ``targets``: a :class:`~clutchfem.studies.optimization.Targets` giving the spec
-    (default: the requirement checks with safety factor >= 1.5).  See the module docstring."""
+def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", seed: int = 1,
+              targets=None, engine=None, requirements=None, shifts: bool = True, workers: int | None = None,
+              scheduler: str | None = None, log=None) -> ToleranceResult:
+    """Monte Carlo of manufacturing tolerances: the spread of the answers, the share of parts
+    out of spec and a ranking of the dimensions (module docstring).
+
+    Parameters
+    ----------
+    design : Design or EvalSettings
+        The nominal design (a concept's :class:`~clutchfem.Design`), or the study settings.
+    tolerances : dict
+        ``name -> half-width``: SI floats or strings with a unit (``"0.05mm"``, ``"+-0.05mm"``).
+    n : int
+        Monte Carlo parts (8 to 100000).
+    dist : {"normal", "uniform"}
+        Normal with the tolerance at +-3 sigma (ASSUMED), or uniform over it.
+    seed : int
+        The same seed draws the same parts.
+    targets : Targets, optional
+        The spec (default: the requirement checks with safety factor >= 1.5).
+    engine, requirements : optional
+        With a ``design``: the engine curve and the requirement factors.
+    shifts : bool
+        Also shift each toleranced length by +-0.2 and +-0.5 mm alone.
+    workers, scheduler, log
+        Study engine controls (``workers=0``: in this process).
+
+    Returns
+    -------
+    ToleranceResult
+        Statistics of every answer, the share out of spec with its Wilson interval, the
+        ranking (standardised regression coefficients with bootstrap intervals).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> r = cf.tolerance(d, {"flexure_thickness": "0.05mm"}, n=8, shifts=False, workers=0)
+    >>> r.n, sorted(r.out_of_spec)[0]
+    (8, 'all specs')
+    """
+    settings = design if isinstance(design, EvalSettings) else EvalSettings.from_design(
+        design, engine=engine, requirements=requirements)
+    if not isinstance(tolerances, dict):
+        raise InputError(f"tolerances: a dict name -> half-width (e.g. {{'flexure_thickness': '0.05mm'}}), not "
+                         f"{type(tolerances).__name__}")
+    P0 = type(settings.params())
+    tolerances = {k: (parse_tolerance(P0, f"{k}=+-{str(v).strip().lstrip('+-±')}")[1] if isinstance(v, str)
+                      else v) for k, v in tolerances.items()}
     t0 = time.perf_counter()
     if dist not in ("normal", "uniform"):
         raise ParameterError("dist", dist, "'normal' (tolerance = +-3 sigma) or 'uniform'", "tolerance")

@@ -6,12 +6,11 @@ Drop it into this package and :mod:`clutchfem.validation.runner` (``clutchfem va
 discovers and runs it: the rules are in the runner's docstring.  A module of model code
 that a paper module uses (``wiesik_model``) defines no ``records`` and is not run.
 
-Re-exported here: the record (:class:`ValidationRecord`) and the tolerance of a printed
-number (:func:`printed_value`).  The runner is used as the module it is
-(``from clutchfem.validation import runner``), not re-exported: importing it with the package
-would make ``python -m clutchfem.validation.runner`` find it loaded twice.
+Re-exported here: the record (:class:`ValidationRecord`), the tolerance of a printed number
+(:func:`printed_value`) and :func:`validate`, which runs them all (``clutchfem validate``).
 """
 
 from .records import ValidationRecord, printed_value
+from .runner import ValidationRun, validate
 
-__all__ = ["ValidationRecord", "printed_value"]
+__all__ = ["ValidationRecord", "ValidationRun", "printed_value", "validate"]

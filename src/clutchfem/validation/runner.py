@@ -51,6 +51,7 @@ from rich.console import Console, Group
 from rich.table import Table
 from rich.text import Text
 
+from ..core import InputError
 from .records import ValidationRecord
 
 PACKAGE = "clutchfem.validation"
@@ -356,23 +357,41 @@ def print_table(records: Sequence[ValidationRecord], console=None) -> None:
     (console or Console()).print(render_table(records))
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m clutchfem.validation.runner [OUT_DIR [DOCS_MD]]``."""
-    args = list(sys.argv[1:] if argv is None else argv)
-    out_dir = Path(args[0]) if args else Path("out/validation")
-    docs_md = Path(args[1]) if len(args) > 1 else out_dir / "validation.md"
-    t0 = time.perf_counter()
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", ValidationModuleWarning)
-        write_report(out_dir, docs_md)
-    recs = [ValidationRecord(**{k: v for k, v in d.items() if k not in ("status", "rel_diff")})
-            for d in json.loads((out_dir / "validation.json").read_text())["records"]]
-    print_table(recs)
-    for w in caught:
-        print(f"warning: {w.message}", file=sys.stderr)
-    print(f"report: {docs_md} ({time.perf_counter() - t0:.1f} s)")
-    return 0
+def validate(modules: Sequence[str] | None = None, *, out: str | Path | None = None,
+             docs: str | Path | None = None, strict: bool = False) -> ValidationRun:
+    """Reproduce the source papers' numbers: run every validation module once.
 
+    Parameters
+    ----------
+    modules : sequence of str, optional
+        Module names of :mod:`clutchfem.validation` to run (default: every module that
+        defines ``records()``).
+    out : path, optional
+        With ``docs``: the folder of the figures and ``validation.json``.
+    docs : path, optional
+        Write the Markdown report here (e.g. ``docs/validation.md``); needs ``out``.
+    strict : bool
+        Raise a module's error instead of recording it as a warning.
 
-if __name__ == "__main__":
-    raise SystemExit(main())
+    Returns
+    -------
+    ValidationRun
+        ``records`` (one :class:`ValidationRecord` per paper number: its value, the
+        reproduced one, the tolerance and the reason of a difference), ``warnings``,
+        ``seconds`` per module.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> run = cf.validate(["wiesik"])
+    >>> r = next(r for r in run.records if r.id == "wiesik.Ms_new")  # seed 000: M_s = 10.23 N m
+    >>> r.status, round(r.computed, 2), r.unit
+    ('reproduced', 10.23, 'N m')
+    """
+    if docs is not None and out is None:
+        raise InputError("validate(docs=...) needs out=: the folder of the report's figures")
+    run = collect(modules, strict=strict)
+    if docs is not None:
+        report_run(run, Path(out), Path(docs), strict=strict)
+    return run
+

@@ -13,7 +13,7 @@ cooling pauses show whether heat accumulates.  By job:
 * :mod:`.assembly` -- the FE operators M, K, H, f and the cyclic map of a sector;
 * :mod:`.stepping` -- Crank-Nicolson with a Rannacher start, energy tallies, steady state;
 * :mod:`.result` -- :class:`SlipHeatResult`;
-* :mod:`.slip` -- :func:`slip_heat`, the slip test step by step;
+* :mod:`.slip` -- :func:`heat_transient`, the slip test step by step;
 * :mod:`.output` -- .vtu and PNG.
 
 The model's derivation, its limits and the verification: ``docs/durability_theory.md``.
@@ -33,11 +33,11 @@ from .params import (
 )
 from .partition import PERIODIC_PASSES, HeatPartition, drum_patch_response, heat_partition, wall_step_response
 from .result import SlipHeatResult
-from .slip import slip_heat
+from .slip import heat_transient
 
 __all__ = [
     "ThermalMaterial", "DrumThermal", "ThermalEnvironment", "SlipScenario", "SlipHeatLoad",
     "slip_heat_load", "HeatPartition", "heat_partition", "wall_step_response",
-    "drum_patch_response", "HeatModel", "build_heat_model", "slip_heat", "SlipHeatResult",
+    "drum_patch_response", "HeatModel", "build_heat_model", "heat_transient", "SlipHeatResult",
     "write_vtu", "render_png", "hot_yield_ratio", "HOT_YIELD_TABLE", "PERIODIC_PASSES", "MAX_TIME_STEPS",
 ]

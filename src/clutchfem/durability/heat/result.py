@@ -19,7 +19,7 @@ __all__ = ["SlipHeatResult"]
 
 @dataclass(frozen=True)
 class SlipHeatResult:
-    """What :func:`slip_heat` returns.  Temperatures in C, energies in J for the whole part;
+    """What :func:`heat_transient` returns.  Temperatures in C, energies in J for the whole part;
     ``peak_location`` / ``flexure_peak_location`` name the zone, the flexure end and the
     boundary of the hottest points (e.g. concept 2's 'in-shoe flexure').
 

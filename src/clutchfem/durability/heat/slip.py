@@ -1,4 +1,4 @@
-"""The slip test, step by step: :func:`slip_heat` runs repeated slip events with cooling
+"""The slip test, step by step: :func:`heat_transient` runs repeated slip events with cooling
 pauses on the heat model and gathers the answer (:class:`~.result.SlipHeatResult`).
 
 Scenario (thesis test, issue 14): chain brake on (drum held), full throttle; the engine
@@ -8,7 +8,7 @@ drum (:mod:`.partition`); the shoe's share conducts into the part (:mod:`.assemb
 loses heat through its two faces and into the crankshaft.  Repeated slip events with
 cooling pauses show whether heat accumulates.
 
-Steps of :func:`slip_heat`:
+Steps of :func:`heat_transient`:
 
 1. check the inputs; assemble the heat model;
 2. the friction power per node (gamma = 1) and the patch length L along the drum
@@ -55,10 +55,10 @@ from .partition import HeatPartition, heat_partition
 from .result import SlipHeatResult
 from .stepping import Probe, Run, Segment, integrate, steady_state
 
-__all__ = ["slip_heat"]
+__all__ = ["heat_transient"]
 
 
-def slip_heat(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial | None,
+def heat_transient(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial | None,
               load: SlipHeatLoad, *, seconds: float | None = None, cycles: int | None = None,
               pause: float | None = None, scenario: SlipScenario | None = None,
               env: ThermalEnvironment | None = None, drum: DrumThermal | None = None,
@@ -151,7 +151,7 @@ def _patch(model: HeatModel, load: SlipHeatLoad) -> _Patch:
     trib = asm(LinearForm(lambda v, w: v), fb)
     L_model = float(trib[_loaded(load)].sum())
     if not L_model > 0:
-        raise InputError("slip_heat: the loaded nodes do not lie on the contact surface (zero patch length)")
+        raise InputError("heat_transient: the loaded nodes do not lie on the contact surface (zero patch length)")
     n_model = cm.n_shoes_model if cm.sector_angle is not None else max(cm.n_shoes_total, 1)
     return _Patch(Q1=Q1, P_model=float(Q1.sum()), L_model=L_model, L_patch=L_model / n_model,
                   n_total=max(cm.n_shoes_total, 1), contact_facets=contact_f)

@@ -1,0 +1,86 @@
+"""``clutchfem compensate``: the shoe profile that spreads the contact pressure evenly at one
+speed."""
+
+from __future__ import annotations
+
+from typing import Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from ..core import ClutchfemError
+from . import options as O
+from .common import check_out_dir, console, design_from, engine_from, err, fail, operating_point, quantity, wrote
+
+
+def compensate(
+    concept: O.Concept = None,
+    set_: O.Set = [],
+    rpm: str = typer.Option(..., "--rpm", help="speed at which the pressure should be even, e.g. 8000rpm",
+                            rich_help_panel="Compensation"),
+    target_arc: str = typer.Option("0.8", "--target-arc", help="share of the nominal shoe arc to load evenly",
+                                   rich_help_panel="Compensation"),
+    arc_start: Optional[str] = typer.Option(None, "--arc-start", help="start of the target arc as a share of the "
+                                            "shoe from its root (default: placed for the most even pressure)",
+                                            rich_help_panel="Compensation"),
+    mean_clearance: Optional[str] = typer.Option(None, "--mean-clearance", help="mean clearance over the target arc, "
+                                                 "e.g. 0.5mm (default: the design's own there)",
+                                                 rich_help_panel="Compensation"),
+    max_iter: int = typer.Option(8, "--max-iter", help="most rebuilds of the fixed point",
+                                 rich_help_panel="Compensation"),
+    mesh_size: O.MeshSize = None,
+    mu: O.Mu = None,
+    engine: O.Engine = None,
+    out: O.Out = None,
+    json_: O.Json = False,
+):
+    """Shoe profile (a table of clearances) that spreads the contact pressure evenly at --rpm."""
+    from ..analysis import analyze
+    from ..core import dumps
+    from ..loadcase import Design
+    from ..report import compare_rows, compensation_json, compensation_report
+    from ..studies import compensate as run
+
+    try:
+        check_out_dir(out)
+        w = quantity("--rpm", rpm, "rpm", above=0.0)
+        share = quantity("--target-arc", target_arc, "-")
+        start = quantity("--arc-start", arc_start, "-")
+        eng, _ = engine_from(engine)
+        design = design_from(concept, set_, None, op=operating_point(mu=mu), mesh_size=mesh_size, mesh_allowed=False)
+        mc = design.params.parse_value("clearance", mean_clearance) if mean_clearance is not None else None
+        res = run(design, rpm=w, target_arc=share, arc_start=start, mean_clearance=mc, max_iter=max_iter,
+                  log=lambda m: err.print(escape(m)))
+        ms = design.cm.mesh_settings
+        before = analyze(design, engine=eng, errors=False)
+        after = analyze(Design.from_concept(design.concept, res.after, design.op, _mesh(ms)), engine=eng,
+                        errors=False)
+        rows = compare_rows(res, before, after)
+        if out is not None:
+            wrote(compensation_report(res, before, after, rows, eng, out))
+        if json_:
+            print(dumps(compensation_json(res, rows)))
+            return
+        t = Table(title=escape(f"{res.concept}: profile compensated at {res.rpm:.0f} rpm over "
+                               f"{100 * res.target_arc:.0f} % of the shoe arc"))
+        t.add_column("answer")
+        t.add_column("before", justify="right")
+        t.add_column("after", justify="right")
+        for q, x, y in rows:
+            t.add_row(escape(q), escape(x), escape(y))
+        console.print(t)
+        console.print(f"{'converged' if res.converged else 'NOT converged'} in {len(res.steps) - 1} rebuilds, "
+                      f"{res.seconds:.0f} s; pressure cv over the target arc {res.steps[-1].measured_cv:.3f}")
+        console.print("profile: " + " ".join(f"--set {escape(k)}={escape(v)}" for k, v in res.after_texts.items()),
+                      soft_wrap=True)
+        for n_ in res.notes:
+            console.print(f"[dim]note: {escape(n_)}[/]")
+    except ClutchfemError as exc:
+        fail(exc)
+
+
+def _mesh(ms: dict):
+    from ..geometry import MeshSettings
+
+    return MeshSettings(**ms) if ms else MeshSettings()

@@ -1,0 +1,171 @@
+"""``clutchfem optimize``: a design that meets the targets at least part mass (or with the
+largest torque margin), on the study engine."""
+
+from __future__ import annotations
+
+from typing import List, Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from ..core import ClutchfemError, ParameterError
+from . import options as O
+from .common import (
+    check_out_dir,
+    console,
+    design_from,
+    engine_from,
+    err,
+    fail,
+    operating_point,
+    quantity,
+    requirements_from,
+    wrote,
+)
+
+
+def study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf: float = 1.5):
+    """(EvalSettings, base Design) of a design-to-targets command: the base design (meshed, so
+    a bad --set is refused before any study work) with its engine, idle speed, requirement
+    factors and the store in ``out``."""
+    from ..studies import STORE_NAME, EvalSettings
+
+    req = requirements_from(a, b)
+    eng, idle = engine_from(engine, idle_rpm)
+    design = design_from(concept, set_, None, op=operating_point(mu=mu), mesh_size=mesh_size, mesh_allowed=False)
+    store = str(out / STORE_NAME) if out is not None else None
+    s = EvalSettings.from_design(design, engine=engine if engine is not None else None, idle_rpm=idle,
+                                 requirements=req, min_safety_factor=sf, store=store)
+    return s, design
+
+
+def optimize(
+    concept: O.Concept = None,
+    set_: O.Set = [],
+    mesh_size: O.MeshSize = None,
+    mu: O.Mu = None,
+    engine: O.Engine = None,
+    idle_rpm: O.IdleRpm = None,
+    a: O.A = None,
+    b: O.B = None,
+    engage_rpm: Optional[str] = typer.Option(None, "--engage-rpm", help="engagement with ripple LO:HI in rpm "
+                                             "(default: LO = a x idle, no HI; 'LO:' or ':HI' for one side)",
+                                             rich_help_panel="Targets"),
+    slip_rpm_max: Optional[str] = typer.Option(None, "--slip-rpm-max", help="slip speed limit, e.g. 8000rpm "
+                                               "(default: b x rpm of max engine torque)", rich_help_panel="Targets"),
+    safety_factor_min: str = typer.Option("1.5", "--safety-factor-min", help="minimum safety factor against yield "
+                                          "at the engine's maximum speed", rich_help_panel="Targets"),
+    fatigue_min: Optional[str] = typer.Option(None, "--fatigue-min", help="minimum fatigue safety factor (Goodman, "
+                                              "Miner, ASSUMED duty; default: no target)", rich_help_panel="Targets"),
+    objective: str = typer.Option("mass", "--objective", help="mass (minimise part mass) or torque-margin "
+                                  "(maximise torque over the max engine torque)", rich_help_panel="Targets"),
+    free: Optional[str] = typer.Option(None, "--free", help="comma-separated parameters to vary (default: the "
+                                       "concept's shape parameters)", rich_help_panel="Search"),
+    range_: List[str] = typer.Option([], "--range", help="search range name=LO:HI with units, e.g. "
+                                     "flexure_thickness=1mm:3mm (default: the declared range)", rich_help_panel="Search"),
+    sample: int = typer.Option(32, "--sample", help="space-filling (Sobol) designs before the pattern search",
+                               rich_help_panel="Search"),
+    max_evals: int = typer.Option(300, "--max-evals", help="budget of analysed designs (refusals are free)",
+                                  rich_help_panel="Search"),
+    workers: O.Workers = None,
+    scheduler: O.Scheduler = None,
+    out: O.Out = None,
+    json_: O.Json = False,
+):
+    """Find a design that meets the targets at least part mass (or largest torque margin)."""
+    from ..analysis import Requirements, analyze
+    from ..core import dumps
+    from ..loadcase import Design
+    from ..report import optimization_report
+    from ..studies import Targets
+    from ..studies import optimize as run
+
+    try:
+        check_out_dir(out)
+        sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
+        s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
+        t0 = Targets.defaults(s, sf, objective)
+        lo, hi = t0.engage_rpm_lo, None
+        if engage_rpm is not None:
+            parts = engage_rpm.split(":")
+            if len(parts) != 2:
+                raise ParameterError("engage_rpm", engage_rpm, "LO:HI in rpm (e.g. 3600:5000, '3600:' or ':5000')",
+                                     "option --engage-rpm")
+            lo = quantity("--engage-rpm", parts[0], "rpm", above=0.0) if parts[0].strip() else None
+            hi = quantity("--engage-rpm", parts[1], "rpm", above=0.0) if parts[1].strip() else None
+        slip = quantity("--slip-rpm-max", slip_rpm_max, "rpm", above=0.0)
+        t = Targets(lo, hi, slip if slip is not None else t0.slip_rpm_max, sf, objective,
+                    fatigue_min=quantity("--fatigue-min", fatigue_min, "-", above=0.0))
+        P = type(base.params)
+        names = [x.strip() for x in free.split(",") if x.strip()] if free else None
+        ranges = {}
+        for item in range_:
+            if "=" not in item or ":" not in item.split("=", 1)[1]:
+                raise ParameterError("range", item, "name=LO:HI (e.g. flexure_thickness=1mm:3mm)", "option --range")
+            n, r = item.split("=", 1)
+            n = n.strip()
+            if n not in P.model_fields:
+                raise ParameterError(n, item, "a parameter of the concept; known: " + ", ".join(P.model_fields),
+                                     "option --range")
+            lo_s, hi_s = r.split(":", 1)
+            ranges[n] = (P.parse_value(n, lo_s), P.parse_value(n, hi_s))
+        res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
+                  scheduler=scheduler, log=lambda m: err.print(escape(m)))
+        final = None
+        if out is not None or not json_:  # the final design analysed again, with its error estimate
+            d = Design.from_concept(s.concept, s.params(res.best["params"]), s.operating_point(), s.mesh_settings())
+            final = analyze(d, engine=s.engine(), requirements=Requirements(a=s.a, b=s.b), idle_rpm=s.idle_rpm,
+                            errors=True)
+        if out is not None:
+            wrote(optimization_report(res, final, out))
+        if json_:
+            d = res.to_json()
+            d.pop("path")
+            d["path_length"] = len(res.path)
+            print(dumps(d))
+            return
+        _print_optimization(res, final)
+    except ClutchfemError as exc:
+        fail(exc)
+
+
+def _print_optimization(res, final):
+    from ..studies import DIMENSIONLESS, fatigue_note
+
+    a = res.best["assessment"]
+    t = Table(title=escape(f"{res.concept}: {res.message}"))
+    t.add_column("target")
+    t.add_column("value", justify="right")
+    t.add_column("limit", justify="right")
+    t.add_column("binds")
+    for c in a["constraints"]:
+        sf = c["key"] in DIMENSIONLESS
+        v = c["value"]
+        vs = "none" if v is None else (f"{v:.2f}" if sf else f"{v:.0f} rpm")
+        err_txt = ""
+        if final is not None and not sf:
+            e = (final.errors or {}).get("engagement_rpm" if "engagement" in c["key"] else c["key"])
+            if e and e.get("total") is not None:
+                err_txt = f" (+- {e['total']:.0f} rpm)"
+        t.add_row(escape(c["name"]), escape(vs + err_txt), escape(f"{c['sense']} " + (f"{c['limit']:.2f}" if sf else
+                                                                                     f"{c['limit']:.0f} rpm")),
+                  "VIOLATED" if c.get("violated") else ("yes" if c["binds"] else "no"))
+    console.print(t)
+    p = Table(title="parameters")
+    p.add_column("parameter")
+    p.add_column("start", justify="right")
+    p.add_column("final", justify="right")
+    for n in res.free:
+        p.add_row(escape(n), escape(res.start_texts.get(n, "")), escape(res.params_texts.get(n, ""))
+                  + (" (range end)" if n in res.at_bounds else ""))
+    console.print(p)
+    obj = (f"part mass {res.best['mass_kg'] * 1e3:.1f} g" if res.targets.objective == "mass"
+           else f"torque margin {res.best['torque_margin_Nm']:+.2f} N m")
+    console.print(f"objective: {obj}; evaluations: {sum(res.evaluations.values())} "
+                  f"({', '.join(f'{k} {v}' for k, v in res.evaluations.items() if v)}); time {res.seconds:.0f} s")
+    fnote = fatigue_note(res)
+    if fnote:
+        console.print(f"[yellow]{escape(fnote)}[/yellow]")
+    console.print("verify: clutchfem analyze " + escape(res.concept) + " "
+                  + " ".join(f"--set {escape(x)}" for x in res.set_args), soft_wrap=True)

@@ -1,0 +1,89 @@
+"""The command line's shared options: one declaration each, grouped in ``--help`` panels.
+
+Every command that takes a design takes it the same way: a CONCEPT argument with ``--set
+name=value`` overrides, or ``--mesh FILE`` for your own part.  Every quantity option takes a
+number with a unit suffix of its dimension (``--drum-radius 34.4mm``, ``--E 200GPa``,
+``--idle-rpm 2700rpm``), read by the one parser of :mod:`clutchfem.core.units`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, List, Optional
+
+import typer
+
+__all__ = ["DESIGN", "ENGINE", "MODEL", "OPERATING", "OUTPUT", "STUDY"]
+
+DESIGN = "Design"
+OPERATING = "Operating point"
+MODEL = "Model"
+ENGINE = "Engine and requirements"
+STUDY = "Study engine"
+OUTPUT = "Output"
+
+Concept = Annotated[Optional[str], typer.Argument(
+    metavar="CONCEPT", help="concept name (clutchfem geometry --list); or give --mesh FILE", show_default=False)]
+Set = Annotated[List[str], typer.Option(
+    "--set", metavar="NAME=VALUE", help="concept parameter name=value with its unit (flexure_thickness=2.4mm, shoe_arc=80deg); repeat",
+    rich_help_panel=DESIGN)]
+Mesh = Annotated[Optional[Path], typer.Option(
+    "--mesh", metavar="FILE", help="your own part instead of a concept: gmsh .msh (curve groups bore, contact) or STEP; x-y plane, "
+                   "axis at the origin", rich_help_panel=DESIGN)]
+MeshSize = Annotated[Optional[str], typer.Option(
+    "--mesh-size", metavar="LENGTH", help="global element size, e.g. 0.8mm (default 1.2 mm)", rich_help_panel=DESIGN)]
+Model = Annotated[str, typer.Option("--model", metavar="sector|full", help="sector (one cyclic sector) or full (360 deg)",
+                                    rich_help_panel=DESIGN)]
+
+DrumRadius = Annotated[Optional[str], typer.Option(
+    "--drum-radius", metavar="LENGTH", help="drum inner radius of a --mesh part, e.g. 34.4mm (required with --mesh; a concept's: "
+                          "--set drum_radius=...)", rich_help_panel=OPERATING)]
+Thickness = Annotated[Optional[str], typer.Option(
+    "--thickness", metavar="LENGTH", help="axial thickness of a --mesh part, e.g. 11mm (default 11 mm, ASSUMED; a concept's: --set "
+                "thickness=...)",
+    rich_help_panel=OPERATING)]
+Mu = Annotated[Optional[str], typer.Option("--mu", metavar="NUMBER", help="shoe-drum friction coefficient (default 0.165, seed 000)",
+                                           rich_help_panel=OPERATING)]
+Rotation = Annotated[Optional[str], typer.Option("--rotation", metavar="ccw|cw", help="hub's sense of rotation: ccw (default) or cw",
+                                                 rich_help_panel=OPERATING)]
+MaterialName = Annotated[Optional[str], typer.Option(
+    "--material", metavar="NAME", help="51CrV4 (default), titanium or aluminium", rich_help_panel=OPERATING)]
+E = Annotated[Optional[str], typer.Option("--E", metavar="STRESS", help="Young's modulus, e.g. 200GPa (overrides the material's)",
+                                          rich_help_panel=OPERATING)]
+Nu = Annotated[Optional[str], typer.Option("--nu", metavar="NUMBER", help="Poisson's ratio (overrides the material's)",
+                                           rich_help_panel=OPERATING)]
+Rho = Annotated[Optional[str], typer.Option("--rho", metavar="DENSITY", help="density, e.g. 7850kg/m^3 (overrides the material's)",
+                                            rich_help_panel=OPERATING)]
+DrumWall = Annotated[Optional[str], typer.Option(
+    "--drum-wall", metavar="LENGTH", help="elastic drum of this wall thickness, e.g. 2mm (default: rigid)", rich_help_panel=OPERATING)]
+DrumState = Annotated[Optional[str], typer.Option(
+    "--drum-state", metavar="held|spinning", help="elastic drum held (default) or spinning with the clutch", rich_help_panel=OPERATING)]
+
+Softening = Annotated[Optional[str], typer.Option(
+    "--spin-softening", metavar="NAME", help="prestress (default: spin softening + centrifugal pre-stress), ritz, exact, off",
+    rich_help_panel=MODEL)]
+Formulation = Annotated[Optional[str], typer.Option(
+    "--formulation", metavar="NAME", help="plane-stress (default), plane-strain or 3d", rich_help_panel=MODEL)]
+Layers = Annotated[Optional[str], typer.Option("--layers", metavar="N", help="3d: element layers through half the thickness",
+                                               rich_help_panel=MODEL)]
+
+Engine = Annotated[Optional[Path], typer.Option(
+    "--engine", metavar="CSV", help="engine torque CSV (columns rpm, torque [N m]); default: the built-in 56.5 cc saw curve "
+                     "(ASSUMED shape)", rich_help_panel=ENGINE)]
+IdleRpm = Annotated[Optional[str], typer.Option("--idle-rpm", metavar="SPEED", help="engine idle speed, e.g. 2700rpm (default 2700, "
+                                                                   "ASSUMED)", rich_help_panel=ENGINE)]
+A = Annotated[Optional[str], typer.Option("--a", metavar="NUMBER", help="requirement: engagement > a x idle rpm (default 1.3, ASSUMED)",
+                                          rich_help_panel=ENGINE)]
+B = Annotated[Optional[str], typer.Option(
+    "--b", metavar="NUMBER", help="requirement: slip < b x rpm of max engine torque (default 1.0, ASSUMED)", rich_help_panel=ENGINE)]
+
+Workers = Annotated[Optional[int], typer.Option(
+    "--workers", metavar="N", help="local cluster of N process workers (default: one per core; 0: in this process, no Dask)",
+    rich_help_panel=STUDY)]
+Scheduler = Annotated[Optional[str], typer.Option(
+    "--scheduler", metavar="ADDRESS", help="address of an existing dask.distributed scheduler, e.g. tcp://10.0.0.5:8786",
+    rich_help_panel=STUDY)]
+
+Out = Annotated[Optional[Path], typer.Option("--out", metavar="DIR", help="output folder (created if missing)",
+                                             rich_help_panel=OUTPUT)]
+Json = Annotated[bool, typer.Option("--json", help="print one JSON document on stdout", rich_help_panel=OUTPUT)]

@@ -1,0 +1,59 @@
+"""``clutchfem report``: the one-page report of a design, or of a run folder again."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from ..core import ClutchfemError, InputError
+from . import options as O
+from .common import check_out_dir, design_from, engine_from, fail, requirements_from, wrote
+
+
+def report(
+    concept: O.Concept = None,
+    set_: O.Set = [],
+    mesh: O.Mesh = None,
+    mesh_size: O.MeshSize = None,
+    drum_radius: O.DrumRadius = None,
+    thickness: O.Thickness = None,
+    engine: O.Engine = None,
+    a: O.A = None,
+    b: O.B = None,
+    run_dir: Optional[Path] = typer.Option(None, "--run", help="render a run folder (optimize / tolerance / "
+                                           "compensate / any folder of CSV and PNG) again", rich_help_panel=O.DESIGN),
+    errors: bool = typer.Option(True, "--errors/--no-errors", help="estimate the error of the main answers (a mesh "
+                                "twice as fine: ~3x the time)", rich_help_panel=O.MODEL),
+    out: O.Out = None,
+):
+    """One-page report (self-contained HTML + Markdown) of a design (CONCEPT or --mesh) or of a
+    run folder (--run)."""
+    from ..report import design_report, folder_page, write_page
+
+    try:
+        if run_dir is not None:
+            if concept is not None or mesh is not None:
+                raise InputError("give exactly one of a design (CONCEPT or --mesh FILE) or --run DIR")
+            if not Path(run_dir).is_dir():
+                raise InputError(f"--run {run_dir}: not a folder")
+            target = check_out_dir(out) or Path(run_dir)
+            page = folder_page(Path(run_dir))
+            if target != Path(run_dir):  # figures travel with the page
+                for f in Path(run_dir).glob("*.png"):
+                    shutil.copy2(f, target / f.name)
+            wrote(write_page(page, target))
+            return
+        if out is None:
+            raise InputError("--out DIR is required: the folder for report.html, report.md, the images and inputs.json")
+        check_out_dir(out)
+        if mesh is not None and drum_radius is None:
+            raise InputError("report --mesh needs --drum-radius (the drum's inner radius, e.g. 35mm)")
+        eng, _ = engine_from(engine)
+        req = requirements_from(a, b)
+        design = design_from(concept, set_, mesh, mesh_size=mesh_size, drum_radius=drum_radius, thickness=thickness)
+        wrote(design_report(design, out, engine=eng, requirements=req, errors=errors))
+    except ClutchfemError as exc:
+        fail(exc)
