@@ -105,3 +105,43 @@ def test_public_api_lists_its_names(rel):
     assert clutchfem.__all__, "clutchfem.__all__ lists the public API"
     for name in clutchfem.__all__:
         assert getattr(clutchfem, name) is not None
+
+
+def test_public_names_are_documented_with_runnable_examples():
+    """numpydoc sections on every public name (their Examples run as doctests in make test)."""
+    import inspect
+
+    import clutchfem as cf
+
+    missing = []
+    for name in cf.__all__:
+        if name == "__version__":
+            continue
+        obj = getattr(cf, name)
+        doc = inspect.getdoc(obj) or ""
+        needs = ["Examples"]
+        if inspect.isfunction(obj):
+            needs += ["Parameters", "Returns"] if inspect.signature(obj).parameters else ["Returns"]
+        missing += [f"{name}: {s}" for s in needs if f"{s}\n--" not in doc]
+    assert not missing, f"public names without numpydoc sections: {missing}"
+
+
+def test_public_names_are_not_shadowed_by_subpackages():
+    """``cf.report`` is a function only if no subpackage of that name exists: importing the
+    subpackage would replace the attribute (a public name must not clash)."""
+    import importlib
+    import pkgutil
+
+    import clutchfem as cf
+
+    subpackages = {m.name for m in pkgutil.iter_modules(cf.__path__)}
+    assert not (set(cf.__all__) & subpackages)
+    for m in subpackages:
+        importlib.import_module(f"clutchfem.{m}")
+    assert all(not inspect_ismodule(getattr(cf, n)) for n in cf.__all__ if n != "__version__")
+
+
+def inspect_ismodule(obj) -> bool:
+    import inspect
+
+    return inspect.ismodule(obj)

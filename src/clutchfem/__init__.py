@@ -14,9 +14,9 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``),
 :class:`OperatingPoint`, :class:`Material`, :class:`MeshSettings`.  Answers:
 :func:`analyze`, :class:`Analysis`, :class:`SweepResult`, :class:`EngineCurve`,
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
-:func:`run_study`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
+:func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
-:func:`write_report`.  Checks: :func:`validate`.  Errors: :class:`ClutchfemError` and its kinds.
+:func:`write_report`, :func:`torque_speed_plot`.  Checks: :func:`validate`.  Errors: :class:`ClutchfemError` and its kinds.
 """
 
 from __future__ import annotations
@@ -51,6 +51,8 @@ _API: dict[str, tuple[str, str]] = {
     "SlipScenario": ("clutchfem.durability", "SlipScenario"),
     "slip_heat": ("clutchfem.analysis", "slip_heat"),
     "write_report": ("clutchfem.report", "design_report"),
+    "torque_speed_plot": ("clutchfem.report", "comparison_plot"),
+    "run_grid": ("clutchfem.studies", "run_grid"),
     "validate": ("clutchfem.validation", "validate"),
     "ClutchfemError": ("clutchfem.core", "ClutchfemError"),
     "ParameterError": ("clutchfem.core", "ParameterError"),
@@ -94,8 +96,9 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .durability import SlipScenario
     from .geometry import MeshSettings, concepts, get_concept
     from .loadcase import Design, OperatingPoint, SweepResult
+    from .report import comparison_plot as torque_speed_plot
     from .report import design_report as write_report
-    from .studies import StudySpec, Targets, compensate, optimize, run_study, tolerance
+    from .studies import StudySpec, Targets, compensate, optimize, run_grid, run_study, tolerance
     from .studies import load_spec as load_study
     from .studies import run_guidelines as guidelines
     from .validation import validate

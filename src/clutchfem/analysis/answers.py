@@ -27,6 +27,16 @@ class Requirements:
     """Designer's factors: engagement > a x idle rpm; slip < b x rpm of max engine torque.
 
     The thesis keeps a and b confidential: the defaults a = 1.3, b = 1.0 are ASSUMED.
+
+    Parameters
+    ----------
+    a, b : float
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.Requirements(a=1.4).a
+    1.4
     """
 
     a: float = DEFAULT_A
@@ -137,7 +147,31 @@ class FatigueAnswer:
 
 @dataclass(frozen=True)
 class Analysis:
-    """Answers for one design (see :func:`analyze`); units in the field names or docstrings."""
+    """Answers for one design (see :func:`analyze`); units in the field names or docstrings.
+
+    Attributes
+    ----------
+    engagement_rpm, engagement_rpm_with_ripple : float or None
+        Static and 2-stroke ripple engagement speeds [rpm].
+    slip_rpm : float or None
+        Slip speed, drum held, full throttle [rpm]; ``slip_status`` says why None.
+    torque_at_max_engine_torque_Nm, torque_margin_Nm : float
+    max_von_mises_Pa, safety_factor : float
+        At the engine's maximum speed.
+    fatigue_safety_factor : float or None
+    errors : dict
+        The error band of every main answer (discretisation and model form).
+    curves : pandas.DataFrame
+        Torque, arc, stress and the analytical models against rpm.
+    warnings, notes : list of str
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> a = cf.analyze(cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm")), errors=False)
+    >>> a.slip_status, a.engagement_rpm < a.slip_rpm
+    ('slips', True)
+    """
 
     design: str
     engagement_rpm: float | None

@@ -74,9 +74,34 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     service loads (:class:`~clutchfem.durability.FatigueLoads`) and fatigue strength
     (:class:`~clutchfem.durability.FatigueParams`) of step 11.  A user mesh
     (``design.params`` None) gets every FE answer; the analytical curves are then NaN and
-    ``analytical_available`` is False."""
+    ``analytical_available`` is False.
+
+    Parameters
+    ----------
+    design : Design
+    engine : EngineCurve, optional
+    requirements : Requirements, optional
+    idle_rpm : float, optional
+    ripple_model : RippleModel, optional
+        The 2-stroke speed ripple (default: seed 000's).
+    errors : bool
+        Estimate the error of the main answers.
+    fatigue_loads, fatigue_params : optional
+
+    Returns
+    -------
+    Analysis
+        Every answer with its unit and error band, warnings where the model is stretched or
+        the design fails, the curves against rpm and the design's inputs.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> a = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="2.0mm"))
+    >>> 4000 < a.engagement_rpm < 6000, a.errors["engagement_rpm"]["unit"]
+    (True, 'rpm')"""
     if not isinstance(design, Design):
-        raise ParameterError("design", type(design).__name__, "a clutchfem.design.Design (mesh + operating point)")
+        raise ParameterError("design", type(design).__name__, "a clutchfem Design (Design.from_concept or Design.from_mesh)")
     engine = engine or EngineCurve.default()
     req = requirements or Requirements()
     if design.drum_radius is None:

@@ -48,6 +48,23 @@ class EngineCurve:
     rpm: strictly increasing speeds [rpm] (>= 2 points, > 0); torque: [N m], >= 0.
     ``assumed`` is True when the curve is not measured data (the built-in default);
     ``source`` says where it came from; ``idle_rpm`` is optional metadata [rpm].
+
+    Parameters
+    ----------
+    rpm, torque : sequence of float
+        Speeds [rpm] (strictly increasing) and full-throttle torques [N m].
+    source : str
+    assumed : bool
+    idle_rpm : float, optional
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> e = cf.EngineCurve((2500, 8000, 14000), (1.9, 3.4, 1.0), source="my dyno run")
+    >>> e.rpm_max_torque, e.torque_at(5250)
+    (8000.0, 2.65)
+    >>> cf.EngineCurve.default().rpm_range
+    (2500.0, 14000.0)
     """
 
     rpm: tuple[float, ...]

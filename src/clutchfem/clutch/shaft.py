@@ -226,6 +226,7 @@ def frequency_coefficients(shaft: OverhungShaft, n_roots: int = 2,
     grids = [scale * np.geomspace(1e-4, 1.0 / points_per_pi, 8 * 20 + 1)]
     roots: list[float] = []
     chunk = 8 * points_per_pi
+    start = 0.0  # the end of the last grid (set after the first)
     for _ in range(400):
         grid = grids.pop() if grids else start + step * np.arange(chunk + 1)
         vals = frequency_determinant(grid, shaft, model)

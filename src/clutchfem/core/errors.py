@@ -11,7 +11,18 @@ from typing import Any
 
 
 class ClutchfemError(Exception):
-    """Base class of all errors that clutchfem raises on purpose."""
+    """Base class of all errors that clutchfem raises on purpose: a refusal whose message
+    names the input, its value and what is allowed (never a traceback in the CLI).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> try:
+    ...     cf.get_concept("concept9")
+    ... except cf.ClutchfemError as e:
+    ...     print(type(e).__name__)
+    ParameterError
+    """
 
 
 class ParameterError(ClutchfemError, ValueError):
@@ -21,6 +32,15 @@ class ParameterError(ClutchfemError, ValueError):
     what is allowed (range with units, or the relation it must satisfy); ``shown`` the value
     as the message shows it (as the user typed it, or in the parameter's display unit, e.g.
     ``19 mm``; default: ``repr(value)``).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> try:
+    ...     cf.get_concept("concept1").params(flexure_thickness="9mm")
+    ... except cf.ParameterError as e:
+    ...     print(e.name, "|", e.shown, "|", e.allowed)
+    flexure_thickness | 9 mm | a number in [0.3 mm, 6 mm] (flexure thickness)
     """
 
     def __init__(self, name: str, value: Any, allowed: str, context: str | None = None, shown: str | None = None):
@@ -36,11 +56,26 @@ class ParameterError(ClutchfemError, ValueError):
 
 
 class InputError(ClutchfemError, ValueError):
-    """Bad user input that is not a single named parameter (files, specs, tables)."""
+    """Bad user input that is not a single named parameter (files, specs, tables).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> issubclass(cf.InputError, cf.ClutchfemError)
+    True
+    """
 
 
 class GeometryError(ClutchfemError):
-    """gmsh could not build or mesh a geometry; carries the parameter set."""
+    """gmsh could not build or mesh a geometry; carries the parameter set.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> print(cf.GeometryError("boolean cut failed", params={"shoe_arc": 80}))
+    boolean cut failed
+    parameter set: {'shoe_arc': 80}
+    """
 
     def __init__(self, message: str, params: Any = None):
         self.params = params
@@ -50,8 +85,22 @@ class GeometryError(ClutchfemError):
 
 
 class MeshError(ClutchfemError):
-    """A mesh (generated or user supplied) is unusable: missing groups, not planar, inverted."""
+    """A mesh (generated or user supplied) is unusable: missing groups, not planar, inverted.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> issubclass(cf.MeshError, cf.ClutchfemError)
+    True
+    """
 
 
 class SolverError(ClutchfemError):
-    """A numerical solve failed (singular system, contact iteration without convergence)."""
+    """A numerical solve failed (singular system, contact iteration without convergence).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> issubclass(cf.SolverError, cf.ClutchfemError)
+    True
+    """

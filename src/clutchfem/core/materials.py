@@ -15,6 +15,28 @@ from .params import ParamSet, param
 
 
 class Material(ParamSet):
+    """An isotropic linear-elastic material.
+
+    Parameters
+    ----------
+    name : str
+    E : float or str
+        Young's modulus (``"210GPa"``).
+    nu : float
+        Poisson's ratio.
+    rho : float or str
+        Density [kg/m^3].
+    yield_strength : float or str
+        Rp0.2, for the safety factors (``"1250MPa"``).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> m = cf.Material(name="my steel", E="200GPa", rho=7800, yield_strength="1100MPa")
+    >>> m.E, m.lame_plane_stress()[1] == m.E / (2 * (1 + m.nu))
+    (200000000000.0, True)
+    """
+
     context: ClassVar[str] = "material"
     name: str = "user"
     E: float = param(210e9, "Pa", 1e6, 1e13, "Young's modulus")
@@ -46,6 +68,23 @@ ALIASES = {"ss2230": "51CrV4", "steel": "51CrV4", "51crv4": "51CrV4", "ti": "tit
 
 
 def get_material(name: str) -> Material:
+    """A material of the library by name.
+
+    Parameters
+    ----------
+    name : str
+        ``"51CrV4"`` (alias steel, SS2230), ``"titanium"`` (Ti-6Al-4V), ``"aluminium"`` (7075-T6).
+
+    Returns
+    -------
+    Material
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.get_material("steel").yield_strength
+    1250000000.0
+    """
     key = name.strip()
     key = ALIASES.get(key.lower().replace("-", "").replace(" ", ""), key)
     if key not in LIBRARY:

@@ -45,4 +45,4 @@ __all__ = ["DrumThermal", "FatigueLoads", "FatigueParams", "FatigueResult", "Hea
            "Location", "ServiceStates", "SlipHeatLoad", "SlipHeatResult", "SlipScenario", "ThermalEnvironment",
            "ThermalMaterial", "candidate_points", "endurance_limit", "fatigue_check", "heat_partition",
            "name_location", "render_png", "ripple_classes", "service_cycles", "single_cycle_factor",
-           "slip_heat", "slip_heat_load", "write_vtu"]
+           "heat_transient", "slip_heat_load", "write_vtu"]

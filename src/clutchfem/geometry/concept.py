@@ -173,7 +173,26 @@ class ConceptParams(ParamSet):
 
 
 class MeshSettings(ParamSet):
-    """Mesh controls: one global size knob plus optional local factors."""
+    """Mesh controls: one global size knob plus optional local factors.
+
+    Parameters
+    ----------
+    size : float or str
+        Global element size (default 1.2 mm; ``"0.8mm"``).
+    flexure_factor, contact_factor, fillet_factor : float
+        Local sizes: in flexures as a fraction of their thickness, on contact surfaces and on
+        small arcs (fillets) relative to the global size / the arc radius.
+    order : int
+        Element order (2: curved P2 triangles).
+    model : {"sector", "full"}
+        One cyclic sector of identical shoes, or the full 360 degree part.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.MeshSettings(size="0.8mm").size
+    0.0008
+    """
 
     context: ClassVar[str] = "mesh settings"
     size: float = param(1.2e-3, "m", 0.05e-3, 10e-3, "global target element size", "h_mesh")

@@ -45,7 +45,20 @@ def load_concept_file(path: str) -> Concept:
 
 
 def concepts() -> dict[str, Concept]:
-    """All concepts found, by name, in name order."""
+    """All concepts found, by name, in name order.
+
+    Returns
+    -------
+    dict of str to Concept
+        Every concept file of the search path (``$CLUTCHFEM_GEOMETRIES``, the repository's
+        ``geometries/``, the copy in the wheel) that loads; first hit wins.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> [n for n in cf.concepts() if n in ("concept1", "concept4")]
+    ['concept1', 'concept4']
+    """
     found: dict[str, Concept] = {}
     for d in search_path():
         for f in sorted(d.glob("*.py")):
@@ -57,7 +70,26 @@ def concepts() -> dict[str, Concept]:
 
 
 def get_concept(name: str) -> Concept:
-    """Concept by name (``concept4``, ``4``, ``concept3.1``, ``3.1`` all work)."""
+    """A concept by name.
+
+    Parameters
+    ----------
+    name : str
+        ``"concept4"``, ``"4"``, ``"concept3.1"``, ``"3.1"`` all work.
+
+    Returns
+    -------
+    Concept
+        The geometry plug-in: ``Params`` (its parameter set with units and ranges),
+        ``params(**values)``, ``build()``.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> c = cf.get_concept("4")
+    >>> c.name, c.params(flexure_thickness="2mm").flexure_thickness
+    ('concept4', 0.002)
+    """
     allc = concepts()
     if not isinstance(name, str):
         raise ParameterError("concept", name, "a concept name (text), one of " + ", ".join(allc))

@@ -33,11 +33,41 @@ DRUM_GAP_LIMIT = 1.5
 
 
 class Design:
-    """A meshed design at an operating point (see module docstring).
+    """A meshed design at an operating point (see module docstring): one FE model and
+    factorisation, any number of load cases.  Made with :meth:`from_concept` or
+    :meth:`from_mesh`.
 
-    cm: the meshed part; op: the operating point (drum radius and thickness default to the
-    concept's, i.e. ``params``); params: the concept's parameter set, or None for a user
-    mesh; solver: the sparse solver back-end (name or factory), injected into the FE model.
+    Parameters
+    ----------
+    cm : ClutchMesh
+        The meshed part.
+    op : OperatingPoint, optional
+        The operating point (drum radius and thickness default to the concept's, i.e.
+        ``params``).
+    params : ConceptParams, optional
+        The concept's parameter set, or None for a user mesh.
+    solver : str or callable, optional
+        The sparse solver back-end (name or factory), injected into the FE model.
+    name, concept : optional
+        The design's name and its concept (None for a user mesh).
+
+    Attributes
+    ----------
+    model : FEModel
+        K, f1, constraints, one factorisation.
+    drum_radius, thickness : float
+        [m].
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> r = d.sweep("0:14000:7000")                 # a speed sweep: cf.SweepResult
+    >>> list(r.curve["rpm"]), r.engagement_rpm > 3000
+    ([0.0, 7000.0, 14000.0], True)
+    >>> r0 = d.sweep("8000", mu=0.0)                # another load case, same factorisation
+    >>> float(r0.curve["torque_Nm"].iloc[0])
+    0.0
     """
 
     def __init__(self, cm: ClutchMesh, op: OperatingPoint | None = None, *, params=None,

@@ -29,7 +29,36 @@ MAX_SPEEDS = 20000
 
 
 class OperatingPoint(ParamSet):
-    """Operating point and model choices of one analysis (see module docstring)."""
+    """Operating point and model choices of one analysis (see module docstring).
+
+    Parameters
+    ----------
+    drum_radius : float or str, optional
+        Drum inner radius (default: the concept's; required for a user mesh).
+    mu : float
+        Shoe-drum friction coefficient (seed 000: 0.165).
+    rotation : {"ccw", "cw"}
+        The hub's sense of rotation (drum held).
+    thickness : float or str, optional
+        Axial thickness (default: the concept's; user mesh 11 mm, ASSUMED).
+    material : Material or str
+        ``"51CrV4"`` (default), ``"titanium"``, ``"aluminium"`` or a :class:`Material`.
+    softening : {"prestress", "ritz", "exact", "off"}
+        Spin softening and pre-stress stiffening (default prestress).
+    formulation : {"plane-stress", "plane-strain", "3d"}
+        The elastic model; ``layers``: 3-D element layers through half the thickness.
+    drum_wall : float or str, optional
+        Elastic drum of this wall thickness (default: rigid); ``drum_state``: held or spinning.
+    rpm : str, optional
+        Speeds to tabulate (``"0:14000:250"``).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> op = cf.OperatingPoint(mu=0.2, drum_wall="2mm", rotation="cw")
+    >>> op.mu, op.drum_wall, op.material.name
+    (0.2, 0.002, '51CrV4 (SS 2230) spring steel, hardened ~45 HRC')
+    """
 
     context: ClassVar[str] = "operating point"
 

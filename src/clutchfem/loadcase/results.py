@@ -73,7 +73,30 @@ class Fields:
 
 @dataclass(frozen=True, eq=False)
 class SweepResult:
-    """What a sweep returns (see module docstring for the table conventions)."""
+    """What a speed sweep returns: frozen, self-contained (module docstring for the tables).
+
+    Attributes
+    ----------
+    rpm, omega : ndarray
+        The speeds [rpm], [rad/s].
+    lam : ndarray
+        Contact forces per speed and contact node [N] (model: one sector of a cyclic part).
+    engagement_rpm : float or None
+        Engagement speed (None: never engages below the divergence speed).
+    curve : pandas.DataFrame
+        One row per speed: normal force [N], torque [N m], contact arc [deg], peak von Mises
+        [Pa], safety factor, displacement [m], checks (whole clutch).
+    shoes : pandas.DataFrame
+        Per shoe and speed.
+    warnings : tuple of str
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> r = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm")).sweep("8000")
+    >>> sorted(c for c in r.curve.columns if c in ("torque_Nm", "contact_arc_deg"))
+    ['contact_arc_deg', 'torque_Nm']
+    """
 
     rpm: np.ndarray
     omega: np.ndarray  # rad/s

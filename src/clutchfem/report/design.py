@@ -249,7 +249,29 @@ def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None
                     baseline: bool = True) -> Path:
     """The thesis's figure 25: FE torque vs rpm of several designs and today's spring clutch
     (new and worn shoes) against the engine curve, with engagement and slip markers and the
-    requirement bands of the first design's requirement factors."""
+    requirement bands of the first design's requirement factors.
+
+    Parameters
+    ----------
+    analyses : dict of str to Analysis
+    engine : EngineCurve
+    path : path
+        The PNG to write.
+    title : str, optional
+    baseline : bool
+        Draw today's spring clutch (seed 000) too.
+
+    Returns
+    -------
+    Path
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> a = cf.analyze(cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm")), errors=False)
+    >>> cf.torque_speed_plot({"concept1": a}, cf.EngineCurve.default(),
+    ...                      pathlib.Path(tempfile.mkdtemp()) / "t.png").suffix
+    '.png'"""
     fig, ax = figure(figsize=(9, 5.8))
     rpm_max = engine.rpm_range[1]
     r = np.linspace(0, rpm_max, 561)

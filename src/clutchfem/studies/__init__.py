@@ -18,6 +18,7 @@ resumable SQLite store):
 from . import target_charts
 from .batch import EvalSettings, evaluate_many
 from .compensation import Compensation, compensate
+from .grid import run_grid
 from .guideline_charts import summary_table
 from .guideline_study import run_guidelines
 from .guidelines import GuidelineResult, GuidelineSettings
@@ -25,7 +26,7 @@ from .hashing import design_hash
 from .optimization import DIMENSIONLESS, OptimizationResult, Targets, default_free, fatigue_note, optimize
 from .point import COLUMNS, Settings, evaluate, model_version
 from .resolve import load_spec, parse_spec
-from .runner import RunResult, StudyInterrupted, default_out, run_grid, run_points, run_study
+from .runner import RunResult, StudyInterrupted, default_out, run_points, run_study
 from .schema import SpecError
 from .spec import EXAMPLE_SPEC, StudySpec
 from .store import STORE_NAME, ResultStore

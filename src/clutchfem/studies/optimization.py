@@ -73,7 +73,28 @@ OBJECTIVES = ("mass", "torque-margin")
 
 @dataclass(frozen=True)
 class Targets:
-    """The targets (limits in rpm, safety factor dimensionless); None: no such target."""
+    """The targets of an optimisation (limits in rpm, factors dimensionless); None: no such
+    target.
+
+    Parameters
+    ----------
+    engage_rpm_lo, engage_rpm_hi : float or None
+        Engagement speed with the 2-stroke ripple within [lo, hi] [rpm].
+    slip_rpm_max : float or None
+        Slip speed (drum held, full throttle) at most this [rpm].
+    safety_factor_min : float or None
+        Safety factor against yield at the engine's maximum speed at least this.
+    objective : {"mass", "torque-margin"}
+    fatigue_min : float or None
+        Fatigue safety factor at least this.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> t = cf.Targets(3510, None, 8000, 1.5)
+    >>> [c[1] for c in t.constraints()]
+    ['engagement_rpm_with_ripple', 'slip_rpm', 'safety_factor']
+    """
 
     engage_rpm_lo: float | None
     engage_rpm_hi: float | None

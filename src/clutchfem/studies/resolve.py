@@ -45,7 +45,27 @@ _EXTRA_SETTINGS = ("engine", "idle_rpm", "mesh_size", "mesh_model")
 
 
 def load_spec(path: str | Path) -> StudySpec:
-    """Read and validate a spec file (relative paths inside it are relative to its folder)."""
+    """Read and validate a study spec file (relative paths inside it are relative to its
+    folder).
+
+    Parameters
+    ----------
+    path : str or Path
+        A TOML spec (``clutchfem study --example`` prints a commented one).
+
+    Returns
+    -------
+    StudySpec
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> from clutchfem.studies import EXAMPLE_SPEC
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "study.toml"
+    >>> _ = p.write_text(EXAMPLE_SPEC)
+    >>> len(cf.load_study(p).points())
+    12
+    """
     path = Path(path)
     if not path.is_file():
         raise InputError(f"study spec {path}: file not found (write one with `clutchfem study --example > "

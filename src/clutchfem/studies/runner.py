@@ -46,7 +46,6 @@ committed, and running the same spec again resumes.
 
 from __future__ import annotations
 
-import itertools
 import json
 import logging
 import os
@@ -62,8 +61,6 @@ import pandas as pd
 from tqdm import tqdm
 
 from ..core import ClutchfemError, InputError, write
-from ..geometry import MeshSettings, get_concept
-from ..loadcase import OperatingPoint
 from .charts import answers_vs_inputs, parallel_coordinates
 from .hashing import design_hash
 from .point import COLUMNS, Settings, evaluate, failed_row, model_version, warm_up
@@ -365,9 +362,43 @@ def default_out(spec_source: str) -> Path:
 
 def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: str | None = None,
               retry_failed: bool = False, progress: bool = True, charts: bool = True) -> dict:
-    """Run ``spec`` (:class:`~.spec.StudySpec`) into ``out``: the store, ``results.csv`` (this
-    spec's rows, inputs in designers' units), the charts and ``summary.json``.  Returns the
-    summary (also on :class:`StudyInterrupted`, via its ``result``)."""
+    """Run a parameter study into a folder, resumably: every point through the full
+    analysis on the study engine (Dask: local process workers, or the cluster at
+    ``scheduler``), each finished row committed to the store as it arrives.
+
+    Parameters
+    ----------
+    spec : StudySpec
+        From :func:`~clutchfem.load_study`.
+    out : path
+        The store (``results.sqlite``), ``results.csv`` (this spec's rows, inputs in
+        designers' units), the charts and ``summary.json``.
+    workers, scheduler
+        Local workers (``0``: in this process) or an existing scheduler's address.
+    retry_failed : bool
+        Recompute the points stored as failed (finished points are otherwise skipped).
+    progress, charts : bool
+
+    Returns
+    -------
+    dict
+        The summary (also on :class:`StudyInterrupted`, via its ``result``): points, done,
+        ok, refused, failed, feasible, time, the files written.
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile
+    >>> from clutchfem.studies import parse_spec
+    >>> spec = parse_spec('''
+    ... [design]
+    ... concept = "concept1"
+    ... mesh_size = "3mm"
+    ... [vary.flexure_thickness]
+    ... values = ["2.0mm", "2.4mm"]
+    ... ''')
+    >>> s = cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False, charts=False)
+    >>> s["points"], s["ok"]
+    (2, 2)"""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     points = spec.points()
@@ -425,31 +456,4 @@ def table(spec, res: RunResult):
     for a in spec.axes:
         cols[a.label()] = [display_value(json.loads(p).get(a.name), a.unit) for p in df["point_json"]]
     front = pd.DataFrame(cols, index=df.index)
-    return pd.concat([front, df], axis=1)
-
-
-def run_grid(concept: str, vary: dict, *, fixed: dict | None = None, mesh_size: float | None = None, op=None,
-             store: str | Path, workers: int | None = None, scheduler: str | None = None, progress: bool = False,
-             engine=None, a: float = 1.3, b: float = 1.0, min_safety_factor: float = 1.0):
-    """The API form of a grid study (no TOML): every combination of ``vary`` ({name: values}
-    in the parameters' units) of ``concept`` around ``fixed``, on the study engine, stored in
-    ``store``.  Returns a DataFrame: one row per point in grid order, the varied values in
-    columns named as the parameters (their own units) before the answers."""
-    c = get_concept(concept)
-    P = c.Params
-    for name, value in (fixed or {}).items():
-        if name not in P.model_fields:
-            raise InputError(f"fixed parameter {name!r} is not a parameter of {c.name}")
-    settings = Settings(concept=c.name, fixed=tuple(sorted((fixed or {}).items())), op=op or OperatingPoint(),
-                        mesh=MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size), engine=engine,
-                        a=a, b=b, min_safety_factor=min_safety_factor)
-    names = list(vary)
-    points = [dict(zip(names, combo)) for combo in itertools.product(*(list(vary[n]) for n in names))]
-    res = run_points(points, settings, store, workers=workers, scheduler=scheduler, progress=progress,
-                     source=f"run_grid {c.name}")
-    with ResultStore(store, COLUMNS) as st:
-        df = st.frame(res.model_version, res.keys)
-    keyed = [design_hash(p, settings) for p in points]
-    df = df.set_index("design_hash").loc[keyed].reset_index()
-    front = pd.DataFrame([{n: json.loads(pj).get(n) for n in names} for pj in df["point_json"]])
     return pd.concat([front, df], axis=1)

@@ -105,7 +105,26 @@ def display_value(x, unit: str):
 
 @dataclass(frozen=True)
 class StudySpec:
-    """A validated study (see module docstring): fixed settings, varied axes and a method."""
+    """A validated study (see module docstring): fixed settings, varied axes and a method.
+    Read from a TOML file by :func:`~clutchfem.load_study`; ``clutchfem study --example``
+    prints a commented one.
+
+    Attributes
+    ----------
+    settings : Settings
+        The fixed design, operating point, engine and requirement factors.
+    axes : tuple of Axis
+        The varied parameters.
+    method : {"grid", "lhs", "sobol", "list"}
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.studies import EXAMPLE_SPEC, parse_spec
+    >>> spec = parse_spec(EXAMPLE_SPEC)
+    >>> spec.method, len(spec.points())
+    ('grid', 12)
+    """
 
     source: str
     settings: Settings

@@ -137,7 +137,27 @@ class ThermalEnvironment(ParamSet):
 
 
 class SlipScenario(ParamSet):
-    """The slip test: events of ``seconds`` separated by cooling pauses of ``pause``."""
+    """The slip test: events of ``seconds`` separated by cooling pauses of ``pause``.
+
+    Parameters
+    ----------
+    seconds : float or str
+        One slip event (default 10 s).
+    cycles : int
+        Events (default 1).
+    pause : float or str
+        Cooling pause after each event (idle, no friction).
+    steps_per_event : int
+        Time steps per event.
+    error_estimate : bool
+        Estimate the time-stepping error (a run with half the steps).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.SlipScenario(seconds="5s", cycles=3, pause="20s").pause
+    20.0
+    """
 
     context: ClassVar[str] = "slip scenario"
     seconds: float = param(10.0, "s", 1e-3, 3600.0, "duration of one slip event", "t_slip")
