@@ -195,7 +195,6 @@ class ParamSet(BaseModel):
             raise ParameterError(name, raw, cls.allowed(name), ctx)
         return value
 
-    _parse_value = parse_value
 
     @classmethod
     def from_assignments(cls, assignments: list[str] | tuple[str, ...] = ()):

@@ -146,7 +146,7 @@ def optimization_page(res, final_an, folder: Path) -> Page:
     if fatigue_note(res):
         head.append(["note", fatigue_note(res)])
     verify = Text("verify with analyze (the very design evaluated: the texts read back bit for bit)",
-                  ["clutchfem analyze --concept " + res.concept + " " + " ".join(f"--set {s}" for s in res.set_args)],
+                  ["clutchfem analyze " + res.concept + " " + " ".join(f"--set {s}" for s in res.set_args)],
                   "pre")
     cons = Table("constraints at the final design", ["target", "value", "limit", "slack", "binds"],
                  [[c["name"], c["value"], c["limit"], c["slack"],

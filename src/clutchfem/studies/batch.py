@@ -3,7 +3,7 @@
 
 A *point* is a dict ``name -> --set text`` (``{"flexure_thickness": "2.13mm"}``) applied on
 top of a base design (:class:`EvalSettings`); the design evaluated is exactly the one
-``clutchfem analyze --concept C --set ...`` builds from the same texts
+``clutchfem analyze C --set ...`` builds from the same texts
 (:mod:`clutchfem.studies.values`): the texts are read by the parameter set's own parser and
 the values handed to the study engine (:func:`clutchfem.studies.evaluate`, the full
 :func:`~clutchfem.analysis.analyze` with ``errors=False``: a search ranks designs on

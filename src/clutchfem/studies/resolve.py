@@ -207,7 +207,7 @@ def _value(cls, name: str, raw: Any, key: str, source: str):
             raise SpecError(key, raw, cls.allowed(name), source)
         return raw
     try:
-        v = cls._parse_value(name, raw) if isinstance(raw, str) else raw
+        v = cls.parse_value(name, raw) if isinstance(raw, str) else raw
     except ParameterError as exc:
         raise SpecError(key, raw, exc.allowed + _unit_hint(cls, name), source) from None
     if isinstance(v, str):  # a non-numeric field typed as a number, or text for a number
@@ -283,7 +283,7 @@ def _value_step(cls, name: str, raw: Any, key: str, source: str) -> float:
     if isinstance(raw, bool) or not isinstance(raw, (int, float, str)):
         raise SpecError(key, raw, f"a step in {cls.unit(name)}", source)
     try:
-        return float(cls._parse_value(name, raw)) if isinstance(raw, str) else float(raw)
+        return float(cls.parse_value(name, raw)) if isinstance(raw, str) else float(raw)
     except ParameterError as exc:
         raise SpecError(key, raw, exc.allowed, source) from None
 

@@ -83,7 +83,7 @@ def parse_tolerance(P, text: str) -> tuple[str, float]:
         raise ParameterError(name, text, "a parameter of the concept; known: " + ", ".join(P.model_fields), "--tol")
     if P.model_fields[name].annotation is not float:
         raise ParameterError(name, text, "a real-valued parameter (choices and counts have no tolerance)", "--tol")
-    t = P._parse_value(name, raw)
+    t = P.parse_value(name, raw)
     if not (isinstance(t, float) and t > 0):
         raise ParameterError(name, text, "a tolerance half-width > 0 (e.g. +-0.05mm)", "--tol")
     return name, float(t)

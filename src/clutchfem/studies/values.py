@@ -5,7 +5,7 @@ them, types them into ``clutchfem analyze --set ...`` and must get *the same des
 for bit (the mesh cache key is a hash of the parameters: 2.1000000000000001 mm is another
 mesh).  So every proposed value is snapped to a resolution, written as text with its unit
 suffix (``"2.13mm"``, ``"31.4deg"``, ``"1.285"``) and read back through the parameter set's
-own parser (:meth:`clutchfem.core.ParamSet._parse_value`); the design that is evaluated
+own parser (:meth:`clutchfem.core.ParamSet.parse_value`); the design that is evaluated
 is the one built from that text.
 
 Resolutions (ASSUMED, a drawing's usual precision): lengths 0.01 mm (clearances 0.001 mm;
@@ -105,7 +105,7 @@ def from_text(P, name: str, text: str):
     if name not in P.model_fields:
         raise ParameterError(name, text, "a parameter of " + (P.context or P.__name__) + "; known: "
                              + ", ".join(P.model_fields), P.context or P.__name__)
-    return P._parse_value(name, text)
+    return P.parse_value(name, text)
 
 
 def snap(P, name: str, value):
