@@ -61,8 +61,8 @@ class EngineCurve:
     --------
     >>> import clutchfem as cf
     >>> e = cf.EngineCurve((2500, 8000, 14000), (1.9, 3.4, 1.0), source="my dyno run")
-    >>> e.rpm_max_torque, e.torque_at(5250)
-    (8000.0, 2.65)
+    >>> e.rpm_max_torque, e.torque_at(8000), e.max_torque
+    (8000.0, 3.4, 3.4)
     >>> cf.EngineCurve.default().rpm_range
     (2500.0, 14000.0)
     """

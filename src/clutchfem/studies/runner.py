@@ -392,9 +392,14 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     >>> spec = parse_spec('''
     ... [design]
     ... concept = "concept1"
+    ... [settings]
     ... mesh_size = "3mm"
-    ... [vary.flexure_thickness]
-    ... values = ["2.0mm", "2.4mm"]
+    ... [errors]
+    ... sample = 0
+    ... [vary]
+    ... method = "grid"
+    ... [vary.params]
+    ... flexure_thickness = {values = ["2.0mm", "2.4mm"]}
     ... ''')
     >>> s = cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False, charts=False)
     >>> s["points"], s["ok"]
