@@ -1,4 +1,4 @@
-"""FE stage: the 2-D and 3-D linear-elastic models of the spinning part (K, f1, constraints,
+"""FE stage: the 2-D, thick plane (2-D with through-thickness modes) and 3-D linear-elastic models of the spinning part (K, f1, constraints,
 one factorisation), stress recovery with the one von Mises, sparse direct solvers and
 ``.vtu`` field output."""
 
@@ -16,10 +16,12 @@ from .model3d import (
                       geometric_stiffness_3d,
                       lame_3d,
 )
-from .stress import VertexStress, VertexStress3D, von_mises
+from .stress import VertexStress, VertexStress3D, p2_vertex_gradients, von_mises
+from .thick import FEModelThick, ThickSettings, ThickStress, thick_modes
 from .vtu import write_vtk
 
 __all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
+           "FEModelThick", "ThickSettings", "ThickStress", "p2_vertex_gradients", "thick_modes",
            "Kinematics", "geometric_stiffness",
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",
            "constraint_map", "contact_area_weights", "contact_weights", "extrude", "factorize",

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..contact import DrumContact, DrumWall, RingDrum, contact_nodes
 from ..core import ParameterError
-from ..fe import ExtrusionSettings, FEModel, FEModel3D, Solver
+from ..fe import ExtrusionSettings, FEModel, FEModel3D, FEModelThick, Solver, ThickSettings
 from ..geometry import MeshSettings, get_concept
 from ..mesh import ClutchMesh, load_user_geometry, mesh_concept
 from ..softening import get_softening
@@ -91,7 +91,10 @@ class Design:
                                  "e.g. 0.011 for 11 mm)")
         if params is None and self.drum_radius is not None:
             self._check_user_drum()
-        if op.formulation == "3d":
+        if op.formulation == "thick":
+            self.model = FEModelThick(cm, op.material, self.thickness, settings=ThickSettings(order=op.thick_order),
+                                      solver=solver)
+        elif op.formulation == "3d":
             self.model = FEModel3D(cm, op.material, self.thickness, settings=ExtrusionSettings(layers=op.layers),
                                    solver=solver)
         else:

@@ -74,10 +74,13 @@ class OperatingPoint(ParamSet):
         "the spin softening and the centrifugal pre-stress stiffness of the flexures, 0.1 % from the "
         "geometrically non-linear reference), ritz (spin softening only, alias modal: 1.3-3 % model-form "
         "error), exact (per-speed reference of ritz), off")
-    formulation: Literal["plane-stress", "plane-strain", "3d"] = choice(
-        "plane-stress", "formulation: plane-stress (thin part), plane-strain (long part) or 3d "
+    formulation: Literal["plane-stress", "plane-strain", "thick", "3d"] = choice(
+        "plane-stress", "formulation: plane-stress (thin part), plane-strain (long part), thick (the 2-D "
+        "mesh with polynomial through-thickness modes: the 3-D answer of the extruded part to ~0.05 %) or 3d "
         "(the 2-D mesh extruded through the thickness, P2 tetrahedra)")
     layers: int = param(2, "-", 1, 16, "3d: element layers through half the thickness (mid-plane symmetry)")
+    thick_order: int = param(4, "-", 2, 8, "thick: highest even power of z in the in-plane displacement "
+                             "(2: Saint-Venant bending; 4: with the end restraint)")
     drum_wall: float | None = param(None, "m", 0.2e-3, 30e-3,
                                     "elastic drum: wall thickness (default: rigid drum); a ring of width 14 mm "
                                     "ASSUMED, the part's material")
