@@ -205,7 +205,7 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
         notes.append(f"the mean cutting torque {info['cutting_torque_Nm']:.2f} N m exceeds the clutch's capacity "
                      f"{info['capacity_forward_Nm'][1]:.2f} N m at the operating speed {rpm_o:.0f} rpm: it slips "
                      "continuously there (running cycles at capacity)")
-    if model.szz_factor:
+    if getattr(model, "szz_factor", 0.0):
         notes.append("plane strain: the fatigue check uses the in-plane stresses (s_zz left out)")
     details = {
         "available": True, "location_detail": None if fr.location is None else fr.location.to_json(),

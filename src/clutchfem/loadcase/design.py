@@ -237,7 +237,7 @@ class Design:
             return None
         sectors = self.cm.sector_copies
         return DrumContact(self.nodes, self.op.mu if mu is None else mu, self.op.rotation, drum=self.drum,
-                           sectors=sectors)
+                           sectors=sectors, symmetry=float(getattr(self.model, "symmetry_factor", 1.0)))
 
     def case(self, mu: float | None = None, softening=None) -> LoadCase:
         """The load case with friction ``mu`` (default: the operating point's) and spin
