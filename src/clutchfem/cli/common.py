@@ -174,7 +174,7 @@ def design_from(concept: Optional[str], set_: list[str], mesh: Optional[Path], *
             if raw is not None:
                 raise InputError(f"{opt} applies to a --mesh part: a concept's {name.replace('_', ' ')} is one of its "
                                  f"geometry parameters (the part is built against it): use --set {name}=...")
-        ms = MeshSettings(model=model) if size is None else MeshSettings(size=size, model=model)
+        ms = MeshSettings.preset(op.fidelity, model=model, **({} if size is None else {"size": size}))
         return Design.from_concept(c, c.Params(**values), op, ms, solver=solver)
     if set_:
         raise InputError("--set sets a concept's parameters; a --mesh part has none (use --drum-radius, "

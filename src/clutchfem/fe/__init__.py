@@ -16,6 +16,7 @@ from .model3d import (
                       geometric_stiffness_3d,
                       lame_3d,
 )
+from .size3d import check_3d_size, estimate_3d, max_model_memory
 from .stress import VertexStress, VertexStress3D, p2_vertex_gradients, von_mises
 from .thick import FEModelThick, ThickSettings, ThickStress, thick_modes
 from .vtu import write_vtk
@@ -25,4 +26,4 @@ __all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings"
            "Kinematics", "geometric_stiffness",
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",
            "constraint_map", "contact_area_weights", "contact_weights", "extrude", "factorize",
-           "geometric_stiffness_3d", "lame_3d", "one_blas_thread", "von_mises", "write_vtk"]
+           "geometric_stiffness_3d", "lame_3d", "check_3d_size", "estimate_3d", "max_model_memory", "one_blas_thread", "von_mises", "write_vtk"]

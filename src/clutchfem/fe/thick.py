@@ -64,6 +64,7 @@ from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector
 
 from ..core import Material, ParameterError, ParamSet, SolverError, param
 from ..mesh import ClutchMesh, cyclic_pairing
+from .linsolve import COUNTS
 from .model import ConstrainedOperators, constraint_map
 from .stress import p2_vertex_gradients, von_mises
 
@@ -131,6 +132,7 @@ class FEModelThick(ConstrainedOperators):
         self.fields = [("a", p, c) for p in self.even for c in (0, 1)] + [("c", q, None) for q in self.odd]
         self.nv = nv
         self._K, self.f1 = self._assemble()
+        COUNTS["assemble"] += 1
         t1 = time.perf_counter()
         self.T = self._constraints()
         self.timings.update({"assemble_s": t1 - t0, "constraints_s": time.perf_counter() - t1})
@@ -205,7 +207,7 @@ class FEModelThick(ConstrainedOperators):
         dx = self._p2.dx
         for name, b in (("p2", self._p2), ("p1", self._p1)):
             nb = b.Nbfun
-            V = np.stack([b.basis[k][0].value for k in range(nb)])  # (nb, ne, nq)
+            V = np.stack([np.asarray(b.basis[k][0]) for k in range(nb)])  # (nb, ne, nq)
             G = np.stack([b.basis[k][0].grad for k in range(nb)])  # (nb, 2, ne, nq)
             # (3 ops, ne, nb, nq): value, d/dx, d/dy
             ops[name] = np.ascontiguousarray(np.stack([V, G[:, 0], G[:, 1]]).transpose(0, 2, 1, 3))
@@ -341,7 +343,7 @@ class FEModelThick(ConstrainedOperators):
         for i, (kind, q, _) in enumerate(self.fields):
             if kind == "c":  # int e_zz dz = h cq for every odd q
                 cf = u[self.field_dofs(i)][self.cm.mesh.t[:3]]  # (3, ne)
-                czz = czz + np.einsum("keq,ke->eq", np.stack([V1[k][0].value for k in range(3)]), cf)
+                czz = czz + np.einsum("keq,ke->eq", np.stack([np.asarray(V1[k][0]) for k in range(3)]), cf)
         tr = gx + gy
         Nxx = h * (2 * mu * gx + lam * (tr + czz))
         Nyy = h * (2 * mu * gy + lam * (tr + czz))
@@ -369,7 +371,7 @@ class FEModelThick(ConstrainedOperators):
 
 def _mass(b: Basis) -> sp.csr_matrix:
     nb = b.Nbfun
-    V = np.stack([b.basis[k][0].value for k in range(nb)])
+    V = np.stack([np.asarray(b.basis[k][0]) for k in range(nb)])
     Me = np.einsum("keq,leq,eq->ekl", V, V, b.dx)
     ed = b.element_dofs.T
     return sp.coo_matrix((Me.ravel(), (np.repeat(ed, nb, axis=1).ravel(), np.tile(ed, (1, nb)).ravel())),
@@ -387,6 +389,9 @@ class ThickStress:
     ``element`` (npts,) the 2-D element of each point."""
 
     LEVELS = (0.0, 1.0)  # zeta of the stress levels
+    #: the sweep's peak stress uses the finite-rotation measure (``__call__(U, finite=True)``);
+    #: the fatigue cycles combine small-strain fields (linear in the solved states)
+    FINITE = True
 
     def __init__(self, model: FEModelThick):
         self._m = model
@@ -398,50 +403,60 @@ class ThickStress:
         t = model.cm.mesh.t[:3].T  # (ne, 3) vertex of each local P1 function
         self._t = t
 
-    def __call__(self, U: np.ndarray) -> np.ndarray:
+    def gradients(self, U: np.ndarray) -> np.ndarray:
+        """The 3-D displacement gradient H[a, b] = d u_a / d x_b at every stress point:
+        array (3, 3, npts, ncols) for the displacement column(s) U (points as :attr:`points`)."""
         m = self._m
-        U = np.asarray(U)
-        one = U.ndim == 1
-        U = U.reshape(U.shape[0], -1)
+        U = np.asarray(U).reshape(np.shape(U)[0], -1)
         Gx, Gy, ex, ey = self._G
-        lam, mu = self.lame
-        h = m.thickness
         ux, uy = U[ex], U[ey]  # (ne, 6, ncols)
-        e0 = [Gx @ ux, Gy @ uy, Gy @ ux + Gx @ uy]  # (ne, 3, ncols) at the vertices
+        g0 = {(0, 0): Gx @ ux, (0, 1): Gy @ ux, (1, 0): Gx @ uy, (1, 1): Gy @ uy}  # (ne, 3, ncols)
         fields = []
         for i in range(len(m.fields)):
-            F = U[m.field_dofs(i)][self._t]  # (ne, 3 local fns, ncols): vertex values
-            val = F  # at vertex v the value is the local function v's dof
-            dxf = np.einsum("evk,ekc->evc", self._g1[..., 0], F)
-            dyf = np.einsum("evk,ekc->evc", self._g1[..., 1], F)
-            fields.append((val, dxf, dyf))
+            F = U[m.field_dofs(i)][self._t]  # (ne, 3 local fns, ncols): at vertex v its own dof
+            fields.append((F, np.einsum("evk,ekc->evc", self._g1[..., 0], F),
+                           np.einsum("evk,ekc->evc", self._g1[..., 1], F)))
         out = []
         for zeta in self.LEVELS:
             z = np.array([zeta])
-            exx, eyy, gxy = (x.copy() for x in e0)
-            ezz = np.zeros_like(exx)
-            gxz = np.zeros_like(exx)
-            gyz = np.zeros_like(exx)
+            H = np.zeros((3, 3) + g0[0, 0].shape)
+            for (a, b), g in g0.items():
+                H[a, b] = g
             for (kind, pw, comp), (val, dxf, dyf) in zip(m.fields, fields):
-                if kind == "a":
-                    v, dv = (float(a[0]) for a in m._phi(pw, z))
-                    if comp == 0:
-                        exx += v * dxf
-                        gxy += v * dyf
-                        gxz += dv * val
-                    else:
-                        eyy += v * dyf
-                        gxy += v * dxf
-                        gyz += dv * val
-                else:
-                    v, dv = (float(a[0]) for a in m._psi(pw, z))
-                    ezz += dv * val
-                    gxz += v * dxf
-                    gyz += v * dyf
-            tr = exx + eyy + ezz
-            out.append(np.stack([2 * mu * exx + lam * tr, 2 * mu * eyy + lam * tr, 2 * mu * ezz + lam * tr,
-                                 mu * gyz, mu * gxz, mu * gxy]).reshape(6, -1, U.shape[1]))
-        s = np.concatenate(out, axis=1)
+                if kind == "a":  # u_comp += phi_p(z) ap_comp
+                    v, dv = (float(x[0]) for x in m._phi(pw, z))
+                    H[comp, 0] += v * dxf
+                    H[comp, 1] += v * dyf
+                    H[comp, 2] += dv * val
+                else:  # u_z += psi_q(z) cq
+                    v, dv = (float(x[0]) for x in m._psi(pw, z))
+                    H[2, 0] += v * dxf
+                    H[2, 1] += v * dyf
+                    H[2, 2] += dv * val
+            out.append(H.reshape(3, 3, -1, U.shape[1]))
+        return np.concatenate(out, axis=2)
+
+    def __call__(self, U: np.ndarray, finite: bool = False) -> np.ndarray:
+        """Stresses (6, npts[, ncols]) [Pa], Voigt xx, yy, zz, yz, xz, xy: the small-strain
+        stress C : sym(H), or with ``finite`` the Cauchy stress of the St. Venant-Kirchhoff law
+        of the same displacement, F S F' / det F with S = C : E and the Green-Lagrange strain
+        E = (H + H' + H' H) / 2 (the second-order terms the small strain drops: a flexure end
+        turning by a few degrees under ~1 % strain reads ~2 % more; the non-linear reference
+        measures the rest, BENCHMARKS.md section 13)."""
+        one = np.ndim(U) == 1
+        H = self.gradients(U)
+        lam, mu = self.lame
+        I3 = np.eye(3)[:, :, None, None]
+        E = 0.5 * (H + H.transpose(1, 0, 2, 3))
+        if finite:
+            E = E + 0.5 * np.einsum("cakn,cbkn->abkn", H, H)
+        S = 2 * mu * E + lam * (E[0, 0] + E[1, 1] + E[2, 2])[None, None] * I3
+        if finite:
+            F = H + I3
+            J = (F[0, 0] * (F[1, 1] * F[2, 2] - F[1, 2] * F[2, 1]) - F[0, 1] * (F[1, 0] * F[2, 2] - F[1, 2] * F[2, 0])
+                 + F[0, 2] * (F[1, 0] * F[2, 1] - F[1, 1] * F[2, 0]))
+            S = np.einsum("ackn,cdkn,bdkn->abkn", F, S, F) / J[None, None]
+        s = np.stack([S[0, 0], S[1, 1], S[2, 2], S[1, 2], S[0, 2], S[0, 1]])
         return s[..., 0] if one else s
 
     def von_mises(self, s: np.ndarray) -> np.ndarray:

@@ -236,7 +236,10 @@ def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses
         U = fields.block(sl)
         umax[sl] = np.sqrt(U[xd] ** 2 + U[yd] ** 2).max(axis=0) if U.size else 0.0
         if stresses:
-            vm = fields.stress.von_mises(fields.stresses(sl))
+            # the thick plane model reads its peaks with the finite-rotation (Cauchy, Green-
+            # Lagrange) measure of the same displacement (clutchfem.fe.ThickStress)
+            vm = fields.stress.von_mises(fields.stress(U, finite=True) if getattr(fields.stress, "FINITE", False)
+                                         else fields.stresses(sl))
             vm_max[sl] = vm.max(axis=0)
             kmax[sl] = vm.argmax(axis=0)
     df = pd.DataFrame({"rpm": np.asarray(rpm, dtype=float), "omega_rad_s": np.asarray(omega, dtype=float),
