@@ -68,3 +68,16 @@ def test_cli_analyze_3d_json():
     assert r.exit_code == 0, r.output
     doc = json.loads(r.output.strip().splitlines()[-1])
     assert doc["inputs"]["model"]["formulation"] == "3d" and np.isfinite(doc["max_von_mises_Pa"])
+
+
+def test_cli_drum_wall_rigid_and_its_model_form_term():
+    """``--drum-wall rigid`` (the help's LENGTH|rigid) gives the rigid drum on the best path,
+    whose model-form band then carries the rigid-drum term again; a wall below the ring
+    model's range is refused naming the option."""
+    r = CliRunner().invoke(app, ["analyze", "concept4", "--drum-wall", "rigid", "--json"])
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.output.strip().splitlines()[-1])
+    assert doc["inputs"]["model"]["drum_wall_m"] is None and doc["inputs"]["model"]["formulation"] == "thick"
+    assert "rigid_drum" in doc["errors"]["torque_at_max_engine_torque_Nm"]["model_form_relative"]
+    bad = CliRunner().invoke(app, ["analyze", "concept4", "--drum-wall", "0.1mm"])
+    assert bad.exit_code == 2 and "--drum-wall" in bad.output and "Traceback" not in bad.output

@@ -87,6 +87,8 @@ def operating_point(base=None, **given):
     from ..loadcase import OperatingPoint
 
     base = base if base is not None else OperatingPoint()
+    if isinstance(given.get("drum_wall"), str) and given["drum_wall"].strip().lower() == "rigid":
+        given = {**given, "drum_wall": "0"}  # --drum-wall rigid: the rigid drum (a wall of 0)
     try:
         values = OperatingPoint.parse_assignments([f"{k}={v}" for k, v in given.items()
                                                    if v is not None and k != "material"])
