@@ -17,12 +17,14 @@ from ..mesh import ClutchMesh
 __all__ = ["estimate_3d", "check_3d_size", "max_model_memory"]
 
 #: peak memory of a 3-D analysis [bytes] ~ MEMORY_BASE + MEMORY_COEF N^MEMORY_POWER (N the
-#: unknowns): fitted to the resident set size of ``analyze``-like runs (build, pre-stress,
-#: factorisation, contact solves, stresses) of concepts 1 and 4 at 1-4 layers
-#: (BENCHMARKS.md section 14); the factor's fill makes it grow faster than N
+#: unknowns): fitted as an upper bound to the peak resident set (ru_maxrss) of
+#: ``analyze(errors=False)`` on concept 4, best mesh, 1 / 2 / 3 layers: 21 258 / 35 430 /
+#: 49 602 unknowns, 0.54 / 1.07 / 1.80 GB measured, 0.56 / 1.08 / 1.85 GB estimated
+#: (BENCHMARKS.md section 14, 2026-11-26); the factor's fill makes it grow faster than N.
+#: Beyond ~50 000 unknowns it is an extrapolation (stated in the refusal as an estimate)
 MEMORY_BASE = 0.25e9
-MEMORY_COEF = 2.94
-MEMORY_POWER = 1.84
+MEMORY_COEF = 1.12
+MEMORY_POWER = 1.95
 
 
 def estimate_3d(n_nodes_2d: int, layers: int, half: bool = True) -> tuple[int, float]:
