@@ -16,7 +16,7 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``),
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
 :func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
-:func:`write_report`, :func:`torque_speed_plot`.  Checks: :func:`validate`.  Errors: :class:`ClutchfemError` and its kinds.
+:func:`write_report`, :func:`torque_speed_plot`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
 """
 
 from __future__ import annotations
@@ -54,6 +54,7 @@ _API: dict[str, tuple[str, str]] = {
     "torque_speed_plot": ("clutchfem.report", "comparison_plot"),
     "run_grid": ("clutchfem.studies", "run_grid"),
     "validate": ("clutchfem.validation", "validate"),
+    "serve_app": ("clutchfem.app", "serve"),
     "ClutchfemError": ("clutchfem.core", "ClutchfemError"),
     "ParameterError": ("clutchfem.core", "ParameterError"),
     "InputError": ("clutchfem.core", "InputError"),
@@ -82,6 +83,7 @@ def __dir__() -> list[str]:
 
 if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .analysis import Analysis, Requirements, analyze, slip_heat
+    from .app import serve as serve_app
     from .clutch import EngineCurve
     from .core import (
         ClutchfemError,

@@ -18,6 +18,7 @@ import typer
 
 from .. import __version__
 from .analyze_cmd import analyze
+from .app_cmd import app as app_command
 from .compensate_cmd import compensate
 from .demo_cmd import demo
 from .geometry_cmd import geometry
@@ -49,6 +50,7 @@ _COMMANDS = [
     (guidelines, "guidelines", "Studies", "clutchfem guidelines concept4 --params flexure_thickness,shoe_arc"),
     (validate, "validate", "Checks", "clutchfem validate --docs docs/validation.md --out docs/img/validation"),
     (demo, "demo", "Checks", "clutchfem demo --out out/demo"),
+    (app_command, "app", "Design", "clutchfem app  (then open http://127.0.0.1:8765)"),
 ]
 for _fn, _name, _panel, _example in _COMMANDS:
     app.command(_name, rich_help_panel=_panel, epilog=f"Example: {_example}")(_fn)
