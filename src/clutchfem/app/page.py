@@ -104,6 +104,13 @@ class DesignPage:
                       on_rejected=lambda: ui.notify(f"refused: larger than {MAX_CSV_BYTES // 1024} kB")).props(
                 "dense accept=.csv")
             self.messages["engine"] = ui.label("").classes("text-xs text-red-600")
+        with ui.expansion("your own part (.msh / STEP)", value=self.s.part is not None).classes("w-full"):
+            ui.upload(label="part: gmsh .msh (curve groups bore, contact) or STEP; x-y plane, axis at the origin",
+                      max_file_size=MAX_MESH_BYTES, auto_upload=True, on_upload=self.on_part_upload,
+                      on_rejected=lambda: ui.notify(f"refused: larger than {MAX_MESH_BYTES >> 20} MB")).props(
+                "dense accept=.msh,.step,.stp")
+            self.messages["part"] = ui.label("" if self.s.part is None else f"analysing {self.s.part.name}").classes(
+                "text-xs")
 
     def control(self, c) -> None:
         self.values[c.name] = c.value
@@ -216,6 +223,24 @@ class DesignPage:
         if msg is None:
             self.panel.refresh()
             self.schedule()
+
+    async def on_part_upload(self, e) -> None:
+        name = Path(e.file.name).name  # no folders from the browser
+        suffix = Path(name).suffix.lower()
+        if suffix not in (".msh", ".step", ".stp"):
+            self.messages["part"].set_text(f"refused: {name}: a gmsh .msh or a STEP file (.step, .stp)")
+            return
+        path = self.dir / f"part{suffix}"
+        path.write_bytes(await e.file.read())
+        msg = self.s.set_part(path)
+        if msg:
+            self.messages["part"].set_text(msg)
+            return
+        self.values.clear()
+        self.widgets.clear()
+        self.messages.clear()
+        self.panel.refresh()
+        ui.notify(f"{name}: give the drum's inner radius", type="info")
 
     def on_field_rpm(self, value) -> None:
         if value is None or not math.isfinite(float(value)) or float(value) <= 0:
