@@ -134,7 +134,8 @@ def inside_radii(outline) -> list[Feature]:
         for i, s in enumerate(segs):
             if s.kind == "arc" and s.sweep < 0:
                 small = s.radius < 0.25 * float(getattr(outline.params, "drum_radius", math.inf))
-                found.append((s.radius, _zone(s.tag), tuple(s.point([0.5])[0]), "fillet" if small else "arc"))
+                kind = "bore" if _zone(s.tag) == "bore" else ("fillet" if small else "arc")
+                found.append((s.radius, _zone(s.tag), tuple(s.point([0.5])[0]), kind))
             elif s.kind == "spline":
                 t = np.linspace(0, 1, 401)
                 k = s.curvature(t)

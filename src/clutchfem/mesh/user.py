@@ -102,6 +102,10 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         if np.ptp(xyz[:, 2]) > 1e-9 * size:
             raise MeshError(f"{path}: the part is not planar (z varies by {np.ptp(xyz[:, 2]):.3g} m); "
                             "expected a 2-D part in the x-y plane")
+        polys = []  # the boundary, finely sampled, for the material side of a curve
+        for c in curves:
+            lo, hi = gmsh.model.getParametrizationBounds(1, c)
+            polys.append(np.asarray(gmsh.model.getValue(1, c, np.linspace(lo[0], hi[0], 257))).reshape(-1, 3)[:, :2])
         rmin, rmax, bore, contact = [], [], [], []
         for xy in samples:
             r = np.hypot(xy[:, 0], xy[:, 1])
@@ -112,7 +116,7 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         for c, a, b in zip(curves, rmin, rmax):
             if b < r_in + 0.25 * (R_out - r_in) and b < 0.5 * R_out:
                 bore.append(c)
-            elif drum_radius is not None and a > R_out - 0.25 * (R_out - r_in) and _faces_out(c, size):
+            elif drum_radius is not None and a > R_out - 0.25 * (R_out - r_in) and _faces_out(c, size, polys):
                 contact.append(c)
         gmsh.model.addPhysicalGroup(2, surfaces, name="solid")
         gmsh.model.addPhysicalGroup(1, bore, name="bore")
@@ -140,18 +144,24 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         os.unlink(tmp)
 
 
-def _faces_out(c: int, size: float) -> bool:
+def _faces_out(c: int, size: float, polys: list[np.ndarray]) -> bool:
     """Does boundary curve ``c`` face away from the axis (its outward normal within 60 degrees
-    of the radial direction at its middle)?  The material side is found by probing both
-    sides of the curve (an inner face of a shoe, a radial flank, are not contact surface)."""
+    of the radial direction at its middle)?  The material side is the side of the curve
+    whose probe point lies inside the part (even-odd count of the boundary, sampled finely
+    in ``polys``): an inner face of a shoe, a radial flank, are not contact surface."""
     lo, hi = gmsh.model.getParametrizationBounds(1, c)
     u = [0.5 * (lo[0] + hi[0])]
-    x = np.asarray(gmsh.model.getValue(1, c, u))
-    t = np.asarray(gmsh.model.getDerivative(1, c, u))
-    n = np.array([t[1], -t[0], 0.0]) / max(np.hypot(t[0], t[1]), 1e-300)
-    up, _ = gmsh.model.getAdjacencies(1, c)
-    eps = 1e-4 * size
-    if any(gmsh.model.isInside(2, int(s), list(x + eps * n)) for s in up):
+    x = np.asarray(gmsh.model.getValue(1, c, u))[:2]
+    t = np.asarray(gmsh.model.getDerivative(1, c, u))[:2]
+    n = np.array([t[1], -t[0]]) / max(float(np.hypot(t[0], t[1])), 1e-300)
+    probe = x + 1e-3 * size * n
+    crossings = 0
+    for xy in polys:
+        a, b = xy[:-1], xy[1:]
+        cond = (a[:, 1] > probe[1]) != (b[:, 1] > probe[1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xs = a[:, 0] + (probe[1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+        crossings += int(np.count_nonzero(cond & (xs > probe[0])))
+    if crossings % 2:  # the probe is in the material: the outward normal is -n
         n = -n
-    return float(n[:2] @ x[:2]) > 0.5 * float(np.hypot(x[0], x[1]))
-
+    return float(n @ x) > 0.5 * float(np.hypot(x[0], x[1]))
