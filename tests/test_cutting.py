@@ -61,7 +61,9 @@ def test_dxf_and_step_hold_the_exact_part(tmp_path, name, values):
     # areas: the DXF's, the OCC model's, the STEP solid's volume, the design's mass
     a_dxf = sum(lp.area for lp in loops)
     assert a_dxf == pytest.approx(r.area_m2, rel=1e-9)
-    assert r.area_m2 == pytest.approx(r.outline.occ_area, rel=1e-7)
+    # OCC integrates a face bounded by B-splines to ~1e-6 (its surface-property tolerance);
+    # lines and arcs to rounding
+    assert r.area_m2 == pytest.approx(r.outline.occ_area, rel=1e-6 if p.profile == "table" else 1e-12)
     assert r.volume_m3 == pytest.approx(r.area_m2 * p.thickness, rel=1e-6)
     mesh_mass = cf.analyze(d, errors=False).part["mass_kg"]
     assert r.mass_kg == pytest.approx(mesh_mass, rel=1e-5)

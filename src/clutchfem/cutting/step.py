@@ -1,5 +1,6 @@
 """The STEP solid: the outline's face extruded through the part's thickness, written by gmsh
-(OpenCASCADE's STEP writer), in millimetres, with the design in its header.
+(OpenCASCADE's STEP writer), in millimetres, with the design in its header; its volume read
+back from the file (:func:`step_volume`).
 
 gmsh keeps OCC's default length unit, the millimetre, whatever the model's numbers mean:
 a model drawn in metres (as clutchfem's is) comes out as a part 1000 times too small that
@@ -27,7 +28,7 @@ import gmsh
 from .. import __version__
 from ..core import GeometryError
 from ..geometry import gmsh_session
-from ..mesh import Loop, loops_to_occ
+from ..mesh import Loop, import_planar, loops_to_occ
 
 
 @contextlib.contextmanager
@@ -65,7 +66,6 @@ def write_step(path, loops: list[Loop], thickness: float, *, label: str, descrip
             vols = [t for d, t in out if d == 3]
             if len(vols) != 1:
                 raise GeometryError(f"the extruded part is {len(vols)} solids, expected one")
-            volume = gmsh.model.occ.getMass(3, vols[0]) * 1e-9
             with quiet_stdout():
                 gmsh.write(tmp)
         text = Path(tmp).read_text(encoding="ascii", errors="replace")
@@ -74,7 +74,17 @@ def write_step(path, loops: list[Loop], thickness: float, *, label: str, descrip
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
-    return path, volume
+    return path, step_volume(path)
+
+
+def step_volume(path) -> float:
+    """The volume [m^3] of the prism in a STEP file, read back: its base area (OCC, plane
+    face) x its height, after :func:`clutchfem.mesh.import_planar` has checked that it is a
+    prism along z (OCC's own volume integral is good to ~2e-4 only for B-spline sides)."""
+    with gmsh_session("step-volume"):
+        with quiet_stdout():
+            h = import_planar(Path(path), None)
+        return float(sum(gmsh.model.occ.getMass(2, s) for _, s in gmsh.model.getEntities(2)) * h)
 
 
 def _patch_header(text: str, label: str, description: list[str]) -> str:
