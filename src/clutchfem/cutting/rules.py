@@ -94,12 +94,19 @@ class ProcessRules(ParamSet):
     @classmethod
     def of(cls, process: str = "custom", **overrides) -> "ProcessRules":
         """The rules of ``process`` (``laser``, ``waterjet``, ``wire-edm``; ``custom``: the
-        class defaults) with some values changed (``kerf="0.3mm"``)."""
+        class defaults) with some values changed (``kerf="0.3mm"``).  A kerf given without
+        them lifts the smallest inside radius and slot to half the kerf and the kerf (the
+        tool's own size); given explicitly below that, they are refused."""
         if process not in PROCESSES + ("custom",):
             raise ParameterError("process", process, "one of " + ", ".join(repr(p) for p in PROCESSES + ("custom",)),
                                  cls.context)
         base = dict(DEFAULTS.get(process, {}))
         given = {k: v for k, v in overrides.items() if v is not None}
+        if "kerf" in given:  # a wider kerf lifts the physical floors it implies, unless given
+            k = cls.parse_value("kerf", given["kerf"]) if isinstance(given["kerf"], str) else float(given["kerf"])
+            ref = cls()
+            base["min_inside_radius"] = max(base.get("min_inside_radius", ref.min_inside_radius), 0.5 * k)
+            base["min_slot"] = max(base.get("min_slot", ref.min_slot), k)
         return cls(process=process, **{**base, **given})
 
     def limits(self, thickness: float) -> dict:
