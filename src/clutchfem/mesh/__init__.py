@@ -13,12 +13,12 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
 """
 
+from .cad import import_planar, step_unit
 from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
-from .cad import import_planar, step_unit
-from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
 from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
+from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
 from .topology import (
                        element_components,
