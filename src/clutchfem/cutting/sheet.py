@@ -74,21 +74,19 @@ def draw_sheet(paths, *, outline, features, rules, toolpath, label: str, design_
     for kind, feats in features.items():
         useful = [f for f in feats if not f.where.startswith("bore") and (kind != "inside radius" or f.detail == "fillet")]
         callouts += useful[:1]
-    callouts.sort(key=lambda f: math.atan2(f.at[1], f.at[0]))
-    slots = sorted(math.radians(a) for a in (-150, -100, -40, 20, 80, 150)[:max(len(callouts), 1)])
-    if len(callouts) < len(slots):
-        slots = [math.radians(a) for a in (-120, -30, 60)][:len(callouts)]
-    for f, ang in zip(callouts, sorted(slots)):
+    callouts.sort(key=lambda f: f.at[0])
+    n = len(callouts)
+    for k, f in enumerate(callouts):  # a row of labels under the part, in the order of their x
         x, y = f.at[0] * s, f.at[1] * s
-        tx, ty = 1.42 * R * math.cos(ang), 1.42 * R * math.sin(ang)
-        ax.annotate(f.text(), (x, y), (tx, ty), fontsize=7.5, color="#1f4e79",
-                    ha="left" if tx > 0 else "right", va="center",
+        tx = (-1.0 + 2.0 * k / max(n - 1, 1)) * R if n > 1 else 0.0
+        ty = -1.38 * R - 0.14 * R * (k % 2)
+        ax.annotate(f.text(), (x, y), (tx, ty), fontsize=7.5, color="#1f4e79", ha="center", va="top",
                     arrowprops={"arrowstyle": "->", "lw": 0.5, "color": "#1f4e79"})
         ax.plot([x], [y], "o", ms=3, color="#1f4e79")
     ax.set_aspect("equal")
     lim = 1.75 * R
     ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, lim)
+    ax.set_ylim(-lim, 1.3 * R)
     ax.axis("off")
     ax.set_title(f"{label}: the whole part, {outline.thickness * 1e3:g} mm thick, viewed from the engine side "
                  f"(ccw rotation)\nunit {units}; black: part (DXF layers OUTER/INNER/BORE)"
