@@ -186,3 +186,43 @@ def test_cli_export_and_hostile_options(tmp_path):
     assert res.exit_code == 2 and "inputs.json" in res.output
     res = run(app, ["export", "concept1", "--from", str(tmp_path), "--out", str(tmp_path)])
     assert res.exit_code == 2 and "exactly one design" in res.output
+
+
+def test_design_of_a_compensate_folder_and_of_a_study_row(tmp_path):
+    """--from picks the compensated design ('after') of a compensate folder; --study/--row
+    the row's concept, parameters and operating point (a store written by the study engine's
+    own ResultStore)."""
+    from clutchfem.cutting import design_from_study
+    from clutchfem.studies import COLUMNS, ResultStore
+
+    before = cf.Design.from_concept("concept4", mesh=COARSE)
+    after = cf.Design.from_concept("concept4", profile="table", table_c3="0.5mm", mu=0.2, mesh=COARSE)
+    a0, a1 = (cf.analyze(x, errors=False).inputs for x in (before, after))
+    (tmp_path / "comp").mkdir()
+    (tmp_path / "comp" / "inputs.json").write_text(json.dumps({"before": a0, "after": a1, "run": {}}))
+    back = design_from_run(tmp_path / "comp", COARSE)
+    assert back.params == after.params and back.op.mu == 0.2
+    (tmp_path / "study").mkdir()
+    with ResultStore(tmp_path / "study" / "results.sqlite", COLUMNS) as st:
+        st.put({"design_hash": "3fa9c2d41e7700aa", "model_version": "x", "status": "ok",
+                "inputs_json": json.dumps({"settings": {"concept": "concept4", "mesh": {"size": 0.003}},
+                                           "params": after.params.model_dump(mode="json"),
+                                           "op": after.op.model_dump(mode="json")})})
+    d = design_from_study(tmp_path / "study", "3fa9c2")
+    assert d.params == after.params and d.op.mu == 0.2
+    with pytest.raises(cf.InputError, match="no row"):
+        design_from_study(tmp_path / "study", "abcdef")
+    with pytest.raises(cf.InputError, match="6 hex"):
+        design_from_study(tmp_path / "study", "3fa")
+
+
+def test_report_links_the_cutting_files(tmp_path):
+    d = cf.Design.from_concept("concept1", mesh=COARSE)
+    a = cf.analyze(d, errors=False)
+    r = cf.export(d, tmp_path, process="wire-edm", analysis=a)
+    cf.write_report(d, tmp_path, analysis=a)
+    md = (tmp_path / "report.md").read_text()
+    html = (tmp_path / "report.html").read_text()
+    for f in r.files:
+        if f.suffix in (".dxf", ".step", ".pdf"):
+            assert f"[{f.name}]({f.name})" in md and f"href='{f.name}'" in html
