@@ -12,6 +12,7 @@ import socket
 import subprocess
 import sys
 import time
+import zipfile
 from pathlib import Path
 
 import pytest
@@ -108,6 +109,14 @@ def test_live_design_in_a_real_browser(server):
         expect(row).to_contain_text(f"{other.engagement_rpm:.0f} rpm", timeout=60_000)
         expect(row).to_contain_text(f"{want.engagement_rpm:.0f} rpm")  # the pinned design beside it
         expect(row).to_contain_text(f"{diff:+.4g} rpm")
+        # the cutting files of the design on screen: DXF, STEP and drawing in one zip
+        page.locator("[data-testid=files]").click()
+        with page.expect_download(timeout=120_000) as dl:
+            page.get_by_text("cutting files").click()
+        with zipfile.ZipFile(dl.value.path()) as z:
+            names = z.namelist()
+        assert {Path(n).suffix for n in names} >= {".dxf", ".step", ".pdf"}, names
+        assert all(n.startswith("concept4") or n.endswith(".json") for n in names), names
         ARTIFACTS.mkdir(exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / "app.png"), full_page=True)
         browser.close()

@@ -1,14 +1,16 @@
 """The files of the app's current design as downloads: the one-page report, inputs.json, the
-mesh and the fields at the chosen speed, each written into the tab's own folder first (a
+mesh, the fields at the chosen speed and the cutting files (DXF, STEP, drawing sheet), each written into the tab's own folder first (a
 mixin of :class:`~clutchfem.app.page.DesignPage`)."""
 
 from __future__ import annotations
 
 import shutil
+import zipfile
 
 from nicegui import run, ui
 
-from ..core import dumps
+from ..core import ClutchfemError, dumps
+from ..cutting import export
 from ..fe import write_vtk
 from ..loadcase import design_inputs
 from ..mesh import groups_msh_path
@@ -63,3 +65,24 @@ class Downloads:
         files = await run.io_bound(lambda: write_vtk(res, [rpm], self.dir, render=False, stem=self.outcome.label))
         if files:
             ui.download(files[0], files[0].name)
+
+    async def dl_cutting(self) -> None:
+        """The cutting files of the current concept design as one zip: DXF (mm), STEP and
+        the drawing sheet (PDF) with the answers already on screen, plus inputs.json."""
+        if not self._ready():
+            return
+        d = self.outcome.design
+        if d.params is None:
+            ui.notify("cutting files come from a concept design (an uploaded part is already CAD)")
+            return
+        out = self.dir / f"{self.outcome.label}-cutting"
+        try:
+            res = await run.io_bound(lambda: export(d, out, analysis=self.outcome.analysis))
+        except ClutchfemError as e:
+            ui.notify(str(e), type="negative", multi_line=True)
+            return
+        target = self.dir / f"{self.outcome.label}-cutting.zip"
+        with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as z:
+            for f in res.files:
+                z.write(f, f.name)
+        ui.download(target, target.name)

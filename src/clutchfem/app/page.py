@@ -66,12 +66,13 @@ class DesignPage(StudiesPanel, Downloads):
                 "dense dark outlined data-testid=concept").classes("w-40")
             ui.button("pin", on_click=self.on_pin).props("data-testid=pin flat color=white")
             ui.button("swap", on_click=self.on_swap).props("data-testid=swap flat color=white")
-            with ui.button("files", icon="download").props("flat color=white"):
+            with ui.button("files", icon="download").props("flat color=white data-testid=files"):
                 with ui.menu():
                     ui.menu_item("report (HTML)", on_click=self.dl_report)
                     ui.menu_item("inputs.json", on_click=self.dl_inputs)
                     ui.menu_item("mesh (.msh)", on_click=self.dl_msh)
                     ui.menu_item("fields at the chosen speed (.vtu)", on_click=self.dl_vtu)
+                    ui.menu_item("cutting files (.zip: DXF, STEP, drawing)", on_click=self.dl_cutting)
             self.status = ui.label("").classes("ml-auto text-sm").props("data-testid=status")
         with ui.row().classes("w-full no-wrap items-start"):
             with ui.column().classes("w-96 shrink-0"):
