@@ -81,3 +81,23 @@ def test_cli_drum_wall_rigid_and_its_model_form_term():
     assert "rigid_drum" in doc["errors"]["torque_at_max_engine_torque_Nm"]["model_form_relative"]
     bad = CliRunner().invoke(app, ["analyze", "concept4", "--drum-wall", "0.1mm"])
     assert bad.exit_code == 2 and "--drum-wall" in bad.output and "Traceback" not in bad.output
+
+
+def test_contact_weights_without_the_inverse_map(monkeypatch):
+    """The elastic drum needs the contact nodes' tributary lengths; skfem's FacetBasis inverts
+    the isoparametric map by Newton, which fails on some imported P2 meshes (the as-cut STEP
+    mesh of concept 1); the direct edge quadrature that replaces it then agrees with it."""
+    from clutchfem.fe import contact_weights
+    from clutchfem.fe import model as fe_model
+
+    d = cf.Design.from_concept("concept4", fidelity="fast", mesh=cf.MeshSettings(size="3mm"))
+    facets = np.nonzero(d.cm.mesh.f2t[1] == -1)[0]
+    ref = contact_weights(d.cm, d.model.basis, facets)
+
+    def fail(*a, **k):
+        raise Exception("Newton iteration didn't converge up to TOL=1e-12")
+
+    monkeypatch.setattr(fe_model, "FacetBasis", fail)
+    alt = contact_weights(d.cm, d.model.basis, facets)
+    assert np.abs(alt - ref).max() < 1e-6 * np.abs(ref).max()
+    assert alt.sum() == pytest.approx(ref.sum(), rel=1e-8)
