@@ -5,6 +5,7 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.convert` -- meshio -> scikit-fem ``MeshTri2``, the element orientation check;
 * :mod:`.generate` -- a concept meshed by gmsh, the on-disk cache and its keys, the size estimate;
 * :mod:`.user` -- a user's ``.msh`` or STEP file;
+* :mod:`.user_checks` -- what a user's part must be: axis, unit, one piece, triangles;
 * :mod:`.topology` -- P2 nodes, facet nodes and cells, areas and perimeters of element sets;
 * :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model;
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
@@ -27,8 +28,9 @@ from .topology import (
                        p2_nodes,
 )
 from .user import load_user_geometry
+from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_length_unit
 
-__all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
+__all__ = ["AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "bore_centre", "step_length_unit", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
            "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
            "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem",
