@@ -9,6 +9,16 @@ from .materials import Material, get_material
 from .params import ParamSet, choice, param
 from .roots import brentq
 from .runtime import tune_malloc
-from .units import UnitError, expected_text, format_quantity, parse_quantity, rad_s_to_rpm, rpm_to_rad_s, wrap_angle
+from .units import (
+    UnitError,
+    expected_text,
+    format_quantity,
+    header_unit,
+    header_units,
+    parse_quantity,
+    rad_s_to_rpm,
+    rpm_to_rad_s,
+    wrap_angle,
+)
 
-__all__ = ["UnitError", "expected_text", "format_quantity", "parse_quantity", "ClutchfemError", "GeometryError", "InputError", "Material", "MeshError", "ParamSet", "ParameterError", "SolverError", "brentq", "choice", "clean", "dumps", "figure", "get_material", "param", "rad_s_to_rpm", "rpm_to_rad_s", "tune_malloc", "wrap_angle", "write"]
+__all__ = ["UnitError", "expected_text", "format_quantity", "header_unit", "header_units", "parse_quantity", "ClutchfemError", "GeometryError", "InputError", "Material", "MeshError", "ParamSet", "ParameterError", "SolverError", "brentq", "choice", "clean", "dumps", "figure", "get_material", "param", "rad_s_to_rpm", "rpm_to_rad_s", "tune_malloc", "wrap_angle", "write"]

@@ -20,7 +20,7 @@ from .batch import EvalSettings, evaluate_many
 from .compensation import Compensation, compensate
 from .grid import run_grid
 from .guideline_charts import summary_table
-from .guideline_study import run_guidelines
+from .guideline_study import run_guidelines, why_no_answer
 from .guidelines import GuidelineResult, GuidelineSettings
 from .hashing import design_hash
 from .optimization import DIMENSIONLESS, OptimizationResult, Targets, default_free, fatigue_note, optimize
@@ -32,7 +32,7 @@ from .spec import EXAMPLE_SPEC, StudySpec
 from .store import STORE_NAME, ResultStore
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 
-__all__ = ["COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
+__all__ = ["why_no_answer", "COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
            "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RunResult", "Settings",
            "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
            "default_free", "default_out", "design_hash", "evaluate", "evaluate_many", "fatigue_note", "load_spec",

@@ -334,6 +334,10 @@ def _settings(raw: dict, is_concept: bool, base: Path, source: str) -> dict:
             engine = EngineCurve.from_csv(p, idle_rpm=idle)
         except ClutchfemError as exc:
             raise SpecError("settings.engine", v, f"a readable engine curve CSV ({exc})", source) from None
+    top = (engine or EngineCurve.default()).rpm_range[1]
+    if idle is not None and idle >= top:
+        raise SpecError("settings.idle_rpm", raw["idle_rpm"], f"an idle speed below the engine curve's top speed "
+                        f"{top:g} rpm ({'settings.engine' if engine else 'the built-in curve'})", source)
     ms = {}
     if "mesh_size" in raw:
         v = raw["mesh_size"]
