@@ -20,7 +20,7 @@ from ..core import InputError, ParameterError, UnitError, expected_text, parse_q
 console = Console()
 err = Console(stderr=True)
 
-__all__ = ["check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
+__all__ = ["check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
            "operating_point", "quantity", "requirements_from", "wrote"]
 
 
@@ -56,6 +56,21 @@ def check_out_dir(out: Optional[Path], option: str = "--out") -> Optional[Path]:
     except OSError as exc:
         raise InputError(f"{option} {out}: cannot create the folder ({exc.strerror})") from None
     return out
+
+
+def check_cluster(workers: Optional[int], scheduler: Optional[str]) -> Optional[str]:
+    """Refuse, before any work, ``--workers`` with ``--scheduler``, a negative worker count
+    and a scheduler address that is not one (``''``, ``http://...``, an unknown host); the
+    address in Dask's form, or None."""
+    if workers is not None and scheduler is not None:
+        raise InputError("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+    if workers is not None and workers < 0:
+        raise ParameterError("workers", workers, "an integer >= 0 (0: in this process, no Dask)", "option --workers")
+    if scheduler is None:
+        return None
+    from ..studies import check_address
+
+    return check_address(scheduler)
 
 
 def quantity(option: str, raw: Optional[str], unit: str, lo: float | None = None, hi: float | None = None,

@@ -16,7 +16,7 @@ from rich.table import Table
 
 from ..core import ClutchfemError
 from . import options as O
-from .common import check_out_dir, console, design_from, engine_from, err, fail, material_from, operating_point, wrote
+from .common import check_cluster, check_out_dir, console, design_from, engine_from, err, fail, material_from, operating_point, wrote
 
 
 @contextlib.contextmanager
@@ -64,8 +64,7 @@ def study(
             return
         if spec is None:
             raise _usage("give a study spec (TOML), or --example to print one")
-        if workers is not None and scheduler is not None:
-            raise _usage("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+        scheduler = check_cluster(workers, scheduler)
         sp = load_spec(spec)
         out = check_out_dir(out if out is not None else default_out(str(spec)))
         try:
@@ -151,8 +150,7 @@ def guidelines(
     from ..studies import GuidelineSettings, StudyInterrupted, run_guidelines, summary_table
 
     try:
-        if workers is not None and scheduler is not None:
-            raise _usage("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+        scheduler = check_cluster(workers, scheduler)
         eng = engine_from(engine)[0] if engine is not None else None
         design = design_from(concept, set_, None, op=operating_point(mu=mu, material=material_from(material)),
                              mesh_size=mesh_size, mesh_allowed=False)

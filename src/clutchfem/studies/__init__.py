@@ -6,6 +6,7 @@ resumable SQLite store):
   a validated :class:`StudySpec`), :mod:`.sampling` (Latin hypercube, Sobol),
   :mod:`.point` (one point -> one row: the only module that calls the analysis),
   :mod:`.hashing`, :mod:`.store`, :mod:`.runner` (scheduling, resume, progress, summary),
+  :mod:`.cluster` (the Dask side: addresses, worker counts, faults),
   :mod:`.charts`;
 * design guidelines: :mod:`.guidelines` (elasticities with a step-stability check,
   one-at-a-time sweeps), :mod:`.guideline_study` (running one), :mod:`.guideline_charts`;
@@ -17,6 +18,7 @@ resumable SQLite store):
 
 from . import target_charts
 from .batch import EvalSettings, evaluate_many
+from .cluster import ClusterError, check_address, workers_machine_holds
 from .compensation import Compensation, compensate
 from .grid import run_grid
 from .guideline_charts import summary_table
@@ -29,10 +31,10 @@ from .resolve import load_spec, parse_spec
 from .runner import RunResult, StudyInterrupted, default_out, run_points, run_study
 from .schema import SpecError
 from .spec import EXAMPLE_SPEC, StudySpec
-from .store import STORE_NAME, ResultStore
+from .store import STORE_NAME, ResultStore, StoreLocked
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 
-__all__ = ["why_no_answer", "COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
+__all__ = ["StoreLocked", "ClusterError", "check_address", "workers_machine_holds", "why_no_answer", "COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
            "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RunResult", "Settings",
            "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
            "default_free", "default_out", "design_hash", "evaluate", "evaluate_many", "fatigue_note", "load_spec",

@@ -48,10 +48,7 @@ from __future__ import annotations
 
 import json
 import logging
-import os
-import signal
 import sys
-import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -63,11 +60,17 @@ from tqdm import tqdm
 from ..core import ClutchfemError, InputError, write
 from .charts import answers_vs_inputs, parallel_coordinates
 from .hashing import design_hash
-from .point import COLUMNS, Settings, evaluate, failed_row, model_version, warm_up
+from .cluster import check_address, rows_on_dask, workers_machine_holds
+from .point import COLUMNS, Settings, evaluate, failed_row, model_version
 from .spec import display_value
-from .store import STORE_NAME, ResultStore
+from .store import STORE_NAME, ResultStore, StoreLocked
 
 log = logging.getLogger("clutchfem")
+
+#: a study with at most this many points to compute runs them in this process when no
+#: worker count is given: below it a local cluster's start (~3 s for 2 workers, warm-up
+#: included) costs more than it saves (crossover measured: BENCHMARKS.md, "study reruns")
+IN_PROCESS_MAX = 3
 
 
 @dataclass(frozen=True)
@@ -135,6 +138,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         raise InputError("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise InputError(f"workers = {workers!r} is not allowed: an integer >= 0 (0: in this process, no Dask)")
+    if scheduler is not None:
+        scheduler = check_address(scheduler)  # before any work: a typo is said at once
     version = model_version(settings.concept)
     keys, tasks, hashes = [], {}, []
     for p in points:
@@ -150,15 +155,25 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         todo = [h for h in keys if h not in finished or (retry_failed and finished[h][0] == "failed")
                 or (h in want_errors and finished[h][0] == "ok" and finished[h][1] != 1)]
         run = store.start_run(source, version, len(keys), len(todo), spec_text)
-        n_workers = None if scheduler else (0 if workers == 0 else (workers or default_workers()))
-        label = scheduler or (f"local cluster, {n_workers} process workers" if n_workers else "in process")
+        if scheduler is not None:
+            n_workers, label = None, scheduler
+        elif workers == 0:
+            n_workers, label = 0, "in process"
+        elif workers is None and len(todo) <= IN_PROCESS_MAX:
+            # a handful of points: faster here than a cluster start (BENCHMARKS.md, crossover)
+            n_workers, label = 0, f"in process ({len(todo)} point(s) to compute: fewer than a cluster start pays for)"
+        else:
+            n_workers, why = workers_machine_holds(workers, len(todo))
+            if why:
+                log.warning(why)
+            label = f"local cluster, {n_workers} process workers"
         computed, interrupted, t_first, t_last = 0, False, None, None
         bar = None
         tally = {"ok": 0, "refused": 0, "failed": 0}
         try:
             if todo:
                 rows = (_in_process(todo, tasks, settings, want_errors) if n_workers == 0 and scheduler is None
-                        else _on_dask(todo, tasks, settings, version, n_workers, scheduler, want_errors))
+                        else rows_on_dask(todo, tasks, settings, version, n_workers, scheduler, want_errors))
                 for row in rows:
                     if "__start__" in row:  # the back-end is up and the points are submitted
                         n_workers = row["__start__"]
@@ -182,7 +197,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         except KeyboardInterrupt:
             interrupted = True
         except BaseException as exc:
-            store.end_run(run, computed, f"error: {type(exc).__name__}: {exc}"[:500])
+            if not isinstance(exc, StoreLocked):  # a locked store cannot record the end either
+                store.end_run(run, computed, f"error: {type(exc).__name__}: {exc}"[:500])
             raise
         finally:
             if bar is not None:
@@ -201,14 +217,6 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
     return res
 
 
-def default_workers() -> int:
-    """One worker process per core this process may run on (its CPU affinity)."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # pragma: no cover - not Linux
-        return max(1, os.cpu_count() or 1)
-
-
 def _bar(total: int, desc: str, progress: bool):
     if not progress or total == 0:
         return None
@@ -217,139 +225,12 @@ def _bar(total: int, desc: str, progress: bool):
 
 
 # ---------------------------------------------------------------------------------------
-# back-ends: in this process, or on dask.distributed
+# back-ends: in this process, or on dask.distributed (.cluster)
 # ---------------------------------------------------------------------------------------
 def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=frozenset()):
     yield {"__start__": 0}
     for h in todo:
         yield evaluate(tasks[h], settings, h, h in want_errors)
-
-
-class _WorkerSetup:
-    """Worker plugin of the private local cluster: ignore SIGINT (the client stops the
-    cluster on Ctrl-C) and import the analysis stack once, on every worker, also on one a
-    nanny restarts after a crash."""
-
-    name = "clutchfem-study-setup"
-
-    def __init__(self, concept: str | None):
-        self.concept = concept
-
-    def setup(self, worker=None):
-        if threading.current_thread() is threading.main_thread():
-            signal.signal(signal.SIGINT, signal.SIG_IGN)
-        warm_up(self.concept)
-
-    def teardown(self, worker=None):
-        pass
-
-
-def _killed_message(exc: BaseException) -> str:
-    name = type(exc).__name__
-    if name == "KilledWorker":
-        return ("the worker process died while computing this design (a crash in gmsh or the solver, or out of "
-                f"memory); its nanny restarted it and the study went on ({exc})")
-    return f"{name}: {exc}"
-
-
-def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_workers: int,
-             scheduler: str | None, want_errors=frozenset()):
-    """Rows as they finish, computed on a dask.distributed cluster (see module docstring)."""
-    import dask
-    from distributed import Client, LocalCluster, as_completed
-
-    cluster = client = None
-    futures: dict = {}
-    try:
-        if scheduler is not None:
-            try:
-                client = Client(scheduler, timeout="15s")
-            except (OSError, TimeoutError) as exc:
-                raise InputError(f"--scheduler {scheduler}: no dask scheduler answers there ({exc}); start one "
-                                 "with `dask scheduler` and workers with `dask worker ADDRESS --nthreads 1`") from None
-        else:
-            with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-                cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                       dashboard_address=None, scheduler_kwargs={"allowed_failures": 0},
-                                       silence_logs=logging.CRITICAL)
-            client = Client(cluster)
-            client.register_plugin(_as_worker_plugin(_WorkerSetup(settings.concept)))
-        versions = client.run(warm_up, settings.concept)
-        if not versions:
-            client.wait_for_workers(1, timeout=60)
-            versions = client.run(warm_up, settings.concept)
-        odd = {w: v for w, v in versions.items() if v != version}
-        if odd:
-            w, v = next(iter(odd.items()))
-            raise InputError(f"worker {w} runs clutchfem model version {v}, this client {version}: the workers "
-                             "must run the same clutchfem (same source, gmsh and scikit-fem versions)")
-        tag = version.rsplit("+", 1)[-1]
-        pending = iter(todo)
-        done = as_completed()
-
-        seen = {"n": 1, "at": -1.0}
-
-        def window() -> int:
-            """One task per worker thread (a crash takes only its own design); the thread
-            count is asked of the scheduler at most once a second (a round trip)."""
-            now = time.monotonic()
-            if now - seen["at"] > 1.0:
-                seen.update(n=max(1, sum(client.nthreads().values())), at=now)
-            return seen["n"]
-
-        def submit_more() -> None:
-            n = window()
-            while len(futures) < n:
-                h = next(pending, None)
-                if h is None:
-                    return
-                e = h in want_errors
-                fut = client.submit(evaluate, tasks[h], settings, h, e, key=f"clutchfem-point-{h}-{tag}{'-e' * e}")
-                futures[fut] = h
-                done.add(fut)
-
-        submit_more()
-        yield {"__start__": len(client.nthreads())}
-        for fut in done:
-            h = futures.pop(fut)
-            if fut.status == "finished":
-                row = fut.result()
-            else:
-                try:
-                    exc = fut.exception()
-                except Exception as e:  # noqa: BLE001 - cancelled by the scheduler, lost
-                    exc = e
-                row = failed_row(tasks[h], settings, h, version, _killed_message(exc))
-            fut.release()
-            submit_more()
-            yield row
-    finally:
-        if client is not None:
-            try:
-                if futures:
-                    client.cancel(list(futures), force=True)
-            except Exception:  # noqa: BLE001 - shutting down anyway
-                pass
-            client.close(timeout=10)
-        if cluster is not None:
-            cluster.close(timeout=10)
-
-
-def _as_worker_plugin(obj):
-    """Wrap :class:`_WorkerSetup` as a ``distributed`` WorkerPlugin (imported lazily, so the
-    module imports without distributed)."""
-    from distributed.diagnostics.plugin import WorkerPlugin
-
-    class Setup(WorkerPlugin):
-        name = obj.name
-
-        def __init__(self, concept):
-            self.concept = concept
-
-        def setup(self, worker):
-            _WorkerSetup(self.concept).setup(worker)
-
-    return Setup(obj.concept)
 
 
 # ---------------------------------------------------------------------------------------
