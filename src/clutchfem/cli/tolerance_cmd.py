@@ -49,6 +49,8 @@ def tolerance(
     try:
         scheduler = check_cluster(workers, scheduler)
         check_out_dir(out)
+        if seed < 0:
+            raise ParameterError("seed", seed, "an integer >= 0 (the same seed draws the same parts)", "option --seed")
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
         s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
         P = type(base.params)

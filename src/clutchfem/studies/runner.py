@@ -59,9 +59,10 @@ from tqdm import tqdm
 
 from ..core import ClutchfemError, InputError, write
 from .charts import answers_vs_inputs, parallel_coordinates
-from .hashing import design_hash
 from .cluster import check_address, rows_on_dask, workers_machine_holds
+from .hashing import design_hash
 from .point import COLUMNS, Settings, evaluate, failed_row, model_version
+from .rerun import fingerprint
 from .spec import display_value
 from .store import STORE_NAME, ResultStore, StoreLocked
 
@@ -96,6 +97,8 @@ class RunResult:
     keys: tuple[str, ...] = field(repr=False, default=())
     interrupted: bool = False
     error_keys: tuple[str, ...] = field(repr=False, default=())
+    #: points as listed (repeats of one design are computed and counted once: ``points``)
+    listed: int | None = None
 
     @property
     def designs_per_min(self) -> float | None:
@@ -103,7 +106,8 @@ class RunResult:
         return 60.0 * self.computed / self.compute_s if self.computed and self.compute_s > 0 else None
 
     def as_dict(self) -> dict:
-        return {"points": self.points, "done": self.done, "ok": self.ok, "refused": self.refused,
+        return {"points": self.points, "listed": self.listed if self.listed is not None else self.points,
+                "done": self.done, "ok": self.ok, "refused": self.refused,
                 "failed": self.failed, "computed": self.computed, "skipped": self.skipped,
                 "store": str(self.store), "model_version": self.model_version, "wall_s": self.wall_s,
                 "compute_s": self.compute_s, "designs_per_min": self.designs_per_min, "workers": self.workers,
@@ -208,7 +212,10 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
     finally:
         store.close()
     compute_s = (t_last - t_first) if (t_first is not None and t_last is not None) else 0.0
-    res = RunResult(points=len(keys), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
+    if len(keys) < len(points):
+        log.warning(f"{len(points)} points listed, {len(keys)} distinct designs: a repeated design is computed "
+                    "and counted once")
+    res = RunResult(points=len(keys), listed=len(points), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
                     model_version=version, wall_s=time.perf_counter() - t_start, compute_s=compute_s,
                     workers=n_workers, scheduler=label, keys=tuple(keys), interrupted=interrupted,
                     error_keys=tuple(h for h in keys if h in want_errors), **c)
@@ -236,11 +243,6 @@ def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=fr
 # ---------------------------------------------------------------------------------------
 # a whole study: run, export, charts, summary
 # ---------------------------------------------------------------------------------------
-def default_out(spec_source: str) -> Path:
-    """Default output folder of a spec: ``<spec stem>-study`` beside the current folder."""
-    return Path(f"{Path(spec_source).stem}-study")
-
-
 def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: str | None = None,
               retry_failed: bool = False, progress: bool = True, charts: bool = True) -> dict:
     """Run a parameter study into a folder, resumably: every point through the full
@@ -302,7 +304,8 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
         files.append(parallel_coordinates(frame, spec, out / "charts" / "parallel_coordinates.png"))
     summary.update(design=spec.design, method=spec.method, spec=spec.source, out=str(out),
                    feasible=int(frame["feasible"].fillna(0).astype(int).sum()) if len(frame) else 0,
-                   files=[str(f) for f in files])
+                   files=[str(f) for f in files], charts=bool(charts), keys=list(res.keys),
+                   fingerprint=fingerprint(spec.source, spec.text))
     write(out / "summary.json", summary, indent=1)
     summary["files"].append(str(out / "summary.json"))
     return summary
