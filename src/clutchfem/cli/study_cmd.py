@@ -16,7 +16,18 @@ from rich.table import Table
 
 from ..core import ClutchfemError
 from . import options as O
-from .common import check_cluster, check_out_dir, console, design_from, engine_from, err, fail, material_from, operating_point, wrote
+from .common import (
+    check_cluster,
+    check_out_dir,
+    console,
+    design_from,
+    engine_from,
+    err,
+    fail,
+    material_from,
+    operating_point,
+    wrote,
+)
 
 
 @contextlib.contextmanager

@@ -42,9 +42,9 @@ from ..clutch import EngineCurve
 from ..core import InputError, ParameterError
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import Design, OperatingPoint
+from .cluster import check_address, local_cluster, workers_machine_holds
 from .hashing import design_hash
 from .point import COLUMNS, Settings, model_version
-from .cluster import check_address, local_cluster, workers_machine_holds
 from .runner import run_points
 from .store import ResultStore
 from .values import changed_texts

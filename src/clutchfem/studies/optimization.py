@@ -61,7 +61,7 @@ from ..core import InputError, ParameterError, clean
 from ..geometry import ConceptParams
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
-from .targets import BIND_SHARE, OBJECTIVES, Targets
+from .targets import Targets
 
 #: an objective improvement smaller than this share is noise, not success
 NOISE_OBJ = 1e-3
