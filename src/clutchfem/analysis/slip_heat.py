@@ -78,7 +78,7 @@ def slip_heat(design: Design, engine: EngineCurve | None = None, *, part: Therma
     >>> run.doc["slip_status"], run.doc["peak_temperature_C"] > run.doc["ambient_temperature_C"]
     ('slips', True)
     """
-    engine = engine if engine is not None else EngineCurve.default()
+    engine = EngineCurve.of(engine)
     part = part or ThermalMaterial()
     env = env or ThermalEnvironment()
     scenario = scenario or SlipScenario()

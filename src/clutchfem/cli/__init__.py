@@ -15,9 +15,11 @@ import sys
 from typing import Annotated, Optional
 
 import typer
+from typer._click.exceptions import ClickException  # typer vendors click (its BadParameter's base)
 
 from .. import __version__
 from .analyze_cmd import analyze
+from .cache_cmd import cache
 from .compensate_cmd import compensate
 from .demo_cmd import demo
 from .geometry_cmd import geometry
@@ -49,6 +51,7 @@ _COMMANDS = [
     (guidelines, "guidelines", "Studies", "clutchfem guidelines concept4 --params flexure_thickness,shoe_arc"),
     (validate, "validate", "Checks", "clutchfem validate --docs docs/validation.md --out docs/img/validation"),
     (demo, "demo", "Checks", "clutchfem demo --out out/demo"),
+    (cache, "cache", "Checks", "clutchfem cache --clear"),
 ]
 for _fn, _name, _panel, _example in _COMMANDS:
     app.command(_name, rich_help_panel=_panel, epilog=f"Example: {_example}")(_fn)
@@ -83,7 +86,22 @@ def main() -> None:
     from ..core import tune_malloc
 
     tune_malloc()  # this process is clutchfem's: freed arrays stay for the next design
-    app()
+    if sys.stderr.isatty():
+        app()
+        return
+    # standard error is a file or a pipe: a usage error is one `error:` line (typer draws a
+    # box wrapped at 80 columns, and a script reading the first line got "Usage: ...")
+    try:
+        code = app(standalone_mode=False)
+    except ClickException as exc:
+        ctx = getattr(exc, "ctx", None)
+        where = f" (see {ctx.command_path} --help)" if ctx is not None else ""
+        print(f"error: {exc.format_message()}{where}", file=sys.stderr)
+        raise SystemExit(exc.exit_code) from None
+    except typer.Abort:
+        print("aborted", file=sys.stderr)
+        raise SystemExit(1) from None
+    raise SystemExit(code if isinstance(code, int) else 0)
 
 
 __all__ = ["app", "main"]

@@ -8,6 +8,7 @@ option then answer in a fraction of a second instead of loading the FE stack (~3
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 from typing import Optional
 
@@ -17,8 +18,10 @@ from rich.markup import escape
 
 from ..core import InputError, ParameterError, UnitError, expected_text, parse_quantity
 
-console = Console()
-err = Console(stderr=True)
+# Written to a file or a pipe, a message is one line however long (a script reads whole
+# lines: a refusal or a WARNING wrapped at 80 columns lost its end); tables keep their width.
+console = Console(soft_wrap=not sys.stdout.isatty())
+err = Console(stderr=True, soft_wrap=not sys.stderr.isatty())
 
 __all__ = ["check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
            "operating_point", "quantity", "requirements_from", "wrote"]

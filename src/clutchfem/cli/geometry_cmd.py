@@ -15,7 +15,7 @@ from rich.table import Table
 from ..core import ClutchfemError, format_quantity
 from ..core import write as write_json
 from . import options as O
-from .common import check_out_dir, console, design_from, fail, wrote
+from .common import check_out_dir, console, design_from, err, fail, wrote
 
 
 def geometry(
@@ -31,12 +31,14 @@ def geometry(
 ):
     """Build one concept: write its .msh mesh (with physical groups), a labelled drawing and a
     summary (mass, mesh size)."""
-    from ..geometry import concepts, get_concept
+    from ..geometry import broken_concepts, concepts, get_concept
 
     try:
         if list_:
             for name in concepts():
                 print(name)
+            for path, error in broken_concepts().items():  # on stderr: stdout stays one name a line
+                err.print(escape(f"not loaded: {path}: {error}"), soft_wrap=True)
             return
         if concept is None:
             raise ClutchfemError("give a concept name (see clutchfem geometry --list)")

@@ -16,6 +16,7 @@ points is an ASSUMPTION** (a smooth hump typical of 2-stroke saw engines); it is
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -75,9 +76,14 @@ class EngineCurve:
     _interp: PchipInterpolator = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        rpm = np.asarray(self.rpm, dtype=float).ravel()
-        tq = np.asarray(self.torque, dtype=float).ravel()
         where = f"engine curve ({self.source})"
+        try:
+            rpm = np.asarray(self.rpm, dtype=float).ravel()
+            tq = np.asarray(self.torque, dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise InputError(f"{where}: rpm and torque must be sequences of numbers (rpm, N m), got "
+                             f"{type(self.rpm).__name__} {self.rpm!r:.60} and {type(self.torque).__name__} "
+                             f"{self.torque!r:.60}") from None
         if rpm.size != tq.size:
             raise InputError(f"{where}: {rpm.size} rpm values but {tq.size} torque values")
         if rpm.size < 2:
@@ -140,6 +146,20 @@ class EngineCurve:
         t = read_engine_csv(path)
         source = str(path) + (f" ({'; '.join(t.notes)})" if t.notes else "")
         return cls(t.rpm, t.torque, source=source, assumed=False, idle_rpm=idle_rpm)
+
+    @classmethod
+    def of(cls, value, name: str = "engine") -> "EngineCurve":
+        """The engine curve an API argument means: None -> the built-in (ASSUMED) curve, an
+        :class:`EngineCurve` as it is, a path (str or Path) -> :meth:`from_csv`; anything
+        else is refused naming the argument ``name``."""
+        if value is None:
+            return cls.default()
+        if isinstance(value, cls):
+            return value
+        if isinstance(value, (str, os.PathLike)):
+            return cls.from_csv(value)
+        raise ParameterError(name, type(value).__name__, "an EngineCurve, the path of an engine curve CSV, or None "
+                             "(the built-in curve)")
 
     # ---- queries --------------------------------------------------------------------
     @property

@@ -31,6 +31,7 @@ from __future__ import annotations
 import codecs
 import csv
 import io
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -146,6 +147,8 @@ def read_engine_csv(path: str | Path) -> EngineTable:
     """The engine curve of a CSV file (module docstring); refusals are
     :class:`~clutchfem.core.InputError` naming the file, the row or column and what is
     wrong."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise InputError(f"engine curve file: a path (str or Path), not {type(path).__name__} {path!r:.60}")
     path = Path(path)
     if not path.is_file():
         raise InputError(f"engine curve file not found (or not a file): {path}")

@@ -13,6 +13,8 @@ from typing import Any
 
 #: public name -> the module of this package it lives in
 _NAMES: dict[str, str] = {
+    "as_bool": "args",
+    "as_path": "args",
     "brentq": "roots",
     "choice": "params",
     "clean": "jsonio",

@@ -14,7 +14,7 @@ import pandas as pd
 
 from ..analysis import Requirements, analyze
 from ..clutch import EngineCurve
-from ..core import InputError, clean, write
+from ..core import InputError, as_path, clean, write
 from ..durability import render_png, write_vtu
 from ..loadcase import Design, design_inputs
 from .html import write_page
@@ -66,9 +66,9 @@ def design_report(design: Design, out, *, engine: EngineCurve | None = None,
     if not isinstance(design, Design):
         raise InputError(f"report: design must be a clutchfem Design (Design.from_concept or Design.from_mesh), "
                          f"not {type(design).__name__}")
-    out = Path(out)
+    out = as_path(out, "out", "the folder to write")
     out.mkdir(parents=True, exist_ok=True)
-    engine = engine if engine is not None else EngineCurve.default()
+    engine = EngineCurve.of(engine)
     an = analysis if analysis is not None else analyze(design, engine=engine, requirements=requirements,
                                                        errors=errors)
     concept = design.concept if design.params is not None else None

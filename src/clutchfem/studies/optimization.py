@@ -272,6 +272,8 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
     t0 = time.perf_counter()
     p0 = settings.params()
     P = type(p0)
+    if isinstance(free, str):  # "a,b" or one name
+        free = [x.strip() for x in free.split(",") if x.strip()]
     free = list(free) if free else default_free(P)
     if not free:
         raise InputError(f"{settings.concept}: no free parameters to optimise (give --free p1,p2,...)")
