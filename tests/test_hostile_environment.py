@@ -176,3 +176,42 @@ def test_refusals_and_usage_errors_are_one_line_on_a_pipe():
     r = _cli("analyze", "concept1", "--no-such-option")
     lines = r.stderr.strip().splitlines()
     assert r.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: No such option: --no-such-option")
+
+
+# ---- a headless machine ------------------------------------------------------------------
+RENDER = """
+import sys
+from pathlib import Path
+import meshio, numpy as np
+from clutchfem.fe.vtu import render_png
+pts = np.array([[0, 0, 0], [1e-2, 0, 0], [0, 1e-2, 0], [1e-2, 1e-2, 0]], float)
+meshio.Mesh(pts, [("triangle", np.array([[0, 1, 2], [1, 3, 2]]))],
+            point_data={"displacement_m": np.zeros((4, 3)), "von_mises_Pa": np.arange(4.0)}).write(sys.argv[1])
+print(render_png(Path(sys.argv[1]), Path(sys.argv[1]).with_suffix(".png")))
+"""
+
+
+def test_a_render_on_a_headless_machine_prints_no_x_server_warning(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
+    env["PYTHONPATH"] = str(ROOT / "src")
+    r = subprocess.run([sys.executable, "-c", RENDER, str(tmp_path / "f.vtu")], env=env, capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "X server" not in r.stderr and "WARN" not in r.stderr, r.stderr
+    if r.stdout.strip() == "None":
+        pytest.skip("no off-screen OpenGL on this machine (the .vtu is still written)")
+    assert (tmp_path / "f.png").stat().st_size > 1000
+
+
+# ---- progress on a terminal, never in --json standard output -------------------------------
+def test_a_single_design_command_shows_its_stages_on_a_terminal_and_keeps_json_clean(tmp_path):
+    args = ("solve", "concept1", "--mesh-size", "3mm", "--rpm", "8000", "--no-errors", "--json")
+    env = {"CLUTCHFEM_CACHE": str(tmp_path)}
+    r = _cli(*args, env={**env, "FORCE_COLOR": "1"})  # rich takes stderr for a terminal
+    assert r.returncode == 0, r.stderr
+    import json
+
+    assert json.loads(r.stdout)  # standard output is the JSON alone
+    assert "solve concept1: meshing" in r.stderr and "solve concept1: 1 speed " in r.stderr
+    piped = _cli(*args, env=env)  # a pipe: no spinner
+    assert piped.returncode == 0 and "meshing" not in piped.stderr and json.loads(piped.stdout)

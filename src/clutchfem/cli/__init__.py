@@ -78,7 +78,10 @@ def main() -> None:
     log.addHandler(handler)
     log.setLevel(logging.INFO)
 
+    stopped = []
+
     def interrupted(signum, frame):  # one line, exit 130, finally-blocks still run
+        stopped.append(signum)
         print("\ninterrupted (Ctrl-C): unfinished work is not written", file=sys.stderr)
         raise SystemExit(130)
 
@@ -86,6 +89,18 @@ def main() -> None:
     from ..core import tune_malloc
 
     tune_malloc()  # this process is clutchfem's: freed arrays stay for the next design
+    try:
+        _run()
+    except Exception:
+        # Ctrl-C while a library imports (scipy wraps what its import raised in an
+        # ImportError): the interrupt it was, not a traceback
+        if stopped:
+            raise SystemExit(130) from None
+        raise
+
+
+def _run() -> None:
+    """The app, with usage errors as one line when standard error is not a terminal."""
     if sys.stderr.isatty():
         app()
         return

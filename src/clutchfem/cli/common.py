@@ -7,6 +7,7 @@ option then answer in a fraction of a second instead of loading the FE stack (~3
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 from pathlib import Path
@@ -23,7 +24,28 @@ from ..core import InputError, ParameterError, UnitError, expected_text, parse_q
 console = Console(soft_wrap=not sys.stdout.isatty())
 err = Console(stderr=True, soft_wrap=not sys.stderr.isatty())
 
-__all__ = ["check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
+
+@contextlib.contextmanager
+def working(what: str):
+    """Progress of a step that runs for seconds (meshing, solving, a report): a spinner with
+    ``what``, the current stage and the elapsed time on standard error, cleared when the step
+    ends.  Only on a terminal: a pipe or a file gets nothing, and standard output (--json) is
+    never touched.  Yields ``stage(text)``, which names the current stage.
+
+    Why a spinner and not a bar: one design's steps have no count to show (a study's points
+    do: their bar, with rate and ETA, is the study engine's)."""
+    if not err.is_terminal:
+        yield lambda text: None
+        return
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    bar = Progress(SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn(), console=err,
+                   transient=True, redirect_stdout=False, redirect_stderr=False)
+    with bar:
+        task = bar.add_task(escape(what))
+        yield lambda text: bar.update(task, description=escape(f"{what}: {text}"))
+
+__all__ = ["working", "check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
            "operating_point", "quantity", "requirements_from", "wrote"]
 
 

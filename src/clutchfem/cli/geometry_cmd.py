@@ -15,7 +15,7 @@ from rich.table import Table
 from ..core import ClutchfemError, format_quantity
 from ..core import write as write_json
 from . import options as O
-from .common import check_out_dir, console, design_from, err, fail, wrote
+from .common import check_out_dir, console, design_from, err, fail, working, wrote
 
 
 def geometry(
@@ -74,7 +74,9 @@ def build_geometry(c, set_, out: Path, mesh_size, model: str, drawing: bool) -> 
 
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    design = design_from(c.name, list(set_), None, mesh_size=mesh_size, model=model)
+    with working(f"geometry {c.name}") as stage:
+        stage("building and meshing")
+        design = design_from(c.name, list(set_), None, mesh_size=mesh_size, model=model)
     wall = time.perf_counter() - t0
     cm, p = design.cm, design.params
     label = design_label(design)

@@ -164,6 +164,10 @@ def slip_heat_files(run, out) -> list[Path]:
     if result is not None:
         title = (f"{doc['design']}: {result.slip_power_W:.0f} W slip at {result.slip_rpm:.0f} rpm, "
                  f"{result.partition.fraction_part:.0%} into the part; {result.seconds:g} s x {doc['cycles']}")
+        if doc.get("validity"):  # where the model stops holding (durability.heat.validity)
+            title += "\nMODEL LIMITS: " + ", ".join(f"{f['flag']} at {f['time_s']:.1f} s" for f in doc["validity"])
+            if doc.get("stopped_at_s") is not None:
+                title += f"; answers cut at {doc['stopped_at_s']:.1f} s (curves beyond: not valid)"
         jobs.append((".vtu", lambda p: write_vtu(design.cm, result, p)))
         jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title)))
     jobs.append((".json", lambda p: write(p, doc, indent=2)))

@@ -288,6 +288,13 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
     def n_evals() -> int:
         return counts["ok"] + counts["failed"] + counts["crashed"] + counts["timeout"]
 
+    def tally() -> str:
+        """The progress of a log line: evaluations of the budget, elapsed time and an upper
+        bound of the time left (the search may converge before its budget)."""
+        n, el = n_evals(), time.perf_counter() - t0
+        left = f", at most ~{el / n * (max_evals - n):.0f} s left" if 0 < n < max_evals else ""
+        return f" [{n} of at most {max_evals} evaluations, {el:.0f} s{left}]"
+
     def run(xs: list[np.ndarray], phase: str, it: int) -> list[tuple[dict | None, np.ndarray]]:
         """Evaluate the designs at normalised ``xs`` not seen before (one parallel batch);
         (row or None, snapped x) per x."""
@@ -314,7 +321,7 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
     r0, x_inc = run([x0], "start", 0)[0]  # (the start snapped to the resolution)
     inc = r0 if r0 is not None and math.isfinite(r0["assessment"]["h"]) else None
     if log and r0 is not None:
-        log(_line("start", r0) if inc is not None else f"start: {r0['status']}: {r0['message']}")
+        log((_line("start", r0) if inc is not None else f"start: {r0['status']}: {r0['message']}") + tally())
     # space-filling search (parallel): Sobol in the box around the start, half the range wide
     if sample:
         m = max(1, int(round(math.log2(max(sample, 1)))))
@@ -324,7 +331,7 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
             if row is not None and better(row["assessment"], None if inc is None else inc["assessment"]):
                 inc, x_inc = row, xsn
         if log:
-            log(f"sample of {len(xs)}: " + (_line("best", inc) if inc is not None else "no valid design"))
+            log(f"sample of {len(xs)}: " + (_line("best", inc) if inc is not None else "no valid design") + tally())
     if inc is None:
         raise InputError(f"{settings.concept}: neither the start design nor any of the {sample} sample designs could "
                          "be evaluated (refused or failed); give another start (--set) or narrower --range")
@@ -355,7 +362,7 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
         move = (x_inc - x_old) if improved else None
         delta = min(0.25, 2 * delta) if improved else delta / 2
         if log:
-            log(f"poll {it} (step {delta:.4f} of the ranges): " + _line("incumbent", inc))
+            log(f"poll {it} (step {delta:.4f} of the ranges): " + _line("incumbent", inc) + tally())
     for r in path:
         r["incumbent"] = r is inc
     a = inc["assessment"]
