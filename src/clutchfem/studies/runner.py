@@ -69,9 +69,11 @@ from .store import STORE_NAME, ResultStore, StoreLocked
 log = logging.getLogger("clutchfem")
 
 #: a study with at most this many points to compute runs them in this process when no
-#: worker count is given: below it a local cluster's start (~3 s for 2 workers, warm-up
-#: included) costs more than it saves (crossover measured: BENCHMARKS.md, "study reruns")
-IN_PROCESS_MAX = 3
+#: worker count is given: below it a local cluster's start (20-25 s for 2 workers, warm-up
+#: included, on the shared 2-core machine; some starts took ~95 s) costs more than the second
+#: worker saves (measured: 8 points 13.7 s in process against 37.2 s on 2 workers;
+#: BENCHMARKS.md, "Study reruns and the in-process crossover")
+IN_PROCESS_MAX = 8
 
 
 @dataclass(frozen=True)
@@ -176,6 +178,10 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         tally = {"ok": 0, "refused": 0, "failed": 0}
         try:
             if todo:
+                if progress and not (n_workers == 0 and scheduler is None):
+                    log.info(f"{desc}: {len(todo)} design(s) to compute; starting {label} (its workers load "
+                             "the FE stack: seconds before the first design)" if scheduler is None else
+                             f"{desc}: {len(todo)} design(s) to compute; connecting to the scheduler at {label}")
                 rows = (_in_process(todo, tasks, settings, want_errors) if n_workers == 0 and scheduler is None
                         else rows_on_dask(todo, tasks, settings, version, n_workers, scheduler, want_errors))
                 for row in rows:
