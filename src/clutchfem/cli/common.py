@@ -16,6 +16,7 @@ from typing import Optional
 import typer
 from rich.console import Console
 from rich.markup import escape
+from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn  # 0.04 s
 
 from ..core import InputError, ParameterError, UnitError, expected_text, parse_quantity
 
@@ -37,8 +38,6 @@ def working(what: str):
     if not err.is_terminal:
         yield lambda text: None
         return
-    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
-
     bar = Progress(SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn(), console=err,
                    transient=True, redirect_stdout=False, redirect_stderr=False)
     with bar:
