@@ -47,8 +47,10 @@ def test_past_the_phase_change_the_transient_is_cut_there_and_melting_is_only_a_
     assert "stopped there" in flags["phase change"]["meaning"] and "not an answer" in flags["melting"]["meaning"]
     assert flags["melting"]["time_s"] == pytest.approx(2.0 + (MELTING_C - 900.0) / 600.0)
     # every reported number is from before the cut: no 1873 C, no 955 C, no late limit crossing
-    assert v["series"]["times_s"] == [0.0, 1.0, 2.0] and v["peak_temperature_C"] == 900.0
-    assert v["flexure_temperature_C"] == 400.0 and v["time_to_limit_s"] is None and v["cycles_table"] == []
+    assert v["series"]["times_s"] == [0.0, 1.0, pytest.approx(stop)]
+    assert v["peak_temperature_C"] == pytest.approx(PHASE_CHANGE_C) and v["peak_time_s"] == pytest.approx(stop)
+    assert v["flexure_temperature_C"] == pytest.approx(100.0 + (stop - 1.0) * 300.0)
+    assert v["time_to_limit_s"] is None and v["cycles_table"] == []
 
 
 def test_a_clearance_closed_by_thermal_growth_is_flagged():
@@ -63,3 +65,16 @@ def test_a_clearance_closed_by_thermal_growth_is_flagged():
     tight = slip_heat_validity(_doc([25.0, 30.0], part_mean=[25.0, 30.0]), limit_C=400.0, clearance_m=1e-6,
                                contact_radius_m=r)
     assert [x["flag"] for x in tight["validity"]] == ["clearance closed"]
+
+
+def test_another_materials_phase_change_and_melting_are_its_own():
+    """An aluminium part melts near 600 C: the steel defaults would have let 700 C pass."""
+    from clutchfem.durability import ThermalMaterial
+
+    al = ThermalMaterial(limit_temperature=150.0, phase_change_temperature=580.0, melting_temperature=600.0)
+    v = slip_heat_validity(_doc([25.0, 500.0, 700.0], seconds=2.0), limit_C=al.limit_temperature,
+                           phase_change_C=al.phase_change_temperature, melting_C=al.melting_temperature)
+    assert [f["flag"] for f in v["validity"]] == ["tempering", "phase change", "melting"]
+    assert v["stopped_at_s"] == pytest.approx(1.4) and v["peak_temperature_C"] == pytest.approx(580.0)
+    with pytest.raises(Exception, match="phase_change_temperature"):
+        ThermalMaterial(phase_change_temperature=5000.0)

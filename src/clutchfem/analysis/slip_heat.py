@@ -149,7 +149,9 @@ def slip_heat(design: Design, engine: EngineCurve | None = None, *, part: Therma
     g0 = case.contact.nodes.gap0
     clearance = float(g0.min()) if len(g0) else None
     doc.update(slip_heat_validity(doc, limit_C=part.limit_temperature, clearance_m=clearance,
-                                  contact_radius_m=None if clearance is None else design.drum_radius - clearance))
+                                  contact_radius_m=None if clearance is None else design.drum_radius - clearance,
+                                  phase_change_C=part.phase_change_temperature,
+                                  melting_C=part.melting_temperature))
     if not doc["valid"] and doc.get("flexure_temperature_C") is not None:
         doc["yield_strength_at_flexure_peak_Pa"] = float(part.yield_ratio(doc["flexure_temperature_C"])
                                                          * part.yield_strength)

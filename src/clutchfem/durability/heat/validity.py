@@ -12,12 +12,13 @@ above steel's melting point, without a word).  Levels, hottest node of the part
   steel softens for good; k, c, mu and the hot yield strength are extrapolated: the
   temperatures past it are an estimate and the damage at least that of reaching the limit
   (an upper bound on the life left). The answer stands, flagged.
-* ``phase change`` at :data:`PHASE_CHANGE_C` = 727 C (the eutectoid A1 of carbon steels,
+* ``phase change`` at ``ThermalMaterial.phase_change_temperature``, default
+  :data:`PHASE_CHANGE_C` = 727 C (the eutectoid A1 of carbon steels,
   ASSUMED for 51CrV4 whose Ac1 is ~740 C by EN 10089 data): the steel starts to turn
   austenitic, absorbs latent heat and is rehardened/softened on cooling; the model has no
   latent heat.  **The transient is stopped there**: every series, peak and event row is
   cut at the crossing and the answer says so.
-* ``melting`` at :data:`MELTING_C` = 1420 C (solidus of low-alloy steels, ASSUMED; ~1450 C
+* ``melting`` at ``ThermalMaterial.melting_temperature``, default :data:`MELTING_C` = 1420 C (solidus of low-alloy steels, ASSUMED; ~1450 C
   is often quoted for the liquidus): flagged, and the answer is cut as for a phase change
   (it is past it by then).
 * ``clearance closed``: the part grows by ``alpha (T_mean - T_ambient) r`` at radius ``r``
@@ -58,7 +59,8 @@ def _crossing(t: np.ndarray, y: np.ndarray, level: float) -> tuple[int, float] |
 
 
 def slip_heat_validity(doc: dict, *, limit_C: float, clearance_m: float | None = None,
-                       contact_radius_m: float | None = None) -> dict:
+                       contact_radius_m: float | None = None, phase_change_C: float = PHASE_CHANGE_C,
+                       melting_C: float = MELTING_C) -> dict:
     """The validity flags of a slip-heat answer ``doc`` (the JSON of
     :meth:`SlipHeatResult.to_json`), and the answer cut at a phase change or melting.
 
@@ -69,6 +71,10 @@ def slip_heat_validity(doc: dict, *, limit_C: float, clearance_m: float | None =
         ``ambient_temperature_C``, ``cycles_table``, ``seconds`` and ``pause_s``.
     limit_C : float
         The tempering (limit) temperature [C].
+    phase_change_C, melting_C : float, optional
+        The material's phase change and melting temperatures [C] (defaults: steel, module
+        docstring; ``ThermalMaterial.phase_change_temperature`` / ``melting_temperature``
+        for another material, e.g. aluminium, which melts near 600 C).
     clearance_m, contact_radius_m : float, optional
         Radial clearance between the shoes and the drum at rest [m] and the contact radius
         [m]; without them the clearance is not checked.
@@ -103,9 +109,9 @@ def slip_heat_validity(doc: dict, *, limit_C: float, clearance_m: float | None =
                                  "past it, so later temperatures are estimates and the damage is at least that of "
                                  "reaching the limit"})
     stop = None
-    for flag, level, what in (("phase change", PHASE_CHANGE_C, "the steel starts to turn austenitic (A1, ASSUMED): "
-                               "latent heat and rehardening the model does not have"),
-                              ("melting", MELTING_C, "the surface melts (solidus, ASSUMED)")):
+    for flag, level, what in (("phase change", phase_change_C, "the material changes phase (steel: austenite "
+                               "starts at A1, ASSUMED): latent heat and rehardening the model does not have"),
+                              ("melting", melting_C, "the surface melts (solidus, ASSUMED)")):
         c = _crossing(t, pmax, level)
         if c is None:
             continue
@@ -130,16 +136,23 @@ def slip_heat_validity(doc: dict, *, limit_C: float, clearance_m: float | None =
     out["validity"] = flags
     if stop is not None:
         k, ts = stop
-        cut = {name: (None if v is None else list(v[:k + 1])) for name, v in s.items()}
-        cut["times_s"] = list(t[:k + 1])
+        # every series up to the crossing, ending at it (linear between the steps around it)
+        f = 0.0 if k == 0 else (ts - t[k - 1]) / (t[k] - t[k - 1])
+
+        def upto(v):
+            v = np.asarray(v, dtype=float)
+            return list(v[:k]) + [float(v[k] if k == 0 else v[k - 1] + f * (v[k] - v[k - 1]))]
+
+        cut = {name: (None if v is None else upto(v)) for name, v in s.items()}
+        cut["times_s"] = list(t[:k]) + [ts]
         pm = np.asarray(cut["part_max_C"])
         kp = int(np.argmax(pm))
         out.update({"valid": False, "stopped_at_s": ts, "series": cut,
-                    "peak_temperature_C": float(pm[kp]), "peak_time_s": float(t[kp])})
+                    "peak_temperature_C": float(pm[kp]), "peak_time_s": float(cut["times_s"][kp])})
         flex = cut.get("flexure_C")
         if flex:
             kf = int(np.argmax(flex))
-            out.update({"flexure_temperature_C": float(flex[kf]), "flexure_peak_time_s": float(t[kf])})
+            out.update({"flexure_temperature_C": float(flex[kf]), "flexure_peak_time_s": float(cut["times_s"][kf])})
         if doc.get("time_to_limit_s") is not None and doc["time_to_limit_s"] > ts:
             out["time_to_limit_s"] = None
         period = float(doc["seconds"]) + float(doc.get("pause_s") or 0.0)
