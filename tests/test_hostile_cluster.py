@@ -202,6 +202,11 @@ def test_no_workers_and_a_dead_worker_stop_the_study_with_the_rows_kept(tmp_path
                                "127.0.0.1"], env=_env(), stdout=log, stderr=log, start_new_session=True)
     killer = None
     try:
+        from distributed import Client
+
+        with Client(scheduler, timeout="30s") as c:  # the worker has joined (seconds on a loaded machine)
+            c.wait_for_workers(1, timeout=120)
+
         def kill_after_first_row():
             t0 = time.time()
             while time.time() - t0 < 120:

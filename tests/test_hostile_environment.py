@@ -5,6 +5,7 @@ one broken plug-in breaking every concept, API calls with a wrong type, refusals
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -209,8 +210,6 @@ def test_a_single_design_command_shows_its_stages_on_a_terminal_and_keeps_json_c
     env = {"CLUTCHFEM_CACHE": str(tmp_path)}
     r = _cli(*args, env={**env, "FORCE_COLOR": "1"})  # rich takes stderr for a terminal
     assert r.returncode == 0, r.stderr
-    import json
-
     assert json.loads(r.stdout)  # standard output is the JSON alone
     assert "solve concept1: meshing" in r.stderr and "solve concept1: 1 speed " in r.stderr
     piped = _cli(*args, env=env)  # a pipe: no spinner
