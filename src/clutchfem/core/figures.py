@@ -47,7 +47,8 @@ def _texts(artists) -> list[str]:
 
 def _data_points(ax):
     """Display coordinates of the data an axes shows: its lines sampled along their segments
-    (10 points a segment) and its scatter points, clipped to the axes."""
+    (10 points a segment), its scatter points and its bars (a 5 x 5 grid over each; shaded
+    bands across the whole axes are no data), clipped to the axes."""
     pts = []
     for ln in ax.lines:
         if not ln.get_visible():
@@ -66,10 +67,19 @@ def _data_points(ax):
         if c.get_visible() and len(off) and type(c).__name__ == "PathCollection":
             o = np.asarray(off, dtype=float)
             pts.append(c.get_offset_transform().transform(o[np.isfinite(o).all(axis=1)]))
+    bb = ax.get_window_extent()
+    g = np.linspace(0.0, 1.0, 5)
+    for r in ax.patches:
+        if not r.get_visible() or type(r).__name__ != "Rectangle":
+            continue
+        e = r.get_window_extent()
+        if e.width >= 0.95 * bb.width or e.height >= 0.95 * bb.height or e.width * e.height <= 0:
+            continue
+        gx, gy = np.meshgrid(e.x0 + g * e.width, e.y0 + g * e.height)
+        pts.append(np.column_stack([gx.ravel(), gy.ravel()]))
     if not pts:
         return np.zeros((0, 2))
     p = np.concatenate(pts)
-    bb = ax.get_window_extent()
     inside = (p[:, 0] >= bb.x0) & (p[:, 0] <= bb.x1) & (p[:, 1] >= bb.y0) & (p[:, 1] <= bb.y1)
     return p[inside]
 
@@ -79,11 +89,13 @@ def describe(fig) -> dict:
     Draws the figure (the legends' places are known after a draw)."""
     fig.canvas.draw()
     axes, legends = [], []
-    for ax in fig.axes:
+    for ax in fig.axes + [c for a in fig.axes for c in a.child_axes]:  # (secondary axes are children)
         if not ax.get_visible():
             continue
         leg = ax.get_legend()
-        entry = {"title": " ".join(t for t in (ax.get_title(loc) for loc in ("left", "center", "right")) if t),
+        titled = hasattr(ax, "get_title")  # (a secondary axis has labels only)
+        entry = {"title": " ".join(t for t in (ax.get_title(loc) for loc in ("left", "center", "right")) if t)
+                 if titled else "",
                  "xlabel": ax.get_xlabel(), "ylabel": ax.get_ylabel(), "texts": _texts(ax.texts),
                  "legend": _texts(leg.get_texts()) if leg is not None else [],
                  "xticks": bool(ax.xaxis.get_visible() and len(ax.get_xticklabels())),

@@ -6,8 +6,8 @@
   mass, contact arc), the requirement limits drawn as dashed lines and named with their
   value in the panel's title (a x idle, b x rpm of max torque, the engine's maximum torque,
   yield / min safety factor), feasible designs filled, the rest hollow; a refused or failed
-  design has no answer and is not drawn as one: a dotted vertical marks its input value;
-  the legend sits under the panels;
+  design has no answer and is not drawn as one: an x on the x axis line (in its series'
+  colour) marks its input value; the legend sits under the panels;
 * :func:`parallel_coordinates`: one line per answered design over the varied inputs and
   the main answers (each axis scaled to its own range, its ends labelled with units),
   feasible designs in green, the others coloured by their largest requirement shortfall
@@ -127,8 +127,10 @@ def answers_vs_inputs(frame, spec, outdir: str | Path) -> list[Path]:
             if lim is not None and math.isfinite(lim):
                 ax.axhline(lim, color="C3", ls="--", lw=1.2)
                 head += f"\n- - {lim_label} = {_fmt_limit(lim, title)}"
-            for xv in sorted(set(x[bad].tolist())):  # no answer there: not a data point
-                ax.axvline(xv, color="0.45", ls=":", lw=1.0)
+            if bad.any():  # no answer there: marked on the x axis line, never at a value
+                ax.scatter(x[bad], np.zeros(int(bad.sum())), marker="x", s=36, linewidths=1.6, zorder=5,
+                           c=[colours[i] for i in np.nonzero(bad)[0]], clip_on=False,
+                           transform=ax.get_xaxis_transform())
             ax.set_title(head, fontsize=9)
             ax.set_xlabel(axis.label(), fontsize=8)
             ax.set_ylabel(title, fontsize=8)
@@ -141,8 +143,8 @@ def answers_vs_inputs(frame, spec, outdir: str | Path) -> list[Path]:
                    Line2D([], [], ls="", marker="o", mfc="none", color="0.3", label="not feasible (hollow)"),
                    Line2D([], [], color="C3", ls="--", label="requirement limit")]
         if bad.any():
-            legend.append(Line2D([], [], color="0.45", ls=":",
-                                 label=f"refused / failed ({int(bad.sum())}): no answer at that input"))
+            legend.append(Line2D([], [], color="0.3", ls="", marker="x", mew=1.6,
+                                 label=f"on the x axis: refused / failed ({int(bad.sum())}), no answer"))
         if cmap_info is not None:
             g, lo, hi = cmap_info
             legend.append(Line2D([], [], ls="", label=f"colour: {g.label()} {lo:.4g} (purple) .. {hi:.4g} (yellow)"))
@@ -234,13 +236,15 @@ def parallel_coordinates(frame, spec, path: str | Path) -> Path:
     ax.set_xlim(-0.3, len(cols) - 0.7)
     for s in ("top", "right", "left"):
         ax.spines[s].set_visible(False)
-    title = (f"{spec.design}: {len(fi)} of {n} answered designs feasible (green; the others coloured by how "
-             "far they miss); red: requirement limits")
+    n_bad = int((frame["status"] != "ok").sum())
+    refused = f" ({n_bad} refused/failed: no answer, not drawn)" if n_bad else ""
+    title = (f"{spec.design}: {len(fi)} of {n} answered designs feasible{refused} (green; the others coloured by "
+             "how far they miss); red: requirement limits")
     if n and not len(fi):
         why = {"engagement": int((ok["engagement_ok"] == 0).sum()), "slip": int((ok["slip_ok"] == 0).sum()),
                "stress": int((ok["stress_ok"] == 0).sum())}
         worst = max(why, key=why.get)
-        title = (f"{spec.design}: no feasible design among {n} answered; requirements missed: "
+        title = (f"{spec.design}: no feasible design among {n} answered{refused}; requirements missed: "
                  + ", ".join(f"{k} {v}" for k, v in why.items()) + f" (most often: {worst})")
     ax.set_title(title, fontsize=10)
     save_figure(fig, path)
