@@ -64,13 +64,18 @@ def summary_table(res: GuidelineResult):
     return t
 
 
-#: marker cycle of the one-at-a-time lines (with 10 colours: 40 parameters told apart)
-MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
+#: colours of the one-at-a-time lines: matplotlib's tab10, then ten more of distinct hue and
+#: lightness (a concept has up to 16 studied parameters: no colour repeats below 20)
+COLOURS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C7", "C8", "C9",
+           "#000000", "#b8860b", "#000080", "#00a08a", "#ff00ff", "#8b0000", "#556b2f", "#00ced1",
+           "#ff7f50", "#4b0082")
+#: marker cycle: a new marker for each round of the colours (80 parameters told apart)
+MARKERS = ("o", "s", "^", "D")
 
 
 def _style(j: int) -> dict:
-    """Colour and marker of the j-th parameter (ranked): tab10 colours, a new marker every 10."""
-    return {"color": f"C{j % 10}", "marker": MARKERS[(j // 10 + j) % len(MARKERS)] if j >= 10 else "o"}
+    """Colour and marker of the j-th parameter (ranked): :data:`COLOURS`, a new marker each round."""
+    return {"color": COLOURS[j % len(COLOURS)], "marker": MARKERS[(j // len(COLOURS)) % len(MARKERS)]}
 
 
 def _value_text(v, col: str) -> str:
