@@ -32,7 +32,7 @@ facets' lengths: the consistent shares L/6, 2L/3, L/6 of a straight P2 facet).
 the same designs with a contact mesh ten times finer (``MeshSettings(contact_factor=0.05)``,
 its nodes 0.05 deg apart): on concepts 1 and 4 (default mesh, 0.51 deg node spacing, every
 25 rpm from engagement to 14 000 rpm) the ends' rms error is 0.055 deg (0.11 node spacings),
-the largest 0.15 deg (0.29 spacings), the arc's mean error +0.03..+0.05 deg; kappa = 1/3 .. 1
+the largest 0.15 deg (0.29 spacings), the arc's mean error +0.02..+0.04 deg; kappa = 1/3 .. 1
 gives rms errors within 0.02 deg of that, a larger kappa a smoother but longer arc
 (``benchmarks/bench_contact_arc.py``, BENCHMARKS.md "Contact arc between nodes"); against a
 case whose arc is known (a ring segment pressed into the drum, Hertz's half-width
