@@ -15,7 +15,8 @@ Groups (``--only``): ``study`` (the example spec: answers vs flexure thickness, 
 coordinates), ``guidelines`` (concept 4: elasticities, one at a time), ``optimize``
 (concept 4 from its defaults), ``compensate`` (concept 4 at 8000 rpm), ``tolerance`` (of the
 optimum, ``--n`` parts), ``report`` (the optimum's page and its screenshot), ``fields`` (von Mises of concept 4's
-default design at 14000 rpm, the ParaView series beside it).  ``--mesh-size`` is passed to
+default design at 14000 rpm, the ParaView series beside it), ``export`` (concept 4's drawing
+sheet for wire EDM).  ``--mesh-size`` is passed to
 the guideline, target and field commands (default: the tool's own default mesh); the study
 uses the example spec's own mesh (2 mm).  Other pictures have their own scripts:
 ``make_concept_docs.py`` (concept drawings), ``make_clutch_docs.py`` (clutch model),
@@ -36,7 +37,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-GROUPS = ("study", "guidelines", "optimize", "compensate", "tolerance", "report", "fields")
+GROUPS = ("study", "guidelines", "optimize", "compensate", "tolerance", "report", "fields", "export")
 CLI = [sys.executable, "-m", "clutchfem.cli"]
 LOG: list[dict] = []
 
@@ -138,6 +139,11 @@ def fields(a, out: Path, work: Path) -> None:
     run(["solve", "concept4", *mesh_args(a), "--rpm", "0:14000:250", "--vtk", "--vtk-rpm", "2000:14000:2000",
          "--out", str(work / "fields")])
     copy(one(work / "fields", "*fields_14000rpm.png"), out, "fields_von_mises.png")
+
+
+def export(a, out: Path, work: Path) -> None:
+    run(["export", "concept4", *mesh_args(a), "--process", "wire-edm", "--out", str(work / "export")])
+    copy(one(work / "export", "*_drawing.png"), out, "export_drawing_sheet.png")
 
 
 def main(argv=None) -> int:
