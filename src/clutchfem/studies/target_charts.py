@@ -135,7 +135,7 @@ def optimization_path(res, path) -> Path:
     if best is not None:
         ax.plot([], [], " ", label=f"best: {best['mass_kg'] * 1e3:.1f} g" if obj_mass
                 else f"best: {best['torque_margin_Nm']:+.2f} N m")
-    fig.legend(*ax.get_legend_handles_labels(), fontsize=7, ncol=4, loc="outside upper center")
+    fig.legend(*ax.get_legend_handles_labels(), fontsize=7, ncol=4, loc="outside lower center")
     ax.grid(alpha=0.3)
     fig.suptitle(f"{res.concept}: optimisation path ({len(res.path)} designs, {res.seconds:.0f} s)")
     for ax, (name, key, limit, sense) in zip(axes[1:], cons):
