@@ -10,7 +10,7 @@ OUT ?= out/demo
 # Shared libraries that the gmsh wheel loads (X/GL), OSMesa for off-screen pyvista renders,
 # SuiteSparse headers for the CHOLMOD solver back-end (scikit-sparse builds from source).
 APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 libgl1 libosmesa6 \
-            libsuitesparse-dev
+            libsuitesparse-dev chromium
 
 .PHONY: setup sysdeps demo test bench pictures clean
 

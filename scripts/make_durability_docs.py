@@ -25,9 +25,12 @@ import numpy as np  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
-from clutchfem.analysis import analyze
-from clutchfem.analysis import fatigue_cycles, fatigue_step  # noqa: E402
-from clutchfem.analysis import slip_heat  # noqa: E402
+from clutchfem.analysis import (  # noqa: E402
+    analyze,
+    fatigue_cycles,
+    fatigue_step,
+    slip_heat,  # noqa: E402
+)
 from clutchfem.clutch import EngineCurve  # noqa: E402
 from clutchfem.core import rpm_to_rad_s  # noqa: E402
 from clutchfem.durability import (  # noqa: E402  # noqa: E402

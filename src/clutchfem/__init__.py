@@ -16,7 +16,8 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``),
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
 :func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
-:func:`write_report`, :func:`torque_speed_plot`.  Checks: :func:`validate`.  Errors: :class:`ClutchfemError` and its kinds.
+:func:`write_report`, :func:`torque_speed_plot`.  Cutting: :func:`export` (DXF, STEP, drawing sheet,
+manufacturability check, as-cut analysis), :class:`ProcessRules`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
 """
 
 from __future__ import annotations
@@ -53,7 +54,11 @@ _API: dict[str, tuple[str, str]] = {
     "write_report": ("clutchfem.report", "design_report"),
     "torque_speed_plot": ("clutchfem.report", "comparison_plot"),
     "run_grid": ("clutchfem.studies", "run_grid"),
+    "export": ("clutchfem.cutting", "export"),
+    "ProcessRules": ("clutchfem.cutting", "ProcessRules"),
+    "CuttingError": ("clutchfem.cutting", "CuttingError"),
     "validate": ("clutchfem.validation", "validate"),
+    "serve_app": ("clutchfem.app", "serve"),
     "ClutchfemError": ("clutchfem.core", "ClutchfemError"),
     "ParameterError": ("clutchfem.core", "ParameterError"),
     "InputError": ("clutchfem.core", "InputError"),
@@ -82,6 +87,7 @@ def __dir__() -> list[str]:
 
 if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .analysis import Analysis, Requirements, analyze, slip_heat
+    from .app import serve as serve_app
     from .clutch import EngineCurve
     from .core import (
         ClutchfemError,
@@ -93,6 +99,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
         SolverError,
         get_material,
     )
+    from .cutting import CuttingError, ProcessRules, export
     from .durability import SlipScenario
     from .geometry import MeshSettings, concepts, get_concept
     from .loadcase import Design, OperatingPoint, SweepResult

@@ -31,8 +31,9 @@ from .schema import SpecError
 from .spec import EXAMPLE_SPEC, StudySpec
 from .store import STORE_NAME, ResultStore
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
+from .values import param_bounds, resolution
 
-__all__ = ["COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
+__all__ = ["param_bounds", "resolution", "COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
            "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RunResult", "Settings",
            "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
            "default_free", "default_out", "design_hash", "evaluate", "evaluate_many", "fatigue_note", "load_spec",

@@ -1,0 +1,73 @@
+"""Latency of the live design app: the time from a parameter change in the browser to the
+updated answers on screen (concept 4, default mesh), median and 90th percentile over N
+changes of the flexure thickness, in a real headless Chromium driven by Playwright.
+
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_app.py [--n 20]
+
+The clock starts when the new value is typed and Enter pressed in the number field, and
+stops when the answers table shows the engagement speed of the new design (the value
+``cf.analyze`` gives, computed beforehand).  Each value is a new design: the mesh is
+generated (cold cache for the first pass over the values, then read from the cache) and
+the analysis runs without the error estimate (the bands follow in a second pass, not
+timed here).  The app's own debounce (0.15 s) is part of the time.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+from support.browser import app_server, launch_chromium  # noqa: E402
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--n", type=int, default=20, help="parameter changes timed")
+    args = ap.parse_args(argv)
+    from playwright.sync_api import expect, sync_playwright
+
+    import clutchfem as cf
+
+    values = [1.6, 1.65, 1.7, 1.75, 1.8, 1.85, 1.9, 1.95, 2.0, 2.05]
+    expected = {v: cf.analyze(cf.Design.from_concept("concept4", flexure_thickness=f"{v}mm"), errors=False)
+                .engagement_rpm for v in values}
+    with app_server(Path(tempfile.mkdtemp())) as url, sync_playwright() as p:
+        b = launch_chromium(p)
+        page = b.new_page(viewport={"width": 1500, "height": 1300})
+        page.goto(url)
+        expect(page.locator("[data-testid=status]")).to_contain_text("answers in", timeout=90_000)
+        box = page.locator("input[data-testid=num-flexure_thickness]")
+        row = page.locator("[data-testid=answers] tr", has_text="engagement speed (static)")
+        times = []
+        for i in range(args.n + 2):
+            v = values[i % len(values)]
+            want = f"{expected[v]:.0f} rpm"
+            if want in row.inner_text():  # the same answer already on screen: take the next value
+                continue
+            t0 = time.perf_counter()
+            box.fill(str(v))
+            box.press("Enter")
+            expect(row).to_contain_text(want, timeout=30_000)
+            dt = time.perf_counter() - t0
+            if i >= 2:  # the first two warm the worker threads and the caches
+                times.append(dt)
+            time.sleep(0.8)  # let the error-band pass finish: time one change at a time
+        b.close()
+    times.sort()
+    p90 = times[max(0, int(round(0.9 * len(times))) - 1)]
+    print(f"machine: {platform.machine()} {os.cpu_count()} cores, {platform.python_version()}, "
+          f"{time.strftime('%Y-%m-%d %H:%M')}")
+    print(f"changes timed: {len(times)}; median {statistics.median(times):.3f} s, 90th percentile {p90:.3f} s, "
+          f"min {times[0]:.3f} s, max {times[-1]:.3f} s")
+
+
+if __name__ == "__main__":
+    main()

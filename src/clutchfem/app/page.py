@@ -1,0 +1,379 @@
+"""The page of the live design app (NiceGUI): the design panel, the answers with their
+badges and bands, the charts, the part at a chosen speed, compare, studies and downloads.
+One page per browser tab, each with its own :class:`~.session.DesignSession`.
+
+Responsiveness: a change is debounced (:data:`DEBOUNCE_S`), the analysis runs in a worker
+thread (the event loop never waits on it), one run at a time per tab; a run whose inputs
+were changed again before it started is skipped (stale), and a result that is no longer the
+newest is dropped.  The fast pass (answers, charts) is shown first; the part at the chosen
+speed and the error bands follow once the designer pauses (:data:`EXTRAS_DELAY_S`) in a
+second lane, so they never hold up the next answers, and a change skips them.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import base64
+import math
+import tempfile
+from pathlib import Path
+
+from nicegui import run, ui
+
+from ..core import ClutchfemError
+from .downloads import Downloads
+from .figures import field_png, pressure_chart, torque_chart
+from .session import DesignSession, answer_rows
+from .studies_panel import StudiesPanel
+
+__all__ = ["build_page"]
+
+#: wait after the last change before an analysis starts [s]
+DEBOUNCE_S = 0.15
+#: wait after the answers before the part picture and the error bands start [s]
+EXTRAS_DELAY_S = 0.5
+#: largest uploaded engine CSV / mesh [bytes]
+MAX_CSV_BYTES = 1 << 20
+MAX_MESH_BYTES = 20 << 20
+
+
+class DesignPage(StudiesPanel, Downloads):
+    """The widgets and handlers of one tab (module docstring)."""
+
+    def __init__(self, out_root: Path):
+        self.dir = Path(tempfile.mkdtemp(prefix="tab-", dir=out_root))
+        self.s = DesignSession("concept4", self.dir)
+        self.values: dict[str, object] = {}
+        self.widgets: dict[str, tuple] = {}
+        self.messages: dict[str, ui.label] = {}
+        self.pending: asyncio.Task | None = None
+        self.extras: asyncio.Task | None = None
+        self.running = asyncio.Lock()
+        self.secondary = asyncio.Lock()
+        self.outcome = None
+        self.bands: dict = {}
+        self.field_rpm = 8000.0
+        self.field_res = None
+        self.pinned_res = None
+
+    # -- layout --------------------------------------------------------------------------
+    def build(self) -> None:
+        ui.page_title("clutchfem: live design")
+        with ui.header().classes("items-center gap-4 bg-slate-800"):
+            ui.label("clutchfem").classes("text-xl font-bold")
+            ui.select(self.s.concept_names(), value=self.s.concept.name, label="concept",
+                      on_change=lambda e: self.on_concept(e.value)).props(
+                "dense dark outlined data-testid=concept").classes("w-40")
+            ui.button("pin", on_click=self.on_pin).props("data-testid=pin flat color=white")
+            ui.button("swap", on_click=self.on_swap).props("data-testid=swap flat color=white")
+            with ui.button("files", icon="download").props("flat color=white data-testid=files"):
+                with ui.menu():
+                    ui.menu_item("report (HTML)", on_click=self.dl_report)
+                    ui.menu_item("inputs.json", on_click=self.dl_inputs)
+                    ui.menu_item("mesh (.msh)", on_click=self.dl_msh)
+                    ui.menu_item("fields at the chosen speed (.vtu)", on_click=self.dl_vtu)
+                    ui.menu_item("cutting files (.zip: DXF, STEP, drawing)", on_click=self.dl_cutting)
+            self.status = ui.label("").classes("ml-auto text-sm").props("data-testid=status")
+        with ui.row().classes("w-full no-wrap items-start"):
+            with ui.column().classes("w-96 shrink-0"):
+                self.panel()
+            with ui.column().classes("grow"):
+                self.results()
+        asyncio.get_event_loop().call_soon(lambda: self.schedule())
+
+    @ui.refreshable
+    def panel(self) -> None:
+        groups: dict[str, list] = {}
+        for c in self.s.controls():
+            groups.setdefault(c.group, []).append(c)
+        for group, ctrls in groups.items():
+            with ui.expansion(group, value=True).classes("w-full"):
+                for c in ctrls:
+                    self.control(c)
+        with ui.expansion("engine and requirements", value=False).classes("w-full"):
+            ui.number("a: engagement > a x idle", value=self.s.requirements.a, step=0.05,
+                      on_change=lambda e: self.on_requirements(a=e.value)).props("dense debounce=300")
+            ui.number("b: slip < b x rpm of max torque", value=self.s.requirements.b, step=0.05,
+                      on_change=lambda e: self.on_requirements(b=e.value)).props("dense debounce=300")
+            ui.label(f"engine: {self.s.engine.source}").classes("text-xs")
+            ui.upload(label="engine curve CSV (rpm, torque [N m])", max_file_size=MAX_CSV_BYTES, auto_upload=True,
+                      on_upload=self.on_engine_upload,
+                      on_rejected=lambda: ui.notify(f"refused: larger than {MAX_CSV_BYTES // 1024} kB")).props(
+                "dense accept=.csv")
+            self.messages["engine"] = ui.label("").classes("text-xs text-red-600")
+        with ui.expansion("your own part (.msh / STEP)", value=self.s.part is not None).classes("w-full"):
+            ui.upload(label="part: gmsh .msh (curve groups bore, contact) or STEP; x-y plane, axis at the origin",
+                      max_file_size=MAX_MESH_BYTES, auto_upload=True, on_upload=self.on_part_upload,
+                      on_rejected=lambda: ui.notify(f"refused: larger than {MAX_MESH_BYTES >> 20} MB")).props(
+                "dense accept=.msh,.step,.stp")
+            self.messages["part"] = ui.label("" if self.s.part is None else f"analysing {self.s.part.name}").classes(
+                "text-xs")
+
+    def control(self, c) -> None:
+        self.values[c.name] = c.value
+        with ui.column().classes("w-full gap-0"):
+            if c.kind == "choice":
+                w = ui.select(list(c.choices), value=c.value, label=c.label,
+                              on_change=lambda e, n=c.name: self.on_edit(n, e.value)).props(
+                    f"dense data-testid=choice-{c.name}").classes("w-full")
+                self.widgets[c.name] = (w,)
+            else:
+                unit = f" [{c.unit}]" if c.unit else ""
+                with ui.row().classes("w-full items-center no-wrap gap-2"):
+                    s = ui.slider(min=c.lo if c.lo is not None else 0.0, max=c.hi if c.hi is not None else 1.0,
+                                  step=c.step, value=c.value,
+                                  on_change=lambda e, n=c.name: self.on_edit(n, e.value)).props(
+                        f"dense data-testid=slider-{c.name}").classes("grow")
+                    n = ui.number(value=c.value, step=c.step, format=None,
+                                  on_change=lambda e, n=c.name: self.on_edit(n, e.value)).props(
+                        f"dense data-testid=num-{c.name}").classes("w-24")
+                rng = "" if c.lo is None else f"{c.lo:g}..{c.hi:g}{(' ' + c.unit) if c.unit else ''}"
+                ui.label(f"{c.name}{unit}: {c.label} ({rng})").classes("text-xs text-gray-600")
+                self.widgets[c.name] = (s, n)
+            self.messages[c.name] = ui.label("").classes("text-xs text-red-600").props(
+                f"data-testid=msg-{c.name}")
+
+    def results(self) -> None:
+        with ui.row().classes("w-full gap-6 items-start"):
+            with ui.column():
+                self.answers = ui.table(columns=self._columns(False), rows=[], row_key="answer").props(
+                    "dense flat bordered data-testid=answers").classes("w-[46rem]")
+                self.warnings = ui.column().classes("gap-0 w-[46rem]")
+            with ui.column().classes("grow"):
+                self.torque = ui.echart(torque_chart_placeholder()).classes("w-[40rem] h-80").props(
+                    "data-testid=torque-chart")
+        with ui.row().classes("w-full gap-6 items-start"):
+            with ui.column():
+                with ui.row().classes("items-center"):
+                    ui.label("part at")
+                    self.rpm_input = ui.number(value=self.field_rpm, step=250, suffix="rpm",
+                                               on_change=lambda e: self.on_field_rpm(e.value)).props(
+                        "dense debounce=400 data-testid=field-rpm").classes("w-32")
+                self.field_img = ui.image().classes("w-[30rem]").props("data-testid=field")
+            with ui.column().classes("grow"):
+                self.pressure = ui.echart(torque_chart_placeholder()).classes("w-[40rem] h-72")
+        with ui.expansion("studies of this design", value=False).classes("w-full"):
+            with ui.row():
+                ui.button("guidelines", on_click=self.run_guidelines).props("data-testid=study-guidelines")
+                ui.button("tolerances", on_click=self.run_tolerance).props("data-testid=study-tolerance")
+                ui.button("optimise (least mass)", on_click=self.run_optimize).props("data-testid=study-optimize")
+                self.apply_button = ui.button("apply the optimum", on_click=self.apply_optimum)
+                self.apply_button.set_visibility(False)
+            self.progress = ui.linear_progress(value=0.0, show_value=False).classes("w-full")
+            self.progress.set_visibility(False)
+            self.study_log = ui.label("").classes("text-xs")
+            self.study_out = ui.column().classes("w-full")
+
+    @staticmethod
+    def _columns(pinned: bool) -> list[dict]:
+        cols = [{"name": "answer", "label": "answer", "field": "answer", "align": "left"},
+                {"name": "value", "label": "value", "field": "value", "align": "right"},
+                {"name": "verdict", "label": "requirement", "field": "verdict", "align": "left"}]
+        if pinned:
+            cols += [{"name": "pinned", "label": "pinned", "field": "pinned", "align": "right"},
+                     {"name": "delta", "label": "difference", "field": "delta", "align": "right"}]
+        return cols
+
+    # -- edits -----------------------------------------------------------------------------
+    def on_edit(self, name: str, value) -> None:
+        if value is None or value == self.values.get(name):
+            return
+        self.values[name] = value
+        for w in self.widgets.get(name, ()):
+            if w.value != value:
+                w.value = value
+        msg = self.s.set_value(name, value)
+        self.messages[name].set_text(msg or "")
+        if msg is None:
+            if name == "profile":  # other parameters become active
+                self.values.clear()
+                self.widgets.clear()
+                self.messages.clear()
+                self.panel.refresh()
+            self.schedule()
+
+    def on_concept(self, name: str) -> None:
+        try:
+            self.s.select(name)
+        except ClutchfemError as exc:
+            ui.notify(str(exc), type="negative")
+            return
+        self.values.clear()
+        self.widgets.clear()
+        self.messages.clear()
+        self.panel.refresh()
+        self.schedule()
+
+    def on_requirements(self, a=None, b=None) -> None:
+        msg = self.s.set_requirements(a, b)
+        if msg:
+            ui.notify(msg, type="negative")
+        else:
+            self.schedule()
+
+    async def on_engine_upload(self, e) -> None:
+        data = await e.file.read()
+        path = self.dir / "engine.csv"
+        path.write_bytes(data)
+        msg = self.s.set_engine_csv(path)
+        self.messages["engine"].set_text(msg or "")
+        if msg is None:
+            self.panel.refresh()
+            self.schedule()
+
+    async def on_part_upload(self, e) -> None:
+        name = Path(e.file.name).name  # no folders from the browser
+        suffix = Path(name).suffix.lower()
+        if suffix not in (".msh", ".step", ".stp"):
+            self.messages["part"].set_text(f"refused: {name}: a gmsh .msh or a STEP file (.step, .stp)")
+            return
+        path = self.dir / f"part{suffix}"
+        path.write_bytes(await e.file.read())
+        msg = self.s.set_part(path)
+        if msg:
+            self.messages["part"].set_text(msg)
+            return
+        self.values.clear()
+        self.widgets.clear()
+        self.messages.clear()
+        self.panel.refresh()
+        ui.notify(f"{name}: give the drum's inner radius", type="info")
+
+    def on_field_rpm(self, value) -> None:
+        if value is None or not math.isfinite(float(value)) or float(value) <= 0:
+            return
+        self.field_rpm = float(value)
+        if self.outcome is not None:
+            asyncio.get_event_loop().create_task(self.update_field(self.s.generation))
+
+    def on_pin(self) -> None:
+        self.s.pin()
+        self.pinned_res = self.field_res
+        ui.notify(f"pinned {self.s.pinned.label if self.s.pinned else '-'}")
+        self.show(self.s.generation)
+
+    def on_swap(self) -> None:
+        if self.s.pinned is None:
+            ui.notify("pin a design first")
+            return
+        self.s.swap()
+        self.pinned_res, self.field_res = self.field_res, self.pinned_res
+        self.values.clear()
+        self.widgets.clear()
+        self.messages.clear()
+        self.panel.refresh()
+        self.schedule()
+
+    # -- the analysis ----------------------------------------------------------------------
+    def schedule(self) -> None:
+        if self.pending is not None and not self.pending.done():
+            self.pending.cancel()
+        self.pending = asyncio.get_event_loop().create_task(self.refresh(self.s.generation))
+
+    async def refresh(self, gen: int) -> None:
+        await asyncio.sleep(DEBOUNCE_S)
+        async with self.running:
+            if gen != self.s.generation:  # changed again while waiting: a newer run follows
+                return
+            self.status.set_text("computing ...")
+            try:
+                out = await run.io_bound(self.s.run)
+            except ClutchfemError as exc:
+                self.status.set_text("")
+                ui.notify(str(exc), type="negative", multi_line=True)
+                return
+            if out is None or gen != self.s.generation:
+                return
+            self.outcome, self.bands = out, {}
+            self.show(gen)
+            self.status.set_text(f"{out.label}: answers in {out.seconds:.2f} s; error bands ...")
+        # the part picture and the error bands follow once the designer pauses: a change in
+        # the meantime skips them (they never hold up the next answers)
+        if self.extras is not None and not self.extras.done():
+            self.extras.cancel()
+        self.extras = asyncio.get_event_loop().create_task(self.follow_up(gen, out))
+
+    async def follow_up(self, gen: int, out) -> None:
+        await asyncio.sleep(EXTRAS_DELAY_S)
+        async with self.secondary:
+            if gen != self.s.generation:
+                return
+            await self.update_field(gen)
+            if gen != self.s.generation:
+                return
+            bands = await run.io_bound(self.s.error_bands, out)
+            if bands is None or gen != self.s.generation:
+                return
+            self.bands = bands
+            self.show(gen)
+            self.status.set_text(f"{out.label}: answers in {out.seconds:.2f} s, with error bands")
+
+    def show(self, gen: int) -> None:
+        out = self.outcome
+        if out is None:
+            return
+        an = out.analysis
+        rows = [{"answer": q, "value": v, "verdict": vd} for q, v, vd in answer_rows(an, self.bands)]
+        pin = self.s.pinned
+        self.answers.columns = self._columns(pin is not None)
+        if pin is not None:
+            prow = answer_rows(pin.analysis)
+            for r, (q, v, _) in zip(rows, prow):
+                r["pinned"] = v
+                r["delta"] = _delta(r["value"], v)
+        self.answers.rows = rows
+        self.answers.update()
+        self.warnings.clear()
+        with self.warnings:
+            for w in an.warnings:
+                ui.label(f"WARNING: {w}").classes("text-xs text-red-700")
+        self.torque.options.clear()
+        self.torque.options.update(torque_chart(an, pin.analysis if pin is not None else None))
+        self.torque.update()
+
+    async def update_field(self, gen: int) -> None:
+        out = self.outcome
+        if out is None:
+            return
+        rpm = self.field_rpm
+
+        def work():
+            res = self.s.field(out, rpm)
+            png, info = field_png(out.design, res, rpm)
+            return res, png, info
+
+        got = await run.io_bound(work)
+        if got is None or gen != self.s.generation:
+            return
+        res, png, info = got
+        self.field_res = res
+        self.field_img.set_source("data:image/png;base64," + base64.b64encode(png).decode())
+        self.pressure.options.clear()
+        pinned = self.pinned_res if (self.pinned_res is not None and float(self.pinned_res.rpm[0]) == rpm) else None
+        self.pressure.options.update(pressure_chart(res, rpm, pinned))
+        self.pressure.update()
+
+def _delta(a: str, b: str) -> str:
+    """Difference of two shown values with the same unit (the leading number and the unit
+    after it, before any band), else ''."""
+    def parse(t: str):
+        head = t.split(" +-")[0].split()
+        return float(head[0]), " ".join(head[1:])
+
+    try:
+        (x, ux), (y, uy) = parse(a), parse(b)
+    except (IndexError, ValueError):
+        return ""
+    if ux != uy:
+        return ""
+    return f"{x - y:+.4g} {ux}".rstrip()
+
+
+def torque_chart_placeholder() -> dict:
+    return {"animation": False, "xAxis": {"type": "value"}, "yAxis": {"type": "value"}, "series": []}
+
+
+def build_page(out_root: Path) -> None:
+    """The page of one tab (called by NiceGUI for every new client)."""
+    DesignPage(out_root).build()
+

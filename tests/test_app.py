@@ -1,0 +1,94 @@
+"""The live design app in a real headless browser (Debian's Chromium, driven by Playwright):
+open the page, move the flexure thickness, the engagement speed shown becomes the one
+``cf.analyze`` gives for that design; a value out of range shows its refusal at the
+parameter and the last valid design stays; pin and compare; a screenshot is kept as a test
+artefact (``test-artifacts/app.png``).  And the session logic without a browser."""
+
+from __future__ import annotations
+
+import zipfile
+from pathlib import Path
+
+import pytest
+
+import clutchfem as cf
+from clutchfem.app import DesignSession
+from support.browser import CHROMIUM, ROOT, app_server, launch_chromium
+
+ARTIFACTS = ROOT / "test-artifacts"
+
+
+def test_session_refuses_at_the_parameter_and_keeps_the_last_design():
+    s = DesignSession("concept1")
+    assert {c.name for c in s.controls()} >= {"flexure_thickness", "mu", "drum_wall"}
+    assert not any(c.name.startswith("table_c") for c in s.controls())  # inactive profile controls hidden
+    msg = s.set_value("flexure_thickness", 9.0)  # mm, out of range
+    assert msg and "flexure_thickness" in msg and "9 mm" in msg and "6 mm" in msg
+    assert s.params.flexure_thickness == pytest.approx(2.2e-3)  # unchanged
+    assert s.set_value("flexure_thickness", 2.4) is None and s.params.flexure_thickness == pytest.approx(2.4e-3)
+    assert s.set_value("drum_wall", 2.0) is None and s.op.drum_wall == pytest.approx(2e-3)
+    assert s.set_value("drum_wall", 0.0) is None and s.op.drum_wall is None
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    try:
+        with app_server(tmp_path_factory.mktemp("app")) as url:
+            yield url
+    except RuntimeError as e:
+        pytest.fail(str(e))
+
+
+def _engagement(page) -> str:
+    row = page.locator("[data-testid=answers] tr", has_text="engagement speed (static)")
+    return row.locator("td").nth(1).inner_text().split(" +-")[0].strip()
+
+
+def test_live_design_in_a_real_browser(server):
+    from playwright.sync_api import expect, sync_playwright
+
+    assert Path(CHROMIUM).exists(), "Debian's chromium is installed by make setup (APT_PKGS)"
+    want = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="2mm"), errors=False)
+    with sync_playwright() as p:
+        browser = launch_chromium(p)
+        page = browser.new_page(viewport={"width": 1500, "height": 1300})
+        page.goto(server)
+        status = page.locator("[data-testid=status]")
+        expect(status).to_contain_text("answers in", timeout=90_000)
+        before = _engagement(page)
+        # move the flexure thickness: the engagement shown becomes cf.analyze's
+        box = page.locator("input[data-testid=num-flexure_thickness]")
+        box.fill("2")
+        box.press("Enter")
+        expect(page.locator("[data-testid=answers] tr", has_text="engagement speed (static)")).to_contain_text(
+            f"{want.engagement_rpm:.0f} rpm", timeout=60_000)
+        assert _engagement(page) != before
+        # out of range: the refusal at the parameter, the last valid design stays
+        box.fill("9")
+        box.press("Enter")
+        expect(page.locator("[data-testid=msg-flexure_thickness]")).to_contain_text("[0.5 mm, 4 mm]", timeout=20_000)
+        assert _engagement(page) == f"{want.engagement_rpm:.0f} rpm"
+        # pin and compare: a pinned column with the difference
+        expect(status).to_contain_text("with error bands", timeout=60_000)
+        page.locator("[data-testid=pin]").click()
+        other = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="1.9mm"), errors=False)
+        box.fill("1.9")
+        box.press("Enter")
+        expect(page.locator("[data-testid=answers] th", has_text="pinned")).to_be_visible(timeout=60_000)
+        row = page.locator("[data-testid=answers] tr", has_text="engagement speed (static)")
+        diff = round(other.engagement_rpm) - round(want.engagement_rpm)  # of the values shown
+        expect(row).to_contain_text(f"{other.engagement_rpm:.0f} rpm", timeout=60_000)
+        expect(row).to_contain_text(f"{want.engagement_rpm:.0f} rpm")  # the pinned design beside it
+        expect(row).to_contain_text(f"{diff:+.4g} rpm")
+        # the cutting files of the design on screen: DXF, STEP and drawing in one zip
+        page.locator("[data-testid=files]").click()
+        with page.expect_download(timeout=120_000) as dl:
+            page.get_by_text("cutting files").click()
+        with zipfile.ZipFile(dl.value.path()) as z:
+            names = z.namelist()
+        assert {Path(n).suffix for n in names} >= {".dxf", ".step", ".pdf"}, names
+        assert all(n.startswith("concept4") or n.endswith(".json") for n in names), names
+        ARTIFACTS.mkdir(exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "app.png"), full_page=True)
+        browser.close()
+    assert (ARTIFACTS / "app.png").stat().st_size > 50_000
