@@ -1,7 +1,7 @@
 # clutchfem: two commands on a fresh Debian machine.
 #   make demo   set up, then build every concept and run the main job on the default design
 #   make test   set up, then run the test suite
-#   make pictures  regenerate the README's and docs' study, target, field and report pictures
+#   make pictures  regenerate the README's and docs' study, target, field, report and cutting pictures
 PYTHON ?= python3.11
 VENV := .venv
 PY := $(VENV)/bin/python

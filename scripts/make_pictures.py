@@ -14,8 +14,8 @@ machine) go to ``docs/img/pictures.json``.
 Groups (``--only``): ``study`` (the example spec: answers vs flexure thickness, parallel
 coordinates), ``guidelines`` (concept 4: elasticities, one at a time), ``optimize``
 (concept 4 from its defaults), ``compensate`` (concept 4 at 8000 rpm), ``report`` (the optimum's page and its screenshot), ``fields`` (von Mises of concept 4's
-default design at 14000 rpm, the ParaView series beside it), ``export`` (concept 4's drawing
-sheet for wire EDM).  ``--mesh-size`` is passed to
+default design at 14000 rpm, the ParaView series beside it), ``export`` (concept 1's drawing
+sheet for wire EDM, with its as-cut variants).  ``--mesh-size`` is passed to
 the guideline, target and field commands (default: the tool's own default mesh); the study
 uses the example spec's own mesh (2 mm).  Other pictures have their own scripts:
 ``make_concept_docs.py`` (concept drawings), ``make_clutch_docs.py`` (clutch model),
@@ -136,7 +136,8 @@ def fields(a, out: Path, work: Path) -> None:
 
 
 def export(a, out: Path, work: Path) -> None:
-    run(["export", "concept4", *mesh_args(a), "--process", "wire-edm", "--out", str(work / "export")])
+    run(["export", "concept1", *mesh_args(a), "--process", "wire-edm", "--as-cut", "--kerf-error", "0.02mm",
+         "--out", str(work / "export")])
     copy(one(work / "export", "*_drawing.png"), out, "export_drawing_sheet.png")
 
 
