@@ -26,7 +26,9 @@ as their ``timestep``: ParaView's time slider runs over the speed range.  The 3-
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -39,6 +41,10 @@ from ..mesh import p2_cells
 
 #: zone ids of the ``zone_id`` cell array
 ZONES = {"hub": 0, "flexure": 1, "shoe": 2}
+
+#: deformation scale of :func:`render_png` (a quick look at one ``.vtu``; ``solve --vtk``'s
+#: picture is :func:`clutchfem.report.field_picture`, true scale, in MPa)
+RENDER_SCALE = 5.0
 
 
 def zone_ids(mesh) -> tuple[np.ndarray, np.ndarray]:
@@ -196,3 +202,36 @@ def pvd_text(entries) -> str:
                      for t, name in entries)
     return ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
             f"  <Collection>\n{rows}\n  </Collection>\n</VTKFile>\n")
+
+
+def render_png(vtu: Path, png: Path, title: str = "", scale: float = RENDER_SCALE) -> Path | None:
+    """Off-screen pyvista render of von Mises on the shape deformed x ``scale``; None if no
+    off-screen OpenGL is available (OSMesa/EGL).
+
+    On a machine without a display (no ``DISPLAY``) VTK first tries X, logs ``bad X server
+    connection`` on standard error and falls back to EGL/OSMesa; that warning says nothing to
+    the user (the picture is rendered), so VTK's log is silenced for this render only there
+    (issue 24)."""
+    try:
+        import pyvista as pv
+
+        quiet = pv.vtk_verbosity("off") if not os.environ.get("DISPLAY") else contextlib.nullcontext()
+        with quiet:
+            return _render(pv, vtu, png, title, scale)
+    except Exception:  # no off-screen GL on this machine: the .vtu is still written
+        return None
+
+
+def _render(pv, vtu: Path, png: Path, title: str, scale: float) -> Path:
+    """The render of :func:`render_png`."""
+    pv.OFF_SCREEN = True
+    grid = pv.read(vtu)
+    warped = grid.warp_by_vector("displacement_m", factor=scale)
+    pl = pv.Plotter(off_screen=True, window_size=(900, 800))
+    pl.add_mesh(warped, scalars="von_mises_Pa", cmap="turbo", show_edges=False,
+                scalar_bar_args={"title": "von Mises [Pa]"})
+    pl.add_text(f"{title} (deformation x{scale:g})", font_size=10)
+    pl.view_xy()
+    pl.screenshot(str(png))
+    pl.close()
+    return png
