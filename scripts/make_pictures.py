@@ -95,7 +95,7 @@ def study(a, out: Path, work: Path) -> None:
     spec = work / "study.toml"
     spec.write_text(run(["study", "--example"]).stdout)
     run(["study", str(spec), "--out", str(work / "study")])
-    copy(work / "study" / "charts" / "answers_vs_flexure_thickness.png", out, "study_sweep_answers.png")
+    copy(work / "study" / "charts" / "answers_vs_clearance.png", out, "study_sweep_answers.png")
     copy(work / "study" / "charts" / "parallel_coordinates.png", out, "study_parallel_coordinates.png")
 
 
