@@ -105,9 +105,11 @@ def annulus_msh(path: str | Path, r_in: float, r_out: float, size: float, order:
 
 def ring_segment_msh(path: str | Path, x_c: float, r_in: float, r_out: float, half_deg: float, size: float,
                      contact_size: float) -> Path:
-    """Write a ring segment r_in <= |x - (x_c, 0)| <= r_out, |polar angle about (x_c, 0)| <=
-    half_deg, to ``path``: groups ``bore`` (inner arc), ``contact`` (outer arc), ``solid``;
-    element size ``contact_size`` within 1.5 mm of the outer arc, growing to ``size``."""
+    """Write a ring segment |x - (x_c, 0)| <= r_out, |polar angle about (x_c, 0)| <= half_deg,
+    whose inner side is the arc of radius x_c + r_in about the origin (the rotation axis: a
+    user part's bore must be centred on it), to ``path``: groups ``bore`` (that inner arc,
+    clamped), ``contact`` (the outer arc), ``solid``; element size ``contact_size`` within
+    1.5 mm of the outer arc, growing to ``size``."""
     path = Path(path)
     if not 0 < r_in < r_out:
         raise GeometryError(f"ring segment needs 0 < r_in < r_out (got {r_in}, {r_out})")
@@ -115,15 +117,20 @@ def ring_segment_msh(path: str | Path, x_c: float, r_in: float, r_out: float, ha
         occ = gmsh.model.occ
         th = math.radians(half_deg)
         c = occ.addPoint(x_c, 0, 0)
-        pts = [occ.addPoint(x_c + r * math.cos(a), r * math.sin(a), 0)
-               for r, a in ((r_in, -th), (r_out, -th), (r_out, th), (r_in, th))]
+        o = occ.addPoint(0, 0, 0)
+        rb = x_c + r_in
+        pb = math.atan2(r_in * math.sin(th), x_c + r_in * math.cos(th))  # the bore arc's half angle
+        pts = [occ.addPoint(rb * math.cos(-pb), rb * math.sin(-pb), 0),
+               occ.addPoint(x_c + r_out * math.cos(-th), r_out * math.sin(-th), 0),
+               occ.addPoint(x_c + r_out * math.cos(th), r_out * math.sin(th), 0),
+               occ.addPoint(rb * math.cos(pb), rb * math.sin(pb), 0)]
         side_a = occ.addLine(pts[0], pts[1])
         rim = occ.addCircleArc(pts[1], c, pts[2])
         side_b = occ.addLine(pts[2], pts[3])
-        bore = occ.addCircleArc(pts[3], c, pts[0])
+        bore = occ.addCircleArc(pts[3], o, pts[0])
         surf = occ.addPlaneSurface([occ.addCurveLoop([side_a, rim, side_b, bore])])
         occ.synchronize()
-        occ.remove([(0, c)])
+        occ.remove([(0, c), (0, o)])
         occ.synchronize()
         gmsh.model.addPhysicalGroup(1, [bore], name="bore")
         gmsh.model.addPhysicalGroup(1, [rim], name="contact")
