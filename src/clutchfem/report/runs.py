@@ -184,7 +184,7 @@ def slip_heat_files(run, out) -> list[Path]:
             jobs.append(("_series", _fresh_dir))  # (filled by the .pvd's job)
             jobs.append((".pvd", lambda p: write_series(design.cm, result, p, out / f".{stem}.partial_series",
                                                         name=series)))
-        jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title)))
+        jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title, answer=doc)))
     jobs.append((".json", lambda p: write(p, doc, indent=2)))
 
     for suffix, _ in jobs:  # a folder (or anything but a file) in the way: refuse before writing any

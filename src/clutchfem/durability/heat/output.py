@@ -67,10 +67,13 @@ def write_series(cm: ClutchMesh, result: SlipHeatResult, pvd: str | Path, folder
 
 
 def render_png(cm: ClutchMesh, result: SlipHeatResult, path: str | Path, *, title: str = "",
-               full_part: bool = True) -> Path:
+               full_part: bool = True, answer: dict | None = None) -> Path:
     """Picture (matplotlib without pyplot, :func:`clutchfem.core.figure`): each node's maximum
     temperature over the run (left; the whole clutch for a sector model when ``full_part``)
-    and the probe time series (right)."""
+    and the probe time series (right).  ``answer``: the run's JSON document; when its
+    transient was cut at a model limit (``stopped_at_s``, :mod:`.validity`) the labels state
+    the document's peaks and time to the limit (the answers, up to the cut), the curves and the
+    map the run continued past it, and the cut is drawn."""
     from matplotlib.tri import Triangulation
 
     path = Path(path)
@@ -90,11 +93,22 @@ def render_png(cm: ClutchMesh, result: SlipHeatResult, path: str | Path, *, titl
         tp = ax.tripcolor(Triangulation(x * 1e3, y * 1e3, sub), val, shading="gouraud", cmap="inferno",
                           vmin=vmin, vmax=vmax)
     fig.colorbar(tp, ax=ax, label="maximum temperature over the run [C]")
-    ax.plot(result.peak_xy_m[0] * 1e3, result.peak_xy_m[1] * 1e3, "c*", ms=12,
-            label=f"peak {result.peak_temperature_C:.0f} C at {result.peak_time_s:.1f} s ({result.peak_zone})")
-    if result.flexure_peak_xy_m is not None:
+    cut = (answer or {}).get("stopped_at_s")
+    if cut is None:
+        peak = f"peak {result.peak_temperature_C:.0f} C at {result.peak_time_s:.1f} s ({result.peak_zone})"
+        flex = (f"flexure peak {result.flexure_peak_C:.0f} C at {result.flexure_peak_time_s:.1f} s"
+                if result.flexure_peak_C is not None else "")
+        to_limit = result.time_to_limit_s
+    else:  # the answers end at the cut; the map and curves go on (not valid there)
+        peak = (f"peak {answer['peak_temperature_C']:.0f} C at {answer['peak_time_s']:.1f} s (answer, up to the cut "
+                f"at {cut:.1f} s); the run continued: {result.peak_temperature_C:.0f} C, not valid")
+        flex = (f"flexure peak {answer['flexure_temperature_C']:.0f} C at {answer['flexure_peak_time_s']:.1f} s "
+                "(answer, up to the cut)" if answer.get("flexure_temperature_C") is not None else "")
+        to_limit = answer.get("time_to_limit_s")
+    ax.plot(result.peak_xy_m[0] * 1e3, result.peak_xy_m[1] * 1e3, "c*", ms=12, label=peak)
+    if result.flexure_peak_xy_m is not None and flex:
         ax.plot(result.flexure_peak_xy_m[0] * 1e3, result.flexure_peak_xy_m[1] * 1e3, "co", mfc="none",
-                ms=10, label=f"flexure peak {result.flexure_peak_C:.0f} C at {result.flexure_peak_time_s:.1f} s")
+                ms=10, label=flex)
     ax.set_aspect("equal")
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
@@ -106,12 +120,13 @@ def render_png(cm: ClutchMesh, result: SlipHeatResult, path: str | Path, *, titl
     ax2.plot(t, result.hub_C, label="hub (mean)")
     if result.part_mean_C is not None:
         ax2.plot(t, result.part_mean_C, "k:", label="whole part (mean)")
-    reach = ("never reached by the flexure" if result.time_to_limit_s is None
-             else f"flexure reaches it at {result.time_to_limit_s:.1f} s")
+    reach = ("never reached by the flexure" if to_limit is None else f"flexure reaches it at {to_limit:.1f} s")
     ax2.axhline(result.limit_temperature_C, color="r", ls="--", lw=1,
                 label=f"limit {result.limit_temperature_C:.0f} C (tempering, ASSUMED): {reach}")
-    if result.time_to_limit_s is not None:
-        ax2.plot([result.time_to_limit_s], [result.limit_temperature_C], "ro", mfc="none", ms=9, mew=1.5)
+    if to_limit is not None:
+        ax2.plot([to_limit], [result.limit_temperature_C], "ro", mfc="none", ms=9, mew=1.5)
+    if cut is not None:
+        ax2.axvline(cut, color="0.3", ls="-.", lw=1.2, label=f"model limit: answers cut at {cut:.1f} s (beyond: not valid)")
     ax2.set_xlabel("time [s]")
     ax2.set_ylabel("temperature [C]")
     ax2.grid(alpha=0.3)
