@@ -17,9 +17,9 @@ import math
 
 import numpy as np
 import pytest
-from support.shapes import load_annulus, ring_segment_msh
 
 import clutchfem as cf
+from support.shapes import load_annulus, ring_segment_msh
 
 R_D = 34.4e-3
 R1 = 30e-3

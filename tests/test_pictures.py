@@ -12,12 +12,12 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
-from support.pictures import agrees, number, rule, texts
 
 import clutchfem as cf
 from clutchfem.report import arc_stress_plot, comparison_plot, field_picture, slip_heat_files, torque_plot
 from clutchfem.studies import GuidelineSettings, parse_spec
 from clutchfem.studies.guidelines import ANSWERS
+from support.pictures import agrees, number, rule, texts
 
 SIZE = "2.5mm"
 

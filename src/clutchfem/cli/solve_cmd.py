@@ -53,8 +53,8 @@ def solve(
     from ..accuracy import sweep_errors
     from ..core import dumps, write
     from ..fe import write_vtk
-    from ..report import field_picture
     from ..loadcase import design_inputs, design_label, model_warnings, parse_rpm
+    from ..report import field_picture
 
     try:
         check_out_dir(out)

@@ -30,7 +30,6 @@ from ..core import figure, save_figure
 from .guidelines import ANSWERS, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
 from .spec import display_value
 
-
 #: unit of each guideline answer (as its label states it)
 UNITS = {"engagement_rpm": "rpm", "slip_rpm": "rpm", "torque_at_max_engine_torque_Nm": "N m",
          "max_von_mises_MPa": "MPa", "shoe_mass_g": "g", "contact_arc_deg": "deg"}
