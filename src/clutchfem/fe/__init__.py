@@ -17,10 +17,11 @@ from .model3d import (
                       lame_3d,
 )
 from .stress import VertexStress, VertexStress3D, von_mises
-from .vtu import write_vtk
+from .vtu import ZONES, RingMesh, pvd_text, ring_stresses, write_vtk, zone_ids
 
 __all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
            "Kinematics", "geometric_stiffness",
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",
            "constraint_map", "contact_area_weights", "contact_weights", "extrude", "factorize",
-           "geometric_stiffness_3d", "lame_3d", "one_blas_thread", "von_mises", "write_vtk"]
+           "geometric_stiffness_3d", "lame_3d", "one_blas_thread", "von_mises", "write_vtk",
+           "ZONES", "RingMesh", "pvd_text", "ring_stresses", "zone_ids"]
