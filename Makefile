@@ -1,6 +1,7 @@
 # clutchfem: two commands on a fresh Debian machine.
 #   make demo   set up, then build every concept and run the main job on the default design
 #   make test   set up, then run the test suite
+#   make pictures  regenerate the README's and docs' study, target, field, report and cutting pictures
 PYTHON ?= python3.11
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -11,7 +12,7 @@ OUT ?= out/demo
 APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 libgl1 libosmesa6 \
             libsuitesparse-dev chromium
 
-.PHONY: setup sysdeps demo test bench clean
+.PHONY: setup sysdeps demo test bench pictures clean
 
 sysdeps:
 	@bash scripts/sysdeps.sh $(APT_PKGS)
@@ -33,6 +34,9 @@ demo: setup
 
 test: setup
 	$(PY) -m pytest -n 2 -q
+
+pictures: setup
+	OPENBLAS_NUM_THREADS=1 $(PY) scripts/make_pictures.py
 
 bench: setup
 	$(PY) benchmarks/bench_sweep.py && $(PY) benchmarks/bench_solvers.py && $(PY) benchmarks/bench_stress.py \

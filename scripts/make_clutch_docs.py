@@ -86,12 +86,16 @@ def three_curves_figure(ans, engine, path):
 
 
 def arc_figure(ans, path):
-    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    fig, ax = plt.subplots(figsize=(10.5, 4.2))
     for i, (name, an) in enumerate(ans.items()):
         c = an.curves
         nominal = an.coupling["phi2_deg"] - an.coupling["phi1_deg"]
         frac = (c["contact_arc_deg"] / nominal * 100).where(c["contact_arc_deg"] > 0)
         ax.plot(c["rpm"], frac, f"C{i}-", label=f"{name} (nominal arc {nominal:.0f} deg)")
+        if "contact_arc_error_deg" in c:  # the arc's ends between nodes, each within 0.4 node spacings
+            e = c["contact_arc_error_deg"] / nominal * 100
+            ax.fill_between(c["rpm"], (frac - e).clip(lower=0.3), frac + e, color=f"C{i}", alpha=0.2, lw=0,
+                            label=f"{name}: error band (the arc's ends)")
     ax.axhline(100 / 3, color="0.4", ls="--", label="1/3 of the arc (thesis prototypes, measured)")
     ax.set_yscale("log")
     ax.set_ylim(0.3, 150)
@@ -100,7 +104,7 @@ def arc_figure(ans, path):
     ax.set_ylabel("contact arc / nominal shoe arc [%]")
     ax.set_title("FE contact arc per shoe (rigid round drum, new shoe)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
@@ -158,7 +162,8 @@ def main(argv=None):
     w("1. **FE direct**: T = mu R sum(contact forces), all shoes.")
     w("2. **Analytical, FE contact arc**: thesis eq 7 (minus shoe; eq 2 for plus) with the apply force "
       "F = m R_Tp w^2 - F_f (eq 3) and the lining angles phi_1..phi_2 set to the arc that is *in "
-      "contact in the FE solution at that speed* (nodes in contact plus half a node spacing each side).")
+      "contact in the FE solution at that speed* (its ends found between the nodes, where the gap and "
+      "the pressure interpolated along the P2 boundary vanish: `clutchfem.contact.arc`).")
     w("3. **Analytical, nominal full arc**: the same formula with phi_1..phi_2 = the whole shoe "
       "arc, which is what the thesis did.\n")
     w("The analytical parameters come from the FE model, not from a fit to the FE torque: shoe mass "
@@ -215,8 +220,8 @@ def main(argv=None):
       + " of the nominal shoe arc. The thesis's prototypes touched on about 1/3 of the arc; the FE "
       "number is smaller because the model has a perfectly round rigid drum and a new shoe (no "
       "running-in wear, no drum expansion, no shoe-face tolerance), all of which spread the contact. "
-      "The direction of the error is the same. (The FE arc is resolved to one contact-node spacing, "
-      "about half a degree with the default mesh: hence the steps in the curves.)\n")
+      "The direction of the error is the same. (The FE arc's ends lie between the contact nodes, "
+      "each within 0.4 node spacings, about 0.2 deg with the default mesh: BENCHMARKS.md section 13.)\n")
     w("Eq 7 assumes the Shigley pressure law p ~ sin(phi) over phi_1..phi_2 (angles from the pivot). "
       "For a shoe pivoted about P, the apply moment F L is balanced by the moment of the normal "
       "pressure about P (lever A sin(phi)) plus that of the friction (lever R - A cos(phi), which "

@@ -56,26 +56,45 @@ def test_solve_bad_input(args, word):
     assert r.returncode == 2 and word in r.stderr and "Traceback" not in r.stderr
 
 
-def test_solve_vtk_fields_and_render(tmp_path):
-    """--vtk writes a quadratic-triangle .vtu per speed whose displacement matches the sweep
-    table, and an off-screen PNG (OSMesa is installed by `make setup`)."""
+def test_solve_vtk_series_of_the_whole_part(tmp_path):
+    """--vtk writes one .pvd time series over the speeds (rpm as its time) that ParaView's
+    reader (pyvista) opens: per speed a quadratic-triangle .vtu of the whole part (the sector
+    rebuilt into the full ring, cut lines merged), named fields in SI units, zone ids;
+    its displacement and unaveraged peak stress are the sweep table's; and one PNG of the
+    field at the highest speed."""
     import meshio
     import numpy as np
+    import pyvista as pv
 
     run("solve", "concept4", "--mesh-size", "0.002", "--rpm", "0:10000:2000", "--vtk",
         "--vtk-rpm", "4000,10000", "--out", str(tmp_path))
     (res,) = tmp_path.glob("concept4-*_result.json")  # every file named after the design's label
     label = res.name.removesuffix("_result.json")
     curve = {row["rpm"]: row for row in json.loads(res.read_text())["curve"]}
+    reader = pv.get_reader(str(tmp_path / f"{label}_fields.pvd"))
+    assert reader.time_values == [4000.0, 10000.0]
     for rpm in (4000, 10000):
+        reader.set_active_time_value(float(rpm))
+        grid = reader.read()[0]
+        assert {"displacement_m", "sxx_Pa", "syy_Pa", "sxy_Pa", "von_mises_Pa", "von_mises_max_Pa",
+                "contact_pressure_Pa", "gap_m"} <= set(grid.point_data.keys())
+        assert set(np.unique(grid.cell_data["zone_id"])) == {0, 1, 2}  # hub, flexure, shoe
+        assert set(np.unique(grid.cell_data["sector_id"])) == {0, 1, 2}  # three shoes: the whole part
         m = meshio.read(tmp_path / f"{label}_fields_{rpm}rpm.vtu")
         assert m.cells[0].type == "triangle6"
         used = np.unique(m.cells[0].data)
         assert len(used) == len(m.points)  # every P2 node belongs to an element
+        # the copies share their cut-line nodes: no point twice
+        assert len(np.unique(np.round(m.points[:, :2] / 1e-9), axis=0)) == len(m.points)
+        ang = np.degrees(np.arctan2(m.points[:, 1], m.points[:, 0]))
+        thirds = np.histogram(ang, bins=3, range=(-180, 180))[0]  # the ring all around, three alike
+        assert thirds.min() > 0.9 * thirds.max()
         d = np.linalg.norm(m.point_data["displacement_m"], axis=1)
         assert d.max() == pytest.approx(curve[rpm]["max_displacement_m"], rel=1e-9)
+        assert m.point_data["von_mises_max_Pa"].max() == pytest.approx(curve[rpm]["max_von_mises_Pa"], rel=1e-12)
         vm = m.point_data["von_mises_Pa"]
         assert np.all(np.isfinite(vm)) and 0 < vm.max() <= curve[rpm]["max_von_mises_Pa"] * (1 + 1e-9)
         press = m.point_data["contact_pressure_Pa"]
         assert (press > 0).any() == (curve[rpm]["normal_force_N"] > 0)
-        assert (tmp_path / f"{label}_fields_{rpm}rpm.png").stat().st_size > 10_000
+    assert (tmp_path / f"{label}_fields_10000rpm.png").stat().st_size > 10_000
+    assert not (tmp_path / f"{label}_fields_4000rpm.png").exists()

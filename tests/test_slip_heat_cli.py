@@ -15,6 +15,7 @@ import sys
 import time
 
 import meshio
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -78,12 +79,40 @@ def test_json_keys_and_their_relations(run):
 def test_files_in_out(run):
     d, out = run
     stem = d["label"] + "_slip_heat"
-    assert sorted(p.name for p in out.iterdir()) == sorted(f"{stem}{s}" for s in (".json", ".png", ".vtu"))
+    assert sorted(p.name for p in out.iterdir()) == sorted(f"{stem}{s}" for s in
+                                                           (".json", ".png", ".vtu", ".pvd", "_series"))
     assert strict((out / f"{stem}.json").read_text())["slip_rpm"] == d["slip_rpm"]
     m = meshio.read(out / f"{stem}.vtu")
     assert "triangle6" in m.cells_dict
     assert max(m.point_data["max_temperature_C"]) == pytest.approx(d["peak_temperature_C"], rel=1e-9)
     assert 10_000 < (out / f"{stem}.png").stat().st_size < 400_000
+
+
+def test_transient_time_series(run):
+    """The transient is one .pvd time series ParaView opens (pyvista's reader): frames of the
+    whole part from the start to the end of the run, each slip and pause end among them; the
+    hottest node of the frame at the hottest moment is the run's peak (whole-part copies of
+    the sector alike)."""
+    import pyvista as pv
+
+    d, out = run
+    stem = d["label"] + "_slip_heat"
+    reader = pv.get_reader(str(out / f"{stem}.pvd"))
+    times = reader.time_values
+    t = d["series"]["times_s"]
+    assert times[0] == 0.0 and times[-1] == pytest.approx(t[-1], rel=1e-12)
+    assert np.all(np.diff(times) > 0) and 10 <= len(times) <= 80
+    peaks = []
+    for tt in times:
+        reader.set_active_time_value(tt)
+        g = reader.read()[0]
+        assert set(np.unique(g.cell_data["zone_id"])) <= {0, 1, 2}
+        peaks.append(float(g.point_data["temperature_C"].max()))
+        k = int(np.argmin(np.abs(np.array(t) - tt)))
+        assert peaks[-1] == pytest.approx(d["series"]["part_max_C"][k], rel=1e-9)
+    assert max(peaks) <= d["peak_temperature_C"] * (1 + 1e-12)
+    for c in d["cycles_table"]:  # every slip event's end is a frame
+        assert min(abs(np.array(peaks) - c["end_of_slip_part_max_C"])) < 1e-9 * c["end_of_slip_part_max_C"]
 
 
 def test_table_has_units():

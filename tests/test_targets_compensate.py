@@ -13,6 +13,8 @@ from clutchfem.geometry import table_cardinal as cardinal
 from clutchfem.loadcase import Design
 from clutchfem.studies import compensate
 from clutchfem.studies.compensation import evenness, shoe_state
+from clutchfem.studies.target_charts import compensation_profile
+from support.pictures import agrees, rule
 
 SIZE = 2.4e-3
 
@@ -66,3 +68,12 @@ def test_compensate_cli_json_and_refusals(tmp_path):
     assert d["contact_share_after"] > d["contact_share_before"]
     rows = {x["answer"]: x for x in d["before_after"]}
     assert any("engagement" in k for k in rows) and any("torque" in k for k in rows)
+
+
+def test_compensation_picture_agrees(comp, tmp_path):
+    """The picture rule: the contact shares before and after are the result's, legends off the
+    data, every axis with its unit."""
+    rec = rule(compensation_profile(comp, tmp_path / "p.png"))
+    agrees(rec, r"before: contact", comp.state_before.contact_share, 100)
+    agrees(rec, r"after: contact", comp.state_after.contact_share, 100)
+    agrees(rec, r"compensation at", comp.rpm)

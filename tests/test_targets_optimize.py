@@ -11,6 +11,7 @@ import pytest
 from clutchfem.core import ParameterError
 from clutchfem.studies import Targets, default_free
 from clutchfem.studies.optimization import better, make_space
+from support.pictures import agrees, rule
 
 CLI = [sys.executable, "-m", "clutchfem.cli"]
 SIZE = "2.4mm"
@@ -108,3 +109,7 @@ def test_infeasible_targets_name_the_binding_constraint(tmp_path):
     html = (tmp_path / "report.html").read_text()
     assert "FAIL" in html and "data:image/png;base64," in html
     assert (tmp_path / "optimization_path.csv").exists() and (tmp_path / "inputs.json").exists()
+    # the picture rule: the limit of each target named with its value, legends off the data
+    rec = rule(tmp_path / "optimization_path.png", units_exempt=("design evaluated",))
+    agrees(rec, r"safety factor >=", 20)
+    agrees(rec, r"\(", len(res["path"]) if "path" in res else res["evaluations_total"])

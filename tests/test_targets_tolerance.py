@@ -8,7 +8,9 @@ import pytest
 from clutchfem.core import ParameterError
 from clutchfem.geometry import get_concept
 from clutchfem.studies import EvalSettings, parse_tolerance, tolerance
+from clutchfem.studies.target_charts import tolerance_histograms, tolerance_ranking
 from clutchfem.studies.tolerancing import bootstrap_src, src, wilson
+from support.pictures import agrees, rule
 
 
 def test_wilson_interval_closed_forms():
@@ -45,7 +47,7 @@ def test_parse_tolerance():
         assert e.value.name == name
 
 
-def test_small_monte_carlo_run():
+def test_small_monte_carlo_run(tmp_path):
     s = EvalSettings("concept4", mesh_size=2.4e-3)
     res = tolerance(s, {"flexure_thickness": 0.05e-3, "hub_radius": 0.05e-3}, n=12, seed=2, shifts=True)
     assert res.statuses.get("ok", 0) >= 10
@@ -60,3 +62,9 @@ def test_small_monte_carlo_run():
     assert sd > 0 and math.isfinite(sd)
     th = [x for x in res.shifts if x["name"] == "flexure_thickness" and x["status"] == "ok"]
     assert th and all((x["shift_m"] > 0) == (x["stiffness_change_pct"] > 0) for x in th)
+    # the picture rule: nominal values and spreads as the result's, legends off the bars
+    rec = rule(tolerance_histograms(res, tmp_path / "h.png"), units_exempt=("parts",))
+    st = res.stats["engagement_rpm"]
+    agrees(rec, r"engagement speed \(static\): sd", st["sd"] * st["scale"])
+    agrees(rec, r"^nominal", st["nominal"] * st["scale"])
+    rule(tolerance_ranking(res, tmp_path / "r.png"))

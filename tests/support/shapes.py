@@ -5,6 +5,11 @@ physical groups and read back through the user-mesh path (:func:`clutchfem.mesh.
   cut lines): groups ``bore`` (r = a), ``contact`` (r = b), ``solid`` and, for a sector,
   ``cut_a`` (polar angle 0) and ``cut_b`` (= cut_a rotated by +sector_deg).  The Lame
   (rotating disc) solutions of ``tests/test_fem_verification.py`` refer to it.
+* :func:`ring_segment_msh` -- a segment of a ring (inner radius a, outer radius b, +-half
+  angle about the +x axis) centred at (x_c, 0): ``bore`` is its inner arc (clamped),
+  ``contact`` its outer arc, meshed finer near it; placed inside the drum it is a cylinder
+  in a cylindrical hole, whose contact width under a force is Hertz's
+  (``tests/test_contact_arc.py``).
 * :func:`cantilever_msh` -- a rectangle 0 <= x <= L, -t/2 <= y <= t/2: ``bore`` is the
   clamped edge x = 0, ``tip`` the loaded edge x = L, ``solid`` the surface.
 
@@ -25,7 +30,7 @@ from clutchfem.core import GeometryError
 from clutchfem.geometry import gmsh_session
 from clutchfem.mesh import ClutchMesh, load_user_geometry
 
-__all__ = ["annulus_msh", "cantilever_msh", "load_annulus", "load_cantilever"]
+__all__ = ["annulus_msh", "cantilever_msh", "load_annulus", "load_cantilever", "ring_segment_msh"]
 
 
 def _mesh_and_write(path: Path, size: float, order: int) -> None:
@@ -95,6 +100,53 @@ def annulus_msh(path: str | Path, r_in: float, r_out: float, size: float, order:
             gmsh.model.addPhysicalGroup(1, [cut_b], name="cut_b")
             gmsh.model.addPhysicalGroup(2, [surf], name="solid")
         _mesh_and_write(path, size, order)
+    return path
+
+
+def ring_segment_msh(path: str | Path, x_c: float, r_in: float, r_out: float, half_deg: float, size: float,
+                     contact_size: float) -> Path:
+    """Write a ring segment |x - (x_c, 0)| <= r_out, |polar angle about (x_c, 0)| <= half_deg,
+    whose inner side is the arc of radius x_c + r_in about the origin (the rotation axis: a
+    user part's bore must be centred on it), to ``path``: groups ``bore`` (that inner arc,
+    clamped), ``contact`` (the outer arc), ``solid``; element size ``contact_size`` within
+    1.5 mm of the outer arc, growing to ``size``."""
+    path = Path(path)
+    if not 0 < r_in < r_out:
+        raise GeometryError(f"ring segment needs 0 < r_in < r_out (got {r_in}, {r_out})")
+    with gmsh_session("ring_segment"):
+        occ = gmsh.model.occ
+        th = math.radians(half_deg)
+        c = occ.addPoint(x_c, 0, 0)
+        o = occ.addPoint(0, 0, 0)
+        rb = x_c + r_in
+        pb = math.atan2(r_in * math.sin(th), x_c + r_in * math.cos(th))  # the bore arc's half angle
+        pts = [occ.addPoint(rb * math.cos(-pb), rb * math.sin(-pb), 0),
+               occ.addPoint(x_c + r_out * math.cos(-th), r_out * math.sin(-th), 0),
+               occ.addPoint(x_c + r_out * math.cos(th), r_out * math.sin(th), 0),
+               occ.addPoint(rb * math.cos(pb), rb * math.sin(pb), 0)]
+        side_a = occ.addLine(pts[0], pts[1])
+        rim = occ.addCircleArc(pts[1], c, pts[2])
+        side_b = occ.addLine(pts[2], pts[3])
+        bore = occ.addCircleArc(pts[3], o, pts[0])
+        surf = occ.addPlaneSurface([occ.addCurveLoop([side_a, rim, side_b, bore])])
+        occ.synchronize()
+        occ.remove([(0, c), (0, o)])
+        occ.synchronize()
+        gmsh.model.addPhysicalGroup(1, [bore], name="bore")
+        gmsh.model.addPhysicalGroup(1, [rim], name="contact")
+        gmsh.model.addPhysicalGroup(2, [surf], name="solid")
+        fld = gmsh.model.mesh.field
+        dist = fld.add("Distance")
+        fld.setNumbers(dist, "CurvesList", [rim])
+        fld.setNumber(dist, "Sampling", 400)
+        thr = fld.add("Threshold")
+        fld.setNumber(thr, "InField", dist)
+        fld.setNumber(thr, "SizeMin", contact_size)
+        fld.setNumber(thr, "SizeMax", size)
+        fld.setNumber(thr, "DistMin", 1.5e-3)
+        fld.setNumber(thr, "DistMax", 6e-3)
+        fld.setAsBackgroundMesh(thr)
+        _mesh_and_write(path, size, 2)
     return path
 
 

@@ -45,7 +45,8 @@ def coupling_step(design, res) -> tuple[dict, pd.DataFrame]:
     rpm = res.rpm
     ext = res.contact_extent(0)
     out = {"rpm": rpm, "fe_torque_Nm": res.curve["torque_Nm"].to_numpy(),
-           "contact_arc_deg": np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0]))}  # the columns
+           "contact_arc_deg": np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0])),  # the columns
+           "contact_arc_error_deg": np.degrees(np.nan_to_num(ext[:, 2] + ext[:, 3]))}
     shoe = cm.mass.get("shoe_0") if cm.mass else None
     if shoe is None or not cm.pivots or not cm.contact_arcs or params is None:
         out["analytic_nominal_arc_Nm"] = np.full(len(rpm), math.nan)
@@ -72,7 +73,8 @@ def coupling_step(design, res) -> tuple[dict, pd.DataFrame]:
                 "source": "m, R_Tp: OCC mass properties of the shoe zone; F_f: from the FE engagement "
                           "speed (eq 1 inverted); A, L: geometry (pivot = flexure's compliant centre, "
                           "not fitted); phi: nominal shoe arc, measured from the pivot ray; FE arc: "
-                          "nodes in contact plus half a node spacing at each end"}
+                          "its ends between the nodes, from the gap and the pressure interpolated along "
+                          "the P2 boundary (clutchfem.contact.arc)"}
     # apply force per shoe (eq 3; none without an engagement speed)
     F = apply_force(rpm_to_rad_s(rpm), m, R_Tp, F_f) if math.isfinite(F_f) else np.zeros(len(rpm))
     try:

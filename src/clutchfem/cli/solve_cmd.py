@@ -41,10 +41,11 @@ def solve(
     no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery", rich_help_panel=O.MODEL),
     no_errors: bool = typer.Option(False, "--no-errors", help="skip the error estimate (a mesh twice as fine)",
                                    rich_help_panel=O.MODEL),
-    vtk: bool = typer.Option(False, "--vtk", help="write .vtu fields (and PNG renders) for the speeds in --vtk-rpm",
-                             rich_help_panel=O.OUTPUT),
-    vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds in rpm for the .vtu fields (default: the "
-                                          "highest of --rpm)", rich_help_panel=O.OUTPUT),
+    vtk: bool = typer.Option(False, "--vtk", help="write the fields for ParaView: one .pvd time series over the "
+                             "speeds of --vtk-rpm (a .vtu of the whole part per speed, SI units, zone ids) and a "
+                             "PNG of von Mises at the highest of them", rich_help_panel=O.OUTPUT),
+    vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds in rpm of the .pvd series (default: the "
+                                          "speeds of --rpm, at most 30 of them: every k-th and the highest)", rich_help_panel=O.OUTPUT),
     out: O.Out = None,
     json_: O.Json = False,
 ):
@@ -54,6 +55,7 @@ def solve(
     from ..core import dumps, write
     from ..fe import write_vtk
     from ..loadcase import design_inputs, design_label, model_warnings, parse_rpm
+    from ..report import field_picture
 
     try:
         check_out_dir(out)
@@ -62,7 +64,7 @@ def solve(
                              formulation=formulation, rpm=rpm,
                              layers=layers, drum_wall=drum_wall, drum_state=drum_state, material=mat)
         speeds = op.speeds()
-        which = parse_rpm(vtk_rpm) if vtk_rpm else np.array([float(speeds.max())])
+        which = parse_rpm(vtk_rpm) if vtk_rpm else series_speeds(speeds)
         if vtk:
             speeds = np.union1d(speeds, which)
         with working(f"solve {concept or mesh}") as stage:
@@ -86,7 +88,10 @@ def solve(
             files.append(write(out / f"{label}_result.json", doc, indent=2))
         if vtk:
             target = check_out_dir(out or Path("out/solve"))
-            files += write_vtk(res, which, target, stem=label)
+            files += write_vtk(res, which, target, stem=label, cm=design.cm)
+            top = float(np.max(which))
+            files.append(field_picture(res, top, target / f"{label}_fields_{int(round(top))}rpm.png", cm=design.cm,
+                                       title=f"{label}: von Mises at {top:.0f} rpm"))
         wrote(files)
         if json_:
             print(dumps(doc))
@@ -97,6 +102,20 @@ def solve(
             console.print(f"[bold red]WARNING:[/] {escape(w)}")
     except ClutchfemError as exc:
         fail(exc)
+
+
+#: frames of the default .pvd series (about 1.6 MB a frame for concept 1's whole part)
+MAX_FRAMES = 30
+
+
+def series_speeds(speeds) -> np.ndarray:
+    """The default speeds of the .pvd series: those of --rpm, every k-th of them (and the
+    highest) when there are more than :data:`MAX_FRAMES`."""
+    s = np.sort(np.asarray(speeds, dtype=float))
+    if len(s) <= MAX_FRAMES:
+        return s
+    step = math.ceil(len(s) / MAX_FRAMES)
+    return np.union1d(s[::step], s[-1:])
 
 
 def _print_sweep(res, mat) -> None:

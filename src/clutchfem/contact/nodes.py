@@ -6,6 +6,12 @@ Node i at x_i has the exact initial gap g0_i = R_d - |x_i| and outward normal n_
 (the drum's, evaluated on the exact circle, so a coarse chord does not eat the 0.6 mm
 clearance); on a one-sector model a node on cut_b is the rotated copy of one on cut_a and
 is merged with it.
+
+Along the surface: every node has an in-plane *position* (2-D: its own; 3-D: the nodes of
+the levels through the thickness at one x-y share it), and the contact boundary's P2 facets
+of the 2-D mesh are kept as position triples (end, mid-edge, end) with the polar angles of
+their own three nodes (a facet ending on cut_b keeps its angle there, its node is the merged
+cut_a copy): what :mod:`clutchfem.contact.arc` interpolates along.
 """
 
 from __future__ import annotations
@@ -20,6 +26,7 @@ from scipy.spatial import cKDTree
 
 from ..core import MeshError, ParameterError, wrap_angle
 from ..fe import FEModel3D, component_dofs, contact_area_weights, contact_weights
+from ..mesh import facet_nodes, p2_nodes
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,6 +44,12 @@ class ContactNodes:
     angle: np.ndarray  # (m,) polar angle [rad]
     ndofs: int
     _weights: object = None  # callable () -> (m,), evaluated once on first use
+    #: (m,) in-plane position of each node (2-D: arange(m); 3-D: shared through the thickness)
+    position: np.ndarray | None = None
+    #: (nf, 3) positions of each contact facet's (end, mid-edge, end) nodes of the 2-D mesh
+    facets: np.ndarray | None = None
+    #: (nf, 3) polar angles [rad] of those three nodes (their own, before the cut_b merge)
+    facet_angle: np.ndarray | None = None
 
     @property
     def m(self) -> int:
@@ -198,9 +211,47 @@ def build_contact_nodes(cm, part, drum_radius: float, dx, dy, doflocs, x_dofs, w
             w = w[keep]
         return w
 
+    position, facets, facet_angle = surface_facets(cm, xy, drum_radius)
     return ContactNodes(drum_radius=float(drum_radius), dof_x=dx, dof_y=dy, xy=xy, normal=n, tangent=t,
                         gap0=np.maximum(gap0, 0.0), shoe=shoe, angle=np.arctan2(xy[1], xy[0]),
-                        ndofs=ndofs, _weights=weights)
+                        ndofs=ndofs, _weights=weights, position=position, facets=facets,
+                        facet_angle=facet_angle)
+
+
+def surface_facets(cm, xy: np.ndarray, drum_radius: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(position of each node, facets as position triples, facet node angles) of the
+    ``contact`` boundary of the 2-D mesh ``cm`` for contact nodes at ``xy`` (2, m): nodes at
+    one x-y (a 3-D model's levels) share a position; a facet node on cut_b is found as its
+    rotated cut_a copy."""
+    tol = 1e-8 * drum_radius
+    uniq, position = _cluster(xy.T, tol)
+    fac = cm.boundary("contact")
+    nodes = facet_nodes(cm.mesh)[:, fac]  # (3, nf): end, end, mid
+    P = p2_nodes(cm.mesh)
+    tri = np.vstack([nodes[0], nodes[2], nodes[1]])  # end, mid, end
+    fxy = P[:, tri.ravel()]  # (2, 3 nf)
+    tree = cKDTree(uniq)
+    dist, idx = tree.query(fxy.T)
+    far = dist > tol
+    if far.any() and cm.sector_angle is not None:
+        cs, sn = math.cos(cm.sector_angle), math.sin(cm.sector_angle)
+        back = np.array([[cs, sn], [-sn, cs]]) @ fxy[:, far]
+        d2, i2 = tree.query(back.T)
+        dist[far], idx[far] = d2, i2
+    if np.any(dist > tol):
+        raise MeshError(f"{cm.source}: a node of the 'contact' boundary is not a contact node "
+                        f"(off by {dist.max():.3g} m)")
+    facets = idx.reshape(3, -1).T.copy()
+    angle = np.arctan2(fxy[1], fxy[0]).reshape(3, -1).T.copy()
+    return position, facets, angle
+
+
+def _cluster(pts: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """(unique points (k, 2), index of each point's unique point) within ``tol``."""
+    tree = cKDTree(pts)
+    rep = np.array([min(g) for g in tree.query_ball_point(pts, tol)], dtype=np.int64)
+    keys, inv = np.unique(rep, return_inverse=True)
+    return pts[keys], inv.astype(np.int64)
 
 
 def check_facing(cm, facets: np.ndarray) -> None:

@@ -39,6 +39,7 @@ from .heat import (
                       render_png,
                       slip_heat_load,
                       slip_heat_validity,
+                      write_series,
                       write_vtu,
 )
 
@@ -46,4 +47,4 @@ __all__ = ["DrumThermal", "FatigueLoads", "FatigueParams", "FatigueResult", "Hea
            "Location", "ServiceStates", "SlipHeatLoad", "SlipHeatResult", "SlipScenario", "ThermalEnvironment",
            "ThermalMaterial", "candidate_points", "endurance_limit", "fatigue_check", "heat_partition",
            "name_location", "render_png", "ripple_classes", "service_cycles", "single_cycle_factor",
-           "heat_transient", "slip_heat_load", "slip_heat_validity", "write_vtu"]
+           "heat_transient", "slip_heat_load", "slip_heat_validity", "write_series", "write_vtu"]

@@ -84,6 +84,19 @@ class ConceptParams(ParamSet):
                 d.pop(name, None)
         return d
 
+    def inactive(self) -> tuple[str, ...]:
+        """Parameters that have no effect on this design: the controls of the profiles it does
+        not use (``clearance_tip`` unless linear, ``eccentricity`` and ``eccentric_angle`` unless
+        eccentric, ``table_c0`` .. ``table_c16`` unless table).  Studies leave them out."""
+        out = []
+        if self.profile != "linear":
+            out.append("clearance_tip")
+        if self.profile != "eccentric":
+            out += ["eccentricity", "eccentric_angle"]
+        if self.profile != "table":
+            out += list(TABLE_FIELDS)
+        return tuple(n for n in out if n in type(self).model_fields)
+
     # ---- profile of the shoe outer surface (canonical frame, shoe 0) ----------------------
     def outer_radius(self, theta: np.ndarray, t0: float, t1: float) -> np.ndarray:
         """Radius of the shoe's outer surface at polar angle ``theta`` (rad), for a shoe

@@ -111,12 +111,9 @@ def fmt_param_value(p, name: str) -> str:
 
 def _param_lines(p) -> list[str]:
     rows = []
+    off = set(p.inactive())
     for name in type(p).model_fields:
-        if name == "clearance_tip" and p.profile != "linear":
-            continue
-        if name in ("eccentricity", "eccentric_angle") and p.profile != "eccentric":
-            continue
-        if name.startswith("table_c") and p.profile != "table":
+        if name in off:
             continue
         rows.append(f"{name} = {fmt_param_value(p, name)}")
     return rows

@@ -27,7 +27,7 @@ from itertools import combinations
 
 import numpy as np
 
-from ..contact import DrumContact, lazy, solve_lcp
+from ..contact import DrumContact, contact_modulus, lazy, solve_lcp
 from ..core import SolverError, brentq, rad_s_to_rpm, rpm_to_rad_s
 from ..softening import Ritz, Softening, get_softening
 from .checks import check_numerics, condition_estimate, equilibrium
@@ -248,6 +248,25 @@ class LoadCase:
         return s.reshape(s.shape[0], -1, len(om))
 
     @property
+    def contact_modulus(self) -> float:
+        """E* [Pa] of the part's surface (:func:`clutchfem.contact.contact_modulus`)."""
+        m = self.model.material
+        return contact_modulus(m.E, m.nu, getattr(self.model, "formulation", "plane-stress"))
+
+    def gaps(self, omega: float, lam: np.ndarray) -> np.ndarray:
+        """(m,) gaps [m] of the contact nodes at speed ``omega`` [rad/s] with nodal forces
+        ``lam`` [N] (an LCP solution of this case): w = q + G lam."""
+        c = self.contact
+        q = c.nodes.gap0 + c.drum_gap(omega) - self.response.free_normal(omega)
+        A = np.nonzero(lam)[0]
+        if not len(A):
+            return q
+        G = self.response.columns(omega)(A)
+        if c.drum_compliance is not None:
+            G = G + c.drum_compliance[:, A]
+        return q + G @ lam[A]
+
+    @property
     def scale(self) -> float:
         """Totals of the whole clutch / totals of the model (sector and mid-plane symmetry)."""
         return self.model.cm.sector_copies * getattr(self.model, "symmetry_factor", 1.0)
@@ -271,8 +290,9 @@ def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:
     basis, coef, U = case.response.fields(omegas, lam)
     model = case.model
     fields = Fields(basis=basis, coef=coef, U=U, stress=model.stress, fe_basis=model.basis)
-    curve = curve_table(rpm, omegas, lam, case.contact, case.scale, fields, stresses,
-                        model.material.yield_strength)
+    modulus = case.contact_modulus
+    curve, gaps = curve_table(rpm, omegas, lam, case.contact, case.scale, fields, stresses,
+                              model.material.yield_strength, model.thickness, modulus)
     t3 = time.perf_counter()
     # is it right? equilibrium residual and torque balance per speed, conditioning
     # (a strategy that changes the softening operator, e.g. nonlinear.PrestressRitz, names the
@@ -294,5 +314,6 @@ def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:
                        first_touch=where, first_touch_angle_deg=angle,
                        divergence_rpm=None if div is None else rad_s_to_rpm(div), contact=case.contact,
                        scale=case.scale, thickness=model.thickness, softening=case.softening.name,
-                       curve=curve, shoes=shoe_table(rpm, lam, case.contact, nominal), fields=fields,
+                       curve=curve, shoes=shoe_table(rpm, lam, case.contact, nominal, gaps, model.thickness, modulus),
+                       fields=fields, gaps=gaps, contact_modulus=modulus,
                        condition=cond, warnings=warns, timings=timings)

@@ -9,10 +9,13 @@ written from its stored states, not by solving again.
 Conventions of the tables (one meaning everywhere):
 
 * forces, torque: the whole clutch (a one-sector model is scaled by n_shoes_total / 1);
-* ``contact_arc_deg``: per shoe, the arc of the drum surface covered by the nodes in contact,
-  each node standing for the boundary up to half-way to its neighbours (a single node in
-  contact has the width of one node spacing, not zero); the curve gives the mean over the
-  modelled shoes;
+* ``contact_arc_deg``: per shoe, the arc from the first to the last end of its contact, the
+  ends found between the nodes from the gap and the pressure interpolated along the P2
+  boundary (:mod:`clutchfem.contact.arc`), ``contact_arc_error_deg`` its error (0.4 node
+  spacings per end, 0 where the contact reaches the end of the contact surface); the curve
+  gives the mean over the modelled shoes;
+* ``gaps``: every contact node's gap [m] at every state, g = g0 + u_drum - B u (+ C_d lam
+  for an elastic drum);
 * ``max_von_mises_Pa``: raw (unaveraged) vertex stresses, the peak over the part;
 * angles: polar angles of the drum frame [deg];
 * ``residual``: relative equilibrium residual of the state, ``torque_balance_error``: bore
@@ -27,6 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from ..contact import arc_error_deg, contact_ends
 from ..core import InputError, clean, wrap_angle
 
 #: speeds per block when stresses and displacements of many speeds are post-processed
@@ -81,11 +85,15 @@ class SweepResult:
         The speeds [rpm], [rad/s].
     lam : ndarray
         Contact forces per speed and contact node [N] (model: one sector of a cyclic part).
+    gaps : ndarray
+        Gaps per speed and contact node [m].
+    contact_modulus : float
+        E* [Pa] of the part's surface (:func:`clutchfem.contact.contact_modulus`).
     engagement_rpm : float or None
         Engagement speed (None: never engages below the divergence speed).
     curve : pandas.DataFrame
-        One row per speed: normal force [N], torque [N m], contact arc [deg], peak von Mises
-        [Pa], safety factor, displacement [m], checks (whole clutch).
+        One row per speed: normal force [N], torque [N m], contact arc and its error [deg],
+        peak von Mises [Pa], safety factor, displacement [m], checks (whole clutch).
     shoes : pandas.DataFrame
         Per shoe and speed.
     warnings : tuple of str
@@ -94,8 +102,8 @@ class SweepResult:
     --------
     >>> import clutchfem as cf
     >>> r = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm")).sweep("8000")
-    >>> sorted(c for c in r.curve.columns if c in ("torque_Nm", "contact_arc_deg"))
-    ['contact_arc_deg', 'torque_Nm']
+    >>> sorted(c for c in r.curve.columns if c.startswith(("torque", "contact_arc")))
+    ['contact_arc_deg', 'contact_arc_error_deg', 'torque_Nm']
     """
 
     rpm: np.ndarray
@@ -112,6 +120,10 @@ class SweepResult:
     curve: pd.DataFrame
     shoes: pd.DataFrame
     fields: Fields
+    #: (ns, m) gap of every contact node at every state [m]
+    gaps: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    #: E* of the part's surface [Pa] (the contact arc's ends: clutchfem.contact.arc)
+    contact_modulus: float = float("nan")
     #: 1-norm condition estimate of the reduced stiffness (clutchfem.loadcase.checks)
     condition: float = float("nan")
     #: numerical warnings of the solve (model-applicability warnings: clutchfem.loadcase.model_warnings)
@@ -150,13 +162,13 @@ class SweepResult:
         return self.fields.block(slice(None))
 
     def contact_extent(self, shoe: int = 0) -> np.ndarray:
-        """(nspeeds, 2) start and end polar angle [rad] of shoe ``shoe``'s contact (NaN where
-        it does not touch); see the module docstring for the half-spacing convention."""
-        return contact_extent(self.contact, self.lam, shoe)
+        """(nspeeds, 4) start and end polar angle [rad] of shoe ``shoe``'s contact and their
+        errors [rad] (NaN where it does not touch): :func:`clutchfem.contact.contact_ends`."""
+        return contact_extent(self.contact, self.lam, self.gaps, self.thickness, self.contact_modulus, shoe)
 
     def to_json(self) -> dict:
-        cols = ["rpm", "normal_force_N", "torque_Nm", "contact_arc_deg", "max_von_mises_Pa",
-                "max_displacement_m"]
+        cols = ["rpm", "normal_force_N", "torque_Nm", "contact_arc_deg", "contact_arc_error_deg",
+                "max_von_mises_Pa", "max_displacement_m"]
         return {"engagement_rpm": self.engagement_rpm, "first_touch": self.first_touch,
                 "divergence_rpm": self.divergence_rpm, "mu": self.mu, "softening": self.softening,
                 "condition_estimate": self.condition,
@@ -178,52 +190,50 @@ def records(df: pd.DataFrame) -> list[dict]:
 # ---------------------------------------------------------------------------------------
 # tables
 # ---------------------------------------------------------------------------------------
-def contact_extent(contact, lam: np.ndarray, shoe: int = 0) -> np.ndarray:
-    out = np.full((lam.shape[0], 2), np.nan)
+def contact_extent(contact, lam: np.ndarray, gaps: np.ndarray, thickness: float, modulus: float,
+                   shoe: int = 0) -> np.ndarray:
+    """(nstates, 4) start and end polar angle [rad] of shoe ``shoe``'s contact and their errors
+    [rad], NaN where it does not touch (:func:`clutchfem.contact.contact_ends`); ``lam`` and
+    ``gaps`` (nstates, m): nodal forces [N] and gaps [m]."""
+    lam = np.atleast_2d(lam)
     if contact is None:
-        return out
-    nd = contact.nodes
-    sel = np.nonzero(nd.shoe == shoe)[0]
-    if sel.size == 0:
-        return out
-    ang = nd.angle[sel]
-    ang = wrap_angle(ang, float(np.angle(np.exp(1j * ang).mean())))  # unwrap around the shoe
-    # nodes at one angle (a 3-D model's levels) are one position along the arc: in contact
-    # if any of them is
-    a, inv = np.unique(np.round(ang, 12), return_inverse=True)
-    gaps = np.diff(a)
-    lo_half = np.concatenate([[gaps[0] if gaps.size else 0.0], gaps]) / 2  # to the previous node
-    hi_half = np.concatenate([gaps, [gaps[-1] if gaps.size else 0.0]]) / 2  # to the next node
-    on = np.zeros((lam.shape[0], len(a)), dtype=bool)
-    np.logical_or.at(on.T, inv, (lam[:, sel] > 0).T)
-    hit = on.any(axis=1)
-    i0 = np.argmax(on, axis=1)
-    i1 = on.shape[1] - 1 - np.argmax(on[:, ::-1], axis=1)
-    out[hit, 0] = a[i0[hit]] - lo_half[i0[hit]]
-    out[hit, 1] = a[i1[hit]] + hi_half[i1[hit]]
-    return out
+        return np.full((lam.shape[0], 4), np.nan)
+    return contact_ends(contact.nodes, lam, gaps, thickness, modulus, shoe)
 
 
-def contact_arcs_deg(contact, lam: np.ndarray) -> dict[int, np.ndarray]:
-    """Per shoe, the contact arc [deg] at every state (0 where it does not touch)."""
+def contact_arcs_deg(contact, lam: np.ndarray, gaps: np.ndarray, thickness: float,
+                     modulus: float) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """Per shoe, (contact arc [deg], its error [deg]) at every state (0 where it does not touch)."""
     if contact is None:
         return {}
     out = {}
     for s_ in contact.nodes.shoes:
-        ext = contact_extent(contact, lam, s_)
-        out[s_] = np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0]))
+        ext = contact_extent(contact, lam, gaps, thickness, modulus, s_)
+        out[s_] = (np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0])), arc_error_deg(ext))
     return out
 
 
+def state_gaps(contact, omega: np.ndarray, lam: np.ndarray, U: np.ndarray) -> np.ndarray:
+    """(nstates, m) gaps [m] of the contact nodes for displacements ``U`` (ndofs, nstates):
+    g = g0 + u_drum(w) - B u (+ C_d lam: an elastic drum's wall pushed out by the forces)."""
+    nd = contact.nodes
+    g = nd.gap0[:, None] - nd.normal_displacement(U).reshape(nd.m, -1)
+    g = g + np.array([contact.drum_gap(float(w)) for w in np.atleast_1d(omega)])[None, :]
+    Cd = contact.drum_compliance
+    if Cd is not None:
+        g = g + Cd @ np.atleast_2d(lam).T
+    return g.T
+
+
 def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses: bool,
-                yield_strength: float) -> pd.DataFrame:
-    """The sweep curve: one row per speed (see module docstring for the conventions)."""
+                yield_strength: float, thickness: float, modulus: float) -> tuple[pd.DataFrame, np.ndarray]:
+    """(the sweep curve: one row per speed, see module docstring for the conventions; the
+    contact nodes' gaps (ns, m) [m])."""
     ns = len(rpm)
     R = 0.0 if contact is None else contact.drum_radius
     mu = 0.0 if contact is None else contact.mu
     nsum = lam.sum(axis=1) * scale if lam.size else np.zeros(ns)
-    arcs = contact_arcs_deg(contact, lam)
-    arc = np.mean(np.vstack(list(arcs.values())), axis=0) if arcs else np.zeros(ns)
+    gaps = np.zeros((ns, 0 if contact is None else contact.nodes.m))
     b = fields.fe_basis
     # every node's x and y dof (2-D P2: vertices and facets; 3-D P2 tetrahedra: vertices and edges)
     xd, yd = (np.concatenate([d[c] for d in (b.nodal_dofs, b.facet_dofs, b.edge_dofs) if d.shape[0] > c])
@@ -235,6 +245,8 @@ def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses
         sl = slice(a, min(a + CHUNK, ns))
         U = fields.block(sl)
         umax[sl] = np.sqrt(U[xd] ** 2 + U[yd] ** 2).max(axis=0) if U.size else 0.0
+        if contact is not None:
+            gaps[sl] = state_gaps(contact, np.asarray(omega)[sl], lam[sl], U)
         if stresses:
             # the thick plane model reads its peaks with the finite-rotation (Cauchy, Green-
             # Lagrange) measure of the same displacement (clutchfem.fe.ThickStress)
@@ -242,8 +254,12 @@ def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses
                                          else fields.stresses(sl))
             vm_max[sl] = vm.max(axis=0)
             kmax[sl] = vm.argmax(axis=0)
+    arcs = contact_arcs_deg(contact, lam, gaps, thickness, modulus)
+    arc = np.mean(np.vstack([a for a, _ in arcs.values()]), axis=0) if arcs else np.zeros(ns)
+    arc_err = np.mean(np.vstack([e for _, e in arcs.values()]), axis=0) if arcs else np.zeros(ns)
     df = pd.DataFrame({"rpm": np.asarray(rpm, dtype=float), "omega_rad_s": np.asarray(omega, dtype=float),
                        "normal_force_N": nsum, "torque_Nm": mu * R * nsum, "contact_arc_deg": arc,
+                       "contact_arc_error_deg": arc_err,
                        "contact_nodes": (lam > 0).sum(axis=1) if lam.size else np.zeros(ns, dtype=int),
                        "max_displacement_m": umax})
     if stresses and ns:
@@ -256,12 +272,12 @@ def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses
     else:
         df["max_von_mises_Pa"] = np.nan
         df["safety_factor"] = np.nan
-    return df
+    return df, gaps
 
 
-def shoe_table(rpm, lam, contact, nominal_arcs) -> pd.DataFrame:
-    """One row per (speed, modelled shoe): normal force, torque, contact extent and arc,
-    share of the nominal shoe arc."""
+def shoe_table(rpm, lam, contact, nominal_arcs, gaps, thickness: float, modulus: float) -> pd.DataFrame:
+    """One row per (speed, modelled shoe): normal force, torque, contact extent and arc with
+    its error, share of the nominal shoe arc."""
     if contact is None:
         return pd.DataFrame()
     nd = contact.nodes
@@ -270,13 +286,14 @@ def shoe_table(rpm, lam, contact, nominal_arcs) -> pd.DataFrame:
     for s_ in nd.shoes:
         sel = nd.shoe == s_
         N = lam[:, sel].sum(axis=1)
-        ext = contact_extent(contact, lam, s_)
+        ext = contact_extent(contact, lam, gaps, thickness, modulus, s_)
         span = np.degrees(np.nan_to_num(ext[:, 1] - ext[:, 0]))
         nominal = abs(math.degrees(nominal_arcs[s_][1] - nominal_arcs[s_][0])) if 0 <= s_ < len(nominal_arcs) \
             else math.nan
         frames.append(pd.DataFrame({"rpm": np.asarray(rpm, dtype=float), "shoe": int(s_), "normal_force_N": N,
                                     "torque_Nm": mu * R * N, "arc_start_deg": np.degrees(ext[:, 0]),
                                     "arc_end_deg": np.degrees(ext[:, 1]), "contact_arc_deg": span,
+                                    "contact_arc_error_deg": arc_error_deg(ext),
                                     "arc_fraction": span / nominal if nominal else math.nan}))
     df = pd.concat(frames, ignore_index=True)
     return df.sort_values(["rpm", "shoe"], kind="stable").reset_index(drop=True)
@@ -292,7 +309,8 @@ def pressure_table(res: SweepResult, k: int) -> pd.DataFrame:
     order = nd.by_arc
     return pd.DataFrame({"shoe": nd.shoe[order], "angle_deg": np.degrees(nd.angle[order]),
                          "x_m": nd.xy[0, order], "y_m": nd.xy[1, order],
-                         "force_N": lam[order], "pressure_Pa": p[order], "gap0_m": nd.gap0[order]})
+                         "force_N": lam[order], "pressure_Pa": p[order], "gap0_m": nd.gap0[order],
+                         "gap_m": res.gaps[k, order]})
 
 
 def first_touch(contact, node: int | None, nominal_arcs) -> tuple[str | None, float | None]:

@@ -1,6 +1,7 @@
 """Report stage: designer-facing output of analysed designs and design-to-targets runs:
 plots and the summary table (:mod:`.design`), the self-contained HTML page and its Markdown
-twin (:mod:`.html`), and which answers go on which page (:mod:`.pages`)."""
+twin (:mod:`.html`), which answers go on which page (:mod:`.pages`) and the field picture of
+a solved state (:mod:`.fields`)."""
 
 from .design import (
                      arc_stress_plot,
@@ -12,6 +13,7 @@ from .design import (
                      torque_plot,
                      write_analysis,
 )
+from .fields import field_picture
 from .html import Figure, Page, Table, Text, folder_page, render_html, render_md, write_page
 from .pages import (
                      compare_rows,
@@ -32,6 +34,6 @@ from .runs import (
 )
 
 __all__ = ["compensation_json", "compensation_report", "design_report", "optimization_report", "slip_heat_files", "tolerance_report", "Figure", "Page", "Table", "Text", "arc_stress_plot", "compare_rows", "comparison_plot",
-           "compensation_page", "default_design_report", "design_page", "design_verdicts", "fatigue_rows",
+           "compensation_page", "default_design_report", "design_page", "design_verdicts", "fatigue_rows", "field_picture",
            "folder_page", "markdown_summary", "optimization_page", "param_table", "render_html", "render_md",
            "summary_rows", "tolerance_page", "torque_plot", "write_analysis", "write_page"]

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..analysis import analyze, slip_answer
 from ..clutch import BaselineClutch, EngineCurve
-from ..core import figure
+from ..core import figure, save_figure
 from ..core import write as write_json
 from ..geometry import MeshSettings, concepts
 from ..loadcase import Design
@@ -141,11 +141,12 @@ def summary_rows(an) -> list[tuple[str, str]]:
                                 ("fe_torque_Nm", "analytic_fe_arc_Nm", "analytic_nominal_arc_Nm")) + " N m"))
         nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
         rows.append((f"contact arc per shoe at {m['rpm']:.0f} rpm (nominal shoe arc)",
-                     f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg ({nominal:.0f} deg)"))
+                     f"{an.contact_arc_at_max_engine_torque_deg:.2f} deg{_arc_err(an, m['rpm'])} ({nominal:.0f} deg)"))
     else:
         rows.append(("analytical shoe model (eqs 2-8)",
                      "not available (user mesh: no shoe pivot or nominal shoe arc)"))
-        rows.append((f"contact arc of shoe 0 at {m['rpm']:.0f} rpm", f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg"))
+        rows.append((f"contact arc of shoe 0 at {m['rpm']:.0f} rpm",
+                     f"{an.contact_arc_at_max_engine_torque_deg:.2f} deg{_arc_err(an, m['rpm'])}"))
     part = getattr(an, "part", None) or {}
     if "mass_kg" in part:
         rows.append((f"part mass (mesh area x rho x thickness {part['thickness_m'] * 1e3:g} mm)",
@@ -167,6 +168,15 @@ def summary_rows(an) -> list[tuple[str, str]]:
                  + (f" ({an.slip_rpm:.0f} rpm vs {req['slip_limit_rpm']:.0f} rpm)" if an.slip_rpm is not None
                     else f" ({an.slip_status})")))
     return rows
+
+
+def _arc_err(an, rpm: float) -> str:
+    """' +- x deg' of the contact arc at the sweep speed ``rpm`` (its ends between nodes)."""
+    c = an.curves
+    if "contact_arc_error_deg" not in c:
+        return ""
+    k = int(np.argmin(np.abs(c["rpm"].to_numpy(dtype=float) - rpm)))
+    return f" +- {float(c['contact_arc_error_deg'].iloc[k]):.2f} deg"
 
 
 def fatigue_rows(an) -> list[tuple[str, str]]:
@@ -212,7 +222,7 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
     """Torque vs rpm of one design: FE and both analytical curves, engine, baseline,
     engagement and slip markers, requirement bands."""
     c = an.curves
-    fig, ax = figure(figsize=(8.5, 5.5))
+    fig, ax = figure(figsize=(8.5, 6.6), layout="constrained")
     ax.plot(c["rpm"], c["fe_torque_Nm"], "k-", lw=2, label="FE (contact + friction)")
     if getattr(an, "analytical_available", True):
         ax.plot(c["rpm"], c["analytic_fe_arc_Nm"], "b--", label="analytical, FE contact arc")
@@ -240,49 +250,72 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
     ax.set_ylabel("torque [N m]")
     ax.set_title(title)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    return Path(path)
+    fig.legend(*ax.get_legend_handles_labels(), fontsize=7, loc="outside lower center", ncol=2)
+    return save_figure(fig, path)
 
 
 def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
-    """Contact arc per shoe vs rpm (with the nominal arc) and peak von Mises vs rpm (with yield)."""
+    """Contact arc per shoe vs rpm with its error band (the ends between the nodes:
+    :mod:`clutchfem.contact.arc`), its share of the nominal shoe arc on the right axis and
+    its value at the rpm of maximum engine torque marked; peak von Mises vs rpm with the
+    error band of the peak at the engine's maximum speed (relative, applied to every speed),
+    the yield line and the answer at the engine's maximum speed marked."""
     c = an.curves
-    fig, (a1, a2) = figure(1, 2, figsize=(11, 4.2))
+    fig, (a1, a2) = figure(1, 2, figsize=(12, 5.4), layout="constrained")
     nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
-    arc = c["contact_arc_deg"].where(c["contact_arc_deg"] > 0)
-    a1.plot(c["rpm"], arc, "k-", label="FE contact arc per shoe (nodes in contact + half spacing)")
-    if math.isfinite(nominal):
-        a1.axhline(nominal, color="r", ls=":", label=f"nominal shoe arc {nominal:.0f} deg (thesis assumption)")
-        a1.axhline(nominal / 3, color="0.5", ls="--", lw=1, label="1/3 of the nominal arc (thesis prototypes)")
+    rpm = c["rpm"].to_numpy(dtype=float)
+    arc = c["contact_arc_deg"].to_numpy(dtype=float)
+    err = c["contact_arc_error_deg"].to_numpy(dtype=float) if "contact_arc_error_deg" in c else np.zeros(len(arc))
+    on = arc > 0
+    a1.fill_between(rpm, np.where(on, np.maximum(arc - err, 0.0), np.nan), np.where(on, arc + err, np.nan),
+                    color="0.8", label="error band (ends +- 0.4 node spacings)")
+    a1.plot(rpm, np.where(on, arc, np.nan), "k-", lw=1.8, label="FE contact arc per shoe (ends between nodes)")
+    m = an.torque_models_at_max_engine_torque_Nm
+    k = int(np.argmin(np.abs(rpm - m["rpm"])))
+    a_probe = an.contact_arc_at_max_engine_torque_deg
+    a1.plot([m["rpm"]], [a_probe], "o", ms=8, mfc="none", mec="C0", mew=2,
+            label=f"{a_probe:.2f} deg +- {err[k]:.2f} deg at {m['rpm']:.0f} rpm (max engine torque)")
     if an.engagement_rpm:
         a1.axvline(an.engagement_rpm, color="m", ls="--", lw=1, label=f"engagement {an.engagement_rpm:.0f} rpm")
     a1.set_xlabel("engine speed [rpm]")
     a1.set_ylabel("contact arc per shoe [deg]")
-    a1.set_yscale("log")
-    a1.set_ylim(0.1, 200)
-    a1.set_xlim(0, c["rpm"].max())
+    a1.set_xlim(0, rpm.max())
+    a1.set_ylim(0, max(1.15 * float(np.nanmax(np.where(on, arc + err, 0.0), initial=0.0)), 0.5))
+    if math.isfinite(nominal) and nominal > 0:
+        a1.secondary_yaxis("right", functions=(lambda d: 100 * d / nominal, lambda q: q * nominal / 100)) \
+            .set_ylabel(f"share of the nominal shoe arc ({nominal:.0f} deg) [%]")
+        a1.plot([], [], " ", label=f"nominal shoe arc {nominal:.0f} deg (thesis assumption); prototypes touched "
+                                   f"on ~1/3 = {nominal / 3:.0f} deg")
     a1.set_title("contact arc (shoe vs drum)")
     a1.grid(alpha=0.3)
-    a1.legend(fontsize=7, loc="lower right")
-    a2.plot(c["rpm"], c["max_von_mises_Pa"] / 1e6, "r-", label="peak von Mises (FE)")
+    a1.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1)
+    vm = c["max_von_mises_Pa"].to_numpy(dtype=float) / 1e6
+    e = (getattr(an, "errors", None) or {}).get("max_von_mises_Pa") or {}
+    rel = e["total"] / e["value"] if e.get("total") is not None and e.get("value") else None
+    if rel is not None:
+        d = "n/a" if e.get("discretisation") is None else f"{e['discretisation'] / 1e6:.0f}"
+        a2.fill_between(rpm, vm * (1 - rel), vm * (1 + rel), color="mistyrose",
+                        label=f"error band +- {100 * rel:.0f} % (the peak's at {an.max_stress_rpm:.0f} rpm: mesh "
+                              f"{d} MPa, model {e['model_form'] / 1e6:.0f} MPa)")
+    a2.plot(rpm, vm, "r-", label="peak von Mises (FE, unaveraged element vertices)")
     a2.axhline(an.yield_strength_Pa / 1e6, color="k", ls="--", label=f"yield {an.yield_strength_Pa / 1e6:.0f} MPa")
-    a2.plot([an.max_stress_rpm], [an.max_von_mises_Pa / 1e6], "ko", mfc="none",
-            label=f"{an.max_von_mises_Pa / 1e6:.0f} MPa at {an.max_stress_rpm:.0f} rpm, SF {an.safety_factor:.2f}")
+    band = f" +- {e['total'] / 1e6:.0f} MPa" if rel is not None else ""
+    a2.plot([an.max_stress_rpm], [an.max_von_mises_Pa / 1e6], "ko", mfc="none", ms=8, mew=2,
+            label=f"{an.max_von_mises_Pa / 1e6:.0f} MPa{band} at {an.max_stress_rpm:.0f} rpm, "
+                  f"safety factor {an.safety_factor:.2f}")
     if an.safety_factor < 1:
-        a2.text(0.03, 0.93, "ABOVE YIELD at engine max speed", transform=a2.transAxes, color="r",
-                fontweight="bold", fontsize=9)
+        a2.set_title("peak stress: ABOVE YIELD at engine max speed", color="r", fontweight="bold")
+    else:
+        a2.set_title("peak stress")
     a2.set_xlabel("engine speed [rpm]")
     a2.set_ylabel("max von Mises [MPa]")
-    a2.set_title("peak stress")
+    a2.set_xlim(0, rpm.max())
+    a2.set_ylim(0, max(1.1 * an.yield_strength_Pa / 1e6, 1.1 * float(np.nanmax(vm * (1 + (rel or 0.0))))))
     a2.grid(alpha=0.3)
-    a2.legend(fontsize=7, loc="lower right")
+    a2.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1)
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    return Path(path)
+    return save_figure(fig, path)
 
 
 def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None,
@@ -312,7 +345,7 @@ def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None
     >>> cf.torque_speed_plot({"concept1": a}, cf.EngineCurve.default(),
     ...                      pathlib.Path(tempfile.mkdtemp()) / "t.png").suffix
     '.png'"""
-    fig, ax = figure(figsize=(9, 5.8))
+    fig, ax = figure(figsize=(12.5, 5.8), layout="constrained")
     rpm_max = engine.rpm_range[1]
     r = np.linspace(0, rpm_max, 561)
     ymax = 8.0
@@ -348,10 +381,8 @@ def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None
     ax.set_ylabel("clutch slip torque / engine torque [N m]")
     ax.set_title(title or "Torque vs engine speed, drum held (cf. thesis fig. 25)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left", ncol=1)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    return Path(path)
+    fig.legend(*ax.get_legend_handles_labels(), fontsize=7, loc="outside right upper", ncol=1)
+    return save_figure(fig, path)
 
 
 def write_analysis(an, engine, out: Path, name: str) -> list[Path]:

@@ -77,12 +77,9 @@ def cutting_files(folder: Path) -> list:
 def param_table(p, title: str = "Concept parameters") -> Table:
     P = type(p)
     rows = []
+    off = set(p.inactive()) if hasattr(p, "inactive") else set()
     for name in P.model_fields:
-        if name.startswith("table_c") and getattr(p, "profile", None) != "table":
-            continue
-        if name == "clearance_tip" and p.profile != "linear":
-            continue
-        if name in ("eccentricity", "eccentric_angle") and p.profile != "eccentric":
+        if name in off:
             continue
         rows.append([name, fmt_param_value(p, name), P.model_fields[name].description or ""])
     return Table(title, ["parameter", "value", "meaning"], rows)

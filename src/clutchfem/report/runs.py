@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 from pathlib import Path
 
 import pandas as pd
@@ -15,7 +16,7 @@ import pandas as pd
 from ..analysis import Requirements, analyze
 from ..clutch import EngineCurve
 from ..core import InputError, as_path, clean, write
-from ..durability import render_png, write_vtu
+from ..durability import render_png, write_series, write_vtu
 from ..loadcase import Design, design_inputs
 from .html import write_page
 from .pages import compensation_page, design_page, optimization_page, tolerance_page
@@ -151,12 +152,21 @@ def compensation_report(res, before, after, rows, engine: EngineCurve, out) -> l
     return _page(out, page, files)
 
 
+def _fresh_dir(p: Path) -> None:
+    """An empty folder at ``p`` (a leftover of an interrupted run removed)."""
+    if p.exists():
+        shutil.rmtree(p)
+    p.mkdir()
+
+
 def slip_heat_files(run, out) -> list[Path]:
     """``<label>_slip_heat.vtu`` (final and maximum temperature on the P2 mesh),
-    ``<label>_slip_heat.png`` (maximum temperature map and probe histories) and
-    ``<label>_slip_heat.json`` (the document, with the design inputs).  All are written to
-    hidden temporary names first and renamed together at the end, so an interrupted run
-    leaves none of them (and no half file).  ``run``: a :class:`~clutchfem.analysis.SlipHeatRun`."""
+    ``<label>_slip_heat.pvd`` with its folder ``<label>_slip_heat_series/`` (the transient
+    as a ParaView time series of the whole part), ``<label>_slip_heat.png`` (maximum
+    temperature map and probe histories) and ``<label>_slip_heat.json`` (the document, with
+    the design inputs).  All are written to hidden temporary names first and renamed
+    together at the end, so an interrupted run leaves none of them (and no half file).
+    ``run``: a :class:`~clutchfem.analysis.SlipHeatRun`."""
     doc, result, design = run.doc, run.result, run.design
     out = Path(out)
     stem = f"{doc['label']}_slip_heat"
@@ -169,11 +179,21 @@ def slip_heat_files(run, out) -> list[Path]:
             if doc.get("stopped_at_s") is not None:
                 title += f"; answers cut at {doc['stopped_at_s']:.1f} s (curves beyond: not valid)"
         jobs.append((".vtu", lambda p: write_vtu(design.cm, result, p)))
-        jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title)))
+        if result.frames_C is not None and len(result.frames_C):
+            series = f"{stem}_series"
+            jobs.append(("_series", _fresh_dir))  # (filled by the .pvd's job)
+            jobs.append((".pvd", lambda p: write_series(design.cm, result, p, out / f".{stem}.partial_series",
+                                                        name=series)))
+        jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title, answer=doc)))
     jobs.append((".json", lambda p: write(p, doc, indent=2)))
 
     for suffix, _ in jobs:  # a folder (or anything but a file) in the way: refuse before writing any
         final = out / f"{stem}{suffix}"
+        if suffix == "_series":
+            if final.exists() and not (final.is_dir() and all(f.suffix == ".vtu" for f in final.iterdir())):
+                raise InputError(f"--out {out}: {final.name} exists and is not a folder of a slip-heat series: "
+                                 "cannot write the series there; remove it or choose another --out")
+            continue
         if final.exists() and not final.is_file():
             raise InputError(f"--out {out}: {final.name} exists and is not a file (a folder?): cannot write the "
                              "result there; remove it or choose another --out")
@@ -184,11 +204,15 @@ def slip_heat_files(run, out) -> list[Path]:
             done.append((tmp, out / f"{stem}{suffix}"))
             job(tmp)
         for tmp, final in done:
+            if tmp.is_dir() and final.is_dir():  # the series of an earlier run: replaced whole
+                shutil.rmtree(final)
             os.replace(tmp, final)
     except OSError as exc:
         raise InputError(f"--out {out}: cannot write {Path(exc.filename or out).name} ({exc.strerror})") from None
     finally:
         for tmp, _ in done:
-            if tmp.exists():
+            if tmp.is_dir():
+                shutil.rmtree(tmp)
+            elif tmp.exists():
                 tmp.unlink()
     return [final for _, final in done]

@@ -3,13 +3,16 @@
 * :func:`answers_vs_inputs`: one PNG per varied input, small multiples (one panel per
   answer: engagement static and with ripple, slip speed, torque at the rpm of maximum engine
   torque, peak von Mises and safety factor at the engine's maximum speed, shoe and part
-  mass, contact arc), the requirement limits drawn as dashed lines (a x idle, b x rpm of
-  max torque, the engine's maximum torque, yield / min safety factor), feasible designs
-  filled, the rest hollow, refused and failed inputs marked on the panel's floor;
+  mass, contact arc), the requirement limits drawn as dashed lines and named with their
+  value in the panel's title (a x idle, b x rpm of max torque, the engine's maximum torque,
+  yield / min safety factor), feasible designs filled, the rest hollow; a refused or failed
+  design has no answer and is not drawn as one: an x on the x axis line (in its series'
+  colour) marks its input value; the legend sits under the panels;
 * :func:`parallel_coordinates`: one line per answered design over the varied inputs and
   the main answers (each axis scaled to its own range, its ends labelled with units),
-  feasible designs in colour, the others in grey; the title counts them and names the
-  requirement that failed most often.
+  feasible designs in green, the others coloured by their largest requirement shortfall
+  (a colour bar in %: how far the nearest miss is from meeting every requirement); the
+  title counts them and names the requirement that failed most often.
 
 Figures are drawn with matplotlib's Agg canvas chosen inside :func:`clutchfem.core.figure`
 (no backend is selected at import, no pyplot state is kept).
@@ -23,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core import figure
+from ..core import figure, save_figure
 from .point import ANSWERS
 from .spec import display_value
 
@@ -102,7 +105,7 @@ def answers_vs_inputs(frame, spec, outdir: str | Path) -> list[Path]:
         series, colours, handles, cmap_info = _groups(frame, axis, spec)
         ncol = 4
         nrow = math.ceil(len(PANELS) / ncol)
-        fig, axes = figure(nrow, ncol, figsize=(4.0 * ncol, 3.3 * nrow), squeeze=False)
+        fig, axes = figure(nrow, ncol, figsize=(4.2 * ncol, 3.4 * nrow + 0.9), layout="constrained", squeeze=False)
         for k, (cols, title, lim_col, lim_label) in enumerate(PANELS):
             ax = axes.flat[k]
             for j, col in enumerate(cols):
@@ -120,40 +123,48 @@ def answers_vs_inputs(frame, spec, outdir: str | Path) -> list[Path]:
                         ax.scatter([x[i]], [y[i]], marker=mk, s=24, zorder=3, edgecolors=[colours[i]],
                                    facecolors=[colours[i]] if feas[i] else "none", linewidths=1.1)
             lim = _limit(frame, lim_col)
+            head = title + ("  (o static, ^ with ripple)" if len(cols) > 1 else "")
             if lim is not None and math.isfinite(lim):
                 ax.axhline(lim, color="C3", ls="--", lw=1.2)
-                ax.annotate(f"{lim_label} = {lim:.4g}", (1.0, lim), xycoords=("axes fraction", "data"),
-                            ha="right", va="bottom", fontsize=7, color="C3")
-            if bad.any():
-                ylo = ax.get_ylim()[0]
-                ax.scatter(x[bad], np.full(bad.sum(), ylo), marker="x", color="0.4", s=25, zorder=4, clip_on=False)
-            ax.set_title(title + ("  (o static, ^ with ripple)" if len(cols) > 1 else ""), fontsize=9)
+                head += f"\n- - {lim_label} = {_fmt_limit(lim, title)}"
+            if bad.any():  # no answer there: marked on the x axis line, never at a value
+                ax.scatter(x[bad], np.zeros(int(bad.sum())), marker="x", s=36, linewidths=1.6, zorder=5,
+                           c=[colours[i] for i in np.nonzero(bad)[0]], clip_on=False,
+                           transform=ax.get_xaxis_transform())
+            ax.set_title(head, fontsize=9)
             ax.set_xlabel(axis.label(), fontsize=8)
+            ax.set_ylabel(title, fontsize=8)
             ax.tick_params(labelsize=7)
             if cats is not None:
                 ax.set_xticks(range(len(cats)), cats)
             ax.grid(alpha=0.3)
         legend = [Line2D([], [], color=c, marker="o", lw=0.9, label=lab) for c, lab in handles]
         legend += [Line2D([], [], ls="", marker="o", color="0.3", label="feasible (filled)"),
-                   Line2D([], [], ls="", marker="o", mfc="none", color="0.3", label="not feasible (hollow)")]
+                   Line2D([], [], ls="", marker="o", mfc="none", color="0.3", label="not feasible (hollow)"),
+                   Line2D([], [], color="C3", ls="--", label="requirement limit")]
         if bad.any():
-            legend.append(Line2D([], [], ls="", marker="x", color="0.4",
-                                 label=f"refused / failed ({int(bad.sum())}), at the floor"))
-        axes.flat[0].legend(handles=legend, fontsize=6, loc="best")
+            legend.append(Line2D([], [], color="0.3", ls="", marker="x", mew=1.6,
+                                 label=f"on the x axis: refused / failed ({int(bad.sum())}), no answer"))
         if cmap_info is not None:
             g, lo, hi = cmap_info
-            axes.flat[0].text(0.0, 1.12, f"colour: {g.label()} {lo:.4g} (purple) .. {hi:.4g} (yellow)",
-                              transform=axes.flat[0].transAxes, fontsize=7)
+            legend.append(Line2D([], [], ls="", label=f"colour: {g.label()} {lo:.4g} (purple) .. {hi:.4g} (yellow)"))
+        fig.legend(handles=legend, loc="outside lower center", ncol=min(4, len(legend)), fontsize=8)
         for ax in list(axes.flat)[len(PANELS):]:
             ax.set_visible(False)
         nfeas = int((ok & feas).sum())
         fig.suptitle(f"{spec.design}: answers vs {axis.label()} ({int(ok.sum())} answered, {nfeas} feasible, "
                      f"{int(bad.sum())} refused/failed)", fontsize=10)
-        fig.tight_layout()
         path = outdir / f"answers_vs_{axis.name}.png"
-        fig.savefig(path, dpi=110)
+        save_figure(fig, path)
         paths.append(path)
     return paths
+
+
+def _fmt_limit(v: float, title: str) -> str:
+    """A limit with the unit of its panel (rpm, N m, MPa or none)."""
+    unit = title[title.rfind("[") + 1:title.rfind("]")] if "[" in title else ""
+    fmt = {"rpm": ".0f", "MPa": ".0f", "N m": ".2f"}.get(unit, ".3g")
+    return f"{v:{fmt}} {unit}".replace(" -", "").strip()
 
 
 #: answers on the parallel-coordinates axes
@@ -178,7 +189,7 @@ def parallel_coordinates(frame, spec, path: str | Path) -> Path:
     for c in PC_ANSWERS:
         cols.append((ok[c].to_numpy(dtype=float), None))
         names.append(labels.get(c, c))
-    fig, ax = figure(figsize=(max(8.0, 1.5 * len(cols)), 5.2))
+    fig, ax = figure(figsize=(max(8.0, 1.5 * len(cols)) + 1.2, 5.4), layout="constrained")
     n = len(ok)
     feas = (ok["feasible"].fillna(0).astype(int) == 1).to_numpy() if n else np.zeros(0, bool)
     scaled = np.full((n, len(cols)), np.nan)
@@ -203,27 +214,57 @@ def parallel_coordinates(frame, spec, path: str | Path) -> Path:
                 ax.text(j, 1.09 if where == "above" else -0.09, f"limit {lim:.4g} {where}", ha="center",
                         va="center", fontsize=6, color="C3")
     xs = np.arange(len(cols))
-    for i in np.nonzero(~feas)[0]:
-        ax.plot(xs, scaled[i], color="0.75", lw=0.8, zorder=1)
-    cmap = colormaps["viridis"]
+    short = shortfall(ok) if n else np.zeros(0)
+    cmap = colormaps["plasma_r"]
+    nf = np.nonzero(~feas)[0]
+    top = max(float(np.nanmax(short[nf], initial=0.0)), 1e-9) if len(nf) else 1.0
+    for i in nf[np.argsort(-short[nf])]:  # the nearest misses drawn last, on top
+        ax.plot(xs, scaled[i], color=cmap(min(short[i] / top, 1.0)), lw=0.9, alpha=0.85, zorder=1)
     fi = np.nonzero(feas)[0]
-    for k, i in enumerate(fi):
-        ax.plot(xs, scaled[i], color=cmap(k / max(len(fi) - 1, 1)), lw=1.6, zorder=2)
+    for i in fi:
+        ax.plot(xs, scaled[i], color="tab:green", lw=2.0, zorder=3)
+    if len(nf):
+        from matplotlib.cm import ScalarMappable
+        from matplotlib.colors import Normalize
+
+        sm = ScalarMappable(norm=Normalize(0.0, 100.0 * top), cmap=cmap)
+        fig.colorbar(sm, ax=ax, fraction=0.03, pad=0.01,
+                     label="not feasible: largest requirement shortfall [%]")
     ax.set_xticks(xs, names, rotation=25, ha="right", fontsize=8)
     ax.set_yticks([])
     ax.set_ylim(-0.14, 1.14)
     ax.set_xlim(-0.3, len(cols) - 0.7)
     for s in ("top", "right", "left"):
         ax.spines[s].set_visible(False)
-    title = (f"{spec.design}: {len(fi)} of {n} answered designs feasible (colour; grey: not feasible); "
-             "red: requirement limits")
+    n_bad = int((frame["status"] != "ok").sum())
+    refused = f" ({n_bad} refused/failed: no answer, not drawn)" if n_bad else ""
+    title = (f"{spec.design}: {len(fi)} of {n} answered designs feasible{refused} (green; the others coloured by "
+             "how far they miss); red: requirement limits")
     if n and not len(fi):
         why = {"engagement": int((ok["engagement_ok"] == 0).sum()), "slip": int((ok["slip_ok"] == 0).sum()),
                "stress": int((ok["stress_ok"] == 0).sum())}
         worst = max(why, key=why.get)
-        title = (f"{spec.design}: no feasible design among {n} answered; requirements missed: "
+        title = (f"{spec.design}: no feasible design among {n} answered{refused}; requirements missed: "
                  + ", ".join(f"{k} {v}" for k, v in why.items()) + f" (most often: {worst})")
     ax.set_title(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path)
     return path
+
+
+def shortfall(frame) -> np.ndarray:
+    """Per answered design, its largest requirement shortfall [-]: (limit - engagement with
+    ripple) / limit, (slip - limit) / limit, (min SF - SF) / min SF, 0 where met; a missed
+    requirement without a number (never holds) counts 1."""
+    def col(c):
+        return frame[c].to_numpy(dtype=float) if c in frame else np.full(len(frame), np.nan)
+
+    with np.errstate(invalid="ignore", divide="ignore"):
+        parts = [(col("engagement_limit_rpm") - col("engagement_ripple_rpm")) / col("engagement_limit_rpm"),
+                 (col("slip_rpm") - col("slip_limit_rpm")) / col("slip_limit_rpm"),
+                 (col("min_safety_factor") - col("safety_factor")) / col("min_safety_factor")]
+    out = np.zeros(len(frame))
+    for v, flag in zip(parts, ("engagement_ok", "slip_ok", "stress_ok")):
+        missed = (frame[flag].fillna(1).astype(int) == 0).to_numpy() if flag in frame else np.zeros(len(frame), bool)
+        v = np.where(missed & ~np.isfinite(v), 1.0, np.where(missed, np.maximum(v, 0.0), 0.0))
+        out = np.maximum(out, v)
+    return out

@@ -80,7 +80,7 @@ class ShoeState:
     pressure_Pa: np.ndarray
     force_N: np.ndarray
     weight_m: np.ndarray
-    contact_share: float  # contact extent / nominal arc at X (first to last node in contact, half spacings)
+    contact_share: float  # contact extent / nominal arc at X (first to last end of contact, between nodes)
     touching_share: float  # tributary length of the nodes in contact / the whole contact surface
     normal_force_N: float  # whole clutch
     torque_Nm: float  # whole clutch
@@ -151,8 +151,8 @@ def shoe_state(design, omega: float, case=None) -> tuple[ShoeState, dict]:
         G = G + c.drum_compliance[np.ix_(idx, idx)]
     w = nd.weight[idx]
     p = lam[idx] / (design.thickness * w)
-    # the contact extent by the results' half-spacing convention
-    e = contact_extent(c, lam[None, :], 0)[0]
+    # the contact extent as the sweep results find it (ends between the nodes)
+    e = contact_extent(c, lam[None, :], case.gaps(omega, lam)[None, :], design.thickness, case.contact_modulus, 0)[0]
     share = 0.0 if not np.isfinite(e[0]) else abs(e[1] - e[0]) / abs(tip - root)
     N = float(lam.sum() * case.scale)
     touch = float(w[lam[idx] > 0].sum() / w.sum())

@@ -4,9 +4,14 @@
   marked ``~`` (unstable derivative), ``?`` (unchecked: a step has no answer), ``1``
   (one-sided: one side refused), ``-`` (no answer);
 * :func:`oat_chart`: small multiples, one panel per answer: the answer against x / x0 for
-  every parameter (one at a time), dotted where a design has no answer;
+  every parameter (one at a time), the design point marked with its value, dotted where a
+  design has no answer;
 * :func:`elasticity_chart`: small multiples, one per answer: each parameter's elasticity
-  as a bar with the spread of the step check as its error bar, coloured by verdict.
+  as a bar labelled with its value, the spread of the step check as its error bar,
+  coloured by verdict.
+
+Legends sit beside the panels (never on the data); parameters a design does not use (the
+other profiles' controls) are not studied, and the charts say so under their title.
 
 Figures are drawn with matplotlib's Agg canvas chosen inside :func:`clutchfem.core.figure`
 (no backend is selected at import, no pyplot state is kept).
@@ -21,9 +26,13 @@ import numpy as np
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import figure
+from ..core import figure, save_figure
 from .guidelines import ANSWERS, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
 from .spec import display_value
+
+#: unit of each guideline answer (as its label states it)
+UNITS = {"engagement_rpm": "rpm", "slip_rpm": "rpm", "torque_at_max_engine_torque_Nm": "N m",
+         "max_von_mises_MPa": "MPa", "shoe_mass_g": "g", "contact_arc_deg": "deg"}
 
 
 def summary_table(res: GuidelineResult):
@@ -54,63 +63,113 @@ def summary_table(res: GuidelineResult):
     return t
 
 
+#: colours of the one-at-a-time lines: matplotlib's tab10, then ten more of distinct hue and
+#: lightness (a concept has up to 16 studied parameters: no colour repeats below 20)
+COLOURS = ("C0", "C1", "C2", "C3", "C4", "C5", "C6", "C7", "C8", "C9",
+           "#000000", "#b8860b", "#000080", "#00a08a", "#ff00ff", "#8b0000", "#556b2f", "#00ced1",
+           "#ff7f50", "#4b0082")
+#: marker cycle: a new marker for each round of the colours (80 parameters told apart)
+MARKERS = ("o", "s", "^", "D")
+
+
+def _style(j: int) -> dict:
+    """Colour and marker of the j-th parameter (ranked): :data:`COLOURS`, a new marker each round."""
+    return {"color": COLOURS[j % len(COLOURS)], "marker": MARKERS[(j // len(COLOURS)) % len(MARKERS)]}
+
+
+def _value_text(v, col: str) -> str:
+    """An answer's value with its unit, at the digits the tables show."""
+    if v is None or not math.isfinite(v):
+        return "no answer"
+    unit = UNITS.get(col, "")
+    fmt = {"rpm": ".0f", "MPa": ".0f", "N m": ".2f", "g": ".1f", "deg": ".2f"}.get(unit, ".3g")
+    return f"{v:{fmt}} {unit}".strip()
+
+
+def _footnote(res: GuidelineResult) -> str:
+    off = [n for n in res.notes if n.startswith("not studied")]
+    return ("\n" + off[0]) if off else ""
+
+
 def oat_chart(res: GuidelineResult, path: str | Path) -> Path:
-    """Small multiples, one panel per answer: the answer against x / x0 for every parameter."""
-    from matplotlib import colormaps
+    """Small multiples, one panel per answer: the answer against x / x0 for every parameter
+    (ranked, one colour and marker each, the legend beside the panels), the design point
+    marked with its value in each panel's title, dotted verticals where a parameter's design
+    has no answer (refused or failed)."""
+    from matplotlib.lines import Line2D
 
     path = Path(path)
     oat = res.oat
-    cmap = colormaps["tab20"]
-    fig, axes = figure(2, 3, figsize=(14.0, 7.5), squeeze=False)
+    fig, axes = figure(2, 3, figsize=(15.0, 8.0), layout="constrained", squeeze=False)
+    base = {col: next((r["value_at_x0"] for r in res.table if r["answer"] == col), None) for col, _ in ANSWERS}
+    handles = []
+    for j, n in enumerate(res.ranking):
+        st = _style(j)
+        handles.append(Line2D([], [], lw=1.2, ms=4, label=n, **st))
     for k, (col, label) in enumerate(ANSWERS):
         ax = axes.flat[k]
         for j, n in enumerate(res.ranking):
+            st = _style(j)
             d = oat[oat["parameter"] == n]
             okd = d[d["status"] == "ok"]
-            y = okd[col].astype(float)
-            colour = cmap((2 * j) % 20 + (j // 10) % 2)
-            ax.plot(okd["relative"], y, "-o", ms=3, lw=1.1, color=colour, label=n if k == 0 else None)
-            bad = d[d["status"] != "ok"]
-            if len(bad):
-                for xr in bad["relative"]:
-                    ax.axvline(xr, color=colour, lw=0.5, ls=":", alpha=0.6)
-        ax.axvline(1.0, color="0.3", lw=0.8)
-        ax.set_title(label, fontsize=9)
-        ax.set_xlabel("parameter / design value [-]", fontsize=8)
+            ax.plot(okd["relative"], okd[col].astype(float), "-", ms=3.5, lw=1.2, **st)
+            for xr in d.loc[d["status"] != "ok", "relative"]:
+                ax.axvline(xr, color=st["color"], lw=0.7, ls=":", alpha=0.8)
+        ax.axvline(1.0, color="k", lw=0.8)
+        if base[col] is not None and math.isfinite(base[col]):
+            ax.plot([1.0], [base[col]], "k*", ms=11, zorder=5)
+        ax.set_title(f"{label}: design point {_value_text(base[col], col)}", fontsize=9)
+        ax.set_xlabel("parameter / its design value [-]", fontsize=8)
+        ax.set_ylabel(label, fontsize=8)
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=7)
-    axes.flat[0].legend(fontsize=7, loc="best")
-    fig.suptitle(f"{res.concept}: one parameter at a time around the design point (dotted: no answer there)",
-                 fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    return path
+    handles += [Line2D([], [], color="k", marker="*", ls="", ms=9, label="design point"),
+                Line2D([], [], color="0.4", ls=":", lw=0.8, label="no answer there\n(refused or failed)")]
+    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="parameter (ranked)",
+               title_fontsize=8)
+    fig.suptitle(f"{res.concept}: one parameter at a time around the design point" + _footnote(res), fontsize=10)
+    return save_figure(fig, path)
 
 
 def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
-    """Small multiples, one per answer: the elasticity of each parameter as a bar with the
-    spread of the step check as its error bar (hatched: unstable)."""
+    """Small multiples, one per answer: the elasticity of each parameter (ranked) as a bar
+    labelled with its value, the spread of the step check as its error bar, coloured by
+    verdict (the legend beside the panels)."""
+    from matplotlib.patches import Patch
+
     path = Path(path)
-    fig, axes = figure(2, 3, figsize=(14.0, 7.5), squeeze=False)
+    fig, axes = figure(2, 3, figsize=(15.0, 8.0), layout="constrained", squeeze=False)
     names = res.ranking
+    colour = {"stable": "C0", "unchecked": "C1"}
     for k, (col, label) in enumerate(ANSWERS):
         ax = axes.flat[k]
         rows = [next(r for r in res.table if r["parameter"] == n and r["answer"] == col) for n in names]
         e = np.array([r["E"] for r in rows], dtype=float)
         sp = np.array([r["spread"] for r in rows], dtype=float)
         y = np.arange(len(names))
-        colours = [{"stable": "C0", "unchecked": "C1"}.get(r["verdict"], "0.7") for r in rows]
-        ax.barh(y, np.nan_to_num(e), xerr=np.nan_to_num(sp), color=colours, ecolor="0.3", capsize=2,
-                hatch=None)
+        ax.barh(y, np.nan_to_num(e), xerr=np.nan_to_num(sp), color=[colour.get(r["verdict"], "0.7") for r in rows],
+                ecolor="0.3", capsize=2)
+        span = max(float(np.nanmax(np.abs(np.nan_to_num(e) + np.nan_to_num(sp)), initial=0.0)),
+                   float(np.nanmax(np.abs(np.nan_to_num(e) - np.nan_to_num(sp)), initial=0.0)), 0.1)
+        for yy, v, d in zip(y, e, sp):
+            if not math.isfinite(v):
+                ax.text(0.02 * span, yy, "no answer", va="center", ha="left", fontsize=7)
+                continue
+            end = v + math.copysign(np.nan_to_num(d) + 0.03 * span, v if v != 0 else 1.0)
+            ax.text(end, yy, "0.00" if abs(v) < 0.005 else f"{v:+.2f}", va="center",
+                    ha="left" if v >= 0 else "right", fontsize=7)
+        ax.set_xlim(-1.35 * span, 1.35 * span)
         ax.set_yticks(y, names, fontsize=7)
         ax.invert_yaxis()
         ax.axvline(0, color="0.3", lw=0.8)
-        ax.set_title(f"{label}: d ln A / d ln x", fontsize=9)
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel("elasticity d ln(answer) / d ln(parameter) [-]", fontsize=8)
         ax.grid(alpha=0.3, axis="x")
         ax.tick_params(labelsize=7)
-    fig.suptitle(f"{res.concept}: elasticities at the design point (blue: stable; orange: unchecked, a step "
-                 f"refused; grey: unstable against mesh noise; error bar: spread of E over h/2, 2h and the fit)",
-                 fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    return path
+    handles = [Patch(color="C0", label="stable"), Patch(color="C1", label="unchecked\n(a step refused)"),
+               Patch(color="0.7", label="unstable against\nmesh noise")]
+    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="verdict; error bar:\nspread over h/2, 2h\n"
+               "and the fit", title_fontsize=8)
+    fig.suptitle(f"{res.concept}: elasticities at the design point (1 % more parameter: E % more answer)"
+                 + _footnote(res), fontsize=10)
+    return save_figure(fig, path)

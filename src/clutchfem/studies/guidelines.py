@@ -105,6 +105,9 @@ class GuidelineSettings:
             raise ParameterError("span", span, "a relative span in (0, 0.9]: x0 (1 -+ span)", "guidelines")
         candidates = _continuous(c.Params, p0)
         notes = []
+        off = [n for n in p0.inactive() if n in c.Params.model_fields]
+        if off:
+            notes.append(f"not studied (no effect with the '{p0.profile}' profile, elasticity 0): " + _names(off))
         if params is None:
             chosen = [n for n in candidates if getattr(p0, n) != 0]
             zero = [n for n in candidates if getattr(p0, n) == 0]
@@ -147,18 +150,27 @@ class GuidelineSettings:
 
 
 def _continuous(P, p0) -> list[str]:
-    """Continuous (float) parameters of ParamSet ``P`` that act on design ``p0``."""
+    """Continuous (float) parameters of ParamSet ``P`` that act on design ``p0`` (not those it
+    calls inactive: the other profiles' controls)."""
+    off = set(p0.inactive()) if hasattr(p0, "inactive") else set()
     out = []
     for n, f in P.model_fields.items():
         ann = f.annotation
-        if get_origin(ann) is Literal or ann is not float:
-            continue
-        if n == "clearance_tip" and getattr(p0, "profile", None) != "linear":
-            continue
-        if n in ("eccentricity", "eccentric_angle") and getattr(p0, "profile", None) != "eccentric":
+        if get_origin(ann) is Literal or ann is not float or n in off:
             continue
         out.append(n)
     return out
+
+
+def _names(names: list[str]) -> str:
+    """Names joined, a run table_c0, table_c1, ... shortened to table_c0..table_c16."""
+    tab = [n for n in names if n.startswith("table_c")]
+    rest = [n for n in names if not n.startswith("table_c")]
+    if len(tab) > 2:
+        rest.append(f"{tab[0]}..{tab[-1]} (the table profile's {len(tab)} control values)")
+    else:
+        rest += tab
+    return ", ".join(rest)
 
 
 # ---------------------------------------------------------------------------------------

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core import figure
+from ..core import figure, save_figure
 from ..geometry import get_concept
 from .optimization import DIMENSIONLESS, better
 
@@ -21,9 +21,9 @@ C_BEFORE, C_AFTER = "tab:gray", "tab:red"
 
 
 def _save(fig, path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    return Path(path)
+    if fig.get_layout_engine() is None:
+        fig.tight_layout()
+    return save_figure(fig, path, dpi=DPI)
 
 
 # ---------------------------------------------------------------------------------------
@@ -32,7 +32,7 @@ def _save(fig, path) -> Path:
 def compensation_profile(comp, path) -> Path:
     """Clearance along the shoe (before, after, free displacement at X) and the contact
     pressure along the shoe at X (before, after), target arc shaded."""
-    fig, (a1, a2) = figure(2, 1, figsize=(7.5, 6.2), sharex=True)
+    fig, (a1, a2) = figure(2, 1, figsize=(10.5, 6.4), sharex=True, layout="constrained")
     b, a = comp.state_before, comp.state_after
     for ax in (a1, a2):
         ax.axvspan(*comp.arc, color="tab:green", alpha=0.08, label=f"target arc ({100 * comp.target_arc:.0f} %)")
@@ -45,7 +45,7 @@ def compensation_profile(comp, path) -> Path:
     kv = [comp.after.table[k] * 1e3 for k in range(len(knots))]
     a1.plot(knots, kv, "o", color=C_AFTER, ms=3.5, label="table control values")
     a1.set_ylabel("radial clearance / displacement [mm]")
-    a1.legend(fontsize=7, loc="upper left")
+    a1.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     a1.set_title(f"{comp.concept}: shoe profile compensation at {comp.rpm:.0f} rpm")
     a2.plot(b.s, b.pressure_Pa / 1e6, color=C_BEFORE, lw=1.5, marker=".", ms=3,
             label=f"before: contact {100 * b.contact_share:.1f} % of the arc")
@@ -57,9 +57,9 @@ def compensation_profile(comp, path) -> Path:
     if peak > a2.get_ylim()[1]:
         a2.annotate(f"before: peak {peak:.0f} MPa at the tip (off scale)", xy=(0.99, a2.get_ylim()[1] * 0.95),
                     ha="right", va="top", fontsize=7, color=C_BEFORE)
-    a2.set_xlabel("arc position s along the shoe (0: root at the flexure, 1: tip)")
+    a2.set_xlabel("arc position s along the shoe [-] (0: root at the flexure, 1: tip)")
     a2.set_ylabel("contact pressure [MPa]")
-    a2.legend(fontsize=7, loc="upper left")
+    a2.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return _save(fig, path)
 
 
@@ -68,7 +68,7 @@ def compensation_torque(before, after, engine, path, rpm: float, nominal_deg: fl
     the contact arc over the shoe's own arc ``nominal_deg`` (the analysis's ``arc_fraction``
     divides by the lining angle span measured from the pivot ray, 73 deg on concept 4's
     90 deg shoe, and exceeds 100 % once the whole shoe touches)."""
-    fig, (a1, a2) = figure(1, 2, figsize=(10, 4.0))
+    fig, (a1, a2) = figure(1, 2, figsize=(10, 4.8), layout="constrained")
     for an, c, lab in ((before, C_BEFORE, "before"), (after, C_AFTER, "after")):
         cv = an.curves
         a1.plot(cv["rpm"], cv["fe_torque_Nm"], color=c, lw=2,
@@ -83,26 +83,27 @@ def compensation_torque(before, after, engine, path, rpm: float, nominal_deg: fl
         ax.set_xlabel("engine speed [rpm]")
     a1.set_ylabel("clutch torque, drum held [N m]")
     a1.set_ylim(0, 3.0 * float(np.max(engine.torque_at(r))))
-    a1.legend(fontsize=7, loc="upper left")
+    a1.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16))
     a2.set_ylabel("contact arc [% of the nominal shoe arc]")
     top = max(float(np.nanmax(an.curves["contact_arc_deg"])) for an in (before, after)) / nominal_deg * 100
     a2.set_ylim(0, max(105.0, 1.05 * top))
-    a2.legend(fontsize=7, loc="lower right")
+    a2.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
     a1.set_title("torque vs speed")
     a2.set_title(f"contact arc vs speed (compensated at {rpm:.0f} rpm)")
     return _save(fig, path)
 
 
 def compensation_convergence(comp, path) -> Path:
-    fig, ax = figure(1, 1, figsize=(6.0, 3.2))
+    fig, ax = figure(1, 1, figsize=(6.0, 3.8), layout="constrained")
     its = [s.iteration for s in comp.steps[1:]]
     ax.semilogy(its, [s.measured_cv for s in comp.steps[1:]], "o-", color=C_AFTER,
                 label="pressure cv over the target arc (FE contact)")
     ax.semilogy(its, [max(s.step_m, 1e-10) * 1e3 for s in comp.steps[1:]], "s--", color="tab:blue",
                 label="largest control-value change [mm]")
     ax.set_xlabel("fixed-point iteration (one rebuild and contact solve each)")
+    ax.set_ylabel("[-] / [mm]")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))
     return _save(fig, path)
 
 
@@ -114,7 +115,7 @@ def optimization_path(res, path) -> Path:
     evaluation number; feasible designs filled, the incumbent's path drawn."""
     rows = [r for r in res.path if r["status"] == "ok"]
     cons = res.targets.constraints()
-    fig, axes = figure(1 + len(cons), 1, figsize=(7.5, 2.0 + 1.5 * len(cons)), sharex=True)
+    fig, axes = figure(1 + len(cons), 1, figsize=(7.5, 2.4 + 1.5 * len(cons)), sharex=True, layout="constrained")
     axes = np.atleast_1d(axes)
     n = np.array([r["n"] for r in rows])
     feas = np.array([r["assessment"]["h"] <= 0 for r in rows])
@@ -131,14 +132,19 @@ def optimization_path(res, path) -> Path:
         inc_y.append(best["mass_kg"] * 1e3 if obj_mass else best["torque_margin_Nm"])
     ax.step(inc_n, inc_y, where="post", color="tab:red", lw=1.5, label="incumbent")
     ax.set_ylabel("part mass [g]" if obj_mass else "torque margin [N m]")
-    ax.legend(fontsize=7, ncol=3)
+    if best is not None:
+        ax.plot([], [], " ", label=f"best: {best['mass_kg'] * 1e3:.1f} g" if obj_mass
+                else f"best: {best['torque_margin_Nm']:+.2f} N m")
+    fig.legend(*ax.get_legend_handles_labels(), fontsize=7, ncol=4, loc="outside lower center")
     ax.grid(alpha=0.3)
-    ax.set_title(f"{res.concept}: optimisation path ({len(res.path)} designs, {res.seconds:.0f} s)")
+    fig.suptitle(f"{res.concept}: optimisation path ({len(res.path)} designs, {res.seconds:.0f} s)")
     for ax, (name, key, limit, sense) in zip(axes[1:], cons):
         v = np.array([r.get(key) if r.get(key) is not None else np.nan for r in rows], dtype=float)
-        unit = "" if key in DIMENSIONLESS else " [rpm]"
+        unit = " [-]" if key in DIMENSIONLESS else " [rpm]"
         ax.scatter(n, v, s=8, c=np.where(feas, "tab:green", "tab:gray"))
         ax.axhline(limit, color="tab:red", ls="--", lw=1)
+        ax.set_title(f"{key.replace('_rpm', '').replace('_', ' ')} {sense} "
+                     + (f"{limit:g}" if key in DIMENSIONLESS else f"{limit:.0f} rpm") + " (dashed)", fontsize=8)
         ax.set_ylabel(key.replace("_rpm", "").replace("_with_ripple", "\nwith ripple").replace("_", " ") + unit,
                       fontsize=8)
         ax.grid(alpha=0.3)
@@ -154,7 +160,7 @@ def optimization_path(res, path) -> Path:
 # ---------------------------------------------------------------------------------------
 def tolerance_histograms(res, path) -> Path:
     keys = ["engagement_rpm", "engagement_rpm_with_ripple", "slip_rpm", "max_von_mises_Pa"]
-    fig, axes = figure(2, 2, figsize=(9, 6))
+    fig, axes = figure(2, 2, figsize=(9, 7.2), layout="constrained")
     limits = {key: (limit, sense) for _, key, limit, sense in res.spec}
     ok = [r for r in res.rows if r["status"] == "ok"]
     for ax, key in zip(axes.ravel(), keys):
@@ -191,7 +197,7 @@ def tolerance_histograms(res, path) -> Path:
         ax.set_title(f"{st['label']}: sd {sd * sc:.3g} {st['unit']}" if sd is not None else st["label"], fontsize=9)
         ax.set_xlabel(f"{st['label']} [{st['unit']}]", fontsize=8)
         ax.set_ylabel("parts")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2))
         ax.grid(alpha=0.3)
     fig.suptitle("\n".join(textwrap.wrap(f"{res.concept}: {res.n} parts ({res.dist}), tolerances "
                                           + ", ".join(f"{k} +-{tolerance_text(res, k)}" for k in res.tolerances), 110)),

@@ -21,7 +21,7 @@ The model's derivation, its limits and the verification: ``docs/durability_theor
 
 from .assembly import HeatModel, build_heat_model
 from .load import SlipHeatLoad, slip_heat_load
-from .output import render_png, write_vtu
+from .output import render_png, write_series, write_vtu
 from .params import (
     HOT_YIELD_TABLE,
     MAX_TIME_STEPS,
@@ -40,6 +40,6 @@ __all__ = [
     "ThermalMaterial", "DrumThermal", "ThermalEnvironment", "SlipScenario", "SlipHeatLoad",
     "slip_heat_load", "HeatPartition", "heat_partition", "wall_step_response",
     "drum_patch_response", "HeatModel", "build_heat_model", "heat_transient", "SlipHeatResult",
-    "write_vtu", "render_png", "slip_heat_validity", "PHASE_CHANGE_C", "MELTING_C", "EXPANSION_PER_K",
+    "write_vtu", "write_series", "render_png", "slip_heat_validity", "PHASE_CHANGE_C", "MELTING_C", "EXPANSION_PER_K",
     "hot_yield_ratio", "HOT_YIELD_TABLE", "PERIODIC_PASSES", "MAX_TIME_STEPS",
 ]

@@ -75,6 +75,10 @@ class SlipHeatResult:
     #: area-weighted mean temperature of the part over ``times_s`` (its heat content): what
     #: a thermometer on the whole clutch would read after the heat has spread
     part_mean_C: np.ndarray | None = None
+    #: times [s] of the full fields ``frames_C`` (frames x nodes, C) kept over the run: its time
+    #: series (``clutchfem.durability.write_series``)
+    frame_times_s: np.ndarray | None = None
+    frames_C: np.ndarray | None = None
 
     @property
     def seconds(self) -> float:

@@ -58,6 +58,11 @@ from .stepping import Probe, Run, Segment, integrate, steady_state
 __all__ = ["heat_transient"]
 
 
+#: full temperature fields kept over a run (evenly spaced, plus every slip/pause end): the
+#: frames of its ParaView time series
+FRAMES = 60
+
+
 def heat_transient(cm: ClutchMesh, thickness: float | None, material: ThermalMaterial | None,
               load: SlipHeatLoad, *, seconds: float | None = None, cycles: int | None = None,
               pause: float | None = None, scenario: SlipScenario | None = None,
@@ -240,7 +245,7 @@ def _initial_field(model: HeatModel, env: ThermalEnvironment) -> tuple[np.ndarra
 def _run(model: HeatModel, T0: np.ndarray, Q: np.ndarray, sc: SlipScenario, probes: list[Probe],
          timings: dict) -> tuple[Run, float | None]:
     """(the run, its Richardson time-error estimate [K] or None)."""
-    run = integrate(model, T0, Q, _segments(sc), probes)
+    run = integrate(model, T0, Q, _segments(sc), probes, frames=FRAMES)
     timings["solve_s"] = run.solve_s
     if not sc.error_estimate:
         return run, None
@@ -356,5 +361,6 @@ def _answer(model: HeatModel, material: ThermalMaterial, env: ThermalEnvironment
         friction_work_J=patch.P_model * s * sc.seconds * sc.cycles, heat_into_part_J=E["input_J"],
         partition=part, energy=E, cycles=cyc, initial_field_C=T0, final_field_C=run.final,
         nodal_max_C=run.nodal_max, ambient_temperature_C=float(env.ambient_temperature), initial_state=initial,
+        frame_times_s=np.array([f[0] for f in run.frames]), frames_C=np.array([f[1] for f in run.frames]),
         dt_s=float(sc.seconds / n_slip), n_steps=int(len(t) - 1), time_error_estimate_K=err,
         scenario=sc.model_dump(), timings=timings, assumed=ASSUMED)

@@ -22,6 +22,7 @@ part x: int h (T - T_inf) = hsum_x . T - c_x (column sums of H_x and of its righ
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 
@@ -66,18 +67,22 @@ class Run:
     final: np.ndarray
     solve_s: float
     factorisations: int
+    #: (time [s], full field) at about ``frames`` evenly spaced steps and every segment end
+    frames: list = None
 
 
 def integrate(model: HeatModel, T0: np.ndarray, Q: np.ndarray, segments: list[Segment],
-              probes: list[Probe], *, homogeneous: bool = False) -> Run:
+              probes: list[Probe], *, homogeneous: bool = False, frames: int = 0) -> Run:
     """Crank-Nicolson with two backward-Euler half steps at the start of every segment
     (module docstring).  ``homogeneous``: drop the ambient/crankshaft terms (the response to
-    Q alone, for the FE side of the heat partition)."""
+    Q alone, for the FE side of the heat partition); ``frames``: keep the full field at the
+    start, at about that many evenly spaced steps and at every segment end (the time series
+    of the output)."""
     with one_blas_thread():
-        return _integrate_loop(model, T0, Q, segments, probes, homogeneous)
+        return _integrate_loop(model, T0, Q, segments, probes, homogeneous, frames)
 
 
-def _integrate_loop(model, T0, Q, segments, probes, homogeneous) -> Run:
+def _integrate_loop(model, T0, Q, segments, probes, homogeneous, frames=0) -> Run:
     t0 = time.perf_counter()
     P = model.P
     Pt = P.T.tocsr()
@@ -116,6 +121,8 @@ def _integrate_loop(model, T0, Q, segments, probes, homogeneous) -> Run:
         pmax[k], parg[k] = T[j], j
 
     record(0, T)
+    every = max(1, math.ceil(nsteps / frames)) if frames else 0
+    kept = [(0.0, T.copy())] if frames else []
     E = {"input_J": 0.0, "face_J": 0.0, "bore_J": 0.0, "edge_J": 0.0}
     stored0 = msum @ T
 
@@ -151,11 +158,13 @@ def _integrate_loop(model, T0, Q, segments, probes, homogeneous) -> Run:
             times[k] = tnow
             record(k, T)
             np.maximum(nodal_max, T, out=nodal_max)
+            if every and (k % every == 0 or i == seg.steps - 1):
+                kept.append((tnow, T.copy()))
         ends.append(T.copy())
     E["stored_J"] = float(msum @ T - stored0)
     return Run(times=times, probes=series, part_max=pmax, part_argmax=parg, nodal_max=nodal_max,
                 segment_end=ends, energy=E, final=T, solve_s=time.perf_counter() - t0,
-                factorisations=len(cache))
+                factorisations=len(cache), frames=kept)
 
 
 def steady_state(model: HeatModel) -> np.ndarray | None:
