@@ -19,7 +19,7 @@ from .model3d import (
 from .size3d import check_3d_size, estimate_3d, max_model_memory
 from .stress import VertexStress, VertexStress3D, p2_vertex_gradients, von_mises
 from .thick import FEModelThick, ThickSettings, ThickStress, thick_modes
-from .vtu import ZONES, RingMesh, pvd_text, ring_stresses, write_vtk, zone_ids
+from .vtu import ZONES, RingMesh, in_plane_stresses, pvd_text, ring_stresses, write_vtk, zone_ids
 
 __all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
            "FEModelThick", "ThickSettings", "ThickStress", "p2_vertex_gradients", "thick_modes",
@@ -27,4 +27,4 @@ __all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings"
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",
            "constraint_map", "contact_area_weights", "contact_weights", "extrude", "factorize",
            "geometric_stiffness_3d", "lame_3d", "check_3d_size", "estimate_3d", "max_model_memory", "one_blas_thread", "von_mises", "write_vtk",
-           "ZONES", "RingMesh", "pvd_text", "ring_stresses", "zone_ids"]
+           "ZONES", "RingMesh", "in_plane_stresses", "pvd_text", "ring_stresses", "zone_ids"]
