@@ -1,7 +1,12 @@
-"""The core redesign must not change an answer: FE sweeps of concepts 1 and 4 (default
-mesh, the four load cases and the exact-softening reference) equal the numbers recorded
-with the pre-redesign solver (``tests/data/core_reference.json``, commit 2d28ee7) to 1e-9
-relative; and one analysis assembles and factorises K once."""
+"""The core redesign must not change an answer: FE sweeps of concepts 1 and 4 (the fast
+path: plane stress, rigid drum, the uniform 1.2 mm mesh; the four load cases and the
+exact-softening reference) equal the numbers recorded with the pre-redesign solver
+(``tests/data/core_reference.json``, commit 2d28ee7) to 1e-9 relative; and one analysis
+assembles and factorises K once (the default, best-estimate path).
+
+Issue 20 made the best estimate (thick plane model, elastic drum, refined mesh) the default;
+the recorded numbers are those of the uncorrected 2-D path, which ``fidelity="fast"`` keeps
+unchanged, so this test pins that path (its data are not regenerated)."""
 
 from __future__ import annotations
 
@@ -20,7 +25,7 @@ TOL = 1e-9
 
 @pytest.fixture(scope="module", params=["concept1", "concept4"])
 def design(request):
-    return Design.from_concept(request.param, mesh=MeshSettings())
+    return Design.from_concept(request.param, mesh=MeshSettings(), fidelity="fast")
 
 
 def _rel(a, b) -> float:

@@ -319,6 +319,32 @@ def test_3d_drum_contact_plane_strain_closed_form(sectors, softening):
         assert r3.curve["contact_arc_deg"][k] == pytest.approx(30.0, rel=1e-9)
 
 
+def test_3d_elastic_drum_carries_both_halves(sectors):
+    """The half model's nodal forces are half the real ones; the elastic drum carries both
+    halves (DrumContact.symmetry = 2): the sliding-face 3-D annulus (= plane strain) on a
+    2 mm steel ring gives the 2-D plane-strain normal force with the same ring, and less than
+    on the rigid drum (with the ring seeing half the force the drop was about halved)."""
+    from clutchfem.contact import DrumContact, DrumWall, RingDrum, contact_nodes
+    from clutchfem.core import rad_s_to_rpm
+    from clutchfem.loadcase import LoadCase, sweep
+
+    cm = sectors[2e-3]
+    c, mu = 0.2e-3, 0.3
+    ring = RingDrum(B_OUT + c, DrumWall(wall_thickness=2e-3))
+    fe3 = build_fe_model_3d(cm, STEEL, settings=ExtrusionSettings(layers=1), slide_z=("top",))
+    n3 = contact_nodes(fe3, B_OUT + c)
+    fe2 = FEModel(cm, STEEL, H, formulation="plane-strain")
+    n2 = contact_nodes(fe2, B_OUT + c)
+    rpm = rad_s_to_rpm(np.array([4.5e4]))
+    N3 = sweep(LoadCase(fe3, DrumContact(n3, mu, "ccw", drum=ring, sectors=12, symmetry=fe3.symmetry_factor),
+                        "off"), rpm).curve["normal_force_N"][0]
+    N2 = sweep(LoadCase(fe2, DrumContact(n2, mu, "ccw", drum=ring, sectors=12), "off"), rpm).curve["normal_force_N"][0]
+    rigid = sweep(LoadCase(fe2, DrumContact(n2, mu, "ccw"), "off"), rpm).curve["normal_force_N"][0]
+    print(f"\n3-D half model on the ring {N3:.6e} N, 2-D plane strain {N2:.6e} N ({N3 / N2 - 1:+.1e}), rigid {rigid:.6e}")
+    assert N2 < 0.99 * rigid
+    assert N3 == pytest.approx(N2, rel=1e-3)
+
+
 @pytest.mark.slow
 def test_concept4_3d_cli_json(tmp_path):
     """``clutchfem solve concept4 --formulation 3d --json`` answers; the 3-D

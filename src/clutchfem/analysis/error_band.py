@@ -1,11 +1,16 @@
 """The error step: the error of the main answers (engagement, slip, torque at the rpm of
-maximum engine torque, peak stress), :mod:`clutchfem.accuracy`.
+maximum engine torque, peak stress), :mod:`clutchfem.accuracy`, and their sensitivity to the
+assumed inputs, reported apart from the band.
 
 Discretisation: the same answers on a mesh twice as fine (:func:`~clutchfem.accuracy.refined_design`:
 a second design, one more assembly and factorisation), Richardson's estimate at p = 1; a
 user mesh (one level) and a 3-D model are not estimated.  Model form: the measured terms
-(axial thickness 2-D vs 3-D, geometric non-linearity of the softening model, rigid vs 2 mm
-steel drum), relative.  The total band of an answer is the sum of the magnitudes.
+(best-estimate path: the thick plane model's residual against 3-D and the pre-stress
+softening's against the non-linear reference; fast path: axial thickness 2-D vs 3-D,
+geometric non-linearity of the softening model, rigid vs 2 mm steel drum), relative.  The
+total band of an answer is the sum of the magnitudes.  Sensitivities (not in the band): the
+answers with the drum wall -+ 0.5 mm (:func:`~.sensitivity.drum_sensitivity_step`) and with
+mu x 0.7 / x 1.3 (:func:`~.torque.mu_sensitivity_step`).
 """
 
 from __future__ import annotations
@@ -16,11 +21,12 @@ from .torque import FETorque, slip_step
 
 
 def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
-               slip_rpm_value: float | None) -> dict:
+               slip_rpm_value: float | None, drum: dict | None = None, mu: dict | None = None) -> dict:
     """The error of the main answers ``values`` (module docstring): per answer its value,
-    discretisation, model-form terms and total.  ``w0_rpm``: the engagement speed and
-    ``slip_rpm_value``: the slip speed, which the thickness term of the slip speed scales
-    with (that of the torque with the rpm of maximum engine torque)."""
+    discretisation, model-form terms, total and sensitivities.  ``w0_rpm``: the engagement
+    speed and ``slip_rpm_value``: the slip speed, which the thickness term of the slip speed
+    scales with (that of the torque with the rpm of maximum engine torque); ``drum``: the
+    drum-wall sensitivity step's answers, ``mu``: the mu sensitivity's (``MuSensitivity.as_dict``)."""
     lo, hi = engine.rpm_range
     coarse = {}
     cd = refined_design(design)
@@ -37,9 +43,32 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
         terms, notes = model_form(design, q, v, w0=w0_rpm, w=w)
         d = discretisation(v, coarse.get(q)) if cd is not None else None
         if cd is None:
-            notes = notes + (NOT_ESTIMATED[design.op.formulation == "3d"],)
-        out[q] = AnswerError(q, v, unit, d, terms, notes).as_dict()
+            notes = notes + (NOT_ESTIMATED[design.op.model_formulation == "3d"],)
+        out[q] = AnswerError(q, v, unit, d, terms, notes, sensitivities(q, drum, mu)).as_dict()
+    fast = design.op.model_formulation in ("plane-stress", "plane-strain")
     out["method"] = ("discretisation: 2 |a_h - a_h/2| (Richardson, p = 1) against the same design on a mesh twice "
-                     "as fine; model form: measured terms (axial thickness 2-D vs 3-D, geometric non-linearity of "
-                     "the softening model, rigid vs 2 mm steel drum), relative; total = sum of magnitudes")
+                     "as fine; model form: measured terms, relative ("
+                     + ("fast path: axial thickness 2-D vs 3-D, geometric non-linearity of the softening model, rigid "
+                        "vs 2 mm steel drum" if fast else
+                        "the thick plane model's residual against 3-D elasticity, the geometric non-linearity left "
+                        "by the softening model")
+                     + "); total = sum of magnitudes; sensitivities to the assumed inputs (drum wall, mu) apart, "
+                     "not in the total")
+    return out
+
+
+def sensitivities(q: str, drum: dict | None, mu: dict | None) -> dict:
+    """Per assumed input, the answer ``q`` at its low and high value (absolute, the answer's
+    unit): the drum wall -+ 0.5 mm, mu x 0.7 / x 1.3 (where the step computed them)."""
+    out = {}
+    if drum is not None and q in drum:
+        lo, hi = drum["drum_wall_m"]
+        out[f"drum wall {lo * 1e3:g} / {hi * 1e3:g} mm"] = list(drum[q])
+    if mu is not None:
+        key = {"slip_rpm": "slip_rpm", "torque_at_max_engine_torque_Nm": "torque_Nm"}.get(q)
+        if key and key in mu:
+            vals = mu[key]
+            lo_hi = [vals.get(k) for k in ("x0.7", "x1.3")] if isinstance(vals, dict) else None
+            if lo_hi and all(v is not None for v in lo_hi):
+                out["mu x0.7 / x1.3"] = lo_hi
     return out

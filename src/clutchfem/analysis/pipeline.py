@@ -20,8 +20,10 @@ factorisation for everything below):
    speed;
 8. :func:`~.requirements.requirements_step`: engagement > a x idle, slip < b x rpm of max
    engine torque;
-9. :func:`~.errors.error_step`: the error of engagement, slip, torque and peak stress
-   (:mod:`clutchfem.accuracy`: a mesh twice as fine, measured model-form terms);
+9. :func:`~.error_band.error_step`: the error of engagement, slip, torque and peak stress
+   (:mod:`clutchfem.accuracy`: a mesh twice as fine, measured model-form terms) and their
+   sensitivity to the assumed drum wall (:func:`~.sensitivity.drum_sensitivity_step`) and
+   friction coefficient, apart from the band;
 10. :func:`~.requirements.whirl_step`: the crankshaft's first critical speed with this
     clutch on its overhang (:mod:`clutchfem.clutch.crankshaft`) against the engine's
     maximum speed;
@@ -49,6 +51,7 @@ from .coupling import answer_curves, coupling_step, torque_models
 from .error_band import error_step
 from .messages import design_notes, design_warnings
 from .requirements import idle_speed, requirements_step, whirl_step
+from .sensitivity import drum_sensitivity_step
 from .strength import fatigue_step, stress_step
 from .torque import (
     character_step,
@@ -142,10 +145,11 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     curves = answer_curves(res, curves, coupling, engine)
     # 8-11: requirements, error of the main answers, crankshaft whirl, fatigue
     checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)
+    drum = drum_sensitivity_step(design, engine, float(engine.rpm_max_torque), hi) if errors else None
     err = error_step(design, engine, {"engagement_rpm": eng.static_rpm, "slip_rpm": slip.rpm,
                                       "torque_at_max_engine_torque_Nm": t_nom,
                                       "max_von_mises_Pa": st.max_von_mises_Pa},
-                     eng.static_rpm, slip.rpm) if errors else {}
+                     eng.static_rpm, slip.rpm, drum=drum, mu=sens.as_dict()) if errors else {}
     wh = whirl_step(design, hi)
     fat = fatigue_step(design, res, engine, loads=fatigue_loads, params=fatigue_params, ripple_model=ripple_model)
     warnings = design_warnings(res=res, material=material, mu=op.mu, slip=slip, eng=eng, ch=ch, character=character,

@@ -159,7 +159,7 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
     # L <= U are kept.  On those, the closed-form screen with the true amplitudes and means
     # (candidate_points) and the exact check.
     pts = model.stress.points
-    elem = np.arange(design.cm.n_elements).repeat(3)
+    elem = model.stress.element  # the 2-D element under each stress point
     b = service_cycles(st, bound_only=True, **kw)
     M = b.stress_bound
     counts = [kw["start_stops"]] + [max(float(c["count"]), 1.0) for c in kw["delta_classes"]]
@@ -173,7 +173,8 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
         cs = service_cycles(st, points=points, **kw)
         cand = candidate_points(cs.cycles, params, Se)
         sub = [LoadCycle(c.name, c.state_a[:, cand], c.state_b[:, cand], c.count) for c in cs.cycles]
-        return cs, fatigue_check(sub, params, xy=pts[:, points[cand]], cm=design.cm, element=elem[points[cand]]), cand
+        return cs, fatigue_check(sub, params, xy=pts[:2, points[cand]], cm=design.cm,
+                                 element=elem[points[cand]]), cand
 
     cs_top, fr_top, cand_top = check(top)
     with np.errstate(divide="ignore"):
@@ -204,7 +205,7 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
         notes.append(f"the mean cutting torque {info['cutting_torque_Nm']:.2f} N m exceeds the clutch's capacity "
                      f"{info['capacity_forward_Nm'][1]:.2f} N m at the operating speed {rpm_o:.0f} rpm: it slips "
                      "continuously there (running cycles at capacity)")
-    if model.szz_factor:
+    if getattr(model, "szz_factor", 0.0):
         notes.append("plane strain: the fatigue check uses the in-plane stresses (s_zz left out)")
     details = {
         "available": True, "location_detail": None if fr.location is None else fr.location.to_json(),

@@ -34,9 +34,11 @@ def field_png(design, res: SweepResult, rpm: float, scale: float = DEFORMATION_S
     k = res.index(float(rpm))
     u = res.displacement(k)
     fields = res.fields
-    s = fields.stress(u)  # (3, ne*3) raw vertex stresses
-    vm = fields.stress.von_mises(s).reshape(-1, 3)  # (ne, 3)
+    # (3, ne*3) raw vertex stresses; the thick model: (6, levels*ne*3), its peak measure as the table's
+    s = fields.stress(u, finite=True) if getattr(fields.stress, "FINITE", False) else fields.stress(u)
     t = mesh.t  # (3, ne) vertex indices
+    # the largest over the thick model's through-thickness levels (mid-plane, face)
+    vm = fields.stress.von_mises(s).reshape(-1, t.shape[1], 3).max(axis=0)  # (ne, 3)
     nv = mesh.p.shape[1]
     acc = np.zeros(nv)
     cnt = np.zeros(nv)

@@ -82,7 +82,7 @@ class DesignSession:
         self.out_dir = Path(out_dir) if out_dir is not None else None
         self.engine = EngineCurve.default()
         self.requirements = Requirements()
-        self.mesh = MeshSettings()
+        self.mesh: MeshSettings | None = None  # None: the fidelity's mesh (MeshSettings.preset)
         self.pinned: Outcome | None = None
         self.last: Outcome | None = None
         self.generation = 0
@@ -236,7 +236,8 @@ class DesignSession:
                 raise ParameterError("drum_radius", None, "the drum's inner radius in mm (your part has no drum)",
                                      "your part")
             return Design.from_mesh(self.part, operating=self.op)
-        return Design.from_concept(self.concept, self.params, self.op, self.mesh)
+        return Design.from_concept(self.concept, self.params, self.op,
+                                   self.mesh if self.mesh is not None else MeshSettings.preset(self.op.fidelity))
 
     def run(self) -> Outcome:
         """The fast pass: the design meshed and analysed without the error estimate."""

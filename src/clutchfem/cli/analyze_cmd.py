@@ -57,6 +57,7 @@ def analyze(
     drum_wall: O.DrumWall = None,
     drum_state: O.DrumState = None,
     softening: O.Softening = None,
+    fidelity: O.Fidelity = None,
     formulation: O.Formulation = None,
     layers: O.Layers = None,
     engine: O.Engine = None,
@@ -100,7 +101,8 @@ def analyze(
                 raise ParameterError(nm, v, f"a speed within the engine curve's range {lo_:g}..{hi_:g} rpm",
                                      "option --fatigue (fatigue loads)")
         mat = material_from(material)
-        op = operating_point(mu=mu, rotation=rotation, softening=softening, formulation=formulation, rpm=rpm,
+        op = operating_point(mu=mu, rotation=rotation, softening=softening, fidelity=fidelity,
+                             formulation=formulation, rpm=rpm,
                              layers=layers, drum_wall=drum_wall, drum_state=drum_state, material=mat)
         if op.rpm is not None:
             check_speeds(op.speeds(), eng)

@@ -126,6 +126,8 @@ def operating_point(base=None, **given):
     from ..loadcase import OperatingPoint
 
     base = base if base is not None else OperatingPoint()
+    if isinstance(given.get("drum_wall"), str) and given["drum_wall"].strip().lower() == "rigid":
+        given = {**given, "drum_wall": "0"}  # --drum-wall rigid: the rigid drum (a wall of 0)
     try:
         values = OperatingPoint.parse_assignments([f"{k}={v}" for k, v in given.items()
                                                    if v is not None and k != "material"])
@@ -213,7 +215,7 @@ def design_from(concept: Optional[str], set_: list[str], mesh: Optional[Path], *
             if raw is not None:
                 raise InputError(f"{opt} applies to a --mesh part: a concept's {name.replace('_', ' ')} is one of its "
                                  f"geometry parameters (the part is built against it): use --set {name}=...")
-        ms = MeshSettings(model=model) if size is None else MeshSettings(size=size, model=model)
+        ms = MeshSettings.preset(op.fidelity, model=model, **({} if size is None else {"size": size}))
         return Design.from_concept(c, c.Params(**values), op, ms, solver=solver)
     if set_:
         raise InputError("--set sets a concept's parameters; a --mesh part has none (use --drum-radius, "

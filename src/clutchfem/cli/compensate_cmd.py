@@ -70,7 +70,7 @@ def compensate(
         with working(f"compensate {concept}") as stage:
             stage("analysing the design before and after")
             before = analyze(design, engine=eng, errors=False)
-            after = analyze(Design.from_concept(design.concept, res.after, design.op, _mesh(ms)), engine=eng,
+            after = analyze(Design.from_concept(design.concept, res.after, design.op, _mesh(ms, design.op.fidelity)), engine=eng,
                             errors=False)
         rows = compare_rows(res, before, after)
         if out is not None:
@@ -96,7 +96,7 @@ def compensate(
         fail(exc)
 
 
-def _mesh(ms: dict):
+def _mesh(ms: dict, fidelity: str = "best"):
     from ..geometry import MeshSettings
 
-    return MeshSettings(**ms) if ms else MeshSettings()
+    return MeshSettings(**ms) if ms else MeshSettings.preset(fidelity)

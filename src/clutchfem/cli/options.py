@@ -31,7 +31,8 @@ Mesh = Annotated[Optional[Path], typer.Option(
     "--mesh", metavar="FILE", help="your own part instead of a concept: gmsh .msh (curve groups bore, contact) or STEP; x-y plane, "
                    "axis at the origin", rich_help_panel=DESIGN)]
 MeshSize = Annotated[Optional[str], typer.Option(
-    "--mesh-size", metavar="LENGTH", help="global element size, e.g. 0.8mm (default 1.2 mm)", rich_help_panel=DESIGN)]
+    "--mesh-size", metavar="LENGTH", help="global element size, e.g. 0.8mm (default: 6 mm with flexures, fillets and the "
+                 "contact surface refined for --fidelity best, a uniform 1.2 mm for fast)", rich_help_panel=DESIGN)]
 Model = Annotated[str, typer.Option("--model", metavar="sector|full", help="sector (one cyclic sector) or full (360 deg)",
                                     rich_help_panel=DESIGN)]
 
@@ -55,15 +56,21 @@ Nu = Annotated[Optional[str], typer.Option("--nu", metavar="NUMBER", help="Poiss
 Rho = Annotated[Optional[str], typer.Option("--rho", metavar="DENSITY", help="density, e.g. 7850kg/m^3 (overrides the material's)",
                                             rich_help_panel=OPERATING)]
 DrumWall = Annotated[Optional[str], typer.Option(
-    "--drum-wall", metavar="LENGTH", help="elastic drum of this wall thickness, e.g. 2mm (default: rigid)", rich_help_panel=OPERATING)]
+    "--drum-wall", metavar="LENGTH|rigid", help="elastic drum of this wall thickness, e.g. 2mm, or rigid (default: 2 mm steel "
+                      "ring, ASSUMED, for --fidelity best; rigid for fast)", rich_help_panel=OPERATING)]
 DrumState = Annotated[Optional[str], typer.Option(
     "--drum-state", metavar="held|spinning", help="elastic drum held (default) or spinning with the clutch", rich_help_panel=OPERATING)]
 
 Softening = Annotated[Optional[str], typer.Option(
     "--spin-softening", metavar="NAME", help="prestress (default: spin softening + centrifugal pre-stress), ritz, exact, off",
     rich_help_panel=MODEL)]
+Fidelity = Annotated[Optional[str], typer.Option(
+    "--fidelity", metavar="best|fast", help="best (default): the best estimate of the real part (thick plane model with the "
+                     "3-D thickness effect, elastic 2 mm drum ASSUMED, refined mesh); fast: today's uncorrected 2-D path "
+                     "(plane stress, rigid drum, 1.2 mm mesh; ~3x larger error band) for sweeps", rich_help_panel=MODEL)]
 Formulation = Annotated[Optional[str], typer.Option(
-    "--formulation", metavar="NAME", help="plane-stress (default), plane-strain or 3d", rich_help_panel=MODEL)]
+    "--formulation", metavar="NAME", help="auto (default: the fidelity's), plane-stress, plane-strain, thick (2-D mesh with "
+                        "through-thickness modes) or 3d (P2 tetrahedra, --layers)", rich_help_panel=MODEL)]
 Layers = Annotated[Optional[str], typer.Option("--layers", metavar="N", help="3d: element layers through half the thickness",
                                                rich_help_panel=MODEL)]
 

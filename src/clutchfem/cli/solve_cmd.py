@@ -33,6 +33,7 @@ def solve(
     drum_wall: O.DrumWall = None,
     drum_state: O.DrumState = None,
     softening: O.Softening = None,
+    fidelity: O.Fidelity = None,
     formulation: O.Formulation = None,
     layers: O.Layers = None,
     rpm: str = typer.Option("0:14000:250", "--rpm", help="speeds in rpm: 8000 | 1000,2000 | start:stop:step",
@@ -59,7 +60,8 @@ def solve(
     try:
         check_out_dir(out)
         mat = material_from(material, E, nu, rho)
-        op = operating_point(mu=mu, rotation=rotation, softening=softening, formulation=formulation, rpm=rpm,
+        op = operating_point(mu=mu, rotation=rotation, softening=softening, fidelity=fidelity,
+                             formulation=formulation, rpm=rpm,
                              layers=layers, drum_wall=drum_wall, drum_state=drum_state, material=mat)
         speeds = op.speeds()
         which = parse_rpm(vtk_rpm) if vtk_rpm else series_speeds(speeds)

@@ -56,6 +56,9 @@ class DrumContact:
     #: of identical sectors the model stands for (its loads repeat around the drum)
     drum: object = None
     sectors: int = 1
+    #: the drum's load per unit model force: the mid-plane symmetry factor of a 3-D half model
+    #: (its nodal forces are half the real ones; the drum carries both halves)
+    symmetry: float = 1.0
 
     def __post_init__(self):
         if isinstance(self.mu, bool) or not isinstance(self.mu, (int, float, np.floating)) \
@@ -95,7 +98,7 @@ class DrumContact:
         drum's wall moves out by C_d lam: the LCP matrix becomes G + C_d), None if rigid."""
         if self.drum is None:
             return None
-        return self.drum.operator(self.nodes, self.friction, self.sectors)
+        return self.symmetry * self.drum.operator(self.nodes, self.friction, self.sectors)
 
     def drum_gap(self, omega: float) -> float:
         """Free radial expansion [m] of a spinning elastic drum at ``omega`` [rad/s] (opens

@@ -104,8 +104,9 @@ def check_drum_radius(drum_radius) -> None:
 
 
 def contact_nodes(model, drum_radius: float) -> ContactNodes:
-    """The contact nodes of ``model`` (a 2-D :class:`~clutchfem.fe.FEModel` or a 3-D
-    :class:`~clutchfem.fe.FEModel3D`) facing a drum of inner radius ``drum_radius`` [m]: the
+    """The contact nodes of ``model`` (a 2-D :class:`~clutchfem.fe.FEModel`, the thick plane
+    :class:`~clutchfem.fe.FEModelThick` (its mean in-plane displacement, whose dofs come
+    first) or a 3-D :class:`~clutchfem.fe.FEModel3D`) facing a drum of inner radius ``drum_radius`` [m]: the
     ``contact`` group, per shoe from ``contact_<i>``."""
     if isinstance(model, FEModel3D):
         return _contact_nodes_3d(model, drum_radius)
@@ -126,7 +127,7 @@ def contact_nodes(model, drum_radius: float) -> ContactNodes:
     # the contact surface must face the drum: outward boundary normals point away from the axis
     check_facing(cm, facets)
     return build_contact_nodes(cm, cm, drum_radius, dx, dy, basis.doflocs, x_dofs,
-                               lambda dx_all: contact_weights(cm, basis, facets)[dx_all], basis.N)
+                               lambda dx_all: contact_weights(cm, basis, facets)[dx_all], model.ndofs)
 
 
 def _contact_nodes_3d(model, drum_radius: float) -> ContactNodes:

@@ -35,8 +35,13 @@ def _design(record: dict, where: str, mesh: MeshSettings | None) -> Design:
         op.pop(k, None)
     if isinstance(op.get("material"), dict):
         op["material"] = Material(**op["material"])
-    ms = mesh or MeshSettings(**{**dict(record.get("mesh_settings") or record.get("mesh") or {}), "model": "sector"})
-    return Design.from_concept(c, params, OperatingPoint(**op), ms)
+    if op and "fidelity" not in op:  # a record from before issue 20: the uncorrected path it was computed on
+        op["fidelity"] = "fast"
+    point = OperatingPoint(**op)
+    rec_ms = dict(record.get("mesh_settings") or record.get("mesh") or {})
+    ms = mesh or (MeshSettings(**{**rec_ms, "model": "sector"}) if rec_ms
+                  else MeshSettings.preset(point.fidelity, model="sector"))
+    return Design.from_concept(c, params, point, ms)
 
 
 def design_from_run(folder, mesh: MeshSettings | None = None) -> Design:

@@ -174,12 +174,17 @@ def reverse_capacity(m0: float, mf: float) -> float:
 
 
 def _q(x, y):
-    """Plane-stress von Mises bilinear form: q(s, s) = vM(s)^2 (s = (sxx, syy, sxy))."""
+    """von Mises bilinear form: q(s, s) = vM(s)^2, for plane stress s = (sxx, syy, sxy) or 3-D
+    Voigt s = (sxx, syy, szz, syz, sxz, sxy)."""
+    if x.shape[0] == 6:
+        return (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+                - 0.5 * (x[0] * y[1] + x[1] * y[0] + x[1] * y[2] + x[2] * y[1] + x[0] * y[2] + x[2] * y[0])
+                + 3.0 * (x[3] * y[3] + x[4] * y[4] + x[5] * y[5]))
     return x[0] * y[0] - 0.5 * (x[0] * y[1] + x[1] * y[0]) + x[1] * y[1] + 3.0 * x[2] * y[2]
 
 
 def vm_gram(B: np.ndarray) -> tuple[np.ndarray, list[tuple[int, int]]]:
-    """Per-point Gram matrix of the fields B (k, 3, npts) in the von Mises form: rows
+    """Per-point Gram matrix of the fields B (k, c, npts) (c = 3 or 6 stress rows) in the von Mises form: rows
     q(B_a, B_b) for a <= b (k (k + 1) / 2, npts) and the (a, b) of each row."""
     k = B.shape[0]
     pairs = [(a, b) for a in range(k) for b in range(a, k)]

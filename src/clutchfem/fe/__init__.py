@@ -1,4 +1,4 @@
-"""FE stage: the 2-D and 3-D linear-elastic models of the spinning part (K, f1, constraints,
+"""FE stage: the 2-D, thick plane (2-D with through-thickness modes) and 3-D linear-elastic models of the spinning part (K, f1, constraints,
 one factorisation), stress recovery with the one von Mises, sparse direct solvers and
 ``.vtu`` field output."""
 
@@ -16,12 +16,15 @@ from .model3d import (
                       geometric_stiffness_3d,
                       lame_3d,
 )
-from .stress import VertexStress, VertexStress3D, von_mises
-from .vtu import ZONES, RingMesh, pvd_text, ring_stresses, write_vtk, zone_ids
+from .size3d import check_3d_size, estimate_3d, max_model_memory
+from .stress import VertexStress, VertexStress3D, p2_vertex_gradients, von_mises
+from .thick import FEModelThick, ThickSettings, ThickStress, thick_modes
+from .vtu import ZONES, RingMesh, in_plane_stresses, pvd_text, ring_stresses, write_vtk, zone_ids
 
 __all__ = ["COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
+           "FEModelThick", "ThickSettings", "ThickStress", "p2_vertex_gradients", "thick_modes",
            "Kinematics", "geometric_stiffness",
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",
            "constraint_map", "contact_area_weights", "contact_weights", "extrude", "factorize",
-           "geometric_stiffness_3d", "lame_3d", "one_blas_thread", "von_mises", "write_vtk",
-           "ZONES", "RingMesh", "pvd_text", "ring_stresses", "zone_ids"]
+           "geometric_stiffness_3d", "lame_3d", "check_3d_size", "estimate_3d", "max_model_memory", "one_blas_thread", "von_mises", "write_vtk",
+           "ZONES", "RingMesh", "in_plane_stresses", "pvd_text", "ring_stresses", "zone_ids"]

@@ -97,6 +97,8 @@ def geometric_stiffness(fe, u1: np.ndarray) -> sp.csr_matrix:
     The linearised prestressed operator at speed w is K + w^2 (K_sigma1 - M)."""
     if fe.basis.mesh.dim() == 3:
         return geometric_stiffness_3d(fe, u1)
+    if getattr(fe, "formulation", "") == "thick":
+        return fe.geometric_stiffness(u1)
     lam, mu = fe.lame if hasattr(fe, "lame") else fe.material.lame_plane_stress()
     kin = Kinematics(fe.basis, lam, mu, fe.thickness)
     s = kin.linear_stress(u1)

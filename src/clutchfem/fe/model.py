@@ -241,10 +241,32 @@ def constraint_map(cm: ClutchMesh, basis: Basis) -> sp.csr_matrix:
 def contact_weights(cm: ClutchMesh, basis: Basis, facets: np.ndarray) -> np.ndarray:
     """int phi_i ds over the given facets for every dof (length N, x and y dofs equal):
     the tributary length of each P2 node, used to turn nodal forces into pressures."""
-    fb = FacetBasis(cm.mesh, basis.elem, facets=facets, intorder=6)
+    try:
+        fb = FacetBasis(cm.mesh, basis.elem, facets=facets, intorder=6)
+    except Exception:  # skfem's inverse isoparametric map (Newton) fails on some curved P2 facets
+        return _edge_weights(basis, np.asarray(facets))
 
     @LinearForm
     def length(v, w):
         return v[0] + v[1]
 
     return asm(length, fb)
+
+
+def _edge_weights(basis: Basis, facets: np.ndarray) -> np.ndarray:
+    """:func:`contact_weights` without the inverse map: each P2 facet is the quadratic curve
+    x(s) = sum N_i(s) x_i (s in [-1, 1]; N = s(s-1)/2, s(s+1)/2, 1 - s^2 at its two vertices
+    and its mid node, the isoparametric trace), int N_i |x'(s)| ds by 6-point Gauss."""
+    m = basis.mesh
+    s, wq = np.polynomial.legendre.leggauss(6)
+    N = np.stack([0.5 * s * (s - 1), 0.5 * s * (s + 1), 1 - s ** 2])  # (3, nq)
+    dN = np.stack([s - 0.5, s + 0.5, -2 * s])
+    out = np.zeros(basis.N)
+    for comp in range(2):
+        va, vb = basis.nodal_dofs[comp][m.facets[0, facets]], basis.nodal_dofs[comp][m.facets[1, facets]]
+        vm = basis.facet_dofs[comp][facets]
+        X = basis.doflocs[:, np.stack([va, vb, vm])]  # (2, 3, nf)
+        jac = np.sqrt(((X[:, :, :, None] * dN[None, :, None, :]).sum(axis=1) ** 2).sum(axis=0))  # (nf, nq)
+        for k, dofs in enumerate((va, vb, vm)):
+            np.add.at(out, dofs, (N[k][None, :] * jac * wq[None, :]).sum(axis=1))
+    return out

@@ -82,7 +82,6 @@ from .stress import VertexStress3D, von_mises
 
 __all__ = ["ExtrusionSettings", "ExtrudedMesh", "FEModel3D", "extrude", "build_fe_model_3d", "lame_3d"]
 
-
 class ExtrusionSettings(ParamSet):
     """How the 2-D mesh is extruded through the axial thickness."""
 

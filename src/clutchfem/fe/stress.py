@@ -72,22 +72,35 @@ class VertexStress:
         return self._mesh.p[:, self._mesh.t.T.ravel()]
 
     @cached_property
+    def element(self) -> np.ndarray:
+        """(npts,) the element of the 2-D mesh each stress point belongs to."""
+        return np.arange(self._mesh.t.shape[1]).repeat(3)
+
+    @cached_property
     def _gradients(self):
         """(Gx, Gy, ex, ey): d/dx and d/dy [1/m] of the 6 scalar P2 shape functions at each
         element's 3 vertices, (nelem, 3, 6) each; ex, ey the element dofs (nelem, 6) of the x
-        and y displacement."""
-        b = self._basis
-        ed = b.element_dofs  # (12, ne): local dof 2k + c = shape function k, component c
-        ex, ey = ed[0::2], ed[1::2]
-        X = b.doflocs[:, ex]  # (2, 6, ne) node positions (curved mid-edge nodes included)
-        J = np.einsum("ake,vkb->evab", X, _R)  # (ne, 3, 2, 2): dx_a / dxi_b
-        det = J[..., 0, 0] * J[..., 1, 1] - J[..., 0, 1] * J[..., 1, 0]
-        if np.any(det == 0):
-            raise SolverError(f"{self._source}: a degenerate element (zero Jacobian at a vertex); remesh")
-        Jinv = np.stack([np.stack([J[..., 1, 1], -J[..., 0, 1]], -1),
-                         np.stack([-J[..., 1, 0], J[..., 0, 0]], -1)], -2) / det[..., None, None]
-        G = _R[None] @ Jinv  # (ne, 3, 6, 2): grad phi_k = J^-T grad_ref phi_k
-        return (np.ascontiguousarray(G[..., 0]), np.ascontiguousarray(G[..., 1]), ex.T.copy(), ey.T.copy())
+        and y displacement (:func:`p2_vertex_gradients`)."""
+        return p2_vertex_gradients(self._basis, self._source)[:4]
+
+
+def p2_vertex_gradients(b, source: str = "mesh"):
+    """(Gx, Gy, ex, ey, Jinv) of the vector P2 basis ``b`` on a curved triangle mesh: the x and
+    y derivatives [1/m] of the 6 scalar P2 shape functions at each element's 3 vertices
+    (nelem, 3, 6) each, the element dofs (nelem, 6) of the x and y components, and the inverse
+    Jacobian (nelem, 3, 2, 2) of the curved map at the vertices (d xi_a / d x_b: the gradient
+    of any other shape function there is its reference gradient times it)."""
+    ed = b.element_dofs  # (12, ne): local dof 2k + c = shape function k, component c
+    ex, ey = ed[0::2], ed[1::2]
+    X = b.doflocs[:, ex]  # (2, 6, ne) node positions (curved mid-edge nodes included)
+    J = np.einsum("ake,vkb->evab", X, _R)  # (ne, 3, 2, 2): dx_a / dxi_b
+    det = J[..., 0, 0] * J[..., 1, 1] - J[..., 0, 1] * J[..., 1, 0]
+    if np.any(det == 0):
+        raise SolverError(f"{source}: a degenerate element (zero Jacobian at a vertex); remesh")
+    Jinv = np.stack([np.stack([J[..., 1, 1], -J[..., 0, 1]], -1),
+                     np.stack([-J[..., 1, 0], J[..., 0, 0]], -1)], -2) / det[..., None, None]
+    G = _R[None] @ Jinv  # (ne, 3, 6, 2): grad phi_k = J^-T grad_ref phi_k
+    return (np.ascontiguousarray(G[..., 0]), np.ascontiguousarray(G[..., 1]), ex.T.copy(), ey.T.copy(), Jinv)
 
 
 class VertexStress3D:
@@ -99,6 +112,7 @@ class VertexStress3D:
     def __init__(self, model):
         self._basis = model.basis
         self._mesh = model.em.mesh
+        self._ne2 = model.cm.n_elements
         self._source = model.cm.source
         self.lame = model.lame
 
@@ -138,6 +152,12 @@ class VertexStress3D:
     def points(self) -> np.ndarray:
         """(3, nelem * 4) positions [m] of the stress points (tetrahedron vertices)."""
         return self._mesh.doflocs[:, self._mesh.t.T.ravel()]
+
+    @cached_property
+    def element(self) -> np.ndarray:
+        """(npts,) the element of the 2-D mesh under each stress point (the extrusion stacks
+        the tetrahedra of every layer and split in the 2-D elements' order)."""
+        return (np.arange(self._mesh.t.shape[1]) % self._ne2).repeat(4)
 
 
 def von_mises(s: np.ndarray, szz_factor: float = 0.0) -> np.ndarray:

@@ -227,15 +227,16 @@ def _size_fields(p: ConceptParams, ms: MeshSettings, groups: dict[str, list[int]
                 flex_curves += [abs(t) for d, t in b if d == 1]
         threshold(sorted(set(flex_curves)), ms.flexure_factor * flex_t, flex_t)
     # small arcs (fillets): size proportional to their radius
-    by_size: dict[float, list[int]] = {}
+    by_size: dict[tuple[float, float], list[int]] = {}
     for dim, c in gmsh.model.getEntities(1):
         lo, hi = gmsh.model.getParametrizationBounds(1, c)
         k = np.abs(gmsh.model.getCurvature(1, c, [0.5 * (lo[0] + hi[0])]))
         if k.size and k[0] > 1.0 / (0.25 * p.drum_radius):
             s = float(np.round(ms.fillet_factor / k[0], 7))
-            by_size.setdefault(s, []).append(c)
-    for s, cs in by_size.items():
-        threshold(cs, s, 0.0)
+            reach = float(np.round(ms.fillet_reach / k[0], 7))
+            by_size.setdefault((s, reach), []).append(c)
+    for (s, reach), cs in by_size.items():
+        threshold(cs, s, reach)
     if fields:
         m = f.add("Min")
         f.setNumbers(m, "FieldsList", fields)

@@ -29,7 +29,7 @@ from typing import ClassVar, Literal
 import numpy as np
 from pydantic import model_serializer
 
-from ..core import ParamSet, choice, param
+from ..core import ParameterError, ParamSet, choice, param
 from .profile import MIN_PROFILE_CLEARANCE, TABLE_FIELDS, TABLE_N, table_param, table_spline
 
 
@@ -185,13 +185,22 @@ class ConceptParams(ParamSet):
         return 2 * math.pi / self.n_shoes
 
 
+#: the mesh of each fidelity (:meth:`MeshSettings.preset`): ``fast`` is today's uniform 2-D mesh;
+#: ``best`` puts the elements where the answers are decided (flexures, fillets, the contact
+#: surface) and keeps the rest coarse, so that the thick plane model costs what the fast
+#: path's plane-stress model does (BENCHMARKS.md, best-estimate section)
+MESH_PRESETS = {"fast": {}, "best": {"size": 6e-3, "contact_factor": 0.25, "flexure_factor": 0.5,
+                                     "fillet_factor": 0.25}}
+
+
 class MeshSettings(ParamSet):
     """Mesh controls: one global size knob plus optional local factors.
 
     Parameters
     ----------
     size : float or str
-        Global element size (default 1.2 mm; ``"0.8mm"``).
+        Global element size (default 1.2 mm, the fast mesh; the best-estimate path uses
+        :meth:`preset` ``("best")``; ``"0.8mm"``).
     flexure_factor, contact_factor, fillet_factor : float
         Local sizes: in flexures as a fraction of their thickness, on contact surfaces and on
         small arcs (fillets) relative to the global size / the arc radius.
@@ -213,8 +222,20 @@ class MeshSettings(ParamSet):
                                   "element size in flexures as a fraction of the flexure thickness")
     contact_factor: float = param(0.5, "-", 0.05, 2.0, "element size on contact surfaces / global size")
     fillet_factor: float = param(0.5, "-", 0.05, 2.0, "element size on small arcs (fillets) / arc radius")
+    fillet_reach: float = param(0.0, "-", 0.0, 5.0, "distance from a fillet within which its size holds / its radius "
+                                "(0: on the arc only, then growing to the global size)")
     order: int = param(2, "-", 1, 2, "element order (2: curved P2 triangles)")
     model: Literal["sector", "full"] = choice("sector", "one cyclic sector or the full 360 degree part")
+
+    @classmethod
+    def preset(cls, fidelity: str = "best", **changes) -> "MeshSettings":
+        """The mesh of an analysis fidelity (:data:`MESH_PRESETS`): ``"best"`` (flexures,
+        fillets and the contact surface refined, 6 mm elsewhere) or ``"fast"`` (the uniform
+        1.2 mm mesh); ``changes`` override single settings (``size=...``, ``model=...``)."""
+        if fidelity not in MESH_PRESETS:
+            raise ParameterError("fidelity", fidelity, "one of " + ", ".join(repr(k) for k in MESH_PRESETS),
+                                 cls.context)
+        return cls(**{**MESH_PRESETS[fidelity], **changes})
 
 
 @dataclass

@@ -238,13 +238,14 @@ class LoadCase:
         return float(mu * self.contact.drum_radius * lam.sum() * self.scale)
 
     def stresses(self, omegas, lams) -> np.ndarray:
-        """Vertex stresses (3, npts, n) of this case's solved contact states (speeds ``omegas``
+        """Vertex stresses (c, npts, n) of this case's solved contact states (speeds ``omegas``
         [rad/s], nodal forces ``lams`` (n, m)) from its reduced-basis fields: no new
-        factorisation."""
+        factorisation.  c = 3 (sxx, syy, sxy) in 2-D, 6 (Voigt) for the thick and 3-D models."""
         om = np.atleast_1d(np.asarray(omegas, dtype=float))
         basis, coef, U = self.response.fields(om, np.asarray(lams))
         u = U if U is not None else basis @ coef
-        return self.model.stress(u).reshape(3, -1, len(om))
+        s = self.model.stress(u)
+        return s.reshape(s.shape[0], -1, len(om))
 
     @property
     def contact_modulus(self) -> float:

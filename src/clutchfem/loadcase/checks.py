@@ -61,9 +61,11 @@ def condition_estimate(model) -> float:
     return model.__dict__["_cond"]
 
 
-def rotation_field(basis) -> np.ndarray:
-    """rho (ndofs,): the displacement of a unit rigid rotation about the axis, (-y, x)."""
-    rho = np.zeros(basis.N)
+def rotation_field(basis, ndofs: int | None = None) -> np.ndarray:
+    """rho (ndofs,): the displacement of a unit rigid rotation about the axis, (-y, x), on
+    the vector P2 ``basis`` (a model whose unknowns extend it, the thick plane model's higher
+    modes, gives their count ``ndofs``: a rigid rotation does not move them)."""
+    rho = np.zeros(basis.N if ndofs is None else ndofs)
     for comp, sign in ((0, -1.0), (1, 1.0)):
         # every node's dof of this component (2-D P2: vertices, facets; 3-D P2: vertices, edges)
         d = np.concatenate([a[comp] for a in (basis.nodal_dofs, basis.facet_dofs, basis.edge_dofs)
@@ -90,7 +92,7 @@ def equilibrium(model, contact, softened: bool, fields, omegas: np.ndarray, lam:
     K, T, f1 = model.K, model.T, model.f1
     M = model.M if softened else None
     D = None if contact is None else contact.load
-    rho = rotation_field(model.basis)
+    rho = rotation_field(model.basis, model.ndofs)
     # the model's own facets (a 3-D model's bore is a face of its extruded mesh)
     bore = np.unique(model.basis.get_dofs(getattr(model, "boundary", model.cm.boundary)("bore")).all())
     if fields.U is None:

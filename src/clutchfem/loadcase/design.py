@@ -18,7 +18,7 @@ import numpy as np
 
 from ..contact import DrumContact, DrumWall, RingDrum, contact_nodes
 from ..core import ParameterError, UnitError, as_bool, as_path, parse_quantity
-from ..fe import ExtrusionSettings, FEModel, FEModel3D, Solver
+from ..fe import ExtrusionSettings, FEModel, FEModel3D, FEModelThick, Solver, ThickSettings, check_3d_size
 from ..geometry import MeshSettings, get_concept
 from ..mesh import ClutchMesh, load_user_geometry, mesh_concept
 from ..softening import get_softening
@@ -91,11 +91,16 @@ class Design:
                                  "e.g. 0.011 for 11 mm)")
         if params is None and self.drum_radius is not None:
             self._check_user_drum()
-        if op.formulation == "3d":
+        form = op.model_formulation
+        if form == "thick":
+            self.model = FEModelThick(cm, op.material, self.thickness, settings=ThickSettings(order=op.thick_order),
+                                      solver=solver)
+        elif form == "3d":
+            check_3d_size(cm, op.layers)  # before any 3-D array is made
             self.model = FEModel3D(cm, op.material, self.thickness, settings=ExtrusionSettings(layers=op.layers),
                                    solver=solver)
         else:
-            self.model = FEModel(cm, op.material, self.thickness, formulation=op.formulation, solver=solver)
+            self.model = FEModel(cm, op.material, self.thickness, formulation=form, solver=solver)
         self._cases: dict = {}
 
     @classmethod
@@ -114,7 +119,8 @@ class Design:
             :class:`OperatingPoint` ``()``.  The drum radius and the thickness of a concept are
             geometry parameters (``drum_radius=...``, ``thickness=...``).
         mesh : MeshSettings, optional
-            Element sizes and sector or full model (default: ``MeshSettings()``).
+            Element sizes and sector or full model (default: the fidelity's,
+            ``MeshSettings.preset(operating.fidelity)``).
         solver : str or callable, optional
             Sparse solver back-end: ``"cholmod"``, ``"superlu"`` or a factory ``A -> .solve(B)``.
         **values
@@ -162,7 +168,7 @@ class Design:
             op = op.replace(**op_values)
         if mesh is not None and not isinstance(mesh, MeshSettings):
             raise ParameterError("mesh", type(mesh).__name__, "a MeshSettings (or None)")
-        cm = mesh_concept(c, p, mesh)
+        cm = mesh_concept(c, p, mesh if mesh is not None else MeshSettings.preset(op.fidelity))
         return cls(cm, op, params=p, solver=solver, name=c.name, concept=c)
 
     @classmethod
@@ -224,23 +230,31 @@ class Design:
     @cached_property
     def drum(self):
         """The elastic drum (:class:`clutchfem.contact.RingDrum`), or None for a rigid drum."""
-        if self.drum_radius is None or self.op.drum_wall is None:
+        return self.ring(self.op.drum_wall_m)
+
+    def ring(self, wall: float | None):
+        """The ring drum of wall thickness ``wall`` [m] (the operating point's state and
+        material), None for a rigid drum (``wall`` None) or without a drum."""
+        if self.drum_radius is None or wall is None:
             return None
-        return RingDrum(self.drum_radius, DrumWall(wall_thickness=self.op.drum_wall, state=self.op.drum_state,
+        return RingDrum(self.drum_radius, DrumWall(wall_thickness=wall, state=self.op.drum_state,
                                                    material=self.op.material))
 
-    def contact(self, mu: float | None = None) -> DrumContact | None:
+    def contact(self, mu: float | None = None, drum_wall: float | str | None = "design") -> DrumContact | None:
         """The drum as a load-case part with friction ``mu`` (default: the operating point's),
-        None without a drum."""
+        None without a drum.  ``drum_wall``: another drum wall [m] (None: rigid) than the
+        design's, for the sensitivity to that assumed input."""
         if self.nodes is None:
             return None
         sectors = self.cm.sector_copies
-        return DrumContact(self.nodes, self.op.mu if mu is None else mu, self.op.rotation, drum=self.drum,
-                           sectors=sectors)
+        drum = self.drum if drum_wall == "design" else self.ring(drum_wall)
+        return DrumContact(self.nodes, self.op.mu if mu is None else mu, self.op.rotation, drum=drum,
+                           sectors=sectors, symmetry=float(getattr(self.model, "symmetry_factor", 1.0)))
 
-    def case(self, mu: float | None = None, softening=None) -> LoadCase:
+    def case(self, mu: float | None = None, softening=None, drum_wall: float | str | None = "design") -> LoadCase:
         """The load case with friction ``mu`` (default: the operating point's) and spin
-        softening ``softening`` (default: the operating point's); cached."""
+        softening ``softening`` (default: the operating point's); cached.  ``drum_wall``:
+        another drum than the design's (:meth:`contact`), on the same model and factorisation."""
         if mu is not None:
             try:
                 mu = parse_quantity(mu, "-")
@@ -250,9 +264,9 @@ class Design:
                 raise ParameterError("mu", mu, "a friction coefficient in [0, 1]")
         mu = self.op.mu if mu is None else mu
         soft = get_softening(self.op.softening if softening is None else softening)
-        key = (mu, soft)
+        key = (mu, soft) if drum_wall == "design" else (mu, soft, drum_wall)
         if key not in self._cases:
-            self._cases[key] = LoadCase(self.model, self.contact(mu), soft)
+            self._cases[key] = LoadCase(self.model, self.contact(mu, drum_wall), soft)
         return self._cases[key]
 
     def sweep(self, rpm=None, *, mu: float | None = None, softening=None, stresses: bool = True):

@@ -2,10 +2,20 @@
 the solver alike.
 
 Drum radius, friction coefficient, sense of rotation, axial thickness, material, spin
-softening, formulation (plane stress, plane strain, 3-D with its layers), the drum's
-elasticity (rigid, or a ring wall, held or spinning) and the speeds: one default, one range and one error message
-for each (:mod:`clutchfem.core.params`).  ``None`` for the drum radius and the thickness means
-"the concept's value" (a user mesh has no drum: its radius must be given).
+softening, formulation (plane stress, plane strain, the thick plane model, 3-D with its
+layers), the drum's elasticity (rigid, or a ring wall, held or spinning) and the speeds: one
+default, one range and one error message for each (:mod:`clutchfem.core.params`).  ``None``
+for the drum radius and the thickness means "the concept's value" (a user mesh has no drum:
+its radius must be given).
+
+**Fidelity** (issue 20).  ``best`` (default) answers for the real part: the thick plane
+model (:class:`clutchfem.fe.FEModelThick`: the 3-D thickness effect of each design), an
+elastic drum (a 2 mm steel wall, ASSUMED: a pressed cup of a 60 cc saw; its sensitivity is
+reported apart), the pre-stress softening and the mesh of
+:meth:`clutchfem.geometry.MeshSettings.preset` ``("best")``.  ``fast`` keeps the
+uncorrected 2-D path (plane stress, rigid drum, the uniform 1.2 mm mesh) for sweeps that
+rank designs, with its larger model-form band.  ``formulation="auto"`` and ``drum_wall=None``
+follow the fidelity; an explicit formulation or drum wall (``"rigid"``) overrides it.
 
 The friction coefficient mu = 0.165 is seed 000's value for the spring clutch's shoe lining
 on the drum (steel on steel here is similar; ASSUMED the same).
@@ -26,6 +36,11 @@ from ..core import InputError, Material, ParameterError, ParamSet, choice, get_m
 MAX_RPM = 1.0e6
 #: more speeds than this in one sweep are refused (memory and run time grow with them)
 MAX_SPEEDS = 20000
+#: the drum wall of the best-estimate path [m] (ASSUMED: a pressed steel cup of a 60 cc saw)
+BEST_DRUM_WALL = 2.0e-3
+#: what each fidelity means when formulation is "auto" and drum_wall is None
+FIDELITY = {"best": {"formulation": "thick", "drum_wall": BEST_DRUM_WALL},
+            "fast": {"formulation": "plane-stress", "drum_wall": None}}
 
 
 class OperatingPoint(ParamSet):
@@ -45,10 +60,15 @@ class OperatingPoint(ParamSet):
         ``"51CrV4"`` (default), ``"titanium"``, ``"aluminium"`` or a :class:`Material`.
     softening : {"prestress", "ritz", "exact", "off"}
         Spin softening and pre-stress stiffening (default prestress).
-    formulation : {"plane-stress", "plane-strain", "3d"}
-        The elastic model; ``layers``: 3-D element layers through half the thickness.
+    fidelity : {"best", "fast"}
+        ``best`` (default): the best estimate of the real part; ``fast``: the uncorrected 2-D
+        path (module docstring).
+    formulation : {"auto", "plane-stress", "plane-strain", "thick", "3d"}
+        The elastic model (auto: the fidelity's); ``layers``: 3-D element layers through half
+        the thickness; ``thick_order``: the thick model's through-thickness order.
     drum_wall : float or str, optional
-        Elastic drum of this wall thickness (default: rigid); ``drum_state``: held or spinning.
+        Elastic drum of this wall thickness, or ``"rigid"`` (default: the fidelity's, 2 mm
+        for best, rigid for fast); ``drum_state``: held or spinning.
     rpm : str, optional
         Speeds to tabulate (``"0:14000:250"``).
 
@@ -58,6 +78,8 @@ class OperatingPoint(ParamSet):
     >>> op = cf.OperatingPoint(mu=0.2, drum_wall="2mm", rotation="cw")
     >>> op.mu, op.drum_wall, op.material.name
     (0.2, 0.002, '51CrV4 (SS 2230) spring steel, hardened ~45 HRC')
+    >>> cf.OperatingPoint().model_formulation, cf.OperatingPoint(fidelity="fast").drum_wall_m
+    ('thick', None)
     """
 
     context: ClassVar[str] = "operating point"
@@ -74,19 +96,48 @@ class OperatingPoint(ParamSet):
         "the spin softening and the centrifugal pre-stress stiffness of the flexures, 0.1 % from the "
         "geometrically non-linear reference), ritz (spin softening only, alias modal: 1.3-3 % model-form "
         "error), exact (per-speed reference of ritz), off")
-    formulation: Literal["plane-stress", "plane-strain", "3d"] = choice(
-        "plane-stress", "formulation: plane-stress (thin part), plane-strain (long part) or 3d "
-        "(the 2-D mesh extruded through the thickness, P2 tetrahedra)")
+    fidelity: Literal["best", "fast"] = choice(
+        "best", "best: the best estimate of the real part (thick plane model, elastic 2 mm drum ASSUMED, pre-stress, "
+        "mesh refined at flexures, fillets and contact); fast: the uncorrected 2-D path (plane stress, rigid drum, "
+        "uniform 1.2 mm mesh) with its larger model-form band")
+    formulation: Literal["auto", "plane-stress", "plane-strain", "thick", "3d"] = choice(
+        "auto", "formulation: auto (the fidelity's: thick for best, plane-stress for fast), plane-stress (thin "
+        "part), plane-strain (long part), thick (the 2-D mesh with polynomial through-thickness modes: the 3-D "
+        "answer of the extruded part to ~0.05 %) or 3d (the 2-D mesh extruded through the thickness, P2 tetrahedra)")
     layers: int = param(2, "-", 1, 16, "3d: element layers through half the thickness (mid-plane symmetry)")
-    drum_wall: float | None = param(None, "m", 0.2e-3, 30e-3,
-                                    "elastic drum: wall thickness (default: rigid drum); a ring of width 14 mm "
-                                    "ASSUMED, the part's material")
+    thick_order: int = param(4, "-", 2, 8, "thick: highest even power of z in the in-plane displacement "
+                             "(2: Saint-Venant bending; 4: with the end restraint)")
+    drum_wall: float | None = param(None, "m", 0.0, 30e-3,
+                                    "elastic drum: wall thickness, or rigid (0) (default: the fidelity's: 2 mm "
+                                    "ASSUMED for best, rigid for fast); a ring of width 14 mm ASSUMED, the part's "
+                                    "material")
     drum_state: Literal["held", "spinning"] = choice(
         "held", "elastic drum: held (idle, chain brake, slip) or spinning with the clutch (its centrifugal "
         "expansion opens the gap)")
     rpm: str | None = param(None, "rpm", None, None,
                             "speeds: 8000 | 1000,2000 | start:stop:step (default: 0..engine max for "
                             "analyze, 0:14000:250 for solve)")
+
+    def __init__(self, **values):
+        if isinstance(values.get("drum_wall"), str) and values["drum_wall"].strip().lower() == "rigid":
+            values["drum_wall"] = 0.0
+        super().__init__(**values)
+
+    def check(self) -> None:
+        if self.drum_wall is not None and 0.0 < self.drum_wall < 0.2e-3:
+            self.fail("drum_wall", "rigid (0) or a wall of 0.2 mm to 30 mm")
+
+    @property
+    def model_formulation(self) -> str:
+        """The formulation used: the given one, or the fidelity's for ``"auto"``."""
+        return FIDELITY[self.fidelity]["formulation"] if self.formulation == "auto" else self.formulation
+
+    @property
+    def drum_wall_m(self) -> float | None:
+        """The elastic drum's wall [m] used, None for a rigid drum (``drum_wall`` None: the
+        fidelity's; 0: rigid)."""
+        w = FIDELITY[self.fidelity]["drum_wall"] if self.drum_wall is None else self.drum_wall
+        return None if not w else float(w)
 
     @field_validator("material", mode="before")
     @classmethod

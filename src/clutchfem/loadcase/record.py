@@ -51,6 +51,10 @@ def design_inputs(design) -> dict:
     op["drum_radius"] = design.drum_radius
     op["thickness"] = design.thickness
     d["operating_point"] = op
+    # what the fidelity resolved to (formulation "auto", drum wall None)
+    d["model"] = {"fidelity": design.op.fidelity, "formulation": design.op.model_formulation,
+                  "drum_wall_m": design.op.drum_wall_m, "drum_state": design.op.drum_state,
+                  "softening": design.op.softening, "dofs": int(design.model.ndofs)}
     return clean(d)
 
 
@@ -68,12 +72,17 @@ def design_label(design) -> str:
     settings), else the name plus the design hash."""
     default = False
     if design.params is not None:
-        params0, op0, mesh0 = _defaults(type(design.params), type(design.op))
-        default = design.params == params0 and design.op == op0 and dict(design.cm.mesh_settings) == mesh0
+        params0, op0 = _defaults(type(design.params), type(design.op))
+        mesh0 = MeshSettings.preset(design.op.fidelity, model="sector").model_dump()
+        # the other fidelity at its defaults is a default design too (its own name tag)
+        same_op = design.op == op0 or design.op == op0.replace(fidelity=design.op.fidelity)
+        default = design.params == params0 and same_op and dict(design.cm.mesh_settings) == mesh0
+        if default and design.op.fidelity != op0.fidelity:
+            return f"{design.name}-{design.op.fidelity}"
     return design.name if default else f"{design.name}-{design_hash(design)}"
 
 
 @lru_cache(maxsize=64)
 def _defaults(params_type, op_type):
-    """The default parameter set, operating point and mesh settings (frozen: built once)."""
-    return params_type(), op_type(), MeshSettings(model="sector").model_dump()
+    """The default parameter set and operating point (frozen: built once)."""
+    return params_type(), op_type()

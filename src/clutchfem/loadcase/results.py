@@ -248,7 +248,10 @@ def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses
         if contact is not None:
             gaps[sl] = state_gaps(contact, np.asarray(omega)[sl], lam[sl], U)
         if stresses:
-            vm = fields.stress.von_mises(fields.stresses(sl))
+            # the thick plane model reads its peaks with the finite-rotation (Cauchy, Green-
+            # Lagrange) measure of the same displacement (clutchfem.fe.ThickStress)
+            vm = fields.stress.von_mises(fields.stress(U, finite=True) if getattr(fields.stress, "FINITE", False)
+                                         else fields.stresses(sl))
             vm_max[sl] = vm.max(axis=0)
             kmax[sl] = vm.argmax(axis=0)
     arcs = contact_arcs_deg(contact, lam, gaps, thickness, modulus)

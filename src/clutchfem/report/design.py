@@ -41,11 +41,45 @@ def _err(an, key: str, scale: float = 1.0, unit: str | None = None, fmt: str = "
     return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}})"
 
 
+def model_row(an) -> tuple[str, str] | None:
+    """('model', what answered): the fidelity and what it resolved to (design inputs)."""
+    m = (getattr(an, "inputs", None) or {}).get("model")
+    if not m:
+        return None
+    form = {"thick": "thick plane model (3-D thickness effect)", "3d": "3-D tetrahedra",
+            "plane-stress": "plane stress", "plane-strain": "plane strain"}.get(m["formulation"], m["formulation"])
+    drum = "rigid drum" if m["drum_wall_m"] is None else \
+        f"elastic drum, {m['drum_wall_m'] * 1e3:g} mm steel wall ({m['drum_state']}; ASSUMED)"
+    what = {"best": "best estimate", "fast": "fast, uncorrected (larger error band)"}.get(m["fidelity"], m["fidelity"])
+    return ("model", f"{what}: {form}, {drum}, softening {m['softening']}")
+
+
+def sensitivity_rows(an) -> list[tuple[str, str]]:
+    """The main answers at the drum wall's low and high value (an ASSUMED input, apart from
+    the error band)."""
+    errs = getattr(an, "errors", None) or {}
+    parts, label = [], None
+    for key, name, scale, unit, fmt in (("engagement_rpm", "engagement", 1.0, "rpm", ".0f"),
+                                        ("slip_rpm", "slip", 1.0, "rpm", ".0f"),
+                                        ("torque_at_max_engine_torque_Nm", "torque", 1.0, "N m", ".2f"),
+                                        ("max_von_mises_Pa", "stress", 1e-6, "MPa", ".0f")):
+        sens = (errs.get(key) or {}).get("sensitivities") or {}
+        for lab, vals in sens.items():
+            if lab.startswith("drum wall") and all(v is not None for v in vals):
+                label = lab
+                parts.append(f"{name} {vals[0] * scale:{fmt}} / {vals[1] * scale:{fmt}} {unit}")
+    if not parts:
+        return []
+    return [(f"answers with the {label} (2 mm ASSUMED; not in the error band)", "; ".join(parts))]
+
+
 def summary_rows(an) -> list[tuple[str, str]]:
     """(quantity, value with unit) rows of the answers for one design (terminal and Markdown);
-    the main answers carry their error estimate (discretisation and model form)."""
+    the main answers carry their error estimate (discretisation and model form), the
+    sensitivity to the assumed drum wall follows apart."""
     req = an.requirements
-    rows = [
+    mrow = model_row(an)
+    rows = ([mrow] if mrow else []) + [
         ("engagement speed (static, FE)", _fmt(an.engagement_rpm, ".0f", "rpm") + _err(an, "engagement_rpm")
          + (f" (above the engine curve's top speed {an.max_engine_rpm:.0f} rpm: never engages on this engine)"
             if an.slip_status == "never engages" else "")
@@ -77,6 +111,7 @@ def summary_rows(an) -> list[tuple[str, str]]:
         (f"safety factor against yield ({an.yield_strength_Pa / 1e6:.0f} MPa)",
          _fmt(an.safety_factor, ".2f", "(-)") + ("  ABOVE YIELD" if an.safety_factor < 1 else "")),
     ]
+    rows += sensitivity_rows(an)
     rows += fatigue_rows(an)
     per = an.shoe_character_per_shoe
     if per:
@@ -397,7 +432,7 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
     engine = EngineCurve.default()
     analyses, files = {}, []
     for name in concept_names:
-        ms = MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size)
+        ms = MeshSettings.preset("best", **({} if mesh_size is None else {"size": mesh_size}))
         an = analyze(Design.from_concept(name, mesh=ms), engine=engine)
         analyses[name] = an
         files += write_analysis(an, engine, out, name)

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core import figure, save_figure
-from ..fe import RingMesh, ring_stresses
+from ..fe import RingMesh, in_plane_stresses, ring_stresses
 from ..mesh import p2_cells
 
 #: half-width of the zoom window around the peak [m]
@@ -44,10 +44,10 @@ def field_picture(res, rpm: float, path, cm=None, title: str = "") -> Path:
     angle = getattr(cm, "sector_angle", None)
     ring = RingMesh(pts, cells, angle, getattr(cm, "sector_copies", 1) if angle else 1)
     u = res.displacement(k)
-    sv = f_.stress(u).reshape(3, -1, 3)
+    sv = in_plane_stresses(f_.stress(u), len(cells))
     s_avg, vmax = ring_stresses(ring, sv, cells, f_.stress.von_mises)
     vm_avg = f_.stress.von_mises(s_avg)
-    disp = ring.vector(np.column_stack([u[0::2], u[1::2]]))
+    disp = ring.vector(np.column_stack([u[0:2 * len(pts):2], u[1:2 * len(pts):2]]))
     xy = (ring.points[:, :2] + disp[:, :2]) * 1e3  # deformed, true scale [mm]
     tri = Triangulation(xy[:, 0], xy[:, 1], _subtriangles(ring.cells))
     peak = float(res.curve["max_von_mises_Pa"].iloc[k])

@@ -129,8 +129,8 @@ def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_
     details.append(Table("Operating point and model", ["setting", "value"],
                          [["drum radius", f"{design.drum_radius * 1e3:g} mm"], ["axial thickness", f"{design.thickness * 1e3:g} mm"],
                           ["friction coefficient mu", f"{op.mu:g}"], ["rotation", op.rotation],
-                          ["spin softening", op.softening], ["formulation", op.formulation],
-                          ["drum", "rigid" if op.drum_wall is None else f"elastic, wall {op.drum_wall * 1e3:g} mm"],
+                          ["spin softening", op.softening], ["fidelity", op.fidelity], ["formulation", op.model_formulation],
+                          ["drum", "rigid" if op.drum_wall_m is None else f"elastic, wall {op.drum_wall_m * 1e3:g} mm"],
                           ["mesh", f"{design.cm.n_elements} P2 elements ({'one sector' if design.cm.sector_angle else 'full part'})"],
                           ["engine curve", an.engine.get("source", "")]]))
     sections.append(("Details: errors, parameters, material, operating point", details))

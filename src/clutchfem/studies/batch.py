@@ -102,7 +102,7 @@ class EvalSettings:
         if "material" in op:
             op["material"] = op["material"].model_dump()
         size = (design.cm.mesh_settings or {}).get("size")
-        size = None if size is None or size == MeshSettings().size else float(size)
+        size = None if size is None or size == MeshSettings.preset(design.op.fidelity).size else float(size)
         req_a = getattr(requirements, "a", 1.3)
         req_b = getattr(requirements, "b", 1.0)
         P(**P.parse_assignments(list(base)))  # the texts read back as this design
@@ -134,7 +134,9 @@ class EvalSettings:
         return OperatingPoint(**self.op)
 
     def mesh_settings(self):
-        return MeshSettings() if self.mesh_size is None else MeshSettings(size=self.mesh_size)
+        """The fidelity's mesh (:meth:`MeshSettings.preset`), with ``mesh_size`` if given."""
+        return MeshSettings.preset(self.operating_point().fidelity,
+                                   **({} if self.mesh_size is None else {"size": self.mesh_size}))
 
     def set_args(self, point: dict | None = None) -> list[str]:
         """The ``--set`` arguments of the base plus the point (the point wins)."""

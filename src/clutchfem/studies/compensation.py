@@ -61,7 +61,7 @@ from scipy.optimize import lsq_linear
 
 from ..core import InputError, ParameterError, SolverError, rpm_to_rad_s, wrap_angle
 from ..geometry import TABLE_FIELDS, TABLE_N, MeshSettings, get_concept, table_cardinal
-from ..loadcase import Design, contact_extent
+from ..loadcase import Design, OperatingPoint, contact_extent
 from . import values as V
 
 #: the control values are kept this far inside the table's declared range [m]
@@ -289,7 +289,7 @@ def compensate(design, params=None, rpm: float = 8000.0, target_arc: float = 0.8
     t_start = time.perf_counter()
     c = get_concept(concept) if isinstance(concept, str) else concept
     p0 = params if params is not None else c.params()
-    ms = mesh_settings or MeshSettings()
+    ms = mesh_settings or MeshSettings.preset((op or OperatingPoint()).fidelity)
     if isinstance(rpm, bool) or not (isinstance(rpm, (int, float)) and math.isfinite(rpm) and 0 < rpm <= 1e5):
         raise ParameterError("rpm", rpm, "a speed in (0, 100000] rpm", "compensate")
     if isinstance(target_arc, bool) or not (isinstance(target_arc, (int, float)) and 0.05 <= target_arc <= 1.0):

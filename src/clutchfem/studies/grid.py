@@ -61,8 +61,10 @@ def run_grid(concept: str, vary: dict, *, fixed: dict | None = None, mesh_size: 
     for name, value in (fixed or {}).items():
         if name not in P.model_fields:
             raise InputError(f"fixed parameter {name!r} is not a parameter of {c.name}")
-    settings = Settings(concept=c.name, fixed=tuple(sorted((fixed or {}).items())), op=op or OperatingPoint(),
-                        mesh=MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size), engine=engine,
+    op = op or OperatingPoint()
+    settings = Settings(concept=c.name, fixed=tuple(sorted((fixed or {}).items())), op=op,
+                        mesh=MeshSettings.preset(op.fidelity, **({} if mesh_size is None else {"size": mesh_size})),
+                        engine=engine,
                         a=a, b=b, min_safety_factor=min_safety_factor)
     if not isinstance(vary, dict) or not vary or not all(isinstance(v, (list, tuple)) and v for v in vary.values()):
         raise InputError(f"vary: a dict of parameter name -> list of values (e.g. {{'flexure_thickness': [2.0e-3, "

@@ -128,8 +128,9 @@ class GuidelineSettings:
                                          "elasticity; --set it to a non-zero value)", "guidelines")
             if len(set(chosen)) != len(chosen):
                 raise ParameterError("params", ",".join(chosen), "each parameter once", "guidelines")
-        settings = Settings(concept=c.name, fixed=tuple(sorted(base.items())), op=op or OperatingPoint(),
-                            mesh=mesh or MeshSettings(), engine=engine, idle_rpm=idle_rpm, a=a, b=b,
+        op = op or OperatingPoint()
+        settings = Settings(concept=c.name, fixed=tuple(sorted(base.items())), op=op,
+                            mesh=mesh or MeshSettings.preset(op.fidelity), engine=engine, idle_rpm=idle_rpm, a=a, b=b,
                             min_safety_factor=min_safety_factor)
         return cls(concept=c.name, params=tuple(chosen), settings=settings, step=float(step), points=points,
                    span=float(span), notes=tuple(notes))

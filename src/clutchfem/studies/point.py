@@ -164,7 +164,7 @@ class Settings:
     def canonical(self) -> dict:
         """The defining fixed inputs as plain JSON data (for the design hash and the row)."""
         op = self.op if self.op is not None else OperatingPoint()
-        ms = self.mesh if self.mesh is not None else MeshSettings()
+        ms = self.mesh if self.mesh is not None else MeshSettings.preset(op.fidelity)
         eng = None
         if self.engine is not None:
             eng = {"rpm": list(self.engine.rpm), "torque": list(self.engine.torque),
@@ -280,7 +280,8 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "", errors: boo
             row["inputs_json"] = _json({"settings": settings.canonical(), "point": point,
                                         "params": params.model_dump(mode="json"),
                                         "op": op.model_dump(mode="json")})
-            cm = mesh_concept(concept, params, settings.mesh)
+            cm = mesh_concept(concept, params, settings.mesh if settings.mesh is not None
+                              else MeshSettings.preset(op.fidelity))
             name = concept.name
         else:
             params = None

@@ -379,7 +379,7 @@ def _settings(raw: dict, is_concept: bool, base: Path, source: str) -> dict:
         ms["size"] = _value(MeshSettings, "size", v, "settings.mesh_size", source)
     if "mesh_model" in raw:
         ms["model"] = _value(MeshSettings, "model", raw["mesh_model"], "settings.mesh_model", source)
-    return {"op": op, "mesh": MeshSettings(**ms), "engine": engine, "idle_rpm": idle}
+    return {"op": op, "mesh": MeshSettings.preset(op.fidelity, **ms), "engine": engine, "idle_rpm": idle}
 
 
 def _rpm_value(v) -> float:

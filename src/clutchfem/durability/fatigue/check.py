@@ -48,7 +48,8 @@ __all__ = ["FatigueResult", "LoadCycle", "candidate_points", "fatigue_check"]
 @dataclass(frozen=True)
 class LoadCycle:
     """One cycle type: the stresses at the same points in its two extreme states [Pa],
-    arrays (3, npts) of (sxx, syy, sxy), and how many such cycles the part must survive."""
+    arrays (3, npts) of (sxx, syy, sxy) or (6, npts) of 3-D Voigt stresses, and how many such cycles
+    the part must survive."""
 
     name: str
     state_a: np.ndarray

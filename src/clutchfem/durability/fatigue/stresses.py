@@ -15,7 +15,9 @@ criterion gives the same numbers.  Inside the part (biaxial) von Mises is the us
 ductile-steel equivalent; the signed mean only decides whether the mean is tensile.
 Compressive means get no credit (Shigley: for s_m < 0 failure when s_a = S_e).
 
-Stress arrays are (3, npts): rows (sxx, syy, sxy) [Pa], one column per point.
+Stress arrays are (3, npts): rows (sxx, syy, sxy) [Pa] (plane stress), or (6, npts): 3-D Voigt
+rows (sxx, syy, szz, syz, sxz, sxy) (the thick plane and 3-D models), one column per point;
+the trace is sxx + syy (+ szz).
 """
 
 from __future__ import annotations
@@ -25,18 +27,23 @@ import numpy as np
 from ...core import InputError
 from ...fe import von_mises
 
-__all__ = ["amplitude_mean", "equivalent_stresses", "stress_array"]
+__all__ = ["amplitude_mean", "equivalent_stresses", "stress_array", "trace"]
+
+
+def trace(s: np.ndarray) -> np.ndarray:
+    """sxx + syy (+ szz for 3-D Voigt rows) of stresses stacked on the first axis."""
+    return s[0] + s[1] + (s[2] if s.shape[0] == 6 else 0.0)
 
 
 def stress_array(name: str, s) -> np.ndarray:
-    """``s`` as a float array (3, npts) of finite stresses [Pa]; InputError naming ``name`` otherwise."""
+    """``s`` as a float array (3 or 6, npts) of finite stresses [Pa]; InputError naming ``name`` otherwise."""
     try:
         a = np.asarray(s, dtype=float)
     except (TypeError, ValueError):
         raise InputError(f"{name}: not a numeric array of stresses") from None
-    if a.ndim != 2 or a.shape[0] != 3 or a.shape[1] == 0:
-        raise InputError(f"{name}: stresses must have shape (3, npts) = (sxx, syy, sxy) x points "
-                         f"(got shape {a.shape})")
+    if a.ndim != 2 or a.shape[0] not in (3, 6) or a.shape[1] == 0:
+        raise InputError(f"{name}: stresses must have shape (3, npts) = (sxx, syy, sxy) x points or (6, npts) = "
+                         f"3-D Voigt (sxx, syy, szz, syz, sxz, sxy) x points (got shape {a.shape})")
     if not np.all(np.isfinite(a)):
         k = int(np.nonzero(~np.isfinite(a).all(axis=0))[0][0])
         raise InputError(f"{name}: non-finite stress at point {k}")
@@ -46,7 +53,7 @@ def stress_array(name: str, s) -> np.ndarray:
 
 
 def amplitude_mean(state_a, state_b) -> tuple[np.ndarray, np.ndarray]:
-    """(amplitude tensor (B - A)/2, mean tensor (A + B)/2), each (3, npts) [Pa]."""
+    """(amplitude tensor (B - A)/2, mean tensor (A + B)/2), each (3 or 6, npts) [Pa]."""
     A = stress_array("state_a", state_a)
     B = stress_array("state_b", state_b)
     if A.shape != B.shape:
@@ -59,5 +66,5 @@ def equivalent_stresses(amplitude, mean) -> tuple[np.ndarray, np.ndarray]:
     its trace (+ for a zero trace) [Pa] (module docstring)."""
     amp = np.asarray(amplitude, dtype=float)
     mean = np.asarray(mean, dtype=float)
-    sign = np.where(mean[0] + mean[1] < 0.0, -1.0, 1.0)
+    sign = np.where(trace(mean) < 0.0, -1.0, 1.0)
     return von_mises(amp), sign * von_mises(mean)
