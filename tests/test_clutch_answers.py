@@ -4,7 +4,6 @@ sweep speeds, contact extent (synthetic inputs with hand-known results)."""
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -12,7 +11,6 @@ import pytest
 from clutchfem.analysis import Requirements, check_speeds, slip_answer
 from clutchfem.clutch import EngineCurve, torque_crossings
 from clutchfem.core import ParameterError
-from clutchfem.loadcase import contact_extent
 
 FLAT = EngineCurve((1000.0, 10000.0), (3.0, 3.0), source="flat 3 N m")
 
@@ -109,18 +107,3 @@ def test_sweep_speeds_inside_the_engine_curve():
         assert ei.value.name == "rpm"
     with pytest.raises(ParameterError, match="14000"):
         check_speeds([20000.0], eng)
-
-
-def _fake_sweep(angles_deg, lams):
-    nodes = SimpleNamespace(shoe=np.zeros(len(angles_deg), dtype=int), angle=np.radians(angles_deg))
-    return SimpleNamespace(nodes=nodes), np.asarray(lams, dtype=float)
-
-
-def test_contact_extent_adds_half_a_node_spacing_each_side():
-    ang = [4.0, 0.0, 1.0, 2.0, 3.0]  # unsorted on purpose
-    lams = [[0, 0, 0, 0, 0], [0, 0, 0, 5, 0], [0, 0, 1, 2, 3], [7, 0, 0, 0, 0]]
-    ext = np.degrees(contact_extent(*_fake_sweep(ang, lams)))
-    assert np.all(np.isnan(ext[0]))
-    assert ext[1] == pytest.approx([1.5, 2.5])  # single node at 2 deg: one spacing wide
-    assert ext[2] == pytest.approx([0.5, 3.5])  # nodes 1..3 deg
-    assert ext[3] == pytest.approx([3.5, 4.5])  # end node: the last spacing mirrored

@@ -182,7 +182,9 @@ def test_engine_curve_below_engagement_never_engages(tmp_path):
     r = invoke("analyze", "concept4", *MESH, "--engine", str(e), "--idle-rpm", "800", "--json")
     assert r.exit_code == 0, r.output
     d = json.loads(r.output.strip().splitlines()[-1])
-    assert d["slip_status"] == "never engages" and d["slip_rpm"] is None and d["engagement_rpm"] is None
+    # the engagement speed is the clutch's own (issue 24: it does not depend on the engine);
+    # this engine tops out at 2000 rpm, below it, so the clutch never engages on it
+    assert d["slip_status"] == "never engages" and d["slip_rpm"] is None and d["engagement_rpm"] > 2000
     assert d["shoe_character"] == "never engages"
 
 

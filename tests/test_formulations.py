@@ -29,7 +29,7 @@ def test_every_formulation_and_softening_through_analyze(formulation, softening)
     assert a.engagement_rpm is not None and 3000 < a.engagement_rpm < 6000
     assert a.slip_rpm is not None and a.max_von_mises_Pa > 0
     assert a.fatigue_safety_factor is not None and a.fatigue_safety_factor > 0 and a.fatigue_location
-    assert a.inputs["model"]["formulation"] == ("thick" if formulation == "auto" else formulation)
+    assert a.inputs["model"]["formulation"] == ("plane-stress" if formulation == "auto" else formulation)  # fast
 
 
 def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components():
@@ -74,7 +74,7 @@ def test_cli_drum_wall_rigid_and_its_model_form_term():
     """``--drum-wall rigid`` (the help's LENGTH|rigid) gives the rigid drum on the best path,
     whose model-form band then carries the rigid-drum term again; a wall below the ring
     model's range is refused naming the option."""
-    r = CliRunner().invoke(app, ["analyze", "concept4", "--drum-wall", "rigid", "--json"])
+    r = CliRunner().invoke(app, ["analyze", "concept4", "--fidelity", "best", "--drum-wall", "rigid", "--json"])
     assert r.exit_code == 0, r.output
     doc = json.loads(r.output.strip().splitlines()[-1])
     assert doc["inputs"]["model"]["drum_wall_m"] is None and doc["inputs"]["model"]["formulation"] == "thick"

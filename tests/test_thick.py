@@ -109,9 +109,9 @@ def test_thick_stress_against_3d_at_the_fillet():
 
 
 def test_thick_runs_the_whole_analysis():
-    """fidelity 'best' (the default) through analyze: the thick model, the elastic drum, the
+    """fidelity 'best' through analyze: the thick model, the elastic drum, the
     fatigue step on 6 stress components, the bands and the drum-wall sensitivity."""
-    d = cf.Design.from_concept("concept1", mesh=COARSE)
+    d = cf.Design.from_concept("concept1", mesh=COARSE, fidelity="best")
     a = cf.analyze(d)
     assert a.inputs["model"]["formulation"] == "thick" and a.inputs["model"]["drum_wall_m"] == 0.002
     assert a.fatigue_safety_factor is not None and a.fatigue_safety_factor > 0

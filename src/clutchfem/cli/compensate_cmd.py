@@ -96,7 +96,7 @@ def compensate(
         fail(exc)
 
 
-def _mesh(ms: dict, fidelity: str = "best"):
+def _mesh(ms: dict, fidelity: str = "fast"):
     from ..geometry import MeshSettings
 
     return MeshSettings(**ms) if ms else MeshSettings.preset(fidelity)

@@ -228,7 +228,7 @@ class MeshSettings(ParamSet):
     model: Literal["sector", "full"] = choice("sector", "one cyclic sector or the full 360 degree part")
 
     @classmethod
-    def preset(cls, fidelity: str = "best", **changes) -> "MeshSettings":
+    def preset(cls, fidelity: str = "fast", **changes) -> "MeshSettings":
         """The mesh of an analysis fidelity (:data:`MESH_PRESETS`): ``"best"`` (flexures,
         fillets and the contact surface refined, 6 mm elsewhere) or ``"fast"`` (the uniform
         1.2 mm mesh); ``changes`` override single settings (``size=...``, ``model=...``)."""

@@ -103,7 +103,7 @@ class SweepResult:
     >>> import clutchfem as cf
     >>> r = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm")).sweep("8000")
     >>> sorted(c for c in r.curve.columns if c.startswith(("torque", "contact_arc")))
-    ['contact_arc_deg', 'contact_arc_error_deg', 'torque_Nm']
+    ['contact_arc_deg', 'contact_arc_error_deg', 'torque_Nm', 'torque_balance_error']
     """
 
     rpm: np.ndarray

@@ -194,6 +194,12 @@ def bore_centre(mesh) -> tuple[np.ndarray, str]:
 
 def _loop_centre(mesh, nodes: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, str]:
     xy = mesh.p[:, nodes]
+    nv = getattr(mesh, "nvertices", mesh.p.shape[1])
+    if xy.shape[1] < 3 and mesh.doflocs.shape[1] == nv + mesh.facets.shape[1]:
+        # P2: the mid-side nodes of the bore facets lie on the curve too (skfem orders them
+        # after the vertices by facet index): a short arc of one facet (a sector's bore)
+        # still has 3 points on its circle
+        xy = np.hstack([xy, mesh.doflocs[:, nv + np.asarray(edges)]])
     n = xy.shape[1]
     if n >= 3:
         # the circle through most nodes: circumcircles of node triples (all of them for a

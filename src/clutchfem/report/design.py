@@ -432,7 +432,7 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
     engine = EngineCurve.default()
     analyses, files = {}, []
     for name in concept_names:
-        ms = MeshSettings.preset("best", **({} if mesh_size is None else {"size": mesh_size}))
+        ms = MeshSettings.preset("fast", **({} if mesh_size is None else {"size": mesh_size}))
         an = analyze(Design.from_concept(name, mesh=ms), engine=engine)
         analyses[name] = an
         files += write_analysis(an, engine, out, name)
