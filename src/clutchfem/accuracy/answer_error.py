@@ -158,7 +158,7 @@ def model_form(design, answer: str, value: float | None, *, w0: float | None = N
                 terms["thickness_3d_band"] = 0.03
         else:
             notes.append("thickness effect not estimated (no flexure length): use the thick plane model "
-                         "(--formulation thick, the best-estimate default)")
+                         "(--formulation thick, or --fidelity best)")
     # geometric non-linearity
     soft = op.softening if op.softening != "modal" else "ritz"
     terms["geometric_nonlinearity"] = GNL[soft][answer]

@@ -65,8 +65,8 @@ class OperatingPoint(ParamSet):
     softening : {"prestress", "ritz", "exact", "off"}
         Spin softening and pre-stress stiffening (default prestress).
     fidelity : {"best", "fast"}
-        ``best`` (default): the best estimate of the real part; ``fast``: the uncorrected 2-D
-        path (module docstring).
+        ``fast`` (default): the uncorrected 2-D path; ``best``: the best estimate of the real part
+        (module docstring).
     formulation : {"auto", "plane-stress", "plane-strain", "thick", "3d"}
         The elastic model (auto: the fidelity's); ``layers``: 3-D element layers through half
         the thickness; ``thick_order``: the thick model's through-thickness order.
