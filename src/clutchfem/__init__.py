@@ -10,7 +10,7 @@ imported on first use)::
     a = cf.analyze(d)                           # every answer with its error: cf.Analysis
     print(a.engagement_rpm, a.slip_rpm)
 
-Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``),
+Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``), :func:`morph`,
 :class:`OperatingPoint`, :class:`Material`, :class:`MeshSettings`.  Answers:
 :func:`analyze`, :class:`Analysis`, :class:`SweepResult`, :class:`EngineCurve`,
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
@@ -33,6 +33,7 @@ _API: dict[str, tuple[str, str]] = {
     "MeshSettings": ("clutchfem.geometry", "MeshSettings"),
     "Design": ("clutchfem.loadcase", "Design"),
     "OperatingPoint": ("clutchfem.loadcase", "OperatingPoint"),
+    "morph": ("clutchfem.loadcase", "morph"),
     "SweepResult": ("clutchfem.loadcase", "SweepResult"),
     "Material": ("clutchfem.core", "Material"),
     "get_material": ("clutchfem.core", "get_material"),
@@ -97,7 +98,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
     )
     from .durability import SlipScenario
     from .geometry import MeshSettings, concepts, get_concept
-    from .loadcase import Design, OperatingPoint, SweepResult
+    from .loadcase import Design, OperatingPoint, SweepResult, morph
     from .report import comparison_plot as torque_speed_plot
     from .report import design_report as write_report
     from .studies import StudySpec, Targets, compensate, optimize, run_grid, run_study, tolerance

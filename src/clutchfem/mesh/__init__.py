@@ -7,6 +7,8 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.user` -- a user's ``.msh`` or STEP file;
 * :mod:`.topology` -- P2 nodes, facet nodes and cells, areas and perimeters of element sets;
 * :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model;
+* :mod:`.morph` -- a design's mesh moved from a reference design's (mesh morphing);
+* :mod:`.quality` -- element quality, and of a moved mesh against its reference;
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
 """
 
@@ -14,7 +16,9 @@ from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
+from .morph import CACHE_SIZE, MorphReference, MorphRefused, morph_or_mesh, morph_to, morph_reference, quality_of, reference_key
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
+from .quality import MAX_DISTORTION, MIN_SCALED_JACOBIAN, MorphQuality, assess, distortion, scaled_jacobian
 from .topology import (
                        element_components,
                        element_set_area,
@@ -28,7 +32,9 @@ from .topology import (
 )
 from .user import load_user_geometry
 
-__all__ = ["MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
+__all__ = ["CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
+           "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
+           "scaled_jacobian", "MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
            "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
            "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem",
