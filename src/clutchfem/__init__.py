@@ -14,7 +14,8 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``), :f
 :class:`OperatingPoint`, :class:`Material`, :class:`MeshSettings`.  Answers:
 :func:`analyze`, :class:`Analysis`, :class:`SweepResult`, :class:`EngineCurve`,
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
-:func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
+:func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`, :func:`sensitivities`,
+:func:`robust_optimize`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
 :func:`write_report`, :func:`torque_speed_plot`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
 """
@@ -48,6 +49,8 @@ _API: dict[str, tuple[str, str]] = {
     "Targets": ("clutchfem.studies", "Targets"),
     "optimize": ("clutchfem.studies", "optimize"),
     "tolerance": ("clutchfem.studies", "tolerance"),
+    "sensitivities": ("clutchfem.studies", "sensitivities"),
+    "robust_optimize": ("clutchfem.studies", "robust_optimize"),
     "compensate": ("clutchfem.studies", "compensate"),
     "SlipScenario": ("clutchfem.durability", "SlipScenario"),
     "slip_heat": ("clutchfem.analysis", "slip_heat"),
@@ -101,7 +104,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .loadcase import Design, OperatingPoint, SweepResult, morph
     from .report import comparison_plot as torque_speed_plot
     from .report import design_report as write_report
-    from .studies import StudySpec, Targets, compensate, optimize, run_grid, run_study, tolerance
+    from .studies import StudySpec, Targets, compensate, optimize, run_grid, robust_optimize, run_study, sensitivities, tolerance
     from .studies import load_spec as load_study
     from .studies import run_guidelines as guidelines
     from .validation import validate

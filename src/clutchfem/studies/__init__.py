@@ -12,7 +12,8 @@ resumable SQLite store):
 * design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets and
   a derivative-free search), :mod:`.tolerancing` (Monte Carlo of manufacturing
   tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
-  that survive ``--set``), :mod:`.target_charts`.
+  that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
+  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts).
 """
 
 from . import target_charts
@@ -29,13 +30,15 @@ from .resolve import load_spec, parse_spec
 from .runner import RunResult, StudyInterrupted, default_out, run_points, run_study
 from .schema import SpecError
 from .spec import EXAMPLE_SPEC, StudySpec
+from .robust import RobustResult, robust_optimize
+from .sensitivity import Sensitivities, sensitivities
 from .store import STORE_NAME, ResultStore
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 from .values import param_bounds, resolution
 
 __all__ = ["param_bounds", "resolution", "COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
-           "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RunResult", "Settings",
-           "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
+           "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RobustResult", "RunResult", "Settings",
+           "Sensitivities", "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
            "default_free", "default_out", "design_hash", "evaluate", "evaluate_many", "fatigue_note", "load_spec",
            "model_version", "optimize", "parse_spec", "parse_tolerance", "run_grid", "run_guidelines",
-           "run_points", "run_study", "summary_table", "target_charts", "tolerance"]
+           "robust_optimize", "run_points", "run_study", "sensitivities", "summary_table", "target_charts", "tolerance"]
