@@ -17,16 +17,15 @@ from __future__ import annotations
 import argparse
 import os
 import platform
-import shutil
-import socket
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+from support.browser import app_server, launch_chromium  # noqa: E402
 
 
 def main(argv=None) -> None:
@@ -40,47 +39,28 @@ def main(argv=None) -> None:
     values = [1.6, 1.65, 1.7, 1.75, 1.8, 1.85, 1.9, 1.95, 2.0, 2.05]
     expected = {v: cf.analyze(cf.Design.from_concept("concept4", flexure_thickness=f"{v}mm"), errors=False)
                 .engagement_rpm for v in values}
-    with socket.socket() as so:
-        so.bind(("127.0.0.1", 0))
-        port = so.getsockname()[1]
-    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTEST")}
-    env["PYTHONPATH"] = str(ROOT / "src")
-    proc = subprocess.Popen([sys.executable, "-m", "clutchfem.cli", "app", "--port", str(port), "--no-browser",
-                             "--out", tempfile.mkdtemp()], env=env, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
-    try:
-        for _ in range(200):
-            try:
-                socket.create_connection(("127.0.0.1", port), timeout=1).close()
-                break
-            except OSError:
-                time.sleep(0.2)
-        with sync_playwright() as p:
-            b = p.chromium.launch(executable_path=shutil.which("chromium") or "/usr/bin/chromium",
-                                  args=["--no-sandbox", "--disable-gpu", "--disable-background-networking"])
-            page = b.new_page(viewport={"width": 1500, "height": 1300})
-            page.goto(f"http://127.0.0.1:{port}/")
-            expect(page.locator("[data-testid=status]")).to_contain_text("answers in", timeout=90_000)
-            box = page.locator("input[data-testid=num-flexure_thickness]")
-            row = page.locator("[data-testid=answers] tr", has_text="engagement speed (static)")
-            times = []
-            for i in range(args.n + 2):
-                v = values[i % len(values)]
-                want = f"{expected[v]:.0f} rpm"
-                if want in row.inner_text():  # the same answer already on screen: take the next value
-                    continue
-                t0 = time.perf_counter()
-                box.fill(str(v))
-                box.press("Enter")
-                expect(row).to_contain_text(want, timeout=30_000)
-                dt = time.perf_counter() - t0
-                if i >= 2:  # the first two warm the worker threads and the caches
-                    times.append(dt)
-                time.sleep(0.8)  # let the error-band pass finish: time one change at a time
-            b.close()
-    finally:
-        proc.terminate()
-        proc.wait(timeout=20)
+    with app_server(Path(tempfile.mkdtemp())) as url, sync_playwright() as p:
+        b = launch_chromium(p)
+        page = b.new_page(viewport={"width": 1500, "height": 1300})
+        page.goto(url)
+        expect(page.locator("[data-testid=status]")).to_contain_text("answers in", timeout=90_000)
+        box = page.locator("input[data-testid=num-flexure_thickness]")
+        row = page.locator("[data-testid=answers] tr", has_text="engagement speed (static)")
+        times = []
+        for i in range(args.n + 2):
+            v = values[i % len(values)]
+            want = f"{expected[v]:.0f} rpm"
+            if want in row.inner_text():  # the same answer already on screen: take the next value
+                continue
+            t0 = time.perf_counter()
+            box.fill(str(v))
+            box.press("Enter")
+            expect(row).to_contain_text(want, timeout=30_000)
+            dt = time.perf_counter() - t0
+            if i >= 2:  # the first two warm the worker threads and the caches
+                times.append(dt)
+            time.sleep(0.8)  # let the error-band pass finish: time one change at a time
+        b.close()
     times.sort()
     p90 = times[max(0, int(round(0.9 * len(times))) - 1)]
     print(f"machine: {platform.machine()} {os.cpu_count()} cores, {platform.python_version()}, "

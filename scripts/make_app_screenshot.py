@@ -8,17 +8,16 @@ Needs Debian's chromium (installed by `make setup`)."""
 from __future__ import annotations
 
 import argparse
-import os
 import re
 import shutil
-import socket
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+from support.browser import app_server, launch_chromium  # noqa: E402
 
 
 def main(argv=None) -> None:
@@ -27,43 +26,24 @@ def main(argv=None) -> None:
     args = ap.parse_args(argv)
     from playwright.sync_api import expect, sync_playwright
 
-    chromium = shutil.which("chromium")
-    if chromium is None:
+    if shutil.which("chromium") is None:
         sys.exit("scripts/make_app_screenshot.py: Debian's chromium is not installed (make setup installs it)")
-    with socket.socket() as so:
-        so.bind(("127.0.0.1", 0))
-        port = so.getsockname()[1]
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
-    proc = subprocess.Popen([sys.executable, "-m", "clutchfem.cli", "app", "--port", str(port), "--no-browser",
-                             "--out", tempfile.mkdtemp()], env=env, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
-    try:
-        for _ in range(200):
-            try:
-                socket.create_connection(("127.0.0.1", port), timeout=1).close()
-                break
-            except OSError:
-                time.sleep(0.2)
-        with sync_playwright() as p:
-            b = p.chromium.launch(executable_path=chromium, args=["--no-sandbox", "--disable-gpu",
-                                                                  "--disable-background-networking"])
-            page = b.new_page(viewport={"width": 1500, "height": 1250})
-            page.goto(f"http://127.0.0.1:{port}/")
-            status = page.locator("[data-testid=status]")
-            expect(status).to_contain_text("with error bands", timeout=120_000)
-            page.locator("[data-testid=pin]").click()
-            box = page.locator("input[data-testid=num-flexure_thickness]")
-            box.fill("1.9")
-            box.press("Enter")
-            expect(page.locator("[data-testid=answers] th", has_text="pinned")).to_be_visible(timeout=60_000)
-            expect(status).to_contain_text(re.compile(r"concept4-\w+: .*with error bands"), timeout=120_000)
-            time.sleep(1.0)
-            args.out.parent.mkdir(parents=True, exist_ok=True)
-            page.screenshot(path=str(args.out), full_page=False)
-            b.close()
-    finally:
-        proc.terminate()
-        proc.wait(timeout=20)
+    with app_server(Path(tempfile.mkdtemp())) as url, sync_playwright() as p:
+        b = launch_chromium(p)
+        page = b.new_page(viewport={"width": 1500, "height": 1250})
+        page.goto(url)
+        status = page.locator("[data-testid=status]")
+        expect(status).to_contain_text("with error bands", timeout=120_000)
+        page.locator("[data-testid=pin]").click()
+        box = page.locator("input[data-testid=num-flexure_thickness]")
+        box.fill("1.9")
+        box.press("Enter")
+        expect(page.locator("[data-testid=answers] th", has_text="pinned")).to_be_visible(timeout=60_000)
+        expect(status).to_contain_text(re.compile(r"concept4-\w+: .*with error bands"), timeout=120_000)
+        time.sleep(1.0)
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(args.out), full_page=False)
+        b.close()
     print(f"wrote {args.out}")
 
 

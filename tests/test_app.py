@@ -6,21 +6,15 @@ artefact (``test-artifacts/app.png``).  And the session logic without a browser.
 
 from __future__ import annotations
 
-import os
-import shutil
-import socket
-import subprocess
-import sys
-import time
+import zipfile
 from pathlib import Path
 
 import pytest
 
 import clutchfem as cf
 from clutchfem.app import DesignSession
+from support.browser import CHROMIUM, ROOT, app_server, launch_chromium
 
-ROOT = Path(__file__).resolve().parents[1]
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 ARTIFACTS = ROOT / "test-artifacts"
 
 
@@ -36,33 +30,13 @@ def test_session_refuses_at_the_parameter_and_keeps_the_last_design():
     assert s.set_value("drum_wall", 0.0) is None and s.op.drum_wall is None
 
 
-def _free_port() -> int:
-    with socket.socket() as so:
-        so.bind(("127.0.0.1", 0))
-        return so.getsockname()[1]
-
-
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    port = _free_port()
-    out = tmp_path_factory.mktemp("app")
-    env = {k: v for k, v in os.environ.items() if not k.startswith("PYTEST")}  # NiceGUI's own test mode keys on it
-    env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "src"), os.environ.get("PYTHONPATH", "")])
-    proc = subprocess.Popen([sys.executable, "-m", "clutchfem.cli", "app", "--port", str(port), "--no-browser",
-                             "--out", str(out)], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    t0 = time.time()
-    while time.time() - t0 < 60 and proc.poll() is None:
-        try:
-            socket.create_connection(("127.0.0.1", port), timeout=1).close()
-            break
-        except OSError:
-            time.sleep(0.3)
-    else:
-        proc.kill()
-        pytest.fail("the app did not start: " + proc.stdout.read().decode()[-2000:])
-    yield f"http://127.0.0.1:{port}/"
-    proc.terminate()
-    proc.wait(timeout=20)
+    try:
+        with app_server(tmp_path_factory.mktemp("app")) as url:
+            yield url
+    except RuntimeError as e:
+        pytest.fail(str(e))
 
 
 def _engagement(page) -> str:
@@ -76,9 +50,7 @@ def test_live_design_in_a_real_browser(server):
     assert Path(CHROMIUM).exists(), "Debian's chromium is installed by make setup (APT_PKGS)"
     want = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="2mm"), errors=False)
     with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=[
-            "--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
-            "--disable-sync", "--no-first-run"])
+        browser = launch_chromium(p)
         page = browser.new_page(viewport={"width": 1500, "height": 1300})
         page.goto(server)
         status = page.locator("[data-testid=status]")
@@ -108,6 +80,14 @@ def test_live_design_in_a_real_browser(server):
         expect(row).to_contain_text(f"{other.engagement_rpm:.0f} rpm", timeout=60_000)
         expect(row).to_contain_text(f"{want.engagement_rpm:.0f} rpm")  # the pinned design beside it
         expect(row).to_contain_text(f"{diff:+.4g} rpm")
+        # the cutting files of the design on screen: DXF, STEP and drawing in one zip
+        page.locator("[data-testid=files]").click()
+        with page.expect_download(timeout=120_000) as dl:
+            page.get_by_text("cutting files").click()
+        with zipfile.ZipFile(dl.value.path()) as z:
+            names = z.namelist()
+        assert {Path(n).suffix for n in names} >= {".dxf", ".step", ".pdf"}, names
+        assert all(n.startswith("concept4") or n.endswith(".json") for n in names), names
         ARTIFACTS.mkdir(exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / "app.png"), full_page=True)
         browser.close()

@@ -129,12 +129,13 @@ def test_concept_msh_with_groups_reimports_as_user_mesh():
 
 
 def test_step_import_finds_bore_and_contact(tmp_path):
-    """A STEP file from CAD (annulus 10-30 mm) is meshed with P2 triangles; the bore is the
-    loop around the origin, the contact the outermost curves; area exact to 1e-6."""
+    """A STEP file from CAD (annulus 10-30 mm, drawn in mm as the file declares: gmsh writes
+    OCC's millimetre) is meshed with P2 triangles in metres; the bore is the loop around the
+    origin, the contact the outermost curves; area exact to 1e-6."""
     step = tmp_path / "ring.step"
     with gmsh_session("step-out"):
         occ = gmsh.model.occ
-        occ.cut([(2, occ.addDisk(0, 0, 0, 0.03, 0.03))], [(2, occ.addDisk(0, 0, 0, 0.01, 0.01))])
+        occ.cut([(2, occ.addDisk(0, 0, 0, 30.0, 30.0))], [(2, occ.addDisk(0, 0, 0, 10.0, 10.0))])
         occ.synchronize()
         gmsh.write(str(step))
     cm = load_user_geometry(step, mesh_size=1.5e-3, thickness=0.01, drum_radius=0.0306)

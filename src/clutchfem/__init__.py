@@ -17,7 +17,8 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``), :f
 :func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`, :func:`sensitivities`,
 :func:`robust_optimize`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
-:func:`write_report`, :func:`torque_speed_plot`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
+:func:`write_report`, :func:`torque_speed_plot`.  Cutting: :func:`export` (DXF, STEP, drawing sheet,
+manufacturability check, as-cut analysis), :class:`ProcessRules`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
 """
 
 from __future__ import annotations
@@ -57,6 +58,9 @@ _API: dict[str, tuple[str, str]] = {
     "write_report": ("clutchfem.report", "design_report"),
     "torque_speed_plot": ("clutchfem.report", "comparison_plot"),
     "run_grid": ("clutchfem.studies", "run_grid"),
+    "export": ("clutchfem.cutting", "export"),
+    "ProcessRules": ("clutchfem.cutting", "ProcessRules"),
+    "CuttingError": ("clutchfem.cutting", "CuttingError"),
     "validate": ("clutchfem.validation", "validate"),
     "serve_app": ("clutchfem.app", "serve"),
     "ClutchfemError": ("clutchfem.core", "ClutchfemError"),
@@ -99,6 +103,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
         SolverError,
         get_material,
     )
+    from .cutting import CuttingError, ProcessRules, export
     from .durability import SlipScenario
     from .geometry import MeshSettings, concepts, get_concept
     from .loadcase import Design, OperatingPoint, SweepResult, morph

@@ -15,20 +15,16 @@ from __future__ import annotations
 import asyncio
 import base64
 import math
-import shutil
 import tempfile
 from pathlib import Path
 
 from nicegui import run, ui
 
-from ..core import ClutchfemError, dumps
-from ..fe import write_vtk
-from ..loadcase import design_inputs
-from ..mesh import groups_msh_path
-from ..report import design_report
-from ..studies import optimize, run_guidelines, tolerance
+from ..core import ClutchfemError
+from .downloads import Downloads
 from .figures import field_png, pressure_chart, torque_chart
 from .session import DesignSession, answer_rows
+from .studies_panel import StudiesPanel
 
 __all__ = ["build_page"]
 
@@ -41,7 +37,7 @@ MAX_CSV_BYTES = 1 << 20
 MAX_MESH_BYTES = 20 << 20
 
 
-class DesignPage:
+class DesignPage(StudiesPanel, Downloads):
     """The widgets and handlers of one tab (module docstring)."""
 
     def __init__(self, out_root: Path):
@@ -70,12 +66,13 @@ class DesignPage:
                 "dense dark outlined data-testid=concept").classes("w-40")
             ui.button("pin", on_click=self.on_pin).props("data-testid=pin flat color=white")
             ui.button("swap", on_click=self.on_swap).props("data-testid=swap flat color=white")
-            with ui.button("files", icon="download").props("flat color=white"):
+            with ui.button("files", icon="download").props("flat color=white data-testid=files"):
                 with ui.menu():
                     ui.menu_item("report (HTML)", on_click=self.dl_report)
                     ui.menu_item("inputs.json", on_click=self.dl_inputs)
                     ui.menu_item("mesh (.msh)", on_click=self.dl_msh)
                     ui.menu_item("fields at the chosen speed (.vtu)", on_click=self.dl_vtu)
+                    ui.menu_item("cutting files (.zip: DXF, STEP, drawing)", on_click=self.dl_cutting)
             self.status = ui.label("").classes("ml-auto text-sm").props("data-testid=status")
         with ui.row().classes("w-full no-wrap items-start"):
             with ui.column().classes("w-96 shrink-0"):
@@ -104,6 +101,13 @@ class DesignPage:
                       on_rejected=lambda: ui.notify(f"refused: larger than {MAX_CSV_BYTES // 1024} kB")).props(
                 "dense accept=.csv")
             self.messages["engine"] = ui.label("").classes("text-xs text-red-600")
+        with ui.expansion("your own part (.msh / STEP)", value=self.s.part is not None).classes("w-full"):
+            ui.upload(label="part: gmsh .msh (curve groups bore, contact) or STEP; x-y plane, axis at the origin",
+                      max_file_size=MAX_MESH_BYTES, auto_upload=True, on_upload=self.on_part_upload,
+                      on_rejected=lambda: ui.notify(f"refused: larger than {MAX_MESH_BYTES >> 20} MB")).props(
+                "dense accept=.msh,.step,.stp")
+            self.messages["part"] = ui.label("" if self.s.part is None else f"analysing {self.s.part.name}").classes(
+                "text-xs")
 
     def control(self, c) -> None:
         self.values[c.name] = c.value
@@ -216,6 +220,24 @@ class DesignPage:
         if msg is None:
             self.panel.refresh()
             self.schedule()
+
+    async def on_part_upload(self, e) -> None:
+        name = Path(e.file.name).name  # no folders from the browser
+        suffix = Path(name).suffix.lower()
+        if suffix not in (".msh", ".step", ".stp"):
+            self.messages["part"].set_text(f"refused: {name}: a gmsh .msh or a STEP file (.step, .stp)")
+            return
+        path = self.dir / f"part{suffix}"
+        path.write_bytes(await e.file.read())
+        msg = self.s.set_part(path)
+        if msg:
+            self.messages["part"].set_text(msg)
+            return
+        self.values.clear()
+        self.widgets.clear()
+        self.messages.clear()
+        self.panel.refresh()
+        ui.notify(f"{name}: give the drum's inner radius", type="info")
 
     def on_field_rpm(self, value) -> None:
         if value is None or not math.isfinite(float(value)) or float(value) <= 0:
@@ -330,144 +352,6 @@ class DesignPage:
         pinned = self.pinned_res if (self.pinned_res is not None and float(self.pinned_res.rpm[0]) == rpm) else None
         self.pressure.options.update(pressure_chart(res, rpm, pinned))
         self.pressure.update()
-
-    # -- studies -----------------------------------------------------------------------------
-    async def _study(self, label: str, fn):
-        if self.outcome is None:
-            ui.notify("wait for the design's answers first")
-            return None
-        self.progress.set_visibility(True)
-        self.progress.props("indeterminate")
-        self.study_log.set_text(f"{label} ...")
-        lines: list[str] = []
-
-        def log(m: str) -> None:
-            lines.append(m)
-
-        try:
-            result = await run.io_bound(fn, log)
-        except ClutchfemError as exc:
-            ui.notify(str(exc), type="negative", multi_line=True)
-            result = None
-        finally:
-            self.progress.set_visibility(False)
-        self.study_log.set_text(lines[-1] if lines else "")
-        return result
-
-    async def run_guidelines(self) -> None:
-        d = self.outcome.design if self.outcome else None
-        names = [n for n in ("flexure_thickness", "shoe_thickness", "clearance") if d is not None
-                 and n in type(d.params).model_fields]
-        res = await self._study("guidelines", lambda log: run_guidelines(
-            d, self.dir / "guidelines", params=names, engine=self.s.engine, requirements=self.s.requirements,
-            workers=0, progress=False, charts=True))
-        if res is None:
-            return
-        self.study_out.clear()
-        with self.study_out:
-            rows = [{"parameter": r["parameter"], "answer": r["label"], "elasticity": f"{r['E']:+.2f}"
-                     if r.get("E") is not None else "-", "verdict": r.get("verdict", "")} for r in res.table]
-            ui.table(columns=[{"name": k, "label": k, "field": k} for k in ("parameter", "answer", "elasticity",
-                                                                            "verdict")],
-                     rows=rows).props("dense flat")
-            for f in res.files:
-                if str(f).endswith(".png"):
-                    ui.image(_data_url(Path(f))).classes("w-[48rem]")
-
-    async def run_tolerance(self) -> None:
-        d = self.outcome.design if self.outcome else None
-        tol = {n: v for n, v in (("flexure_thickness", "0.05mm"), ("clearance", "0.02mm")) if d is not None
-               and n in type(d.params).model_fields}
-        res = await self._study("tolerances (32 parts)", lambda log: tolerance(
-            d, tol, n=32, shifts=False, engine=self.s.engine, requirements=self.s.requirements, workers=0, log=log))
-        if res is None:
-            return
-        self.study_out.clear()
-        with self.study_out:
-            ui.label(f"tolerances (normal, +-3 sigma): {', '.join(f'{k} +-{v}' for k, v in tol.items())}")
-            rows = [{"spec": k, "out of spec": f"{100 * v['share']:.1f} % [{100 * v['ci95'][0]:.1f}, "
-                                               f"{100 * v['ci95'][1]:.1f}] ({v['k']} of {v['n']})"}
-                    for k, v in res.out_of_spec.items()]
-            ui.table(columns=[{"name": k, "label": k, "field": k} for k in ("spec", "out of spec")],
-                     rows=rows).props("dense flat")
-
-    async def run_optimize(self) -> None:
-        d = self.outcome.design if self.outcome else None
-        res = await self._study("optimisation (a short search: 8 samples, 40 designs)", lambda log: optimize(
-            d, sample=8, max_evals=40, engine=self.s.engine, requirements=self.s.requirements, workers=0, log=log))
-        if res is None:
-            return
-        self.optimum = res
-        self.study_out.clear()
-        with self.study_out:
-            ui.label(res.message)
-            rows = [{"parameter": n, "start": res.start_texts.get(n, ""), "optimum": res.params_texts.get(n, "")}
-                    for n in res.free]
-            ui.table(columns=[{"name": k, "label": k, "field": k} for k in ("parameter", "start", "optimum")],
-                     rows=rows).props("dense flat")
-        self.apply_button.set_visibility(True)
-
-    def apply_optimum(self) -> None:
-        res = getattr(self, "optimum", None)
-        if res is None:
-            return
-        for n, text in res.params_texts.items():
-            msg = self.s.set_value(n, text)
-            if msg:
-                ui.notify(msg, type="negative")
-        self.values.clear()
-        self.widgets.clear()
-        self.messages.clear()
-        self.panel.refresh()
-        self.schedule()
-
-    # -- downloads ---------------------------------------------------------------------------
-    def _ready(self) -> bool:
-        if self.outcome is None:
-            ui.notify("wait for the design's answers first")
-            return False
-        return True
-
-    async def dl_report(self) -> None:
-        if not self._ready():
-            return
-        out = self.dir / f"{self.outcome.label}-report"
-        files = await run.io_bound(lambda: design_report(self.outcome.design, out, engine=self.s.engine,
-                                                         requirements=self.s.requirements, errors=False,
-                                                         analysis=self.outcome.analysis))
-        if files:
-            ui.download(out / "report.html", f"{self.outcome.label}-report.html")
-
-    def dl_inputs(self) -> None:
-        if self._ready():
-            ui.download(dumps(design_inputs(self.outcome.design), indent=1).encode(), f"{self.outcome.label}-inputs.json")
-
-    def dl_msh(self) -> None:
-        if not self._ready():
-            return
-        cm = self.outcome.design.cm
-        if cm.msh_path is None:
-            ui.notify("this mesh has no .msh file")
-            return
-        target = self.dir / f"{self.outcome.label}.msh"
-        shutil.copyfile(groups_msh_path(cm.msh_path), target)
-        ui.download(target, target.name)
-
-    async def dl_vtu(self) -> None:
-        if not self._ready():
-            return
-        rpm = self.field_rpm
-        res = self.field_res
-        if res is None:
-            return
-        files = await run.io_bound(lambda: write_vtk(res, [rpm], self.dir, render=False, stem=self.outcome.label))
-        if files:
-            ui.download(files[0], files[0].name)
-
-
-def _data_url(path: Path) -> str:
-    return "data:image/png;base64," + base64.b64encode(path.read_bytes()).decode()
-
 
 def _delta(a: str, b: str) -> str:
     """Difference of two shown values with the same unit (the leading number and the unit

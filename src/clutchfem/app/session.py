@@ -94,6 +94,7 @@ class DesignSession:
         c = get_concept(concept)
         self.concept = c
         self.params = c.params()
+        self.part = None  # an uploaded part (mesh mode) replaces the concept
         self.op = getattr(self, "op", OperatingPoint())
         self.errors: dict[str, str] = {}
         self.generation += 1
@@ -106,8 +107,14 @@ class DesignSession:
         """The concept's active parameters (the profile's own: the 17 values of the table
         profile, the tip clearance of the linear one, the eccentricity of the eccentric one)
         and the operating point's, in display units."""
-        P = type(self.params)
         out = []
+        if self.part is not None:
+            for name, label in (("drum_radius", "drum inner radius (required)"), ("thickness", "axial thickness")):
+                v = getattr(self.op, name)
+                out.append(Control(name, label, "number", "mm", None if v is None else v * 1e3, 1.0, 2000.0
+                                   if name == "drum_radius" else 200.0, 0.01, group="your part"))
+            return out + self._op_controls()
+        P = type(self.params)
         profile = getattr(self.params, "profile", None)
         inactive = {"clearance_tip": profile != "linear", "eccentricity": profile != "eccentric",
                     "eccentric_angle": profile != "eccentric"}
@@ -115,6 +122,10 @@ class DesignSession:
             if (name.startswith("table_c") and profile != "table") or inactive.get(name, False):
                 continue
             out.append(self._control(P, name, getattr(self.params, name), f.description or name, "geometry"))
+        return out + self._op_controls()
+
+    def _op_controls(self) -> list[Control]:
+        out = []
         for name in OP_FIELDS:
             v = getattr(self.op, name)
             if name == "material":
@@ -152,6 +163,9 @@ class DesignSession:
             try:
                 if name in OP_FIELDS:
                     self.op = self._op_with(name, shown)
+                elif self.part is not None and name in ("drum_radius", "thickness"):
+                    self.op = self.op.replace(**{name: f"{float(shown):.12g}mm" if not isinstance(shown, str)
+                                                 else shown})
                 else:
                     P = type(self.params)
                     raw = self._raw(P, name, shown)
@@ -204,15 +218,31 @@ class DesignSession:
         return None
 
     # -- the analysis ----------------------------------------------------------------------
+    def set_part(self, path: str | Path) -> str | None:
+        """Analyse an uploaded part (``.msh`` or STEP) instead of the concept: read as
+        ``--mesh`` reads it (the same refusals); its drum radius is then asked for."""
+        try:
+            Design.from_mesh(path, operating=self.op.replace(drum_radius=None))  # readable at all?
+        except ClutchfemError as exc:
+            return str(exc)
+        with self.lock:
+            self.part = Path(path)
+            self.generation += 1
+        return None
+
     def design(self) -> Design:
+        if self.part is not None:
+            if self.op.drum_radius is None:
+                raise ParameterError("drum_radius", None, "the drum's inner radius in mm (your part has no drum)",
+                                     "your part")
+            return Design.from_mesh(self.part, operating=self.op)
         return Design.from_concept(self.concept, self.params, self.op, self.mesh)
 
     def run(self) -> Outcome:
         """The fast pass: the design meshed and analysed without the error estimate."""
         t0 = time.perf_counter()
         with self.lock:
-            params, op = self.params, self.op
-        d = Design.from_concept(self.concept, params, op, self.mesh)
+            d = self.design()
         an = analyze(d, engine=self.engine, requirements=self.requirements, errors=False)
         out = Outcome(an, design_label(d), d, answer_rows(an), time.perf_counter() - t0)
         self.last = out

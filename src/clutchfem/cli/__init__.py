@@ -21,6 +21,7 @@ from .analyze_cmd import analyze
 from .app_cmd import app as app_command
 from .compensate_cmd import compensate
 from .demo_cmd import demo
+from .export_cmd import export
 from .geometry_cmd import geometry
 from .optimize_cmd import optimize
 from .report_cmd import report
@@ -46,6 +47,8 @@ _COMMANDS = [
     (tolerance, "tolerance", "Design to targets",
      "clutchfem tolerance concept4 --tol flexure_thickness=+-0.05mm --tol clearance=+-0.02mm --n 100"),
     (compensate, "compensate", "Design to targets", "clutchfem compensate concept4 --rpm 8000 --out out/comp"),
+    (export, "export", "Design to targets",
+     "clutchfem export concept4 --process wire-edm --dxf part.dxf --step part.step --drawing part.pdf"),
     (study, "study", "Studies", "clutchfem study --example > study.toml && clutchfem study study.toml"),
     (guidelines, "guidelines", "Studies", "clutchfem guidelines concept4 --params flexure_thickness,shoe_arc"),
     (validate, "validate", "Checks", "clutchfem validate --docs docs/validation.md --out docs/img/validation"),

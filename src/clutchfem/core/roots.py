@@ -10,8 +10,6 @@ hands scipy a small wrapper and drops the function from it when the search retur
 
 from __future__ import annotations
 
-from scipy import optimize
-
 __all__ = ["brentq"]
 
 
@@ -27,6 +25,8 @@ class _Released:
 
 def brentq(f, a: float, b: float, **kw) -> float:
     """``scipy.optimize.brentq(f, a, b, **kw)``; ``f`` is released when it returns."""
+    import scipy.optimize as optimize  # deferred: scipy.optimize costs ~0.7 s, and the base layer is imported by every face
+
     g = _Released(f)
     try:
         return optimize.brentq(g, a, b, **kw)

@@ -180,7 +180,8 @@ class Design:
             The drum's inner radius (``"34.4mm"``): a part has no drum of its own.  Required
             for every answer that involves the drum.
         thickness : float or str, optional
-            The part's axial thickness (default 11 mm, ASSUMED: :data:`USER_THICKNESS`).
+            The part's axial thickness (default: a STEP solid's height, else 11 mm, ASSUMED:
+            :data:`USER_THICKNESS`).
         operating : OperatingPoint, optional
             The operating point; ``drum_radius``/``thickness`` given here override its own.
         mesh_size : float or str, optional
@@ -205,10 +206,10 @@ class Design:
         op = operating if operating is not None else OperatingPoint()
         given = {k: v for k, v in (("drum_radius", drum_radius), ("thickness", thickness)) if v is not None}
         op = op.replace(**given, **op_values) if (given or op_values) else op
-        if op.thickness is None:
-            op = op.replace(thickness=USER_THICKNESS)
         size = MeshSettings.parse_value("size", mesh_size) if isinstance(mesh_size, str) else mesh_size
         cm = load_user_geometry(path, mesh_size=size, thickness=op.thickness, drum_radius=op.drum_radius)
+        if op.thickness is None:  # a STEP solid's own height, else the assumed default
+            op = op.replace(thickness=cm.thickness if cm.thickness is not None else USER_THICKNESS)
         return cls(cm, op, solver=solver, name=Path(path).name.rsplit(".", 1)[0])
 
     # -- contact and load cases ---------------------------------------------------------

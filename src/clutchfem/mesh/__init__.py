@@ -4,7 +4,10 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.clutch_mesh` -- :class:`ClutchMesh`, the meshed part and its named groups;
 * :mod:`.convert` -- meshio -> scikit-fem ``MeshTri2``, the element orientation check;
 * :mod:`.generate` -- a concept meshed by gmsh, the on-disk cache and its keys, the size estimate;
-* :mod:`.user` -- a user's ``.msh`` or STEP file;
+* :mod:`.user` -- a user's ``.msh``, STEP or DXF file;
+* :mod:`.outline` -- a part's exact 2-D outline (lines, arcs, B-splines) and its OCC face;
+* :mod:`.cad` -- a STEP (in its declared unit; a prism along z) or DXF part as planar surfaces;
+* :mod:`.dxf` -- a DXF drawing's outline (what a cutter's file holds) as outline loops;
 * :mod:`.topology` -- P2 nodes, facet nodes and cells, areas and perimeters of element sets;
 * :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model;
 * :mod:`.morph` -- a design's mesh moved from a reference design's (mesh morphing);
@@ -12,11 +15,13 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
 """
 
+from .cad import import_planar, step_unit
 from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
 from .morph import CACHE_SIZE, MorphReference, MorphRefused, morph_or_mesh, morph_to, morph_reference, quality_of, reference_key
+from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
 from .quality import MAX_DISTORTION, MIN_SCALED_JACOBIAN, MorphQuality, assess, distortion, scaled_jacobian
 from .topology import (
@@ -34,7 +39,8 @@ from .user import load_user_geometry
 
 __all__ = ["CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
-           "scaled_jacobian", "MAX_ELEMENTS", "ClutchMesh", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
+           "scaled_jacobian",
+           "MAX_ELEMENTS", "ClutchMesh", "Loop", "Segment", "fit_spline", "import_planar", "loops_to_occ", "orient_loops", "step_unit", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
            "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
            "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem",

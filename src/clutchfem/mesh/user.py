@@ -20,6 +20,7 @@ import numpy as np
 
 from ..core import MeshError
 from ..geometry import gmsh_session
+from .cad import import_planar
 from .clutch_mesh import ClutchMesh
 from .convert import meshio_to_skfem, read_msh
 from .generate import MAX_ELEMENTS
@@ -28,19 +29,19 @@ from .generate import MAX_ELEMENTS
 def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
                        thickness: float | None = None, drum_radius: float | None = None) -> ClutchMesh:
     """Import a user's part: a gmsh ``.msh`` (any order; P1 is lifted to straight P2) with
-    physical curve groups ``bore`` (clamped) and optionally ``contact``; or a STEP file
-    (meshed here with second-order triangles; the bore is the boundary loop around the
-    origin and, if ``drum_radius`` is given, the contact group is the set of boundary
-    curves facing outward within 25 % of the largest radius).  Metres, x-y plane, rotation
-    axis through the origin."""
+    physical curve groups ``bore`` (clamped) and optionally ``contact`` (metres); or a STEP
+    or DXF file in its declared unit (meshed here with second-order triangles; the bore is
+    the boundary loop around the origin and, if ``drum_radius`` is given, the contact group
+    is the set of boundary curves facing outward within 25 % of the largest radius; a STEP
+    prism's height is the thickness).  x-y plane, rotation axis through the origin."""
     path = Path(path)
     if not path.exists():
         raise MeshError(f"mesh file {path} does not exist")
     suffix = path.suffix.lower()
-    if suffix in (".step", ".stp"):
+    if suffix in (".step", ".stp", ".dxf"):
         return _load_step(path, mesh_size, thickness, drum_radius)
     if suffix != ".msh":
-        raise MeshError(f"{path}: unsupported file type '{suffix}' (use a gmsh .msh or a STEP file)")
+        raise MeshError(f"{path}: unsupported file type '{suffix}' (use a gmsh .msh, a STEP or a DXF file)")
     try:
         m = read_msh(path)
     except (Exception, SystemExit) as exc:  # meshio calls sys.exit() on files it cannot identify
@@ -84,11 +85,7 @@ def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
 
 def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
     with gmsh_session("step"):
-        try:
-            gmsh.model.occ.importShapes(str(path))
-            gmsh.model.occ.synchronize()
-        except Exception as exc:
-            raise MeshError(f"{path}: gmsh cannot import the STEP file ({exc})") from None
+        thickness = import_planar(path, thickness)
         surfaces = [t for d, t in gmsh.model.getEntities(2)]
         if not surfaces or gmsh.model.getEntities(3):
             raise MeshError(f"{path}: expected a planar 2-D part (surfaces in the x-y plane, no solids)")
@@ -105,6 +102,10 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         if np.ptp(xyz[:, 2]) > 1e-9 * size:
             raise MeshError(f"{path}: the part is not planar (z varies by {np.ptp(xyz[:, 2]):.3g} m); "
                             "expected a 2-D part in the x-y plane")
+        polys = []  # the boundary, finely sampled, for the material side of a curve
+        for c in curves:
+            lo, hi = gmsh.model.getParametrizationBounds(1, c)
+            polys.append(np.asarray(gmsh.model.getValue(1, c, np.linspace(lo[0], hi[0], 257))).reshape(-1, 3)[:, :2])
         rmin, rmax, bore, contact = [], [], [], []
         for xy in samples:
             r = np.hypot(xy[:, 0], xy[:, 1])
@@ -115,7 +116,7 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         for c, a, b in zip(curves, rmin, rmax):
             if b < r_in + 0.25 * (R_out - r_in) and b < 0.5 * R_out:
                 bore.append(c)
-            elif drum_radius is not None and a > R_out - 0.25 * (R_out - r_in):
+            elif drum_radius is not None and a > R_out - 0.25 * (R_out - r_in) and _faces_out(c, size, polys):
                 contact.append(c)
         gmsh.model.addPhysicalGroup(2, surfaces, name="solid")
         gmsh.model.addPhysicalGroup(1, bore, name="bore")
@@ -141,3 +142,26 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         return load_user_geometry(tmp, thickness=thickness, drum_radius=drum_radius)
     finally:
         os.unlink(tmp)
+
+
+def _faces_out(c: int, size: float, polys: list[np.ndarray]) -> bool:
+    """Does boundary curve ``c`` face away from the axis (its outward normal within 60 degrees
+    of the radial direction at its middle)?  The material side is the side of the curve
+    whose probe point lies inside the part (even-odd count of the boundary, sampled finely
+    in ``polys``): an inner face of a shoe, a radial flank, are not contact surface."""
+    lo, hi = gmsh.model.getParametrizationBounds(1, c)
+    u = [0.5 * (lo[0] + hi[0])]
+    x = np.asarray(gmsh.model.getValue(1, c, u))[:2]
+    t = np.asarray(gmsh.model.getDerivative(1, c, u))[:2]
+    n = np.array([t[1], -t[0]]) / max(float(np.hypot(t[0], t[1])), 1e-300)
+    probe = x + 1e-3 * size * n
+    crossings = 0
+    for xy in polys:
+        a, b = xy[:-1], xy[1:]
+        cond = (a[:, 1] > probe[1]) != (b[:, 1] > probe[1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xs = a[:, 0] + (probe[1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+        crossings += int(np.count_nonzero(cond & (xs > probe[0])))
+    if crossings % 2:  # the probe is in the material: the outward normal is -n
+        n = -n
+    return float(n @ x) > 0.5 * float(np.hypot(x[0], x[1]))

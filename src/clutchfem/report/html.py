@@ -69,7 +69,7 @@ class Figure:
 class Text:
     title: str
     lines: list[str]
-    kind: str = "list"  # list | warn | pre | para
+    kind: str = "list"  # list | warn | pre | para | links (file names beside the page)
 
 
 @dataclass
@@ -155,6 +155,8 @@ def _html_block(b, folder: Path) -> str:
             return title + f"<pre>{_e(chr(10).join(b.lines))}</pre>"
         if b.kind == "para":
             return title + "".join(f"<p>{_e(x)}</p>" for x in b.lines)
+        if b.kind == "links":
+            return title + "<ul>" + "".join(f"<li><a href='{_e(x)}'>{_e(x)}</a></li>" for x in b.lines) + "</ul>"
         return title + "<ul>" + "".join(f"<li>{_e(x)}</li>" for x in b.lines) + "</ul>"
     raise TypeError(type(b))
 
@@ -200,6 +202,8 @@ def _md_block(b) -> list[str]:
             out += ["```"] + list(b.lines) + ["```"]
         elif b.kind == "para":
             out += [x + "\n" for x in b.lines]
+        elif b.kind == "links":
+            out += [f"* [{x}]({x})" for x in b.lines]
         else:
             out += [f"* {x}" for x in b.lines]
         return out + [""]

@@ -4,6 +4,7 @@ output folder and returns the :class:`~.html.Page`; :func:`~.html.write_page` re
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import asdict
 from pathlib import Path
@@ -43,6 +44,36 @@ def design_verdicts(an, sf_min: float = 1.5) -> list:
     return v
 
 
+def cutting_files(folder: Path) -> list:
+    """The cutting files ``clutchfem export`` wrote into ``folder`` (its ``export.json``):
+    a table of the files (linked by name: they lie beside the page), the process and the
+    measured features, and the drawing sheet's preview.  Read from the file, so the report
+    does not depend on the cutting stage."""
+    spec = Path(folder) / "export.json"
+    if not spec.is_file():
+        return []
+    try:
+        doc = json.loads(spec.read_text())
+    except ValueError:
+        return [Text("", [f"{spec.name} is not readable JSON"], "warn")]
+    proc = doc.get("process") or {}
+    rows = [[name, {".dxf": "DXF (layers OUTER, INNER, BORE, TOOLPATH, TEXT; unit " + str(doc.get("units")) + ")",
+                    ".step": "STEP solid (mm)", ".pdf": "drawing sheet", ".svg": "drawing sheet",
+                    ".png": "drawing sheet preview"}.get(Path(name).suffix.lower(), "")]
+            for name in doc.get("files", []) if not name.endswith(".json")]
+    out = [Text("files (beside this page)", [r[0] for r in rows], "links"),
+           Table("", ["file", "what"], rows,
+                 f"design hash {doc.get('design_hash')}; process "
+                 + (f"{proc.get('process')} (kerf {proc.get('kerf', 0) * 1e3:g} mm)" if proc else "none (unchecked)"))]
+    feats = [[k, f["text"]] for k, fs in (doc.get("features") or {}).items() for f in fs[:2]]
+    if feats:
+        out.append(Table("smallest features of the part", ["kind", "feature"], feats))
+    png = next((n for n in doc.get("files", []) if n.endswith("_drawing.png") or n.endswith(".png")), None)
+    if png and (Path(folder) / png).exists():
+        out.append(Figure("drawing sheet", png))
+    return out
+
+
 def param_table(p, title: str = "Concept parameters") -> Table:
     P = type(p)
     rows = []
@@ -74,6 +105,9 @@ def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_
         draw.append(Figure("the user mesh and its named boundaries", png.name))
     warn = [Text("", list(an.warnings), "warn")] if an.warnings else []
     sections.append(("Drawing and curves", warn + [Figure("contact arc and peak stress vs speed", arc.name)] + draw))
+    cutting = cutting_files(folder)
+    if cutting:
+        sections.append(("Cutting files (clutchfem export)", cutting))
     err_rows = []
     for q, e in (an.errors or {}).items():
         if isinstance(e, dict) and "value" in e:

@@ -191,7 +191,7 @@ class Settings:
 # model version
 # ---------------------------------------------------------------------------------------
 #: parts of the package that only present results (they do not change an answer)
-_PRESENTATION = ("cli/", "app/", "studies/", "validation/", "report/", "export/", "fe/vtu.py", "core/figures.py",
+_PRESENTATION = ("cli/", "app/", "studies/", "validation/", "report/", "export/", "cutting/", "fe/vtu.py", "core/figures.py",
                  "core/jsonio.py", "loadcase/record.py")
 
 

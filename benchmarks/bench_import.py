@@ -1,0 +1,47 @@
+"""Start-up cost of the faces: ``import clutchfem`` (the public API, imported lazily),
+``clutchfem --help`` (the command line answers without loading the FE stack) and the first
+use of ``cf.analyze`` (the FE stack itself).  Minimum and median of N fresh interpreters.
+
+    .venv/bin/python benchmarks/bench_import.py [--n 9]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import time
+
+
+def _time(cmd: list[str], n: int) -> list[float]:
+    out = []
+    for _ in range(n):
+        t0 = time.perf_counter()
+        subprocess.run(cmd, check=True, capture_output=True)
+        out.append(time.perf_counter() - t0)
+    return out
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--n", type=int, default=9)
+    args = ap.parse_args(argv)
+    py = sys.executable
+    base = _time([py, "-c", "pass"], args.n)
+    rows = [("python -c pass (the interpreter alone)", base),
+            ("python -c 'import clutchfem'", _time([py, "-c", "import clutchfem"], args.n)),
+            ("python -c 'import clutchfem as cf; cf.Design' (the FE stack)",
+             _time([py, "-c", "import clutchfem as cf; cf.Design"], args.n)),
+            ("clutchfem --help", _time([py, "-m", "clutchfem.cli", "--help"], args.n))]
+    print(f"machine: {platform.machine()} {os.cpu_count()} cores, Python {platform.python_version()}, "
+          f"{time.strftime('%Y-%m-%d %H:%M')}, load {os.getloadavg()[0]:.1f}")
+    for name, t in rows:
+        print(f"{name:<65} min {min(t):.3f} s, median {statistics.median(t):.3f} s")
+    print(f"import clutchfem beyond the interpreter: {min(rows[1][1]) - min(base):.3f} s (min)")
+
+
+if __name__ == "__main__":
+    main()

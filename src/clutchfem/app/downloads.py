@@ -1,0 +1,88 @@
+"""The files of the app's current design as downloads: the one-page report, inputs.json, the
+mesh, the fields at the chosen speed and the cutting files (DXF, STEP, drawing sheet), each written into the tab's own folder first (a
+mixin of :class:`~clutchfem.app.page.DesignPage`)."""
+
+from __future__ import annotations
+
+import shutil
+import zipfile
+
+from nicegui import run, ui
+
+from ..core import ClutchfemError, dumps
+from ..cutting import export
+from ..fe import write_vtk
+from ..loadcase import design_inputs
+from ..mesh import groups_msh_path
+from ..report import design_report
+
+__all__ = ["Downloads"]
+
+
+class Downloads:
+    """Handlers of the files menu (they use the page's session ``s``, ``outcome``, ``dir``,
+    ``field_rpm`` and ``field_res``)."""
+
+    # -- downloads ---------------------------------------------------------------------------
+    def _ready(self) -> bool:
+        if self.outcome is None:
+            ui.notify("wait for the design's answers first")
+            return False
+        return True
+
+    async def dl_report(self) -> None:
+        if not self._ready():
+            return
+        out = self.dir / f"{self.outcome.label}-report"
+        files = await run.io_bound(lambda: design_report(self.outcome.design, out, engine=self.s.engine,
+                                                         requirements=self.s.requirements, errors=False,
+                                                         analysis=self.outcome.analysis))
+        if files:
+            ui.download(out / "report.html", f"{self.outcome.label}-report.html")
+
+    def dl_inputs(self) -> None:
+        if self._ready():
+            ui.download(dumps(design_inputs(self.outcome.design), indent=1).encode(), f"{self.outcome.label}-inputs.json")
+
+    def dl_msh(self) -> None:
+        if not self._ready():
+            return
+        cm = self.outcome.design.cm
+        if cm.msh_path is None:
+            ui.notify("this mesh has no .msh file")
+            return
+        target = self.dir / f"{self.outcome.label}.msh"
+        shutil.copyfile(groups_msh_path(cm.msh_path), target)
+        ui.download(target, target.name)
+
+    async def dl_vtu(self) -> None:
+        if not self._ready():
+            return
+        rpm = self.field_rpm
+        res = self.field_res
+        if res is None:
+            return
+        files = await run.io_bound(lambda: write_vtk(res, [rpm], self.dir, render=False, stem=self.outcome.label))
+        if files:
+            ui.download(files[0], files[0].name)
+
+    async def dl_cutting(self) -> None:
+        """The cutting files of the current concept design as one zip: DXF (mm), STEP and
+        the drawing sheet (PDF) with the answers already on screen, plus inputs.json."""
+        if not self._ready():
+            return
+        d = self.outcome.design
+        if d.params is None:
+            ui.notify("cutting files come from a concept design (an uploaded part is already CAD)")
+            return
+        out = self.dir / f"{self.outcome.label}-cutting"
+        try:
+            res = await run.io_bound(lambda: export(d, out, analysis=self.outcome.analysis))
+        except ClutchfemError as e:
+            ui.notify(str(e), type="negative", multi_line=True)
+            return
+        target = self.dir / f"{self.outcome.label}-cutting.zip"
+        with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as z:
+            for f in res.files:
+                z.write(f, f.name)
+        ui.download(target, target.name)
