@@ -27,7 +27,7 @@ def test_sensitivities_are_flat_in_the_step_on_morphed_meshes(design):
     speeds and the mass.  Slip speed, torque and peak stress are left out of that check:
     their extraction has its own steps (the slip root's tolerance, the contact set, the peak
     node), which scatter their derivatives by 1-3 % on this 3 mm mesh with or without
-    morphing; measured on the default mesh in BENCHMARKS.md section 13."""
+    morphing; measured on the default mesh in BENCHMARKS.md, "Robust design"."""
     fine = cf.sensitivities(design, ["flexure_thickness"], workers=0)
     wide = cf.sensitivities(design, ["flexure_thickness"], workers=0, steps={"flexure_thickness": 1e-4})
     assert fine.methods["flexure_thickness"] == "central, morphed"

@@ -109,7 +109,17 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .loadcase import Design, OperatingPoint, SweepResult, morph
     from .report import comparison_plot as torque_speed_plot
     from .report import design_report as write_report
-    from .studies import StudySpec, Targets, compensate, optimize, run_grid, robust_optimize, run_study, sensitivities, tolerance
+    from .studies import (
+        StudySpec,
+        Targets,
+        compensate,
+        optimize,
+        robust_optimize,
+        run_grid,
+        run_study,
+        sensitivities,
+        tolerance,
+    )
     from .studies import load_spec as load_study
     from .studies import run_guidelines as guidelines
     from .validation import validate

@@ -8,8 +8,8 @@ analytic outline with exact tangent fillets)."""
 
 from . import occ, sketch
 from .build import BuiltModel, build_model, source_files
-from .curves import OCC_TOLERANCE, CurveFrame, curve_frame, occ_tolerances
 from .concept import Annotation, Concept, ConceptParams, MeshSettings, Shapes
+from .curves import OCC_TOLERANCE, CurveFrame, curve_frame, occ_tolerances
 from .drawing import draw_concept, draw_mesh, fmt_param_value
 from .profile import MIN_PROFILE_CLEARANCE, TABLE_FIELDS, TABLE_N, table_cardinal, table_spline
 from .registry import concepts, get_concept, load_concept_file

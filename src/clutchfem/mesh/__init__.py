@@ -20,7 +20,16 @@ from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
-from .morph import CACHE_SIZE, MorphReference, MorphRefused, morph_or_mesh, morph_to, morph_reference, quality_of, reference_key
+from .morph import (
+                       CACHE_SIZE,
+                       MorphReference,
+                       MorphRefused,
+                       morph_or_mesh,
+                       morph_reference,
+                       morph_to,
+                       quality_of,
+                       reference_key,
+)
 from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
 from .quality import MAX_DISTORTION, MIN_SCALED_JACOBIAN, MorphQuality, assess, distortion, scaled_jacobian

@@ -29,7 +29,7 @@ How (:func:`morph_to`):
 4. **Quality** (:func:`clutchfem.mesh.quality.assess`), the remesh criterion: every element's
    shape distortion s1/s2 <= 2.5 (:data:`~clutchfem.mesh.quality.MAX_DISTORTION`) and scaled
    Jacobian >= half of min(0.2, its reference value).  Measured (``benchmarks/bench_morph.py``,
-   BENCHMARKS.md section 13, ``tests/test_mesh_morph.py`` on every concept): within it, a
+   BENCHMARKS.md, "Robust design", ``tests/test_mesh_morph.py`` on every concept): within it, a
    morphed design's answers agree with the same design meshed from scratch inside the
    discretisation error reported for the morphed design.  A refused morph is a
    :class:`MorphRefused`: :func:`morph_or_mesh` then meshes the design from scratch (the
@@ -59,7 +59,7 @@ from .clutch_mesh import ClutchMesh
 from .convert import meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import mesh_concept
-from .quality import MAX_DISTORTION, MorphQuality, assess, scaled_jacobian
+from .quality import MorphQuality, assess, scaled_jacobian
 from .topology import facet_nodes
 
 #: morph references kept per process (each holds a mesh, its curve map and a factorisation)

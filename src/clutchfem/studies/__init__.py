@@ -27,11 +27,11 @@ from .hashing import design_hash
 from .optimization import DIMENSIONLESS, OptimizationResult, Targets, default_free, fatigue_note, optimize
 from .point import COLUMNS, Settings, evaluate, model_version
 from .resolve import load_spec, parse_spec
+from .robust import RobustResult, robust_optimize
 from .runner import RunResult, StudyInterrupted, default_out, run_points, run_study
 from .schema import SpecError
-from .spec import EXAMPLE_SPEC, StudySpec
-from .robust import RobustResult, robust_optimize
 from .sensitivity import Sensitivities, sensitivities
+from .spec import EXAMPLE_SPEC, StudySpec
 from .store import STORE_NAME, ResultStore
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 from .values import param_bounds, resolution

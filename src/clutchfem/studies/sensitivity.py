@@ -13,10 +13,12 @@ refused (the curves change, or the elements would be too distorted) that side wa
 from scratch and the derivative carries remeshing noise (said in ``method`` and ``notes``).
 
 Step h_i: lengths 0.01 mm (1e-5 m; exact as a ``--set`` text, :mod:`.values`), angles 0.01
-deg, dimensionless values 1e-3 of the value (at least 1e-6).  On morphed meshes the
-derivative is flat in h over 1e-3 .. 1e-1 mm (``benchmarks/bench_sensitivity.py``,
-BENCHMARKS.md section 13); on meshes made from scratch it is not (a 0.01 mm step there is
-noise), which is what the guideline study's larger steps (2 % of the value) work around.
+deg, dimensionless values 1e-3 of the value (at least 1e-6).  Measured over h = 1e-3 ..
+1e-1 mm on concept 4 (``benchmarks/bench_sensitivity.py``, BENCHMARKS.md, "Robust design"):
+on morphed meshes the engagement and mass derivatives scatter by 0-0.15 %, the peak stress's
+by 0.02-7 % (remeshed: 6-120 %); slip speed (0.1-0.9 %) and torque (1.5-3 %) scatter as much
+as on remeshed designs -- their extraction has steps of its own (the slip root's tolerance,
+the contact set), which morphing does not remove.
 
 Answers (SI units): engagement speed, engagement with ripple, slip speed [rpm], torque at the
 engine's maximum torque [N m], peak von Mises stress at the engine's maximum speed [Pa], its
