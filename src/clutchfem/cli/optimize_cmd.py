@@ -183,6 +183,9 @@ def _print_robust(r):
         console.print(f"  {escape(k)}: margin {m:.3g} {u} (sigma {r.sigma.get(k, 0.0):.3g} {u})")
     console.print(f"yield asked {r.yield_target:.2%}, predicted {r.predicted_yield:.2%} (linearised, constraints "
                   f"independent); {r.evaluations} designs in {len(r.rounds)} round(s), {r.seconds:.0f} s")
+    if not r.converged:
+        console.print("[yellow]the final design needs larger margins than it was optimised with (see --json "
+                      "rounds): run more rounds or check with --check[/yellow]")
     c = r.check_share_in_spec
     if c is not None:
         console.print(f"Monte Carlo check ({r.check.n} remeshed parts): {c[0]:.2%} in spec "

@@ -18,9 +18,10 @@ move by less than 5 % (at most ``rounds``).  A worst case over the tolerance box
 for 3 sigma on every dimension at once (heavier for no measured gain); sampling inside the
 loop costs hundreds of FE runs per design.
 
-The result carries the margins, the predicted yield (the product of the per-constraint
-normal probabilities at the final design: an estimate that treats the constraints as
-independent) and, when ``check`` > 0, a Monte Carlo check through remeshed designs
+The result carries the margins, the spreads recomputed at the final design (``converged``:
+the margins it needs are within 5 % of those it was optimised with), the predicted yield
+(the product of the per-constraint normal probabilities at the final design with those
+spreads: an estimate that treats the constraints as independent) and, when ``check`` > 0, a Monte Carlo check through remeshed designs
 (:func:`~.tolerancing.tolerance`) with its Wilson interval.
 """
 
@@ -66,6 +67,8 @@ class RobustResult:
     check: ToleranceResult | None
     rounds: list = field(default_factory=list)
     model_error: bool = True
+    #: the margins needed at the final design are within 5 % of those it was optimised with
+    converged: bool = True
     evaluations: int = 0
     seconds: float = 0.0
 
@@ -81,7 +84,7 @@ class RobustResult:
     def to_json(self) -> dict:
         return clean({"robust": {"yield_target": self.yield_target, "predicted_yield": self.predicted_yield,
                                  "tolerances_m_or_deg": self.tolerances, "distribution": self.dist,
-                                 "model_error_included": self.model_error,
+                                 "model_error_included": self.model_error, "converged": self.converged,
                                  "margins": self.margins, "sigma": self.sigma, "rounds": self.rounds,
                                  "evaluations_total": self.evaluations, "seconds": self.seconds,
                                  "check_share_in_spec": self.check_share_in_spec},
@@ -227,6 +230,15 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         start = dataclasses.replace(settings, base=tuple(res.set_args))
     assert res is not None
     final = dataclasses.replace(settings, base=tuple(res.set_args))
+    # the spreads at the final design itself (the last margins were computed at the previous
+    # round's optimum): the predicted yield uses these, and says whether the margins held
+    sigma, _ = spreads(final, nominal, tols, dist, model_error, workers)
+    need = {key: z * sg for key, sg in sigma.items()}
+    converged = all(need[q] <= margins[q] * (1.0 + CONVERGED) for q in need)
+    history.append({"round": "final", "margins_needed": need, "sigma": dict(sigma), "converged": converged})
+    if log:
+        log("at the final design: margins needed " + ", ".join(f"{q} {v:.4g}" for q, v in need.items())
+            + ("" if converged else " -- MORE than the margins used: raise rounds"))
     pred = 1.0
     for _, key, limit, sense in nominal.constraints():
         v, s = res.best.get(key), sigma.get(key, 0.0)
@@ -239,4 +251,5 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
                     workers=workers, log=log) if check else None
     return RobustResult(result=res, targets=nominal, tolerances=tols, dist=dist, yield_target=yield_target,
                         margins=margins, sigma=sigma, predicted_yield=pred, check=chk, rounds=history, model_error=model_error,
+                        converged=converged,
                         evaluations=evals, seconds=time.perf_counter() - t0)
