@@ -30,7 +30,6 @@ import os
 from pathlib import Path
 
 import numpy as np
-
 from matplotlib.figure import Figure
 
 import clutchfem as cf

@@ -200,7 +200,8 @@ def test_ctrl_c_stops_cleanly_and_writes_nothing(tmp_path):
     _, err = proc.communicate(timeout=30)
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
-    assert not list(out.iterdir())  # no file, no half file
+    # no file, no half file (on a loaded machine the interrupt may come before the folder is made)
+    assert not out.exists() or not list(out.iterdir())
 
 
 def test_part_mean_temperature_is_the_heat_content():

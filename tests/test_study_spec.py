@@ -34,10 +34,9 @@ def test_example_spec_is_valid_and_has_about_12_points():
     pts = spec.points()
     assert len(pts) == spec.count() == 12
     assert spec.design == "concept4"
-    ft = sorted({p["flexure_thickness"] for p in pts})
-    assert ft == pytest.approx([1.6e-3, 1.8e-3, 2.0e-3, 2.2e-3], rel=1e-12)
-    assert sorted({p["shoe_thickness"] for p in pts}) == pytest.approx([5e-3, 6e-3, 7e-3], rel=1e-12)
-    assert dict(spec.settings.fixed) == {"shoe_arc": 90.0}
+    assert sorted({p["clearance"] for p in pts}) == pytest.approx([0.30e-3, 0.33e-3, 0.36e-3], rel=1e-12)
+    assert sorted({p["shoe_arc"] for p in pts}) == pytest.approx([92.0, 97.0, 102.0, 115.0], rel=1e-12)
+    assert dict(spec.settings.fixed)["shoe_thickness"] == pytest.approx(7.5e-3, rel=1e-12)
     assert spec.error_sample == 3 and spec.error_points() == [0, 6, 11]  # evenly spaced, ends included
 
 

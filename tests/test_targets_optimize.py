@@ -102,6 +102,8 @@ def test_infeasible_targets_name_the_binding_constraint(tmp_path):
             "--max-evals", "6", "--mesh-size", SIZE, "--out", str(tmp_path), "--json")
     res = json.loads(r.stdout)
     assert not res["feasible"]
+    # progress (issue 24: no total, no ETA): each line names the evaluations of the budget and the time
+    assert "of at most 6 evaluations, " in r.stderr, r.stderr
     assert "NO FEASIBLE DESIGN" in res["message"] and "safety factor" in res["message"]
     html = (tmp_path / "report.html").read_text()
     assert "FAIL" in html and "data:image/png;base64," in html

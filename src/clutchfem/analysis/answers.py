@@ -106,9 +106,13 @@ class MuSensitivity:
     elasticity: float | None = None
     #: what the step could not do (a factor giving mu > 1 is skipped); the analysis's notes
     notes: tuple[str, ...] = ()
+    #: factor key -> why that case has no answer (mu > 1, a self-locking plus shoe, ...): a
+    #: side case that fails never takes the main answers with it
+    not_available: dict | None = None
 
     def as_dict(self) -> dict:
-        d = {"rpm": self.rpm, "mu": self.mu, "torque_Nm": dict(self.torque_Nm), "slip_rpm": dict(self.slip_rpm)}
+        d = {"rpm": self.rpm, "mu": self.mu, "torque_Nm": dict(self.torque_Nm), "slip_rpm": dict(self.slip_rpm),
+             "not_available": dict(self.not_available or {})}
         if self.torque_change_pct is not None:
             d["torque_change_pct"] = dict(self.torque_change_pct)
             d["elasticity"] = self.elasticity

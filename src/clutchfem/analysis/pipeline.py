@@ -41,7 +41,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..clutch import EngineCurve, RippleModel
-from ..core import ParameterError, rpm_to_rad_s
+from ..core import ParameterError, as_bool, rpm_to_rad_s
 from ..loadcase import Design, design_inputs, design_label
 from ..mesh import mesh_mass_properties
 from .answers import Analysis, Requirements
@@ -102,7 +102,11 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     (True, 'rpm')"""
     if not isinstance(design, Design):
         raise ParameterError("design", type(design).__name__, "a clutchfem Design (Design.from_concept or Design.from_mesh)")
-    engine = engine or EngineCurve.default()
+    engine = EngineCurve.of(engine)
+    if requirements is not None and not isinstance(requirements, Requirements):
+        raise ParameterError("requirements", type(requirements).__name__, "a Requirements(a=..., b=...) or None "
+                             "(a = 1.3, b = 1.0, ASSUMED)")
+    errors = as_bool(errors, "errors")
     req = requirements or Requirements()
     if design.drum_radius is None:
         raise ParameterError("drum_radius", None, "the drum's inner radius in m, larger than the outer radius "

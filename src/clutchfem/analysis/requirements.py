@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 from ..clutch import EngineCurve, whirl
-from ..core import ParameterError
+from ..core import ParameterError, UnitError, parse_quantity
 from .answers import EngagementAnswer, Requirements, SlipAnswer
 
 #: Idle speed used when the engine curve carries none (typical saw idle): ASSUMED.
@@ -29,16 +29,27 @@ WHIRL_MARGIN = 0.25
 
 
 def idle_speed(engine: EngineCurve, idle_rpm: float | None = None) -> tuple[float, bool]:
-    """(idle speed [rpm], True if it is the ASSUMED default): ``idle_rpm`` if given, else the
-    engine curve's, else :data:`DEFAULT_IDLE_RPM`; refuses anything but a finite speed > 0."""
+    """(idle speed [rpm], True if it is the ASSUMED default): ``idle_rpm`` if given (a number
+    in rpm or a string with its unit, ``"2700rpm"``), else the engine curve's, else
+    :data:`DEFAULT_IDLE_RPM`; refuses anything but a finite speed > 0 below the engine
+    curve's top speed (an engine idles below its full-throttle range's end)."""
     assumed = False
     if idle_rpm is None:
         idle_rpm = engine.idle_rpm
         if idle_rpm is None:
             idle_rpm, assumed = DEFAULT_IDLE_RPM, True
-    if isinstance(idle_rpm, bool) or not (isinstance(idle_rpm, (int, float)) and math.isfinite(idle_rpm)
-                                          and idle_rpm > 0):
-        raise ParameterError("idle_rpm", idle_rpm, "an idle speed > 0 rpm")
+    raw = idle_rpm
+    try:
+        idle_rpm = parse_quantity(idle_rpm, "rpm")
+    except UnitError:
+        raise ParameterError("idle_rpm", raw, "an idle speed > 0 rpm (a number in rpm or a string with its "
+                             "unit, e.g. '2700rpm')") from None
+    if not (math.isfinite(idle_rpm) and idle_rpm > 0):
+        raise ParameterError("idle_rpm", raw, "an idle speed > 0 rpm")
+    top = engine.rpm_range[1]
+    if idle_rpm >= top:
+        raise ParameterError("idle_rpm", raw, f"an idle speed below the engine curve's top speed {top:g} rpm "
+                             f"({engine.source}): is the idle speed or the curve in other units?")
     return idle_rpm, assumed
 
 

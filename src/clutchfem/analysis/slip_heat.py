@@ -6,7 +6,10 @@ engine curve (:func:`~clutchfem.analysis.slip_step`, the step ``analyze`` uses);
 contact forces at that speed (full-slip Coulomb friction, ``design.case().solve``) give the
 friction heat node by node; :func:`clutchfem.durability.heat_transient` conducts the part's
 share through the plate.  Designs that never slip or never touch the drum get an answer
-saying so, and what happens instead.
+saying so, and what happens instead.  Where the answer leaves the range its model holds
+(tempering, phase change, melting, the clearance closed by thermal growth) it carries
+``validity`` flags, and it is cut at a phase change or melting
+(:func:`clutchfem.durability.heat.slip_heat_validity`).
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from ..durability import (
     ThermalEnvironment,
     ThermalMaterial,
     heat_transient,
+    slip_heat_validity,
 )
 from ..loadcase import Design, design_inputs, design_label
 from .torque import slip_step
@@ -78,7 +82,7 @@ def slip_heat(design: Design, engine: EngineCurve | None = None, *, part: Therma
     >>> run.doc["slip_status"], run.doc["peak_temperature_C"] > run.doc["ambient_temperature_C"]
     ('slips', True)
     """
-    engine = engine if engine is not None else EngineCurve.default()
+    engine = EngineCurve.of(engine)
     part = part or ThermalMaterial()
     env = env or ThermalEnvironment()
     scenario = scenario or SlipScenario()
@@ -119,7 +123,7 @@ def slip_heat(design: Design, engine: EngineCurve | None = None, *, part: Therma
     empty = {"seconds": scenario.seconds, "cycles": scenario.cycles, "pause_s": scenario.pause, "slip_rpm": rpm,
              "slip_power_W": 0.0, "friction_work_J": 0.0, "heat_into_part_J": 0.0, "flexure_temperature_C": None,
              "peak_temperature_C": None, "ambient_temperature_C": env.ambient_temperature,
-             "time_to_limit_s": None, "limit_temperature_C": part.limit_temperature}
+             "time_to_limit_s": None, "limit_temperature_C": part.limit_temperature, "validity": [], "valid": True}
     if rpm is None:
         doc.update(empty)
         doc["heat"] = False
@@ -142,4 +146,13 @@ def slip_heat(design: Design, engine: EngineCurve | None = None, *, part: Therma
                  heat_fraction=heat_fraction)
     doc.update(r.to_json())
     doc["heat"] = True
+    g0 = case.contact.nodes.gap0
+    clearance = float(g0.min()) if len(g0) else None
+    doc.update(slip_heat_validity(doc, limit_C=part.limit_temperature, clearance_m=clearance,
+                                  contact_radius_m=None if clearance is None else design.drum_radius - clearance,
+                                  phase_change_C=part.phase_change_temperature,
+                                  melting_C=part.melting_temperature))
+    if not doc["valid"] and doc.get("flexure_temperature_C") is not None:
+        doc["yield_strength_at_flexure_peak_Pa"] = float(part.yield_ratio(doc["flexure_temperature_C"])
+                                                         * part.yield_strength)
     return SlipHeatRun(doc, r, design)

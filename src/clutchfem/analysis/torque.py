@@ -28,7 +28,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..clutch import EngineCurve, effective_engagement_rpm, first_slip_rpm, holds, torque_crossings
-from ..core import ParameterError, rpm_to_rad_s
+from ..core import ClutchfemError, ParameterError, rpm_to_rad_s
 from ..softening import get_softening
 from .answers import CharacterAnswer, EngagementAnswer, MuSensitivity, SlipAnswer
 
@@ -95,10 +95,12 @@ def check_speeds(rpm, engine: EngineCurve) -> np.ndarray:
 
 def bracket_grid(engine: EngineCurve, step: float = GRID_RPM) -> np.ndarray:
     """The internal grid on which crossings with the engine curve are bracketed: the engine
-    range in ``step`` rpm steps plus the engine table's own speeds (fixed: independent of the
-    speeds the user tabulates)."""
+    range in ``step`` rpm steps plus the engine table's own speeds when the table is not
+    denser than the grid (fixed: independent of the speeds the user tabulates; a dense
+    table's every row used to become a contact solve: a 1e6-row curve ran for minutes)."""
     lo, hi = engine.rpm_range
-    return np.union1d(np.append(np.arange(lo, hi, step), hi), engine.rpm)
+    base = np.append(np.arange(lo, hi, step), hi)
+    return np.union1d(base, engine.rpm) if len(engine.rpm) <= len(base) else base
 
 
 def _character(n_mu0: float, n_mu: float) -> str:
@@ -145,18 +147,21 @@ def fe_sweep(design, speeds):
 
 
 def engagement_step(res, ripple_model, in_range: bool, slip: SlipAnswer) -> EngagementAnswer:
-    """Static engagement and the crank speed at which the ripple's peak reaches it
-    (``in_range``: the clutch engages within the engine's speed range, else the slip step's
-    note says why not)."""
-    if not in_range:
-        return EngagementAnswer(None, None, None, slip.note)
+    """Static engagement and the crank speed at which the ripple's peak reaches it.  The
+    engagement speed is the part's (the FE's closed form): it does not depend on the engine,
+    so a curve that ends below it still gets it (``in_range`` False: the note says the
+    clutch never engages on this engine; issue 24: it used to say "never engages" with no
+    speed).  None only when the shoes never reach the drum at all."""
     eng = res.engagement_rpm
-    return EngagementAnswer(
-        eng, effective_engagement_rpm(eng, ripple_model, k_sigma=3.0),
-        effective_engagement_rpm(eng, ripple_model, k_sigma=0.0),
-        "static: steady speed (FE, closed form); with ripple: mean crank speed at which the 2-stroke "
-        "speed ripple's peak reaches the static value (3 sigma cycle; typical cycle also given); ripple "
-        "growth with rpm ASSUMED proportional")
+    if eng is None:
+        return EngagementAnswer(None, None, None, slip.note)
+    note = ("static: steady speed (FE, closed form); with ripple: mean crank speed at which the 2-stroke "
+            "speed ripple's peak reaches the static value (3 sigma cycle; typical cycle also given); ripple "
+            "growth with rpm ASSUMED proportional")
+    if not in_range:
+        note = f"{slip.note}; the engagement speed is the part's own (it does not depend on the engine): {note}"
+    return EngagementAnswer(eng, effective_engagement_rpm(eng, ripple_model, k_sigma=3.0),
+                            effective_engagement_rpm(eng, ripple_model, k_sigma=0.0), note)
 
 
 def slip_step(case, engine: EngineCurve, step: float = GRID_RPM) -> SlipAnswer:
@@ -217,27 +222,38 @@ def character_step(design, probe: float) -> CharacterAnswer:
 
 
 def mu_sensitivity_step(design, engine: EngineCurve, probe: float, slip: SlipAnswer) -> MuSensitivity:
-    """Torque at ``probe`` and slip speed at mu x 0.7 and x 1.3 (same FE model); a factor that
-    would make mu > 1 is skipped and said so in the answer's ``notes``."""
+    """Torque at ``probe`` and slip speed at mu x 0.7 and x 1.3 (same FE model).  A side
+    case never takes the main answers with it: a factor that would make mu > 1, or whose
+    solve is refused (a plus shoe that self-locks at mu x 1.3), is marked not available in
+    ``not_available`` with its reason and said so in the answer's ``notes``."""
     notes: list[str] = []
+    missing: dict[str, str] = {}
     mu = design.op.mu
     t_probe = float(FETorque(design.case())(probe)[0])
     torque, slips = {"x1.0": t_probe}, {"x1.0": slip.rpm}
     for f in MU_FACTORS:
         key = f"x{f}"
         if mu * f > 1.0:
+            missing[key] = f"mu x {f} = {mu * f:.3g} > 1 (outside the friction model)"
             notes.append(f"mu x {f} = {mu * f:.3g} > 1: sensitivity point skipped")
             continue
         case = secondary_case(design, mu * f)
-        # the contact solves start from the design's own contact nodes at the same speed
-        torque[key] = float(FETorque(case, start=design.case())(probe)[0])
-        # the slip speed only (no later crossings): the grid walk stops at the answer
-        slips[key] = first_slip_rpm(engine, FETorque(case, start=design.case()),
-                                    bracket_grid(engine, GRID_RPM_SENSITIVITY))
+        try:
+            # the contact solves start from the design's own contact nodes at the same speed
+            t_f = float(FETorque(case, start=design.case())(probe)[0])
+            # the slip speed only (no later crossings): the grid walk stops at the answer
+            s_f = first_slip_rpm(engine, FETorque(case, start=design.case()),
+                                 bracket_grid(engine, GRID_RPM_SENSITIVITY))
+        except ClutchfemError as exc:
+            missing[key] = f"mu x {f} = {mu * f:.3g}: {exc}"
+            notes.append(f"mu sensitivity at mu x {f} = {mu * f:.3g} not available (the main answers at mu = "
+                         f"{mu:.3g} stand): {exc}")
+            continue
+        torque[key], slips[key] = t_f, s_f
     if t_probe > 0 and all(f"x{f}" in torque for f in MU_FACTORS):
         t_lo, t_hi = torque["x0.7"], torque["x1.3"]
         pct = {"x0.7": 100 * (t_lo / t_probe - 1), "x1.3": 100 * (t_hi / t_probe - 1)}
         # d ln M / d ln mu: 1 for a point load (eq 12), < 1 minus shoe, > 1 plus shoe
         el = math.log(t_hi / t_lo) / math.log(1.3 / 0.7) if t_lo > 0 else math.nan
-        return MuSensitivity(probe, mu, torque, slips, pct, el, notes=tuple(notes))
-    return MuSensitivity(probe, mu, torque, slips, notes=tuple(notes))
+        return MuSensitivity(probe, mu, torque, slips, pct, el, notes=tuple(notes), not_available=missing)
+    return MuSensitivity(probe, mu, torque, slips, notes=tuple(notes), not_available=missing)

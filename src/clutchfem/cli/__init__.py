@@ -15,10 +15,12 @@ import sys
 from typing import Annotated, Optional
 
 import typer
+from typer._click.exceptions import ClickException  # typer vendors click (its BadParameter's base)
 
 from .. import __version__
 from .analyze_cmd import analyze
 from .app_cmd import app as app_command
+from .cache_cmd import cache
 from .compensate_cmd import compensate
 from .demo_cmd import demo
 from .export_cmd import export
@@ -54,6 +56,7 @@ _COMMANDS = [
     (validate, "validate", "Checks", "clutchfem validate --docs docs/validation.md --out docs/img/validation"),
     (demo, "demo", "Checks", "clutchfem demo --out out/demo"),
     (app_command, "app", "Design", "clutchfem app  (then open http://127.0.0.1:8765)"),
+    (cache, "cache", "Checks", "clutchfem cache --clear"),
 ]
 for _fn, _name, _panel, _example in _COMMANDS:
     app.command(_name, rich_help_panel=_panel, epilog=f"Example: {_example}")(_fn)
@@ -80,7 +83,10 @@ def main() -> None:
     log.addHandler(handler)
     log.setLevel(logging.INFO)
 
+    stopped = []
+
     def interrupted(signum, frame):  # one line, exit 130, finally-blocks still run
+        stopped.append(signum)
         print("\ninterrupted (Ctrl-C): unfinished work is not written", file=sys.stderr)
         raise SystemExit(130)
 
@@ -88,7 +94,34 @@ def main() -> None:
     from ..core import tune_malloc
 
     tune_malloc()  # this process is clutchfem's: freed arrays stay for the next design
-    app()
+    try:
+        _run()
+    except Exception:
+        # Ctrl-C while a library imports (scipy wraps what its import raised in an
+        # ImportError): the interrupt it was, not a traceback
+        if stopped:
+            raise SystemExit(130) from None
+        raise
+
+
+def _run() -> None:
+    """The app, with usage errors as one line when standard error is not a terminal."""
+    if sys.stderr.isatty():
+        app()
+        return
+    # standard error is a file or a pipe: a usage error is one `error:` line (typer draws a
+    # box wrapped at 80 columns, and a script reading the first line got "Usage: ...")
+    try:
+        code = app(standalone_mode=False)
+    except ClickException as exc:
+        ctx = getattr(exc, "ctx", None)
+        where = f" (see {ctx.command_path} --help)" if ctx is not None else ""
+        print(f"error: {exc.format_message()}{where}", file=sys.stderr)
+        raise SystemExit(exc.exit_code) from None
+    except typer.Abort:
+        print("aborted", file=sys.stderr)
+        raise SystemExit(1) from None
+    raise SystemExit(code if isinstance(code, int) else 0)
 
 
 __all__ = ["app", "main"]

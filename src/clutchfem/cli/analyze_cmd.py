@@ -22,6 +22,7 @@ from .common import (
     material_from,
     operating_point,
     requirements_from,
+    working,
     wrote,
 )
 
@@ -107,13 +108,17 @@ def analyze(
             raise ClutchfemError("analyze --mesh needs --drum-radius: the drum's inner radius (e.g. 35mm), larger "
                                  "than the outer radius of the 'contact' curves; without a drum there is no "
                                  "friction torque to analyse")
-        design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, drum_radius=drum_radius,
-                             thickness=thickness)
+        with working(f"analyze {concept or mesh}") as stage:
+            stage("meshing")
+            design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, drum_radius=drum_radius,
+                                 thickness=thickness)
         if design.params is None and "contact" not in (design.cm.mesh.boundaries or {}):
             raise ClutchfemError(f"{mesh}: analyze needs a physical curve group 'contact' (the shoe surfaces facing "
                                  f"the drum); groups found: {sorted(design.cm.mesh.boundaries or {})}")
-        an = run(design, engine=eng, requirements=req, idle_rpm=idle, fatigue_loads=fat_loads,
-                 fatigue_params=fat_params)
+        with working(f"analyze {design.name}") as stage:
+            stage("engagement, torque, slip, fatigue and their errors")
+            an = run(design, engine=eng, requirements=req, idle_rpm=idle, fatigue_loads=fat_loads,
+                     fatigue_params=fat_params)
         if out is not None:
             wrote(write_analysis(an, eng, out, an.label))
         if json_:

@@ -7,20 +7,44 @@ option then answer in a fraction of a second instead of loading the FE stack (~3
 
 from __future__ import annotations
 
+import contextlib
 import os
+import sys
 from pathlib import Path
 from typing import Optional
 
 import typer
 from rich.console import Console
 from rich.markup import escape
+from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn  # 0.04 s
 
 from ..core import InputError, ParameterError, UnitError, expected_text, parse_quantity
 
-console = Console()
-err = Console(stderr=True)
+# Written to a file or a pipe, a message is one line however long (a script reads whole
+# lines: a refusal or a WARNING wrapped at 80 columns lost its end); tables keep their width.
+console = Console(soft_wrap=not sys.stdout.isatty())
+err = Console(stderr=True, soft_wrap=not sys.stderr.isatty())
 
-__all__ = ["check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
+
+@contextlib.contextmanager
+def working(what: str):
+    """Progress of a step that runs for seconds (meshing, solving, a report): a spinner with
+    ``what``, the current stage and the elapsed time on standard error, cleared when the step
+    ends.  Only on a terminal: a pipe or a file gets nothing, and standard output (--json) is
+    never touched.  Yields ``stage(text)``, which names the current stage.
+
+    Why a spinner and not a bar: one design's steps have no count to show (a study's points
+    do: their bar, with rate and ETA, is the study engine's)."""
+    if not err.is_terminal:
+        yield lambda text: None
+        return
+    bar = Progress(SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn(), console=err,
+                   transient=True, redirect_stdout=False, redirect_stderr=False)
+    with bar:
+        task = bar.add_task(escape(what))
+        yield lambda text: bar.update(task, description=escape(f"{what}: {text}"))
+
+__all__ = ["working", "check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
            "operating_point", "quantity", "requirements_from", "wrote"]
 
 
@@ -56,6 +80,21 @@ def check_out_dir(out: Optional[Path], option: str = "--out") -> Optional[Path]:
     except OSError as exc:
         raise InputError(f"{option} {out}: cannot create the folder ({exc.strerror})") from None
     return out
+
+
+def check_cluster(workers: Optional[int], scheduler: Optional[str]) -> Optional[str]:
+    """Refuse, before any work, ``--workers`` with ``--scheduler``, a negative worker count
+    and a scheduler address that is not one (``''``, ``http://...``, an unknown host); the
+    address in Dask's form, or None."""
+    if workers is not None and scheduler is not None:
+        raise InputError("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+    if workers is not None and workers < 0:
+        raise ParameterError("workers", workers, "an integer >= 0 (0: in this process, no Dask)", "option --workers")
+    if scheduler is None:
+        return None
+    from ..studies import check_address
+
+    return check_address(scheduler)
 
 
 def quantity(option: str, raw: Optional[str], unit: str, lo: float | None = None, hi: float | None = None,

@@ -11,7 +11,18 @@ from rich.table import Table
 
 from ..core import ClutchfemError
 from . import options as O
-from .common import check_out_dir, console, design_from, engine_from, err, fail, operating_point, quantity, wrote
+from .common import (
+    check_out_dir,
+    console,
+    design_from,
+    engine_from,
+    err,
+    fail,
+    operating_point,
+    quantity,
+    working,
+    wrote,
+)
 
 
 def compensate(
@@ -48,14 +59,19 @@ def compensate(
         share = quantity("--target-arc", target_arc, "-")
         start = quantity("--arc-start", arc_start, "-")
         eng, _ = engine_from(engine)
-        design = design_from(concept, set_, None, op=operating_point(mu=mu), mesh_size=mesh_size, mesh_allowed=False)
+        with working(f"compensate {concept}") as stage:
+            stage("meshing")
+            design = design_from(concept, set_, None, op=operating_point(mu=mu), mesh_size=mesh_size,
+                                 mesh_allowed=False)
         mc = design.params.parse_value("clearance", mean_clearance) if mean_clearance is not None else None
         res = run(design, rpm=w, target_arc=share, arc_start=start, mean_clearance=mc, max_iter=max_iter,
-                  log=lambda m: err.print(escape(m)))
+                  log=lambda m: err.print(escape(m)))  # one line per iteration: its own progress
         ms = design.cm.mesh_settings
-        before = analyze(design, engine=eng, errors=False)
-        after = analyze(Design.from_concept(design.concept, res.after, design.op, _mesh(ms)), engine=eng,
-                        errors=False)
+        with working(f"compensate {concept}") as stage:
+            stage("analysing the design before and after")
+            before = analyze(design, engine=eng, errors=False)
+            after = analyze(Design.from_concept(design.concept, res.after, design.op, _mesh(ms)), engine=eng,
+                            errors=False)
         rows = compare_rows(res, before, after)
         if out is not None:
             wrote(compensation_report(res, before, after, rows, eng, out))

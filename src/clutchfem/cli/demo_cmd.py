@@ -9,7 +9,7 @@ import typer
 
 from ..core import ClutchfemError
 from ..core import write as write_json
-from .common import check_out_dir, fail, wrote
+from .common import check_out_dir, fail, working, wrote
 from .geometry_cmd import build_geometry, geometry_table
 
 
@@ -33,6 +33,9 @@ def demo(out: Path = typer.Option(Path("out/demo"), "--out", help="output folder
     summary = write_json(out / "geometry" / "summary.json", rows, indent=2)
     wrote([f for r in rows for f in r.get("files", [])] + [summary])
     try:
-        wrote(default_design_report(out / "design"))
+        with working("demo: the design report of concepts 1-4") as stage:
+            stage("analyses, charts and pictures")
+            files = default_design_report(out / "design")
+        wrote(files)
     except ClutchfemError as exc:
         fail(exc)

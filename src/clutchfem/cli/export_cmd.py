@@ -12,7 +12,7 @@ from rich.markup import escape
 
 from ..core import ClutchfemError, InputError, ParameterError
 from . import options as O
-from .common import check_out_dir, console, design_from, engine_from, err, fail, quantity, wrote
+from .common import check_out_dir, console, design_from, engine_from, err, fail, quantity, working, wrote
 
 PANEL = "Cutting"
 
@@ -100,8 +100,10 @@ def export(
         else:
             design = design_from(concept, set_, None, mesh_size=mesh_size, mesh_allowed=False)
         err.print(escape(f"{design.name}: outline, features and checks ..."))
-        res = run(design, out, dxf=dxf, step=step, drawing=drawing, process=process, units=units,
-                  analyze_design=not no_analysis, as_cut=as_cut, kerf_error=kerr, engine=eng, **limits)
+        with working(f"export {design.name}") as stage:  # a spinner with the elapsed time (issue 24)
+            stage("outline, checks, files" + ("" if no_analysis else " and the analysis"))
+            res = run(design, out, dxf=dxf, step=step, drawing=drawing, process=process, units=units,
+                      analyze_design=not no_analysis, as_cut=as_cut, kerf_error=kerr, engine=eng, **limits)
         wrote(res.files)
         if json_:
             print(dumps(res.to_json()))

@@ -15,7 +15,7 @@ from rich.table import Table
 from ..core import ClutchfemError, format_quantity
 from ..core import write as write_json
 from . import options as O
-from .common import check_out_dir, console, design_from, fail, wrote
+from .common import check_out_dir, console, design_from, err, fail, working, wrote
 
 
 def geometry(
@@ -31,12 +31,14 @@ def geometry(
 ):
     """Build one concept: write its .msh mesh (with physical groups), a labelled drawing and a
     summary (mass, mesh size)."""
-    from ..geometry import concepts, get_concept
+    from ..geometry import broken_concepts, concepts, get_concept
 
     try:
         if list_:
             for name in concepts():
                 print(name)
+            for path, error in broken_concepts().items():  # on stderr: stdout stays one name a line
+                err.print(escape(f"not loaded: {path}: {error}"), soft_wrap=True)
             return
         if concept is None:
             raise ClutchfemError("give a concept name (see clutchfem geometry --list)")
@@ -72,7 +74,9 @@ def build_geometry(c, set_, out: Path, mesh_size, model: str, drawing: bool) -> 
 
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    design = design_from(c.name, list(set_), None, mesh_size=mesh_size, model=model)
+    with working(f"geometry {c.name}") as stage:
+        stage("building and meshing")
+        design = design_from(c.name, list(set_), None, mesh_size=mesh_size, model=model)
     wall = time.perf_counter() - t0
     cm, p = design.cm, design.params
     label = design_label(design)

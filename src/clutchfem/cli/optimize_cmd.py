@@ -13,6 +13,7 @@ from rich.table import Table
 from ..core import ClutchfemError, ParameterError
 from . import options as O
 from .common import (
+    check_cluster,
     check_out_dir,
     console,
     design_from,
@@ -95,6 +96,7 @@ def optimize(
     from ..studies import optimize as run
 
     try:
+        scheduler = check_cluster(workers, scheduler)
         check_out_dir(out)
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
         s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)

@@ -10,7 +10,7 @@ import typer
 
 from ..core import ClutchfemError, InputError
 from . import options as O
-from .common import check_out_dir, design_from, engine_from, fail, requirements_from, wrote
+from .common import check_out_dir, design_from, engine_from, fail, requirements_from, working, wrote
 
 
 def report(
@@ -53,7 +53,12 @@ def report(
             raise InputError("report --mesh needs --drum-radius (the drum's inner radius, e.g. 35mm)")
         eng, _ = engine_from(engine)
         req = requirements_from(a, b)
-        design = design_from(concept, set_, mesh, mesh_size=mesh_size, drum_radius=drum_radius, thickness=thickness)
-        wrote(design_report(design, out, engine=eng, requirements=req, errors=errors))
+        with working(f"report {concept or mesh}") as stage:
+            stage("meshing")
+            design = design_from(concept, set_, mesh, mesh_size=mesh_size, drum_radius=drum_radius,
+                                 thickness=thickness)
+            stage("analysis, charts and pictures")
+            files = design_report(design, out, engine=eng, requirements=req, errors=errors)
+        wrote(files)
     except ClutchfemError as exc:
         fail(exc)

@@ -24,6 +24,7 @@ from .common import (
     grouped_assignments,
     operating_point,
     quantity,
+    working,
     wrote,
 )
 
@@ -99,9 +100,12 @@ def slip_heat(
         fraction = quantity("--heat-fraction", heat_fraction, "-", 0.0, 1.0)
         eng, _ = engine_from(engine)
         op = operating_point(mu=mu, rotation=rotation)
-        design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model, drum_radius=drum_radius,
-                             thickness=thickness)
-        result = run(design, eng, part=part, drum=drum, env=env, scenario=scenario, heat_fraction=fraction)
+        with working(f"slip-heat {concept or mesh}") as stage:
+            stage("meshing")
+            design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model,
+                                 drum_radius=drum_radius, thickness=thickness)
+            stage("slip speed, contact forces and the heat transient")
+            result = run(design, eng, part=part, drum=drum, env=env, scenario=scenario, heat_fraction=fraction)
         if out is not None:
             wrote(slip_heat_files(result, out))
         if json_:
@@ -147,7 +151,8 @@ def print_table(doc: dict) -> None:
             ("flexure: where", str(doc.get("flexure_peak_location") or "-")),
             (f"time until the flexure reaches {lim:.0f} C (limit)",
              _f(doc["time_to_limit_s"], ".1f", "s") if doc["time_to_limit_s"] is not None
-             else f"not reached in {doc['seconds'] * doc['cycles']:g} s of slip"),
+             else (f"not reached before the stop at {doc['stopped_at_s']:.2f} s" if doc.get("stopped_at_s")
+                   is not None else f"not reached in {doc['seconds'] * doc['cycles']:g} s of slip")),
             (f"yield strength left at {lim:.0f} C (EN 1993-1-2 k_p / k_y)",
              f"{doc['yield_strength_at_limit_bounds_Pa'][0] / 1e6:.0f} / "
              f"{doc['yield_strength_at_limit_bounds_Pa'][1] / 1e6:.0f} MPa"),
@@ -169,9 +174,15 @@ def print_table(doc: dict) -> None:
             if doc["cycles"] > 1 and "end_of_slip_flexure_C" in c:
                 rows.append((f"event {c['cycle']}: flexure at end of slip / of pause",
                              f"{c['end_of_slip_flexure_C']:.0f} C / {c.get('end_of_pause_flexure_C', math.nan):.0f} C"))
+    for f in doc.get("validity") or []:  # where the model stops holding (durability.heat.validity)
+        rows.append((f"MODEL LIMIT: {f['flag']} ({f['level_C']:.0f} C)", f"reached at {f['time_s']:.2f} s"))
+    if doc.get("stopped_at_s") is not None:
+        rows.append(("TRANSIENT STOPPED", f"at {doc['stopped_at_s']:.2f} s (answers above: up to there)"))
     for q, v in rows:
         t.add_row(escape(q), escape(v))
     console.print(t)
+    for f in doc.get("validity") or []:
+        console.print(f"[bold red]WARNING:[/] {escape(f['meaning'])}")
     console.print(f"[dim]{escape(doc['slip_note'])}[/]")
     if doc["heat"]:
         console.print("[dim]ASSUMED: " + escape("; ".join(doc["assumed"])) + "[/]")

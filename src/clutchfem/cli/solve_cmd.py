@@ -13,7 +13,7 @@ from rich.table import Table
 
 from ..core import ClutchfemError
 from . import options as O
-from .common import check_out_dir, console, design_from, fail, material_from, operating_point, wrote
+from .common import check_out_dir, console, design_from, fail, material_from, operating_point, working, wrote
 
 
 def solve(
@@ -63,11 +63,15 @@ def solve(
         which = parse_rpm(vtk_rpm) if vtk_rpm else np.array([float(speeds.max())])
         if vtk:
             speeds = np.union1d(speeds, which)
-        design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model, drum_radius=drum_radius,
-                             thickness=thickness)
-        res = design.sweep(speeds, stresses=not no_stress)
-        warns = list(res.warnings) + model_warnings(res, design.model.material.yield_strength)
-        errs = sweep_errors(design, res) if not no_errors and res.contact is not None else {}
+        with working(f"solve {concept or mesh}") as stage:
+            stage("meshing")
+            design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model,
+                                 drum_radius=drum_radius, thickness=thickness)
+            stage(f"{len(speeds)} speed" + ("s" if len(speeds) != 1 else ""))
+            res = design.sweep(speeds, stresses=not no_stress)
+            warns = list(res.warnings) + model_warnings(res, design.model.material.yield_strength)
+            stage("discretisation and model-form errors")
+            errs = sweep_errors(design, res) if not no_errors and res.contact is not None else {}
         label = design_label(design)
         doc = {**res.to_json(), "label": label, "warnings": warns, "errors": errs, "inputs": design_inputs(design)}
         files = []

@@ -16,7 +16,18 @@ from rich.table import Table
 
 from ..core import ClutchfemError
 from . import options as O
-from .common import check_out_dir, console, design_from, engine_from, err, fail, material_from, operating_point, wrote
+from .common import (
+    check_cluster,
+    check_out_dir,
+    console,
+    design_from,
+    engine_from,
+    err,
+    fail,
+    material_from,
+    operating_point,
+    wrote,
+)
 
 
 @contextlib.contextmanager
@@ -54,20 +65,33 @@ def study(
     """Parameter study: every point of SPEC through the full analysis, on Dask, stored as it
     finishes (rerun to resume).  Status per point: ok, refused (input refused, with its
     message) or failed (no answer: solver refusal, error, crashed worker)."""
-    from ..studies import EXAMPLE_SPEC, StudyInterrupted, default_out, load_spec, run_study
+    from ..studies import default_out, finished_summary
 
     try:
         if example:
             if spec is not None:
                 raise _usage("--example prints a spec; give either --example or SPEC")
+            from ..studies import EXAMPLE_SPEC
+
             sys.stdout.write(EXAMPLE_SPEC)
             return
         if spec is None:
             raise _usage("give a study spec (TOML), or --example to print one")
-        if workers is not None and scheduler is not None:
-            raise _usage("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
-        sp = load_spec(spec)
+        scheduler = check_cluster(workers, scheduler)
         out = check_out_dir(out if out is not None else default_out(str(spec)))
+        # a finished study: its summary, without loading the FE stack (studies.rerun)
+        done = finished_summary(spec, out, retry_failed=retry_failed, charts=charts)
+        if done is not None:
+            if json_:
+                from ..core import dumps
+
+                print(dumps(done))
+            else:
+                _print_summary(done)
+            return
+        from ..studies import StudyInterrupted, load_spec, run_study
+
+        sp = load_spec(spec)
         try:
             with _ctrl_c_as_keyboard_interrupt():
                 summary = run_study(sp, out, workers=workers, scheduler=scheduler, retry_failed=retry_failed,
@@ -100,7 +124,9 @@ def _print_summary(s: dict) -> None:
     t.add_column("quantity")
     t.add_column("value", justify="right")
     rate = s.get("designs_per_min")
-    rows = [("points in the spec", f"{s['points']}"), ("done (any status)", f"{s['done']}"),
+    listed = s.get("listed", s["points"])
+    rows = [("points in the spec", f"{s['points']}" + (f" distinct designs ({listed} listed: repeats count once)"
+                                                       if listed != s["points"] else "")), ("done (any status)", f"{s['done']}"),
             ("  ok", f"{s['ok']}"), ("  refused (input)", f"{s['refused']}"), ("  failed", f"{s['failed']}"),
             ("feasible (all requirements met)", f"{s['feasible']}"),
             ("computed in this run", f"{s['computed']}"), ("finished before (skipped)", f"{s['skipped']}"),
@@ -151,8 +177,7 @@ def guidelines(
     from ..studies import GuidelineSettings, StudyInterrupted, run_guidelines, summary_table
 
     try:
-        if workers is not None and scheduler is not None:
-            raise _usage("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
+        scheduler = check_cluster(workers, scheduler)
         eng = engine_from(engine)[0] if engine is not None else None
         design = design_from(concept, set_, None, op=operating_point(mu=mu, material=material_from(material)),
                              mesh_size=mesh_size, mesh_allowed=False)

@@ -10,7 +10,7 @@ from rich.table import Table
 
 from ..core import ClutchfemError, ParameterError
 from . import options as O
-from .common import check_out_dir, console, err, fail, quantity, wrote
+from .common import check_cluster, check_out_dir, console, err, fail, quantity, wrote
 from .optimize_cmd import study_settings
 
 
@@ -47,7 +47,10 @@ def tolerance(
     from ..studies import tolerance as run
 
     try:
+        scheduler = check_cluster(workers, scheduler)
         check_out_dir(out)
+        if seed < 0:
+            raise ParameterError("seed", seed, "an integer >= 0 (the same seed draws the same parts)", "option --seed")
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
         s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
         P = type(base.params)

@@ -10,7 +10,7 @@ from typing import Optional
 import typer
 
 from ..core import ClutchfemError, InputError, dumps
-from .common import check_out_dir, console, err, fail
+from .common import check_out_dir, console, err, fail, working
 
 
 def validate(
@@ -31,7 +31,9 @@ def validate(
                 raise InputError(f"--docs {docs}: is a folder; give the Markdown file to write (e.g. "
                                  "docs/validation.md)")
             check_out_dir(docs.parent, "--docs")
-        run = runner.collect()  # every module runs once
+        with working("validate") as stage:
+            stage("every validation case (analytic, thesis, CalculiX where installed)")
+            run = runner.collect()  # every module runs once
         if docs is not None:
             runner.report_run(run, out, docs)
         if json_:

@@ -15,8 +15,8 @@ points is an ASSUMPTION** (a smooth hump typical of 2-stroke saw engines); it is
 
 from __future__ import annotations
 
-import csv
 import math
+import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,6 +25,7 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from ..core import InputError, ParameterError, brentq
+from .engine_csv import read_engine_csv
 
 __all__ = ["EngineCurve", "DEFAULT_CURVE_RPM", "DEFAULT_CURVE_TORQUE", "slip_rpm", "torque_crossings"]
 
@@ -75,9 +76,14 @@ class EngineCurve:
     _interp: PchipInterpolator = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        rpm = np.asarray(self.rpm, dtype=float).ravel()
-        tq = np.asarray(self.torque, dtype=float).ravel()
         where = f"engine curve ({self.source})"
+        try:
+            rpm = np.asarray(self.rpm, dtype=float).ravel()
+            tq = np.asarray(self.torque, dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise InputError(f"{where}: rpm and torque must be sequences of numbers (rpm, N m), got "
+                             f"{type(self.rpm).__name__} {self.rpm!r:.60} and {type(self.torque).__name__} "
+                             f"{self.torque!r:.60}") from None
         if rpm.size != tq.size:
             raise InputError(f"{where}: {rpm.size} rpm values but {tq.size} torque values")
         if rpm.size < 2:
@@ -132,46 +138,28 @@ class EngineCurve:
 
     @classmethod
     def from_csv(cls, path: str | Path, idle_rpm: float | None = None) -> "EngineCurve":
-        """Read a CSV with a header row and columns ``rpm`` and ``torque`` (N m).
+        """Read a CSV with a header row naming a speed and a torque column, each with its
+        unit (``rpm, torque [lbf ft]``; no unit: rpm and N m), in UTF-8 (with or without a
+        byte-order mark), UTF-16 or Latin-1, separated by ``,`` or by ``;``/tab with
+        decimal commas; at most :data:`~clutchfem.clutch.engine_csv.MAX_ROWS` rows sorted by
+        speed.  What is read and refused: :mod:`clutchfem.clutch.engine_csv`."""
+        t = read_engine_csv(path)
+        source = str(path) + (f" ({'; '.join(t.notes)})" if t.notes else "")
+        return cls(t.rpm, t.torque, source=source, assumed=False, idle_rpm=idle_rpm)
 
-        The torque column may be named ``torque``, ``torque_nm``, ``torque_Nm`` or
-        ``torque [N m]`` (any name starting with 'torque').  Rows must be sorted by rpm.
-        """
-        path = Path(path)
-        if not path.is_file():
-            raise InputError(f"engine curve file not found (or not a file): {path}")
-        try:
-            with path.open(newline="", encoding="utf-8") as fh:
-                rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
-        except UnicodeDecodeError:
-            raise InputError(f"engine curve file {path} is not a text CSV (not UTF-8 text: a binary "
-                             "or spreadsheet file?); save it as CSV with columns rpm, torque") from None
-        except (OSError, csv.Error) as exc:
-            raise InputError(f"engine curve file {path} cannot be read: {exc}") from None
-        if any("\x00" in c for r in rows for c in r):
-            raise InputError(f"engine curve file {path} is not a text CSV (it holds NUL bytes)")
-        if not rows:
-            raise InputError(f"engine curve file {path} is empty")
-        header = [c.strip().lower() for c in rows[0]]
-        try:
-            i_rpm = header.index("rpm")
-            i_tq = next(i for i, h in enumerate(header) if h.startswith("torque"))
-        except (ValueError, StopIteration):
-            raise InputError(
-                f"engine curve file {path}: header must have columns 'rpm' and 'torque' "
-                f"(N m); got {rows[0]}"
-            ) from None
-        rpm, tq = [], []
-        for lineno, r in enumerate(rows[1:], start=2):
-            try:
-                rpm.append(float(r[i_rpm]))
-                tq.append(float(r[i_tq]))
-            except (ValueError, IndexError):
-                raise InputError(
-                    f"engine curve file {path}, row {lineno}: expected numbers in columns "
-                    f"'rpm' and 'torque', got {r}"
-                ) from None
-        return cls(tuple(rpm), tuple(tq), source=str(path), assumed=False, idle_rpm=idle_rpm)
+    @classmethod
+    def of(cls, value, name: str = "engine") -> "EngineCurve":
+        """The engine curve an API argument means: None -> the built-in (ASSUMED) curve, an
+        :class:`EngineCurve` as it is, a path (str or Path) -> :meth:`from_csv`; anything
+        else is refused naming the argument ``name``."""
+        if value is None:
+            return cls.default()
+        if isinstance(value, cls):
+            return value
+        if isinstance(value, (str, os.PathLike)):
+            return cls.from_csv(value)
+        raise ParameterError(name, type(value).__name__, "an EngineCurve, the path of an engine curve CSV, or None "
+                             "(the built-in curve)")
 
     # ---- queries --------------------------------------------------------------------
     @property

@@ -155,6 +155,11 @@ def build_contact_nodes(cm, part, drum_radius: float, dx, dy, doflocs, x_dofs, w
         raise MeshError(f"drum radius {drum_radius * 1e3:.4f} mm lies inside the part: contact nodes "
                         f"overlap the drum by up to {worst * 1e3:.4f} mm (drum radius must exceed "
                         f"{r.max() * 1e3:.4f} mm)")
+    if np.any(gap0 <= 1e-9 * drum_radius):
+        raise MeshError(f"drum radius {drum_radius * 1e3:.6g} mm equals the outer radius of the contact surface "
+                        f"({r.max() * 1e3:.6g} mm): no clearance, the shoes touch the drum at rest and there is no "
+                        "engagement speed; a centrifugal clutch needs a gap (the concepts allow 0.05..3 mm): give "
+                        "a drum radius above the contact surface's")
     b = part.mesh.boundaries or {}
     shoe = -np.ones(len(dx), dtype=np.int64)
     for name, fac in b.items():

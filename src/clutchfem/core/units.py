@@ -23,7 +23,7 @@ from decimal import Decimal, InvalidOperation
 import numpy as np
 
 __all__ = ["DISPLAY", "RPM_PER_RAD_S", "UnitError", "accepted_suffixes", "deg", "dimension", "display_value",
-           "format_quantity", "mm", "parse_quantity", "rad_s_to_rpm", "rpm_to_rad_s", "wrap_angle"]
+           "format_quantity", "header_unit", "header_units", "mm", "parse_quantity", "rad_s_to_rpm", "rpm_to_rad_s", "wrap_angle"]
 
 RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
 
@@ -52,6 +52,25 @@ _TABLE: dict[str, dict[str, tuple[str, str]]] = {
     "W/(m K)": {"W/(m K)": ("1", "0"), "W/mK": ("1", "0"), "W/(mK)": ("1", "0")},
     "J/(kg K)": {"J/(kg K)": ("1", "0"), "J/kgK": ("1", "0"), "J/(kgK)": ("1", "0")},
     "W": {"W": ("1", "0"), "kW": ("1000", "0")},
+}
+#: units written in table headers (an engine curve's CSV: ``torque [lbf ft]``, ``speed
+#: (U/min)``), keyed by the compact form :func:`header_unit` reduces a header's unit to
+#: (lower case, no spaces or separators ``· . * - _``): canonical unit -> {compact: factor}.
+#: Only unit names whose meaning does not depend on the case of a prefix letter are here
+#: (no mN m / MN m); the factors are exact or the defined conversions (1 lbf = 4.4482216152605 N,
+#: 1 ft = 0.3048 m, 1 in = 0.0254 m, 1 kgf = 1 kp = 9.80665 N, 1 ozf = 0.27801385095378125 N).
+_HEADER_UNITS: dict[str, dict[str, str]] = {
+    "N m": {"nm": "1", "newtonmetre": "1", "newtonmeter": "1", "ncm": "0.01", "nmm": "0.001", "knm": "1000",
+            "kgfm": "9.80665", "kpm": "9.80665", "kgm": "9.80665", "kgfcm": "0.0980665", "kpcm": "0.0980665",
+            "lbfft": "1.3558179483314004", "ftlbf": "1.3558179483314004", "lbft": "1.3558179483314004",
+            "ftlb": "1.3558179483314004", "ftlbs": "1.3558179483314004", "lbsft": "1.3558179483314004",
+            "lbfin": "0.1129848290276167", "inlbf": "0.1129848290276167", "lbin": "0.1129848290276167",
+            "inlb": "0.1129848290276167", "inlbs": "0.1129848290276167", "lbsin": "0.1129848290276167",
+            "ozfin": "0.007061551814226", "ozin": "0.007061551814226", "inoz": "0.007061551814226"},
+    "rpm": {"rpm": "1", "1/min": "1", "min^1": "1", "min1": "1", "/min": "1", "r/min": "1", "rev/min": "1",
+            "revmin": "1", "u/min": "1", "upm": "1", "tr/min": "1", "obmin": "1", "об/мин": "1", "obr/min": "1",
+            "rps": "60", "r/s": "60", "rev/s": "60", "hz": "60", "rad/s": repr(RPM_PER_RAD_S),
+            "krpm": "1000"},
 }
 #: the dimension's name, for messages
 _NAMES = {"m": "a length", "deg": "an angle", "Pa": "a stress", "rpm": "a speed", "kg": "a mass",
@@ -137,6 +156,27 @@ def _case_insensitive(suffix: str) -> bool:
     # mm/MM and rpm/RPM are the same; m (milli) and M (mega) prefixes are not: only suffixes
     # without a prefix letter that changes meaning with case are matched case-insensitively
     return suffix.lower() in {"rpm", "deg", "rad", "nm", "n m", "kg", "in", "hz", "psi", "ksi", "degc"}
+
+
+def header_unit(text: str, unit: str) -> float | None:
+    """The factor to the canonical ``unit`` (``"N m"`` or ``"rpm"``) of a unit written in a
+    table header (``"lbf ft"``, ``"N·m"``, ``"U/min"``: :data:`_HEADER_UNITS`), or None when
+    it is not a known unit of that dimension.
+
+    >>> header_unit("lbf·ft", "N m"), header_unit("N cm", "N m"), header_unit("1/min", "rpm")
+    (1.3558179483314004, 0.01, 1.0)
+    >>> header_unit("bar", "N m") is None
+    True
+    """
+    compact = re.sub(r"[\s·.*\-_]+", "", str(text)).lower().replace("⁻¹", "^1").replace("^-1", "^1")
+    factor = _HEADER_UNITS.get(unit, {}).get(compact)
+    return None if factor is None else float(Decimal(factor))
+
+
+def header_units(unit: str) -> list[str]:
+    """Examples of the header units :func:`header_unit` knows for ``unit``, for messages."""
+    return {"N m": ["N m", "N cm", "N mm", "kN m", "kgf m", "kgf cm", "lbf ft", "lbf in", "ozf in"],
+            "rpm": ["rpm", "1/min", "r/min", "U/min", "tr/min", "rev/s", "Hz", "rad/s"]}.get(unit, [])
 
 
 def display_value(value: float, unit: str) -> tuple[float, str]:

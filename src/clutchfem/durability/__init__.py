@@ -38,6 +38,7 @@ from .heat import (
                       heat_transient,
                       render_png,
                       slip_heat_load,
+                      slip_heat_validity,
                       write_vtu,
 )
 
@@ -45,4 +46,4 @@ __all__ = ["DrumThermal", "FatigueLoads", "FatigueParams", "FatigueResult", "Hea
            "Location", "ServiceStates", "SlipHeatLoad", "SlipHeatResult", "SlipScenario", "ThermalEnvironment",
            "ThermalMaterial", "candidate_points", "endurance_limit", "fatigue_check", "heat_partition",
            "name_location", "render_png", "ripple_classes", "service_cycles", "single_cycle_factor",
-           "heat_transient", "slip_heat_load", "write_vtu"]
+           "heat_transient", "slip_heat_load", "slip_heat_validity", "write_vtu"]

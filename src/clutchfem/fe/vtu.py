@@ -7,6 +7,8 @@ pressure at the contact nodes.
 
 from __future__ import annotations
 
+import contextlib
+import os
 from pathlib import Path
 
 import meshio
@@ -76,20 +78,32 @@ def write_vtk(res, rpms, out: Path, render: bool = True, stem: str = "") -> list
 
 def render_png(vtu: Path, png: Path, title: str = "", scale: float = RENDER_SCALE) -> Path | None:
     """Off-screen pyvista render of von Mises on the shape deformed x ``scale``; None if no
-    off-screen OpenGL is available (OSMesa/EGL)."""
+    off-screen OpenGL is available (OSMesa/EGL).
+
+    On a machine without a display (no ``DISPLAY``) VTK first tries X, logs ``bad X server
+    connection`` on standard error and falls back to EGL/OSMesa; that warning says nothing to
+    the user (the picture is rendered), so VTK's log is silenced for this render only there
+    (issue 24)."""
     try:
         import pyvista as pv
 
-        pv.OFF_SCREEN = True
-        grid = pv.read(vtu)
-        warped = grid.warp_by_vector("displacement_m", factor=scale)
-        pl = pv.Plotter(off_screen=True, window_size=(900, 800))
-        pl.add_mesh(warped, scalars="von_mises_Pa", cmap="turbo", show_edges=False,
-                    scalar_bar_args={"title": "von Mises [Pa]"})
-        pl.add_text(f"{title} (deformation x{scale:g})", font_size=10)
-        pl.view_xy()
-        pl.screenshot(str(png))
-        pl.close()
-        return png
+        quiet = pv.vtk_verbosity("off") if not os.environ.get("DISPLAY") else contextlib.nullcontext()
+        with quiet:
+            return _render(pv, vtu, png, title, scale)
     except Exception:  # no off-screen GL on this machine: the .vtu is still written
         return None
+
+
+def _render(pv, vtu: Path, png: Path, title: str, scale: float) -> Path:
+    """The render of :func:`render_png`."""
+    pv.OFF_SCREEN = True
+    grid = pv.read(vtu)
+    warped = grid.warp_by_vector("displacement_m", factor=scale)
+    pl = pv.Plotter(off_screen=True, window_size=(900, 800))
+    pl.add_mesh(warped, scalars="von_mises_Pa", cmap="turbo", show_edges=False,
+                scalar_bar_args={"title": "von Mises [Pa]"})
+    pl.add_text(f"{title} (deformation x{scale:g})", font_size=10)
+    pl.view_xy()
+    pl.screenshot(str(png))
+    pl.close()
+    return png

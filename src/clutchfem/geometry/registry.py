@@ -5,11 +5,18 @@ A file ``geometries/<stem>.py`` defines ``CONCEPT``, an instance of a
 ``$CLUTCHFEM_GEOMETRIES`` (os.pathsep-separated folders), the repository's ``geometries/``
 (editable install) and the copy packaged in the wheel (``clutchfem/_geometries``).
 Dropping a new file into one of these folders adds a concept; nothing else to register.
+
+A file that fails to load (a syntax error, an import it lacks, no ``CONCEPT``) costs only
+itself: it is named in one warning, ``clutchfem geometry --list`` shows it with its error,
+and asking for it by name (its file stem) is refused with that error; every other concept,
+the built-in ones included, works as before (issue 24: one broken plug-in in
+``$CLUTCHFEM_GEOMETRIES`` broke every command).
 """
 
 from __future__ import annotations
 
 import importlib.util
+import logging
 import os
 import sys
 from functools import lru_cache
@@ -19,6 +26,9 @@ from ..core import ParameterError
 from .concept import Concept
 
 _PKG = Path(__file__).resolve().parent.parent
+log = logging.getLogger("clutchfem")
+#: concept files that failed to load: path -> the error (each warned about once)
+_BROKEN: dict[str, str] = {}
 
 
 def search_path() -> list[Path]:
@@ -64,9 +74,34 @@ def concepts() -> dict[str, Concept]:
         for f in sorted(d.glob("*.py")):
             if f.name.startswith("_"):
                 continue
-            c = load_concept_file(str(f))
+            try:
+                c = load_concept_file(str(f))
+            except (Exception, SystemExit) as exc:  # a plug-in's failure costs only itself
+                if str(f) not in _BROKEN:
+                    _BROKEN[str(f)] = f"{type(exc).__name__}: {exc}"
+                    log.warning(f"concept file {f} does not load and is left out ({_BROKEN[str(f)]})")
+                continue
             found.setdefault(c.name, c)
     return dict(sorted(found.items()))
+
+
+def broken_concepts() -> dict[str, str]:
+    """The concept files of the search path that fail to load: {path: error}.
+
+    Returns
+    -------
+    dict of str to str
+        Empty when every concept file loads.
+
+    Examples
+    --------
+    >>> from clutchfem.geometry import broken_concepts
+    >>> broken_concepts()
+    {}
+    """
+    concepts()
+    dirs = set(search_path())
+    return {p: e for p, e in _BROKEN.items() if Path(p).parent in dirs}
 
 
 def get_concept(name: str) -> Concept:
@@ -97,4 +132,8 @@ def get_concept(name: str) -> Concept:
     for cand in (key, f"concept{key}", key.replace("_", ".")):
         if cand in allc:
             return allc[cand]
+    for path, error in broken_concepts().items():
+        if Path(path).stem.lower() in (key, f"concept{key}"):
+            raise ParameterError("concept", name, f"a concept whose file loads: {path} fails to load ({error}); "
+                                 "the others: " + ", ".join(allc))
     raise ParameterError("concept", name, "one of " + ", ".join(allc))

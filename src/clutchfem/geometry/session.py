@@ -32,6 +32,10 @@ def gmsh_session(name: str = "clutchfem"):
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.option.setNumber("General.Verbosity", 1)
+            # OpenCASCADE keeps the STEP length unit of the last import in a process-global
+            # static: after a user STEP read in metres (mesh.user) every later STEP written in
+            # this process was scaled by 1000.  Each session starts from OCC's default.
+            gmsh.option.setString("Geometry.OCCTargetUnit", "MM")
             gmsh.model.add(name)
             yield
         finally:

@@ -73,7 +73,7 @@ class LoadCase:
         i0 = int(np.argmin(ratio))
         w0 = math.sqrt(ratio[i0])
         r = self.response
-        if r.linear:
+        if r.linear or w0 == 0.0:  # w0 = 0: touching at rest (contact nodes refuse it; kept safe here)
             return w0, i0
 
         def h(w):

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ..contact import DrumContact, DrumWall, RingDrum, contact_nodes
-from ..core import ParameterError
+from ..core import ParameterError, UnitError, as_bool, as_path, parse_quantity
 from ..fe import ExtrusionSettings, FEModel, FEModel3D, Solver
 from ..geometry import MeshSettings, get_concept
 from ..mesh import ClutchMesh, load_user_geometry, mesh_concept
@@ -203,6 +203,7 @@ class Design:
         """
         if operating is not None and not isinstance(operating, OperatingPoint):
             raise ParameterError("operating", type(operating).__name__, "an OperatingPoint (or None)")
+        path = as_path(path, "path", "the path of a gmsh .msh or STEP file")
         op = operating if operating is not None else OperatingPoint()
         given = {k: v for k, v in (("drum_radius", drum_radius), ("thickness", thickness)) if v is not None}
         op = op.replace(**given, **op_values) if (given or op_values) else op
@@ -240,7 +241,14 @@ class Design:
     def case(self, mu: float | None = None, softening=None) -> LoadCase:
         """The load case with friction ``mu`` (default: the operating point's) and spin
         softening ``softening`` (default: the operating point's); cached."""
-        mu = self.op.mu if mu is None else float(mu)
+        if mu is not None:
+            try:
+                mu = parse_quantity(mu, "-")
+            except UnitError:
+                raise ParameterError("mu", mu, "a friction coefficient in [0, 1] (a number)") from None
+            if not 0.0 <= mu <= 1.0:
+                raise ParameterError("mu", mu, "a friction coefficient in [0, 1]")
+        mu = self.op.mu if mu is None else mu
         soft = get_softening(self.op.softening if softening is None else softening)
         key = (mu, soft)
         if key not in self._cases:
@@ -250,7 +258,7 @@ class Design:
     def sweep(self, rpm=None, *, mu: float | None = None, softening=None, stresses: bool = True):
         """Sweep the speeds ``rpm`` (default: the operating point's, else 0:14000:250)."""
         speeds = self.op.speeds() if rpm is None else rpm
-        return sweep(self.case(mu, softening), speeds, stresses=stresses)
+        return sweep(self.case(mu, softening), speeds, stresses=as_bool(stresses, "stresses"))
 
     @property
     def scale(self) -> float:

@@ -3,8 +3,10 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 
 * :mod:`.clutch_mesh` -- :class:`ClutchMesh`, the meshed part and its named groups;
 * :mod:`.convert` -- meshio -> scikit-fem ``MeshTri2``, the element orientation check;
-* :mod:`.generate` -- a concept meshed by gmsh, the on-disk cache and its keys, the size estimate;
+* :mod:`.generate` -- a concept meshed by gmsh, the cache keys, the size estimate;
+* :mod:`.cache` -- the on-disk mesh cache: its folder, bound and eviction;
 * :mod:`.user` -- a user's ``.msh``, STEP or DXF file;
+* :mod:`.user_checks` -- what a user's part must be: axis, unit, one piece, triangles;
 * :mod:`.outline` -- a part's exact 2-D outline (lines, arcs, B-splines) and its OCC face;
 * :mod:`.cad` -- a STEP (in its declared unit; a prism along z) or DXF part as planar surfaces;
 * :mod:`.dxf` -- a DXF drawing's outline (what a cutter's file holds) as outline loops;
@@ -15,11 +17,12 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
 """
 
+from .cache import CacheEntry, cache_dir, cache_entries, cache_limit, clear_cache, evict
 from .cad import import_planar, step_unit
 from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
-from .generate import MAX_ELEMENTS, cache_dir, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
+from .generate import MAX_ELEMENTS, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
 from .morph import (
                        CACHE_SIZE,
                        MorphReference,
@@ -45,11 +48,14 @@ from .topology import (
                        p2_nodes,
 )
 from .user import load_user_geometry
+from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_length_unit
 
 __all__ = ["CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
-           "scaled_jacobian",
-           "MAX_ELEMENTS", "ClutchMesh", "Loop", "Segment", "fit_spline", "import_planar", "loops_to_occ", "orient_loops", "step_unit", "cache_dir", "cache_key", "check_orientation", "cyclic_pairing",
+           "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
+           "bore_centre", "cache_entries", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
+           "loops_to_occ", "orient_loops", "step_length_unit", "step_unit", "cache_dir", "cache_key",
+           "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
            "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
            "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem",

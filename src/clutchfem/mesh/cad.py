@@ -67,18 +67,23 @@ def step_unit(path: Path) -> tuple[str, float]:
         text = path.read_text(encoding="latin-1")
     except OSError as exc:
         raise MeshError(f"{path}: cannot read the file ({exc.strerror})") from None
-    found = set()
+    converted, si = set(), set()
     for ent in text.split(";"):
         if "LENGTH_UNIT" not in ent:
             continue
         m = re.search(r"SI_UNIT\(\s*(\$|\.\w+\.)\s*,\s*\.METRE\.\s*\)", ent)
         c = re.search(r"CONVERSION_BASED_UNIT\(\s*'([^']*)'", ent)
         if c and c.group(1).upper() in CONVERTED:
-            found.add(CONVERTED[c.group(1).upper()])
+            converted.add(CONVERTED[c.group(1).upper()])
         elif m and m.group(1).upper() in SI_PREFIX:
-            found.add(SI_PREFIX[m.group(1).upper()])
+            si.add(SI_PREFIX[m.group(1).upper()])
         elif m or c:
             raise MeshError(f"{path}: unsupported length unit in {ent.strip()[:80]!r}")
+    # a conversion-based unit (INCH) is defined through an SI length unit (its
+    # LENGTH_MEASURE_WITH_UNIT: 25.4 MILLI METRE), which the file declares too: that SI unit
+    # is the definition, not the part's unit (issue 24: every inch file from CAD was refused
+    # as "several length units (INCH, MM)")
+    found = converted or si
     if len(found) != 1:
         raise MeshError(f"{path}: the STEP file declares " + ("no length unit" if not found else
                         "several length units (" + ", ".join(sorted(n for n, _ in found)) + ")")

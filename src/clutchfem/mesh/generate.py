@@ -8,6 +8,8 @@
 * Before meshing, the element count is estimated from the areas and local sizes
   (:func:`estimate_elements`); a mesh above :data:`MAX_ELEMENTS` is refused with a size
   that fits.
+* The cache (:mod:`.cache`) lives in the platform's cache folder or ``$CLUTCHFEM_CACHE``
+  and is bounded: a hit marks its entry used, a new entry evicts the least recently used.
 * The cache file is saved with every element's entity tag and no physical groups (meshio's
   msh4 reader wants all or none); the side-car maps entity tags to group names.  A second
   file, :func:`groups_msh_path`, keeps the named physical groups for the user.
@@ -33,8 +35,17 @@ import numpy as np
 
 from .. import __version__
 from ..core import GeometryError, MeshError
-from ..geometry import (BuiltModel, Concept, ConceptParams, MeshSettings, build_model, gmsh_session, occ_tolerances,
-                        source_files)
+from ..geometry import (
+    BuiltModel,
+    Concept,
+    ConceptParams,
+    MeshSettings,
+    build_model,
+    gmsh_session,
+    occ_tolerances,
+    source_files,
+)
+from .cache import cache_dir, evict, touch
 from .clutch_mesh import ClutchMesh
 from .convert import meshio_to_skfem, read_msh
 
@@ -42,14 +53,6 @@ from .convert import meshio_to_skfem, read_msh
 #: thousand; 250 000 P2 triangles are ~1 M unknowns, minutes and GBs for one design)
 MAX_ELEMENTS = 250_000
 log = logging.getLogger("clutchfem")
-
-
-def cache_dir() -> Path:
-    """The mesh cache folder: ``$CLUTCHFEM_CACHE/meshes`` (default ``~/.cache/clutchfem/meshes``),
-    created on first use."""
-    d = Path(os.environ.get("CLUTCHFEM_CACHE", Path.home() / ".cache" / "clutchfem")) / "meshes"
-    d.mkdir(parents=True, exist_ok=True)
-    return d
 
 
 def source_hash(concept: Concept) -> str:
@@ -93,6 +96,7 @@ def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = N
         try:
             meta = json.loads(side.read_text())
             cm = _load_generated(msh, meta, concept.name)
+            touch(side)
         except Exception as exc:  # noqa: BLE001 - a broken cache entry is rebuilt, not fatal
             warnings.warn(f"mesh cache file {msh} is unreadable ({type(exc).__name__}: {exc}); "
                           "deleted and rebuilt", stacklevel=2)
@@ -111,6 +115,10 @@ def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = N
         tmp.write_text(json.dumps(meta))
         tmp.replace(side)
         cm = _load_generated(msh, meta, concept.name)
+        n, freed = evict(d=d)
+        if n:
+            log.info("mesh cache %s: %d least recently used meshes deleted (%.0f MB) to stay within its bound "
+                     "(CLUTCHFEM_CACHE_SIZE)", d, n, freed / 1e6)
     cm.params = p.model_dump()
     cm.mesh_settings = ms.model_dump()
     cm.drum_radius = p.drum_radius

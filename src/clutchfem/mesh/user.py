@@ -1,9 +1,10 @@
 """User geometry import: a gmsh ``.msh`` (any order) or a STEP file becomes a
 :class:`~clutchfem.mesh.ClutchMesh`.
 
-Conventions the file must follow: metres, the part in the x-y plane, the rotation axis
-through the origin, physical curve groups ``bore`` (clamped) and optionally ``contact``.
-A STEP part is meshed here with second-order triangles; its bore is the boundary loop
+Conventions the file must follow: metres (a STEP file's own unit is converted), the part in
+the x-y plane, the rotation axis through the origin at the centre of the bore, physical
+curve groups ``bore`` (clamped) and optionally ``contact``; one piece of triangles.  What
+is checked, and why: :mod:`.user_checks`.  A STEP part is meshed here with second-order triangles; its bore is the boundary loop
 around the origin and, with a drum radius, its contact group the outward-facing boundary
 curves within 25 % of the largest radius (a heuristic: name the groups in a ``.msh`` to be
 exact).
@@ -24,6 +25,7 @@ from .cad import import_planar
 from .clutch_mesh import ClutchMesh
 from .convert import meshio_to_skfem, read_msh
 from .generate import MAX_ELEMENTS
+from .user_checks import check_axis, check_cell_types, check_connected, check_size, step_length_unit
 
 
 def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
@@ -42,15 +44,22 @@ def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
         return _load_step(path, mesh_size, thickness, drum_radius)
     if suffix != ".msh":
         raise MeshError(f"{path}: unsupported file type '{suffix}' (use a gmsh .msh, a STEP or a DXF file)")
+    return _load_msh(path, str(path), thickness, drum_radius)
+
+
+def _load_msh(path: Path, source: str, thickness, drum_radius, step: bool = False, unit=None) -> ClutchMesh:
+    """A ``.msh`` file (``source``: the name the user gave; ``step``: the meshed copy of a STEP
+    or DXF file whose length ``unit`` is named in refusals)."""
     try:
         m = read_msh(path)
     except (Exception, SystemExit) as exc:  # meshio calls sys.exit() on files it cannot identify
-        raise MeshError(f"{path}: meshio cannot read it as a gmsh mesh ({exc or type(exc).__name__})") from None
+        raise MeshError(f"{source}: meshio cannot read it as a gmsh mesh ({exc or type(exc).__name__})") from None
+    check_cell_types(m.cells_dict, source)
     names: dict[str, tuple[int, int]] = {k: (int(v[0]), int(v[1])) for k, v in (m.field_data or {}).items()}
     curves = {k: {tag} for k, (tag, dim) in names.items() if dim == 1}
     surfaces = {k: {tag} for k, (tag, dim) in names.items() if dim == 2}
     if "bore" not in curves:
-        raise MeshError(f"{path}: no physical curve group named 'bore' (the clamped crankshaft bore); "
+        raise MeshError(f"{source}: no physical curve group named 'bore' (the clamped crankshaft bore); "
                         f"groups found: {sorted(names) or 'none'}")
     key = "gmsh:physical"
     if m.cell_sets and all(k in m.cell_sets for k in names):
@@ -71,20 +80,26 @@ def load_user_geometry(path: str | Path, *, mesh_size: float | None = None,
         curves = {k: members(k) for k in curves}
         surfaces = {k: members(k) for k in surfaces}
     elif key not in m.cell_data:
-        raise MeshError(f"{path}: the file carries no physical tags")
-    mesh = meshio_to_skfem(m, curves, surfaces, key, str(path))
+        raise MeshError(f"{source}: the file carries no physical tags")
+    mesh = meshio_to_skfem(m, curves, surfaces, key, source)
     bnd = mesh.boundaries or {}
     if len(bnd.get("bore", [])) == 0:
-        raise MeshError(f"{path}: the 'bore' group has no edges on the triangle mesh")
+        raise MeshError(f"{source}: the 'bore' group has no edges on the triangle mesh")
     if "contact" in curves and len(bnd.get("contact", [])) == 0:
-        raise MeshError(f"{path}: the 'contact' group has no edges on the triangle mesh")
+        raise MeshError(f"{source}: the 'contact' group has no edges on the triangle mesh")
     if "contact" in bnd and "contact_0" not in bnd:
         mesh = mesh.with_boundaries({"contact_0": mesh.boundaries["contact"]})
-    return ClutchMesh(mesh=mesh, source=str(path), thickness=thickness, drum_radius=drum_radius)
+    check_size(mesh.p, source, unit, step=step)
+    check_connected(mesh, source)
+    check_axis(mesh, source)
+    return ClutchMesh(mesh=mesh, source=source, thickness=thickness, drum_radius=drum_radius)
 
 
 def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
+    unit = step_length_unit(path)
     with gmsh_session("step"):
+        # the file's own length unit, converted to metres (cad.import_planar: OCC keeps the
+        # declared unit and the model is scaled, OCC's own conversion skips B-spline files)
         thickness = import_planar(path, thickness)
         surfaces = [t for d, t in gmsh.model.getEntities(2)]
         if not surfaces or gmsh.model.getEntities(3):
@@ -98,6 +113,7 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
             lo, hi = gmsh.model.getParametrizationBounds(1, c)
             samples.append(np.asarray(gmsh.model.getValue(1, c, np.linspace(lo[0], hi[0], 9))).reshape(-1, 3))
         xyz = np.vstack(samples)
+        check_size(xyz.T, str(path), unit, step=True)
         size = float(np.ptp(xyz[:, :2], axis=0).max())
         if np.ptp(xyz[:, 2]) > 1e-9 * size:
             raise MeshError(f"{path}: the part is not planar (z varies by {np.ptp(xyz[:, 2]):.3g} m); "
@@ -118,6 +134,9 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
                 bore.append(c)
             elif drum_radius is not None and a > R_out - 0.25 * (R_out - r_in) and _faces_out(c, size, polys):
                 contact.append(c)
+        if not bore:
+            raise MeshError(f"{path}: no boundary loop around the origin to take as the bore (the clamped "
+                            "crankshaft bore): is the part centred on the rotation axis (the origin)?")
         gmsh.model.addPhysicalGroup(2, surfaces, name="solid")
         gmsh.model.addPhysicalGroup(1, bore, name="bore")
         if contact:
@@ -139,7 +158,7 @@ def _load_step(path: Path, mesh_size, thickness, drum_radius) -> ClutchMesh:
         os.close(fd)
         gmsh.write(tmp)
     try:
-        return load_user_geometry(tmp, thickness=thickness, drum_radius=drum_radius)
+        return _load_msh(Path(tmp), str(path), thickness, drum_radius, step=True, unit=unit)
     finally:
         os.unlink(tmp)
 

@@ -47,6 +47,8 @@ def summary_rows(an) -> list[tuple[str, str]]:
     req = an.requirements
     rows = [
         ("engagement speed (static, FE)", _fmt(an.engagement_rpm, ".0f", "rpm") + _err(an, "engagement_rpm")
+         + (f" (above the engine curve's top speed {an.max_engine_rpm:.0f} rpm: never engages on this engine)"
+            if an.slip_status == "never engages" else "")
          if an.engagement_rpm is not None else "never engages"),
         ("engagement speed with 2-stroke ripple (3 sigma cycle / typical cycle)",
          f"{_fmt(an.engagement_rpm_with_ripple, '.0f', 'rpm')} / "
@@ -85,15 +87,18 @@ def summary_rows(an) -> list[tuple[str, str]]:
         rows.append(("shoe character (FE, friction on vs off)", an.shoe_character))
     s = an.mu_sensitivity
     t = s.get("torque_Nm", {})
-    if "x0.7" in t and "x1.3" in t:
+    gone = s.get("not_available") or {}
+    if ("x0.7" in t or "x0.7" in gone) and ("x1.3" in t or "x1.3" in gone):
         pct = s.get("torque_change_pct", {})
         rows.append((f"torque at {s['rpm']:.0f} rpm, mu x0.7 / x1.0 / x1.3 (mu = {an.mu:.3g})",
-                     f"{t['x0.7']:.2f} / {t['x1.0']:.2f} / {t['x1.3']:.2f} N m"
+                     " / ".join(f"{t[k]:.2f}" if k in t else "n/a" for k in ("x0.7", "x1.0", "x1.3")) + " N m"
                      + (f" ({pct['x0.7']:+.0f} % / {pct['x1.3']:+.0f} %)" if pct else "")))
         sl = s.get("slip_rpm", {})
         rows.append(("slip speed, mu x0.7 / x1.0 / x1.3",
-                     " / ".join(_fmt(sl.get(k), ".0f", "rpm") if sl.get(k) is not None else "none"
-                                for k in ("x0.7", "x1.0", "x1.3"))))
+                     " / ".join("n/a" if k in gone else _fmt(sl.get(k), ".0f", "rpm") if sl.get(k) is not None
+                                else "none" for k in ("x0.7", "x1.0", "x1.3"))))
+        for k, why in gone.items():
+            rows.append((f"mu sensitivity {k}", f"not available: {why}"))
     m = an.torque_models_at_max_engine_torque_Nm
     if getattr(an, "analytical_available", True):
         rows.append((f"torque at {m['rpm']:.0f} rpm: FE / analytical FE arc / analytical nominal arc",

@@ -22,10 +22,9 @@ import math
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-import pandas as pd
-
-from ..core import clean
+from ..core import InputError, clean
 from ..core import write as write_json
+from .readback import read_csv, read_json
 
 CSS = """
 body{font-family:-apple-system,'Segoe UI',Helvetica,Arial,sans-serif;font-size:13px;margin:14px 22px;color:#222;
@@ -247,12 +246,17 @@ def folder_page(folder: Path) -> Page:
     folder = Path(folder)
     spec = folder / "page.json"
     if spec.exists():
-        return Page.from_json(json.loads(spec.read_text()))
+        doc = read_json(spec, "run page")
+        try:
+            return Page.from_json(doc)
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise InputError(f"run page {spec}: JSON, but not a page clutchfem wrote ({type(exc).__name__}: {exc}); "
+                             "remove it to show the folder's tables and charts instead") from None
     sections = []
     figs = [Figure(p.stem.replace("_", " "), p.name) for p in sorted(folder.glob("*.png"))]
     tabs = []
     for p in sorted(folder.glob("*.csv")):
-        df = pd.read_csv(p)
+        df = read_csv(p)
         tabs.append(Table(f"{p.name} ({len(df)} rows; first 40 shown)", [str(c) for c in df.columns],
                           df.head(40).values.tolist()))
     if tabs:
@@ -261,6 +265,6 @@ def folder_page(folder: Path) -> Page:
         sections.append(("Charts", figs[1:]))
     inputs = {}
     if (folder / "inputs.json").exists():
-        inputs = json.loads((folder / "inputs.json").read_text())
+        inputs = read_json(folder / "inputs.json", "design inputs")
     return Page(title=f"Run {folder.name}", subtitle=f"every table and chart in {folder}", hero=figs[:1],
                 sections=sections, inputs=inputs, kind="run")

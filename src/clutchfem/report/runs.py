@@ -14,7 +14,7 @@ import pandas as pd
 
 from ..analysis import Requirements, analyze
 from ..clutch import EngineCurve
-from ..core import InputError, clean, write
+from ..core import InputError, as_path, clean, write
 from ..durability import render_png, write_vtu
 from ..loadcase import Design, design_inputs
 from .html import write_page
@@ -66,9 +66,9 @@ def design_report(design: Design, out, *, engine: EngineCurve | None = None,
     if not isinstance(design, Design):
         raise InputError(f"report: design must be a clutchfem Design (Design.from_concept or Design.from_mesh), "
                          f"not {type(design).__name__}")
-    out = Path(out)
+    out = as_path(out, "out", "the folder to write")
     out.mkdir(parents=True, exist_ok=True)
-    engine = engine if engine is not None else EngineCurve.default()
+    engine = EngineCurve.of(engine)
     an = analysis if analysis is not None else analyze(design, engine=engine, requirements=requirements,
                                                        errors=errors)
     concept = design.concept if design.params is not None else None
@@ -164,6 +164,10 @@ def slip_heat_files(run, out) -> list[Path]:
     if result is not None:
         title = (f"{doc['design']}: {result.slip_power_W:.0f} W slip at {result.slip_rpm:.0f} rpm, "
                  f"{result.partition.fraction_part:.0%} into the part; {result.seconds:g} s x {doc['cycles']}")
+        if doc.get("validity"):  # where the model stops holding (durability.heat.validity)
+            title += "\nMODEL LIMITS: " + ", ".join(f"{f['flag']} at {f['time_s']:.1f} s" for f in doc["validity"])
+            if doc.get("stopped_at_s") is not None:
+                title += f"; answers cut at {doc['stopped_at_s']:.1f} s (curves beyond: not valid)"
         jobs.append((".vtu", lambda p: write_vtu(design.cm, result, p)))
         jobs.append((".png", lambda p: render_png(design.cm, result, p, title=title)))
     jobs.append((".json", lambda p: write(p, doc, indent=2)))

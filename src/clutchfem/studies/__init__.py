@@ -6,6 +6,7 @@ resumable SQLite store):
   a validated :class:`StudySpec`), :mod:`.sampling` (Latin hypercube, Sobol),
   :mod:`.point` (one point -> one row: the only module that calls the analysis),
   :mod:`.hashing`, :mod:`.store`, :mod:`.runner` (scheduling, resume, progress, summary),
+  :mod:`.cluster` (the Dask side: addresses, worker counts, faults),
   :mod:`.charts`;
 * design guidelines: :mod:`.guidelines` (elasticities with a step-stability check,
   one-at-a-time sweeps), :mod:`.guideline_study` (running one), :mod:`.guideline_charts`;
@@ -13,32 +14,86 @@ resumable SQLite store):
   a derivative-free search), :mod:`.tolerancing` (Monte Carlo of manufacturing
   tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
   that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
-  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts).
+  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts);
+* a finished study recognised without loading the FE stack: :mod:`.rerun`.
+
+The names are imported on first use (PEP 562, as :mod:`clutchfem` does): a command that
+only needs the store or a finished study's summary does not load the analysis stack
+(~3 s), so a rerun of a finished study costs a fraction of its first run.
 """
 
-from . import target_charts
-from .batch import EvalSettings, evaluate_many
-from .compensation import Compensation, compensate
-from .grid import run_grid
-from .guideline_charts import summary_table
-from .guideline_study import run_guidelines
-from .guidelines import GuidelineResult, GuidelineSettings
-from .hashing import design_hash
-from .optimization import DIMENSIONLESS, OptimizationResult, Targets, default_free, fatigue_note, optimize
-from .point import COLUMNS, Settings, evaluate, model_version
-from .resolve import load_spec, parse_spec
-from .robust import RobustResult, robust_optimize
-from .runner import RunResult, StudyInterrupted, default_out, run_points, run_study
-from .schema import SpecError
-from .sensitivity import Sensitivities, sensitivities
-from .spec import EXAMPLE_SPEC, StudySpec
-from .store import STORE_NAME, ResultStore
-from .tolerancing import ToleranceResult, parse_tolerance, tolerance
-from .values import param_bounds, resolution
+from __future__ import annotations
 
-__all__ = ["param_bounds", "resolution", "COLUMNS", "DIMENSIONLESS", "EXAMPLE_SPEC", "STORE_NAME", "Compensation", "EvalSettings",
-           "GuidelineResult", "GuidelineSettings", "OptimizationResult", "ResultStore", "RobustResult", "RunResult", "Settings",
-           "Sensitivities", "SpecError", "StudyInterrupted", "StudySpec", "Targets", "ToleranceResult", "compensate",
-           "default_free", "default_out", "design_hash", "evaluate", "evaluate_many", "fatigue_note", "load_spec",
-           "model_version", "optimize", "parse_spec", "parse_tolerance", "run_grid", "run_guidelines",
-           "robust_optimize", "run_points", "run_study", "sensitivities", "summary_table", "target_charts", "tolerance"]
+import importlib
+from typing import Any
+
+#: public name -> the module of this package it lives in (None: the module itself)
+_NAMES: dict[str, str | None] = {
+    "check_address": "cluster",
+    "ClusterError": "cluster",
+    "COLUMNS": "point",
+    "compensate": "compensation",
+    "Compensation": "compensation",
+    "default_free": "optimization",
+    "default_out": "rerun",
+    "finished_summary": "rerun",
+    "fingerprint": "rerun",
+    "geometry_dirs": "rerun",
+    "design_hash": "hashing",
+    "DIMENSIONLESS": "optimization",
+    "EvalSettings": "batch",
+    "evaluate": "point",
+    "evaluate_many": "batch",
+    "EXAMPLE_SPEC": "spec",
+    "fatigue_note": "optimization",
+    "GuidelineResult": "guidelines",
+    "GuidelineSettings": "guidelines",
+    "load_spec": "resolve",
+    "model_version": "point",
+    "OptimizationResult": "optimization",
+    "optimize": "optimization",
+    "param_bounds": "values",
+    "parse_spec": "resolve",
+    "parse_tolerance": "tolerancing",
+    "resolution": "values",
+    "ResultStore": "store",
+    "RobustResult": "robust",
+    "robust_optimize": "robust",
+    "run_grid": "grid",
+    "run_guidelines": "guideline_study",
+    "run_points": "runner",
+    "run_study": "runner",
+    "RunResult": "runner",
+    "Sensitivities": "sensitivity",
+    "sensitivities": "sensitivity",
+    "Settings": "point",
+    "SpecError": "schema",
+    "STORE_NAME": "store",
+    "StoreLocked": "store",
+    "StudyInterrupted": "runner",
+    "StudySpec": "spec",
+    "summary_table": "guideline_charts",
+    "target_charts": None,
+    "Targets": "targets",
+    "tolerance": "tolerancing",
+    "ToleranceResult": "tolerancing",
+    "why_no_answer": "guideline_study",
+    "workers_machine_holds": "cluster",
+}
+
+__all__ = sorted(_NAMES)
+
+
+def __getattr__(name: str) -> Any:
+    """Import a name on first use (PEP 562) and keep it."""
+    if name not in _NAMES:
+        raise AttributeError(f"module 'clutchfem.studies' has no attribute {name!r}")
+    module = _NAMES[name]
+    mod = importlib.import_module(f"{__name__}.{module or name}")
+    value = mod if module is None else getattr(mod, name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_NAMES))

@@ -42,9 +42,10 @@ from ..clutch import EngineCurve
 from ..core import InputError, ParameterError
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import Design, OperatingPoint
+from .cluster import check_address, local_cluster, workers_machine_holds
 from .hashing import design_hash
 from .point import COLUMNS, Settings, model_version
-from .runner import default_workers, run_points
+from .runner import run_points
 from .store import ResultStore
 from .values import changed_texts
 
@@ -56,6 +57,7 @@ ANSWERS = {
 }
 
 _ACTIVE: dict = {"scheduler": None, "workers": None}
+log = logging.getLogger("clutchfem")
 
 
 @dataclass(frozen=True)
@@ -158,22 +160,18 @@ def cluster(workers: int | None = None, scheduler: str | None = None):
     block; ``scheduler``: use an existing cluster instead; ``workers=0``: this process."""
     if scheduler is not None and workers is not None:
         raise ParameterError("workers", workers, "no --workers with --scheduler (the cluster has its own)")
+    if scheduler is not None:
+        scheduler = check_address(scheduler)  # before any work: a typo is said at once
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise ParameterError("workers", workers, "an integer >= 0 (0: in this process, no Dask)")
     prev = dict(_ACTIVE)
     local = None
     try:
         if scheduler is None and workers != 0:
-            import dask
-            from distributed import LocalCluster
-
-            n = workers or default_workers()
-            # the study engine's settings for its private cluster: no task retry after a
-            # worker died on a design, and glibc's dynamic mmap threshold left on (1.8x)
-            with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-                local = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                     dashboard_address=":0", scheduler_kwargs={"allowed_failures": 0},
-                                     silence_logs=logging.CRITICAL)
+            n, why = workers_machine_holds(workers)
+            if why:
+                log.warning(why)
+            local = local_cluster(n)
             _ACTIVE.update(scheduler=local.scheduler_address, workers=None)
         else:
             _ACTIVE.update(scheduler=scheduler, workers=workers)

@@ -64,6 +64,9 @@ def run_grid(concept: str, vary: dict, *, fixed: dict | None = None, mesh_size: 
     settings = Settings(concept=c.name, fixed=tuple(sorted((fixed or {}).items())), op=op or OperatingPoint(),
                         mesh=MeshSettings() if mesh_size is None else MeshSettings(size=mesh_size), engine=engine,
                         a=a, b=b, min_safety_factor=min_safety_factor)
+    if not isinstance(vary, dict) or not vary or not all(isinstance(v, (list, tuple)) and v for v in vary.values()):
+        raise InputError(f"vary: a dict of parameter name -> list of values (e.g. {{'flexure_thickness': [2.0e-3, "
+                         f"2.4e-3]}}), not {type(vary).__name__} {vary!r:.80}")
     names = list(vary)
     points = [dict(zip(names, combo)) for combo in itertools.product(*(list(vary[n]) for n in names))]
     res = run_points(points, settings, store, workers=workers, scheduler=scheduler, progress=progress,

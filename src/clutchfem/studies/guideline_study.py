@@ -114,6 +114,9 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
                 return None if r is None or r["status"] != "ok" else r[col]
 
             e = elasticity(x0, gs.step, value_at)
+            if e["verdict"] == "no answer":
+                e["why"] = why_no_answer(col, [row_at(n, x) for x in [x0, *per[n]["fd"]]])
+                notes.append(f"{n}: elasticity of {col}: no answer: {e['why']}")
             a0 = e["value_at_x0"]
             per_unit, du = _per_unit(unit)
             slope = e["E"] * a0 / x0 * du if math.isfinite(e["E"]) and a0 else math.nan
@@ -152,6 +155,35 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     write(jpath, res.as_json(), indent=1)
     files.append(jpath)
     return res
+
+
+def why_no_answer(col: str, rows: list) -> str:
+    """Why an elasticity has no answer, from the rows of the design point (first) and its
+    steps: the answer does not exist there (no slip speed: the clutch never holds), is zero
+    (a logarithmic derivative needs a positive value), or the steps were refused/failed."""
+    base = rows[0]
+    v = base.get(col)
+    if v is None:
+        if col == "slip_rpm":
+            return (f"no slip speed at the design point (the clutch {base.get('slip_status') or 'has none'}): "
+                    "nothing to differentiate")
+        return f"the design point has no {col} (the analysis gives none there)"
+    if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+        return (f"{col} = {v:g} at the design point: d ln(answer) needs a positive value (a zero contact arc or "
+                "torque: the shoes are not on the drum at the rpm of maximum engine torque)")
+    steps = [r for r in rows[1:] if r is not None]
+    bad = [r for r in steps if r["status"] != "ok"]
+    if len(bad) == len(rows) - 1:
+        return f"every step was {bad[0]['status'] if bad else 'not computed'}" + (
+            f" ({bad[0]['message']})" if bad and bad[0].get("message") else "")
+    missing = [r for r in steps if r["status"] == "ok" and not (isinstance(r.get(col), (int, float))
+                                                                  and math.isfinite(r[col]) and r[col] > 0)]
+    if missing:
+        st = missing[0].get("slip_status")
+        return (f"{col} has no positive value at {len(missing)} of the steps"
+                + (f" (slip status there: {st})" if col == "slip_rpm" and st else "")
+                + ": a difference across it is not a derivative")
+    return "too few answered steps on either side of the design point"
 
 
 def _per_unit(unit: str) -> tuple[str, float]:

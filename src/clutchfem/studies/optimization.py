@@ -14,7 +14,8 @@ Targets (defaults: the requirement checks of :func:`clutchfem.analysis.analyze`)
   design's value is always reported and a value below 1 is named).
 
 Each constraint is scored as a relative violation v_j = max(0, (limit - value)/limit) (sign
-by sense); a design's infeasibility is h = sum_j v_j.
+by sense); a design's infeasibility is h = sum_j v_j (:mod:`.targets`, which also refuses
+contradictory targets at once).
 
 Why this optimiser.  The answers come from a mesh rebuilt for every design, so they carry
 mesh noise (measured on concept 4: ~0.5 % in peak stress, ~0.05 % in engagement between
@@ -56,113 +57,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import qmc
 
-from ..analysis import DEFAULT_IDLE_RPM
 from ..core import InputError, ParameterError, clean
 from ..geometry import ConceptParams
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
+from .targets import Targets
 
-#: a constraint "binds" when its slack is below this share of its limit
-BIND_SHARE = 0.02
 #: an objective improvement smaller than this share is noise, not success
 NOISE_OBJ = 1e-3
 #: an infeasibility improvement smaller than this is noise
 NOISE_H = 1e-4
-OBJECTIVES = ("mass", "torque-margin")
-
-
-@dataclass(frozen=True)
-class Targets:
-    """The targets of an optimisation (limits in rpm, factors dimensionless); None: no such
-    target.
-
-    Parameters
-    ----------
-    engage_rpm_lo, engage_rpm_hi : float or None
-        Engagement speed with the 2-stroke ripple within [lo, hi] [rpm].
-    slip_rpm_max : float or None
-        Slip speed (drum held, full throttle) at most this [rpm].
-    safety_factor_min : float or None
-        Safety factor against yield at the engine's maximum speed at least this.
-    objective : {"mass", "torque-margin"}
-    fatigue_min : float or None
-        Fatigue safety factor at least this.
-
-    Examples
-    --------
-    >>> import clutchfem as cf
-    >>> t = cf.Targets(3510, None, 8000, 1.5)
-    >>> [c[1] for c in t.constraints()]
-    ['engagement_rpm_with_ripple', 'slip_rpm', 'safety_factor']
-    """
-
-    engage_rpm_lo: float | None
-    engage_rpm_hi: float | None
-    slip_rpm_max: float | None
-    safety_factor_min: float | None
-    objective: str = "mass"
-    #: fatigue safety factor (analyze's step 10: Goodman, Miner, ASSUMED duty) >= this; None: no target
-    fatigue_min: float | None = None
-
-    def __post_init__(self):
-        if self.objective not in OBJECTIVES:
-            raise ParameterError("objective", self.objective, "one of " + ", ".join(OBJECTIVES), "optimize")
-        for name in ("engage_rpm_lo", "engage_rpm_hi", "slip_rpm_max", "safety_factor_min", "fatigue_min"):
-            v = getattr(self, name)
-            if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)
-                                  or v <= 0):
-                raise ParameterError(name, v, "a finite number > 0 (or no target)", "optimize")
-        if self.engage_rpm_lo and self.engage_rpm_hi and self.engage_rpm_lo >= self.engage_rpm_hi:
-            raise ParameterError("engage_rpm", f"{self.engage_rpm_lo:g}:{self.engage_rpm_hi:g}",
-                                 "LO:HI with LO < HI [rpm]", "optimize")
-
-    @classmethod
-    def defaults(cls, settings, safety_factor_min: float = 1.5, objective: str = "mass") -> "Targets":
-        """The requirement checks of ``settings`` (:class:`~clutchfem.studies.EvalSettings`):
-        engagement with ripple >= a x idle rpm, slip <= b x rpm of max engine torque, and
-        the safety factor against yield >= ``safety_factor_min``."""
-        eng = settings.engine()
-        idle = settings.idle_rpm or eng.idle_rpm or DEFAULT_IDLE_RPM
-        return cls(settings.a * idle, None, settings.b * float(eng.rpm_max_torque), safety_factor_min, objective)
-
-    def constraints(self) -> list[tuple[str, str, float, str]]:
-        """(name, answer key, limit, sense '>=' or '<=')."""
-        out = []
-        if self.engage_rpm_lo is not None:
-            out.append(("engagement with ripple >= LO", "engagement_rpm_with_ripple", self.engage_rpm_lo, ">="))
-        if self.engage_rpm_hi is not None:
-            out.append(("engagement with ripple <= HI", "engagement_rpm_with_ripple", self.engage_rpm_hi, "<="))
-        if self.slip_rpm_max is not None:
-            out.append(("slip speed <= max", "slip_rpm", self.slip_rpm_max, "<="))
-        if self.safety_factor_min is not None:
-            out.append(("safety factor at engine max >= min", "safety_factor", self.safety_factor_min, ">="))
-        if self.fatigue_min is not None:
-            out.append(("fatigue safety factor >= min", "fatigue_safety_factor", self.fatigue_min, ">="))
-        return out
-
-    def assess(self, row: dict) -> dict:
-        """Constraint values, slacks, violations, infeasibility h and objective of a row
-        (None for rows that are not 'ok')."""
-        if row.get("status") != "ok":
-            return {"h": math.inf, "objective": math.inf, "constraints": []}
-        cons, h = [], 0.0
-        for name, key, limit, sense in self.constraints():
-            v = row.get(key)
-            if v is None or not math.isfinite(v):
-                # never engages / never holds / no slip speed / no fatigue answer: the target is missed outright
-                miss = (key in ("slip_rpm", "fatigue_safety_factor")
-                        or (key == "engagement_rpm_with_ripple" and sense == "<="))
-                viol = 1.0 if miss else 0.0
-                slack = -math.inf if miss else math.inf
-            else:
-                slack = (v - limit) if sense == ">=" else (limit - v)
-                viol = max(0.0, -slack / limit)
-            cons.append({"name": name, "key": key, "limit": limit, "sense": sense, "value": v, "slack": slack,
-                         "violation": viol, "violated": bool(viol > 0),
-                         "binds": bool(math.isfinite(slack) and abs(slack) <= BIND_SHARE * limit)})
-            h += viol
-        obj = row["mass_kg"] if self.objective == "mass" else -row["torque_margin_Nm"]
-        return {"h": h, "objective": float(obj), "constraints": cons}
 
 
 def better(a: dict, b: dict | None) -> bool:
@@ -210,6 +114,10 @@ class Space:
 def make_space(P, free: list[str], ranges: dict | None = None, start=None) -> Space:
     """The search space of the free parameters (floats with a declared range)."""
     lo, hi = [], []
+    for n in sorted(set(ranges or {}) - set(free)):
+        raise ParameterError(n, ":".join(V.to_text(P, n, x) for x in ranges[n]), f"a range of a free parameter: {n} "
+                             f"is not free in this search (free: "
+                             f"{', '.join(free)}); add it to --free, or drop its --range", "--range")
     for n in free:
         if n not in P.model_fields:
             raise ParameterError(n, None, "a parameter of the concept; known: " + ", ".join(P.model_fields), "--free")
@@ -219,7 +127,14 @@ def make_space(P, free: list[str], ranges: dict | None = None, start=None) -> Sp
                                           "--set)", "--free")
         a, b = V.param_bounds(P, n)
         if ranges and n in ranges:
+            lo_d, hi_d = a, b
             a, b = ranges[n]
+            text = f"{V.to_text(P, n, a)}:{V.to_text(P, n, b)}"
+            if not a < b:
+                raise ParameterError(n, text, "LO:HI with LO < HI", "--range")
+            if (lo_d is not None and a < lo_d) or (hi_d is not None and b > hi_d):
+                raise ParameterError(n, text, f"a range within the declared range [{V.to_text(P, n, lo_d)}, "
+                                     f"{V.to_text(P, n, hi_d)}]", "--range")
         if a is None or b is None or not a < b:
             raise ParameterError(n, None, "a parameter with a finite range to search", "--free")
         if start is not None and not (a <= getattr(start, n) <= b):
@@ -340,6 +255,15 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
         design, engine=engine, requirements=requirements)
     if targets is None:
         targets = Targets.defaults(settings)
+    lo_e, hi_e = settings.engine().rpm_range
+    if targets.engage_rpm_lo is not None and targets.slip_rpm_max is not None and targets.engage_rpm_lo >= hi_e:
+        raise ParameterError("engage_rpm_lo", f"{targets.engage_rpm_lo:g} rpm", f"an engagement minimum below the "
+                             f"engine curve's top speed {hi_e:g} rpm: a clutch that engages above it never holds the "
+                             "engine, so no design meets the slip target", "optimize")
+    if targets.slip_rpm_max is not None and targets.slip_rpm_max < lo_e:
+        raise ParameterError("slip_rpm_max", f"{targets.slip_rpm_max:g} rpm", f"a slip maximum within the engine "
+                             f"curve ({lo_e:g}..{hi_e:g} rpm): the slip speed is found on the curve, never below "
+                             "its lowest speed", "optimize")
     with cluster(workers, scheduler):
         return _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step, log)
 
@@ -348,11 +272,13 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
     t0 = time.perf_counter()
     p0 = settings.params()
     P = type(p0)
+    if isinstance(free, str):  # "a,b" or one name
+        free = [x.strip() for x in free.split(",") if x.strip()]
     free = list(free) if free else default_free(P)
     if not free:
         raise InputError(f"{settings.concept}: no free parameters to optimise (give --free p1,p2,...)")
     space = make_space(P, free, ranges, p0)
-    for name, val in (("sample", sample), ("max_evals", max_evals)):
+    for name, val in (("sample", sample), ("max_evals", max_evals), ("seed", seed)):
         if isinstance(val, bool) or not isinstance(val, int) or val < 0:
             raise ParameterError(name, val, "an integer >= 0", "optimize")
     path: list[dict] = []
@@ -361,6 +287,13 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
 
     def n_evals() -> int:
         return counts["ok"] + counts["failed"] + counts["crashed"] + counts["timeout"]
+
+    def tally() -> str:
+        """The progress of a log line: evaluations of the budget, elapsed time and an upper
+        bound of the time left (the search may converge before its budget)."""
+        n, el = n_evals(), time.perf_counter() - t0
+        left = f", at most ~{el / n * (max_evals - n):.0f} s left" if 0 < n < max_evals else ""
+        return f" [{n} of at most {max_evals} evaluations, {el:.0f} s{left}]"
 
     def run(xs: list[np.ndarray], phase: str, it: int) -> list[tuple[dict | None, np.ndarray]]:
         """Evaluate the designs at normalised ``xs`` not seen before (one parallel batch);
@@ -388,7 +321,7 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
     r0, x_inc = run([x0], "start", 0)[0]  # (the start snapped to the resolution)
     inc = r0 if r0 is not None and math.isfinite(r0["assessment"]["h"]) else None
     if log and r0 is not None:
-        log(_line("start", r0) if inc is not None else f"start: {r0['status']}: {r0['message']}")
+        log((_line("start", r0) if inc is not None else f"start: {r0['status']}: {r0['message']}") + tally())
     # space-filling search (parallel): Sobol in the box around the start, half the range wide
     if sample:
         m = max(1, int(round(math.log2(max(sample, 1)))))
@@ -398,7 +331,7 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
             if row is not None and better(row["assessment"], None if inc is None else inc["assessment"]):
                 inc, x_inc = row, xsn
         if log:
-            log(f"sample of {len(xs)}: " + (_line("best", inc) if inc is not None else "no valid design"))
+            log(f"sample of {len(xs)}: " + (_line("best", inc) if inc is not None else "no valid design") + tally())
     if inc is None:
         raise InputError(f"{settings.concept}: neither the start design nor any of the {sample} sample designs could "
                          "be evaluated (refused or failed); give another start (--set) or narrower --range")
@@ -429,7 +362,7 @@ def _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step
         move = (x_inc - x_old) if improved else None
         delta = min(0.25, 2 * delta) if improved else delta / 2
         if log:
-            log(f"poll {it} (step {delta:.4f} of the ranges): " + _line("incumbent", inc))
+            log(f"poll {it} (step {delta:.4f} of the ranges): " + _line("incumbent", inc) + tally())
     for r in path:
         r["incumbent"] = r is inc
     a = inc["assessment"]

@@ -22,6 +22,7 @@ travels with the settings as bytes (remote workers need no shared disk); its thi
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from pathlib import Path
 from typing import Any, Literal, get_args, get_origin
@@ -77,12 +78,38 @@ def load_spec(path: str | Path) -> StudySpec:
     return parse_spec(text, source=str(path), base=path.parent)
 
 
+def toml_context(text: str, message: str) -> str:
+    """The line a TOML error points at, and for a key given twice its name and the line of
+    its first definition (tomllib names neither: "Cannot overwrite a value (at line 6,
+    column 9)")."""
+    m = re.search(r"at line (\d+)", message)
+    lines = text.splitlines()
+    if not m or not 0 < int(m.group(1)) <= len(lines):
+        return ""
+    n = int(m.group(1))
+    line = lines[n - 1].strip()
+    out = f": line {n} is {line!r}"
+    key = re.match(r"\s*([\w.\-\"' ]+?)\s*=", lines[n - 1])
+    if ("overwrite" in message or "twice" in message) and key:
+        name = key.group(1).strip().strip("\"'")
+        table = ""
+        for k in range(n - 1, 0, -1):  # the table the key is in
+            t = re.match(r"\s*\[+\s*([^\]]+?)\s*\]+", lines[k - 1])
+            if t:
+                table = t.group(1) + "."
+                break
+        first = next((k for k in range(1, n) if re.match(rf"\s*{re.escape(name)}\s*=", lines[k - 1])), None)
+        out = f": key '{table}{name}' is given twice (line {n}" + (f", first on line {first}" if first else "") + \
+            "); keep one"
+    return out
+
+
 def parse_spec(text: str, source: str = "<text>", base: Path | None = None) -> StudySpec:
     """Validate the TOML ``text`` of a spec (see module docstring)."""
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"study spec {source}: not valid TOML ({exc})") from None
+        raise InputError(f"study spec {source}: not valid TOML ({exc}){toml_context(text, str(exc))}") from None
     try:
         t = SpecTable.model_validate(raw)
     except ValidationError as exc:
@@ -151,6 +178,14 @@ def parse_spec(text: str, source: str = "<text>", base: Path | None = None) -> S
         if len(set(lens.values())) > 1:
             raise SpecError("vary.params", lens, "lists of one length (method 'list' zips them: point i "
                             "takes the i-th value of each)", source)
+        rows = list(zip(*(a.values for a in axes)))
+        seen: dict = {}
+        for i, r in enumerate(rows, start=1):
+            if r in seen:
+                raise SpecError("vary.params", {a.name: list(a.values) for a in axes},
+                                f"distinct designs: points {seen[r]} and {i} are the same design "
+                                f"({', '.join(f'{a.name} = {v!r}' for a, v in zip(axes, r))}); drop one", source)
+            seen[r] = i
     samples = None
     if method in ("lhs", "sobol"):
         if vary.samples is None:
@@ -334,6 +369,10 @@ def _settings(raw: dict, is_concept: bool, base: Path, source: str) -> dict:
             engine = EngineCurve.from_csv(p, idle_rpm=idle)
         except ClutchfemError as exc:
             raise SpecError("settings.engine", v, f"a readable engine curve CSV ({exc})", source) from None
+    top = (engine or EngineCurve.default()).rpm_range[1]
+    if idle is not None and idle >= top:
+        raise SpecError("settings.idle_rpm", raw["idle_rpm"], f"an idle speed below the engine curve's top speed "
+                        f"{top:g} rpm ({'settings.engine' if engine else 'the built-in curve'})", source)
     ms = {}
     if "mesh_size" in raw:
         v = raw["mesh_size"]

@@ -39,7 +39,8 @@ from ..geometry import get_concept
 from ..loadcase import Design
 from ..mesh import mesh_concept
 from .batch import EvalSettings
-from .optimization import OptimizationResult, Targets, optimize
+from .optimization import OptimizationResult, optimize
+from .targets import Targets
 from .sensitivity import sensitivities
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 

@@ -48,10 +48,7 @@ from __future__ import annotations
 
 import json
 import logging
-import os
-import signal
 import sys
-import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -62,12 +59,21 @@ from tqdm import tqdm
 
 from ..core import ClutchfemError, InputError, write
 from .charts import answers_vs_inputs, parallel_coordinates
+from .cluster import check_address, rows_on_dask, workers_machine_holds
 from .hashing import design_hash
-from .point import COLUMNS, Settings, evaluate, failed_row, model_version, warm_up
+from .point import COLUMNS, Settings, evaluate, failed_row, model_version
+from .rerun import fingerprint
 from .spec import display_value
-from .store import STORE_NAME, ResultStore
+from .store import STORE_NAME, ResultStore, StoreLocked
 
 log = logging.getLogger("clutchfem")
+
+#: a study with at most this many points to compute runs them in this process when no
+#: worker count is given: below it a local cluster's start (20-25 s for 2 workers, warm-up
+#: included, on the shared 2-core machine; some starts took ~95 s) costs more than the second
+#: worker saves (measured: 8 points 13.7 s in process against 37.2 s on 2 workers;
+#: BENCHMARKS.md, "Study reruns and the in-process crossover")
+IN_PROCESS_MAX = 8
 
 
 @dataclass(frozen=True)
@@ -93,6 +99,8 @@ class RunResult:
     keys: tuple[str, ...] = field(repr=False, default=())
     interrupted: bool = False
     error_keys: tuple[str, ...] = field(repr=False, default=())
+    #: points as listed (repeats of one design are computed and counted once: ``points``)
+    listed: int | None = None
 
     @property
     def designs_per_min(self) -> float | None:
@@ -100,7 +108,8 @@ class RunResult:
         return 60.0 * self.computed / self.compute_s if self.computed and self.compute_s > 0 else None
 
     def as_dict(self) -> dict:
-        return {"points": self.points, "done": self.done, "ok": self.ok, "refused": self.refused,
+        return {"points": self.points, "listed": self.listed if self.listed is not None else self.points,
+                "done": self.done, "ok": self.ok, "refused": self.refused,
                 "failed": self.failed, "computed": self.computed, "skipped": self.skipped,
                 "store": str(self.store), "model_version": self.model_version, "wall_s": self.wall_s,
                 "compute_s": self.compute_s, "designs_per_min": self.designs_per_min, "workers": self.workers,
@@ -135,6 +144,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         raise InputError("give --workers N (a local cluster) or --scheduler ADDRESS (an existing one), not both")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise InputError(f"workers = {workers!r} is not allowed: an integer >= 0 (0: in this process, no Dask)")
+    if scheduler is not None:
+        scheduler = check_address(scheduler)  # before any work: a typo is said at once
     version = model_version(settings.concept)
     keys, tasks, hashes = [], {}, []
     for p in points:
@@ -150,15 +161,29 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         todo = [h for h in keys if h not in finished or (retry_failed and finished[h][0] == "failed")
                 or (h in want_errors and finished[h][0] == "ok" and finished[h][1] != 1)]
         run = store.start_run(source, version, len(keys), len(todo), spec_text)
-        n_workers = None if scheduler else (0 if workers == 0 else (workers or default_workers()))
-        label = scheduler or (f"local cluster, {n_workers} process workers" if n_workers else "in process")
+        if scheduler is not None:
+            n_workers, label = None, scheduler
+        elif workers == 0:
+            n_workers, label = 0, "in process"
+        elif workers is None and len(todo) <= IN_PROCESS_MAX:
+            # a handful of points: faster here than a cluster start (BENCHMARKS.md, crossover)
+            n_workers, label = 0, f"in process ({len(todo)} point(s) to compute: fewer than a cluster start pays for)"
+        else:
+            n_workers, why = workers_machine_holds(workers, len(todo))
+            if why:
+                log.warning(why)
+            label = f"local cluster, {n_workers} process workers"
         computed, interrupted, t_first, t_last = 0, False, None, None
         bar = None
         tally = {"ok": 0, "refused": 0, "failed": 0}
         try:
             if todo:
+                if progress and not (n_workers == 0 and scheduler is None):
+                    log.info(f"{desc}: {len(todo)} design(s) to compute; starting {label} (its workers load "
+                             "the FE stack: seconds before the first design)" if scheduler is None else
+                             f"{desc}: {len(todo)} design(s) to compute; connecting to the scheduler at {label}")
                 rows = (_in_process(todo, tasks, settings, want_errors) if n_workers == 0 and scheduler is None
-                        else _on_dask(todo, tasks, settings, version, n_workers, scheduler, want_errors))
+                        else rows_on_dask(todo, tasks, settings, version, n_workers, scheduler, want_errors))
                 for row in rows:
                     if "__start__" in row:  # the back-end is up and the points are submitted
                         n_workers = row["__start__"]
@@ -182,7 +207,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
         except KeyboardInterrupt:
             interrupted = True
         except BaseException as exc:
-            store.end_run(run, computed, f"error: {type(exc).__name__}: {exc}"[:500])
+            if not isinstance(exc, StoreLocked):  # a locked store cannot record the end either
+                store.end_run(run, computed, f"error: {type(exc).__name__}: {exc}"[:500])
             raise
         finally:
             if bar is not None:
@@ -192,21 +218,16 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
     finally:
         store.close()
     compute_s = (t_last - t_first) if (t_first is not None and t_last is not None) else 0.0
-    res = RunResult(points=len(keys), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
+    if len(keys) < len(points):
+        log.warning(f"{len(points)} points listed, {len(keys)} distinct designs: a repeated design is computed "
+                    "and counted once")
+    res = RunResult(points=len(keys), listed=len(points), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
                     model_version=version, wall_s=time.perf_counter() - t_start, compute_s=compute_s,
                     workers=n_workers, scheduler=label, keys=tuple(keys), interrupted=interrupted,
                     error_keys=tuple(h for h in keys if h in want_errors), **c)
     if interrupted:
         raise StudyInterrupted(res)
     return res
-
-
-def default_workers() -> int:
-    """One worker process per core this process may run on (its CPU affinity)."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # pragma: no cover - not Linux
-        return max(1, os.cpu_count() or 1)
 
 
 def _bar(total: int, desc: str, progress: bool):
@@ -217,7 +238,7 @@ def _bar(total: int, desc: str, progress: bool):
 
 
 # ---------------------------------------------------------------------------------------
-# back-ends: in this process, or on dask.distributed
+# back-ends: in this process, or on dask.distributed (.cluster)
 # ---------------------------------------------------------------------------------------
 def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=frozenset()):
     yield {"__start__": 0}
@@ -225,141 +246,9 @@ def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=fr
         yield evaluate(tasks[h], settings, h, h in want_errors)
 
 
-class _WorkerSetup:
-    """Worker plugin of the private local cluster: ignore SIGINT (the client stops the
-    cluster on Ctrl-C) and import the analysis stack once, on every worker, also on one a
-    nanny restarts after a crash."""
-
-    name = "clutchfem-study-setup"
-
-    def __init__(self, concept: str | None):
-        self.concept = concept
-
-    def setup(self, worker=None):
-        if threading.current_thread() is threading.main_thread():
-            signal.signal(signal.SIGINT, signal.SIG_IGN)
-        warm_up(self.concept)
-
-    def teardown(self, worker=None):
-        pass
-
-
-def _killed_message(exc: BaseException) -> str:
-    name = type(exc).__name__
-    if name == "KilledWorker":
-        return ("the worker process died while computing this design (a crash in gmsh or the solver, or out of "
-                f"memory); its nanny restarted it and the study went on ({exc})")
-    return f"{name}: {exc}"
-
-
-def _on_dask(todo: list[str], tasks: dict, settings: Settings, version: str, n_workers: int,
-             scheduler: str | None, want_errors=frozenset()):
-    """Rows as they finish, computed on a dask.distributed cluster (see module docstring)."""
-    import dask
-    from distributed import Client, LocalCluster, as_completed
-
-    cluster = client = None
-    futures: dict = {}
-    try:
-        if scheduler is not None:
-            try:
-                client = Client(scheduler, timeout="15s")
-            except (OSError, TimeoutError) as exc:
-                raise InputError(f"--scheduler {scheduler}: no dask scheduler answers there ({exc}); start one "
-                                 "with `dask scheduler` and workers with `dask worker ADDRESS --nthreads 1`") from None
-        else:
-            with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-                cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                       dashboard_address=None, scheduler_kwargs={"allowed_failures": 0},
-                                       silence_logs=logging.CRITICAL)
-            client = Client(cluster)
-            client.register_plugin(_as_worker_plugin(_WorkerSetup(settings.concept)))
-        versions = client.run(warm_up, settings.concept)
-        if not versions:
-            client.wait_for_workers(1, timeout=60)
-            versions = client.run(warm_up, settings.concept)
-        odd = {w: v for w, v in versions.items() if v != version}
-        if odd:
-            w, v = next(iter(odd.items()))
-            raise InputError(f"worker {w} runs clutchfem model version {v}, this client {version}: the workers "
-                             "must run the same clutchfem (same source, gmsh and scikit-fem versions)")
-        tag = version.rsplit("+", 1)[-1]
-        pending = iter(todo)
-        done = as_completed()
-
-        seen = {"n": 1, "at": -1.0}
-
-        def window() -> int:
-            """One task per worker thread (a crash takes only its own design); the thread
-            count is asked of the scheduler at most once a second (a round trip)."""
-            now = time.monotonic()
-            if now - seen["at"] > 1.0:
-                seen.update(n=max(1, sum(client.nthreads().values())), at=now)
-            return seen["n"]
-
-        def submit_more() -> None:
-            n = window()
-            while len(futures) < n:
-                h = next(pending, None)
-                if h is None:
-                    return
-                e = h in want_errors
-                fut = client.submit(evaluate, tasks[h], settings, h, e, key=f"clutchfem-point-{h}-{tag}{'-e' * e}")
-                futures[fut] = h
-                done.add(fut)
-
-        submit_more()
-        yield {"__start__": len(client.nthreads())}
-        for fut in done:
-            h = futures.pop(fut)
-            if fut.status == "finished":
-                row = fut.result()
-            else:
-                try:
-                    exc = fut.exception()
-                except Exception as e:  # noqa: BLE001 - cancelled by the scheduler, lost
-                    exc = e
-                row = failed_row(tasks[h], settings, h, version, _killed_message(exc))
-            fut.release()
-            submit_more()
-            yield row
-    finally:
-        if client is not None:
-            try:
-                if futures:
-                    client.cancel(list(futures), force=True)
-            except Exception:  # noqa: BLE001 - shutting down anyway
-                pass
-            client.close(timeout=10)
-        if cluster is not None:
-            cluster.close(timeout=10)
-
-
-def _as_worker_plugin(obj):
-    """Wrap :class:`_WorkerSetup` as a ``distributed`` WorkerPlugin (imported lazily, so the
-    module imports without distributed)."""
-    from distributed.diagnostics.plugin import WorkerPlugin
-
-    class Setup(WorkerPlugin):
-        name = obj.name
-
-        def __init__(self, concept):
-            self.concept = concept
-
-        def setup(self, worker):
-            _WorkerSetup(self.concept).setup(worker)
-
-    return Setup(obj.concept)
-
-
 # ---------------------------------------------------------------------------------------
 # a whole study: run, export, charts, summary
 # ---------------------------------------------------------------------------------------
-def default_out(spec_source: str) -> Path:
-    """Default output folder of a spec: ``<spec stem>-study`` beside the current folder."""
-    return Path(f"{Path(spec_source).stem}-study")
-
-
 def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: str | None = None,
               retry_failed: bool = False, progress: bool = True, charts: bool = True) -> dict:
     """Run a parameter study into a folder, resumably: every point through the full
@@ -421,7 +310,8 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
         files.append(parallel_coordinates(frame, spec, out / "charts" / "parallel_coordinates.png"))
     summary.update(design=spec.design, method=spec.method, spec=spec.source, out=str(out),
                    feasible=int(frame["feasible"].fillna(0).astype(int).sum()) if len(frame) else 0,
-                   files=[str(f) for f in files])
+                   files=[str(f) for f in files], charts=bool(charts), keys=list(res.keys),
+                   fingerprint=fingerprint(spec.source, spec.text))
     write(out / "summary.json", summary, indent=1)
     summary["files"].append(str(out / "summary.json"))
     return summary

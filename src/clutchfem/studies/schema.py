@@ -87,7 +87,7 @@ class VaryTable(StrictTable):
 
     method: Literal["grid", "list", "lhs", "sobol"] = "grid"
     samples: Annotated[Int, Field(ge=1, le=MAX_POINTS)] | None = None
-    seed: Int = 0
+    seed: Annotated[Int, Field(ge=0, le=2 ** 63 - 1)] = 0
     params: dict[str, AxisTable]
 
 
@@ -141,7 +141,7 @@ def translate_error(exc: ValidationError, raw: dict, source: str) -> SpecError:
                        ("greater than ", "> "), ("less than ", "< ")):
         allowed = allowed.replace(words, sym)
     if kind in ("greater_than_equal", "less_than_equal", "greater_than", "less_than") and key.endswith(
-            ("steps", "samples")):
+            ("steps", "samples", "seed")):
         allowed = "an integer " + allowed
     if kind in ("float_type", "int_type", "string_type", "dict_type", "list_type", "model_type"):
         allowed = {"float_type": "a number", "int_type": "an integer (no quotes, no decimals)",

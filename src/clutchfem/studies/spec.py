@@ -97,9 +97,15 @@ def axis_label(name: str, unit: str) -> str:
 
 
 def display_value(x, unit: str):
-    """A parameter value in the unit of :func:`axis_label` (lengths in mm)."""
+    """A parameter value in the unit of :func:`axis_label` (lengths in mm), without the
+    float noise of the conversion (0.36 mm, not 0.36000000000000004: 12 significant digits,
+    far below any parameter's resolution).
+
+    >>> display_value(0.36e-3, "m")
+    0.36
+    """
     if isinstance(x, (int, float)) and not isinstance(x, bool) and unit == "m":
-        return x * 1e3
+        return float(f"{x * 1e3:.12g}")
     return x
 
 

@@ -19,12 +19,18 @@ loss the last few commits may be lost, which resume then simply recomputes.  Onl
 the study's client process writes (workers return rows, they never touch the file), so there
 is one writer; readers (a notebook, ``sqlite3`` on the command line) may read while it runs.
 
+A store locked by another program (a database browser with an open write transaction, a
+second study writing the same file): every statement is retried for up to
+:data:`LOCK_WAIT_S` (said at once on stderr), then :class:`StoreLocked` names the file and
+what to do (nothing finished is lost: the rows already committed stay, a rerun resumes).
+
 The table's columns come from the caller (:data:`clutchfem.studies.point.COLUMNS`); a store
 written by an older version gains any new columns on open (``ALTER TABLE ADD COLUMN``).
 """
 
 from __future__ import annotations
 
+import logging
 import sqlite3
 import time
 from pathlib import Path
@@ -32,11 +38,23 @@ from typing import Iterable
 
 import pandas as pd
 
-from ..core import InputError
+from ..core import ClutchfemError, InputError
+
+log = logging.getLogger("clutchfem")
 
 #: file name of the store inside a study's output folder
 STORE_NAME = "results.sqlite"
 _KEY = ("design_hash", "model_version")
+#: seconds a statement waits for a lock another program holds on the store
+LOCK_WAIT_S = 30.0
+
+
+class StoreLocked(ClutchfemError):
+    """The store stayed locked by another program for :data:`LOCK_WAIT_S`."""
+
+
+def _locked(exc: Exception) -> bool:
+    return any(w in str(exc).lower() for w in ("database is locked", "database table is locked", "busy"))
 
 
 class ResultStore:
@@ -50,22 +68,46 @@ class ResultStore:
             if k not in names:
                 raise ValueError(f"store columns must include {k}")
         try:
-            self.db = sqlite3.connect(self.path, timeout=30.0, isolation_level=None)
-            self.db.execute("PRAGMA journal_mode=WAL")
-            self.db.execute("PRAGMA synchronous=NORMAL")
+            self.db = sqlite3.connect(self.path, timeout=0.5, isolation_level=None)
+            self._run("PRAGMA journal_mode=WAL")
+            self._run("PRAGMA synchronous=NORMAL")
             cols = ", ".join(f'"{c}" {t}' for c, t in self.columns)
-            self.db.execute(f"CREATE TABLE IF NOT EXISTS results ({cols}, PRIMARY KEY (design_hash, model_version))")
-            have = {r[1] for r in self.db.execute("PRAGMA table_info(results)")}
+            self._run(f"CREATE TABLE IF NOT EXISTS results ({cols}, PRIMARY KEY (design_hash, model_version))")
+            have = {r[1] for r in self._run("PRAGMA table_info(results)").fetchall()}
             for c, t in self.columns:
                 if c not in have:
-                    self.db.execute(f'ALTER TABLE results ADD COLUMN "{c}" {t}')
-            self.db.execute("CREATE TABLE IF NOT EXISTS runs (run INTEGER PRIMARY KEY AUTOINCREMENT, "
-                            "started_at REAL, finished_at REAL, source TEXT, model_version TEXT, points INTEGER, "
-                            "todo INTEGER, computed INTEGER, outcome TEXT, spec TEXT)")
+                    self._run(f'ALTER TABLE results ADD COLUMN "{c}" {t}')
+            self._run("CREATE TABLE IF NOT EXISTS runs (run INTEGER PRIMARY KEY AUTOINCREMENT, "
+                      "started_at REAL, finished_at REAL, source TEXT, model_version TEXT, points INTEGER, "
+                      "todo INTEGER, computed INTEGER, outcome TEXT, spec TEXT)")
         except sqlite3.DatabaseError as exc:
             raise InputError(f"result store {self.path}: not a usable SQLite file ({exc}); move it away or "
                              "choose another --out") from None
         self.names = names
+
+    def _run(self, sql: str, args=()):
+        """``db.execute`` retried while another program holds a lock (module docstring)."""
+        return self._retry(lambda: self.db.execute(sql, args))
+
+    def _retry(self, fn):
+        t0 = None
+        while True:
+            try:
+                return fn()
+            except (sqlite3.OperationalError, pd.errors.DatabaseError) as exc:
+                if not _locked(exc):
+                    raise
+                now = time.monotonic()
+                if t0 is None:
+                    t0 = now
+                    log.warning(f"the result store {self.path} is locked by another program (a database browser "
+                                f"with unsaved changes?): waiting up to {LOCK_WAIT_S:g} s")
+                elif now - t0 > LOCK_WAIT_S:
+                    raise StoreLocked(f"the result store {self.path} stayed locked by another program for "
+                                      f"{LOCK_WAIT_S:g} s (a database browser with unsaved changes, or a second "
+                                      "study writing the same folder?): close it and run the same command again "
+                                      "(the rows already stored are kept)") from None
+                time.sleep(0.2)
 
     # -- writing --------------------------------------------------------------------------
     def put(self, row: dict) -> None:
@@ -73,22 +115,22 @@ class ResultStore:
         vals = [row.get(c) for c in self.names]
         marks = ", ".join("?" for _ in self.names)
         cols = ", ".join(f'"{c}"' for c in self.names)
-        self.db.execute(f"INSERT OR REPLACE INTO results ({cols}) VALUES ({marks})", vals)
+        self._run(f"INSERT OR REPLACE INTO results ({cols}) VALUES ({marks})", vals)
 
     def start_run(self, source: str, model_version: str, points: int, todo: int, spec: str = "") -> int:
-        cur = self.db.execute("INSERT INTO runs (started_at, source, model_version, points, todo, computed, outcome, "
+        cur = self._run("INSERT INTO runs (started_at, source, model_version, points, todo, computed, outcome, "
                               "spec) VALUES (?, ?, ?, ?, ?, 0, 'running', ?)",
                               (time.time(), source, model_version, points, todo, spec))
         return int(cur.lastrowid)
 
     def end_run(self, run: int, computed: int, outcome: str) -> None:
-        self.db.execute("UPDATE runs SET finished_at = ?, computed = ?, outcome = ? WHERE run = ?",
+        self._run("UPDATE runs SET finished_at = ?, computed = ?, outcome = ? WHERE run = ?",
                         (time.time(), computed, outcome, run))
 
     # -- reading --------------------------------------------------------------------------
     def finished(self, model_version: str, keys: Iterable[str] | None = None) -> dict[str, str]:
         """{design_hash: status} of the stored rows of ``model_version`` (among ``keys``)."""
-        cur = self.db.execute("SELECT design_hash, status FROM results WHERE model_version = ?", (model_version,))
+        cur = self._run("SELECT design_hash, status FROM results WHERE model_version = ?", (model_version,))
         got = {h: s for h, s in cur}
         if keys is None:
             return got
@@ -97,7 +139,7 @@ class ResultStore:
     def select(self, model_version: str, keys: Iterable[str], columns: list[str]) -> dict[str, tuple]:
         """{design_hash: (values of ``columns``)} of the stored rows of ``model_version`` among ``keys``."""
         cols = ", ".join(f'"{c}"' for c in columns)
-        cur = self.db.execute(f"SELECT design_hash, {cols} FROM results WHERE model_version = ?", (model_version,))
+        cur = self._run(f"SELECT design_hash, {cols} FROM results WHERE model_version = ?", (model_version,))
         got = {r[0]: tuple(r[1:]) for r in cur}
         return {k: got[k] for k in keys if k in got}
 
@@ -108,7 +150,7 @@ class ResultStore:
         if model_version is not None:
             q += " WHERE model_version = ?"
             args.append(model_version)
-        df = pd.read_sql_query(q, self.db, params=args)
+        df = self._retry(lambda: pd.read_sql_query(q, self.db, params=args))
         if keys is not None:
             order = {k: i for i, k in enumerate(keys)}
             df = df[df["design_hash"].isin(order)].copy()
@@ -118,7 +160,7 @@ class ResultStore:
 
     def runs(self):
         """The runs table (one row per run: started, finished, source, counts, outcome)."""
-        return pd.read_sql_query("SELECT * FROM runs ORDER BY run", self.db)
+        return self._retry(lambda: pd.read_sql_query("SELECT * FROM runs ORDER BY run", self.db))
 
     def close(self) -> None:
         self.db.close()

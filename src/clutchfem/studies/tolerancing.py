@@ -54,7 +54,7 @@ import numpy as np
 from ..core import InputError, ParameterError, clean
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
-from .optimization import Targets
+from .targets import Targets
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -69,6 +69,8 @@ ANSWERS = [
 SHIFTS = (-0.5e-3, -0.2e-3, 0.2e-3, 0.5e-3)
 #: sampling resolution per unit
 RES = {"m": 1e-6, "deg": 0.01, "-": 1e-4, "": 1e-4}
+#: the narrowest tolerance half-width, in resolution steps: +-5 steps give 11 snapped values
+MIN_BANDS = 5
 Z95 = 1.959963984540054
 
 
@@ -86,6 +88,14 @@ def parse_tolerance(P, text: str) -> tuple[str, float]:
     t = P.parse_value(name, raw)
     if not (isinstance(t, float) and t > 0):
         raise ParameterError(name, text, "a tolerance half-width > 0 (e.g. +-0.05mm)", "--tol")
+    unit = P.unit(name)
+    res = RES.get(unit, 1e-4)
+    if t < MIN_BANDS * res:
+        shown = {"m": (1e6, "um"), "deg": (1.0, "deg")}.get(unit, (1.0, ""))
+        raise ParameterError(name, text, f"a half-width of at least {MIN_BANDS * res * shown[0]:g} {shown[1]}".rstrip()
+                             + f": samples are snapped to {res * shown[0]:g} {shown[1]}".rstrip() + " (the geometry's "
+                             "resolution), so a narrower band has too few distinct values (+-0.1 um gave every sample "
+                             "the nominal value: zero spread)", "--tol")
     return name, float(t)
 
 
@@ -229,8 +239,14 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
         raise InputError(f"tolerances: a dict name -> half-width (e.g. {{'flexure_thickness': '0.05mm'}}), not "
                          f"{type(tolerances).__name__}")
     P0 = type(settings.params())
-    tolerances = {k: (parse_tolerance(P0, f"{k}=+-{str(v).strip().lstrip('+-±')}")[1] if isinstance(v, str)
-                      else v) for k, v in tolerances.items()}
+    for k, v in tolerances.items():
+        if isinstance(v, bool) or not isinstance(v, (str, int, float)):
+            raise ParameterError(k, v, "a tolerance half-width: a number in SI or a text with its unit ('0.05mm')",
+                                 "tolerance")
+    tolerances = {k: parse_tolerance(P0, f"{k}=+-{str(v).strip().lstrip('+-±') if isinstance(v, str) else repr(v)}")[1]
+                  for k, v in tolerances.items()}
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ParameterError("seed", seed, "an integer >= 0 (the same seed draws the same parts)", "tolerance")
     t0 = time.perf_counter()
     if dist not in ("normal", "uniform"):
         raise ParameterError("dist", dist, "'normal' (tolerance = +-3 sigma) or 'uniform'", "tolerance")

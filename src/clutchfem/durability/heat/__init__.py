@@ -34,10 +34,12 @@ from .params import (
 from .partition import PERIODIC_PASSES, HeatPartition, drum_patch_response, heat_partition, wall_step_response
 from .result import SlipHeatResult
 from .slip import heat_transient
+from .validity import EXPANSION_PER_K, MELTING_C, PHASE_CHANGE_C, slip_heat_validity
 
 __all__ = [
     "ThermalMaterial", "DrumThermal", "ThermalEnvironment", "SlipScenario", "SlipHeatLoad",
     "slip_heat_load", "HeatPartition", "heat_partition", "wall_step_response",
     "drum_patch_response", "HeatModel", "build_heat_model", "heat_transient", "SlipHeatResult",
-    "write_vtu", "render_png", "hot_yield_ratio", "HOT_YIELD_TABLE", "PERIODIC_PASSES", "MAX_TIME_STEPS",
+    "write_vtu", "render_png", "slip_heat_validity", "PHASE_CHANGE_C", "MELTING_C", "EXPANSION_PER_K",
+    "hot_yield_ratio", "HOT_YIELD_TABLE", "PERIODIC_PASSES", "MAX_TIME_STEPS",
 ]

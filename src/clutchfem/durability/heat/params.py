@@ -83,6 +83,11 @@ class ThermalMaterial(ParamSet):
                                      "limit temperature: tempering temperature of the hardened steel "
                                      "(ASSUMED, low end of 400-500 C for ~45 HRC)", "T_lim")
     yield_strength: float = param(1250e6, "Pa", 1e5, 1e11, "room-temperature yield strength Rp0.2 (thesis)", "R_p0.2")
+    phase_change_temperature: float = param(727.0, "C", 100.0, 2000.0,
+                                            "phase change (steel: A1, austenite starts; ASSUMED): the slip-heat "
+                                            "transient is stopped there (durability.heat.validity)", "T_A1")
+    melting_temperature: float = param(1420.0, "C", 100.0, 3500.0,
+                                       "melting (solidus; low-alloy steel ~1420 C, ASSUMED)", "T_m")
     hot_yield_basis: Literal["proportional", "effective"] = choice(
         "proportional", "EN 1993-1-2 reduction factor used for the hot yield strength: k_p (conservative) or k_y")
 
@@ -195,6 +200,7 @@ class SlipScenario(ParamSet):
 ASSUMED = (
     "thermal data of the part: k, c constant at room-temperature values (51CrV4/6150 handbook)",
     "limit temperature = tempering temperature of ~45 HRC 51CrV4, low end of 400-500 C",
+    "phase change 727 C (A1) and melting 1420 C (solidus) of low-alloy steel: the transient stops at the first",
     "hot yield strength: EN 1993-1-2 Table 3.1 reduction factors (carbon steel)",
     "face convection coefficient (rotating disc estimate, Cobb & Saunders), no radiation",
     "bore joint conductance and crankshaft temperature",

@@ -1,0 +1,157 @@
+"""The on-disk mesh cache: where it lives, its size bound with least-recently-used eviction,
+and what ``clutchfem cache`` shows and clears.
+
+* **Where.** ``$CLUTCHFEM_CACHE/meshes`` if the variable is set, else the platform's user
+  cache folder from ``platformdirs`` (Linux: ``$XDG_CACHE_HOME/clutchfem``, by default
+  ``~/.cache/clutchfem``; macOS ``~/Library/Caches/clutchfem``; Windows
+  ``%LOCALAPPDATA%\\clutchfem\\Cache``) plus ``meshes``.  A variable that points to a file
+  (or a folder that cannot be made) is refused naming the variable.
+* **Entries.** One per cache key: ``<concept>-<key>.msh`` (read back), ``.json`` (its
+  side-car) and ``.groups.msh`` (the named groups, for the user).  An entry's last use is
+  its side-car's modification time, touched on every cache hit (access times are not
+  reliable: many file systems are mounted ``noatime``).
+* **Bound.** ``$CLUTCHFEM_CACHE_SIZE`` (``"500MB"``, ``"2GB"``; default :data:`DEFAULT_SIZE`
+  = 1 GB, ASSUMED: ~1400 one-sector concept meshes at the default size, ~0.7 MB each;
+  the cache held 287 MB after one test run and a few commands and grew without bound).
+  After a new entry is written, if the folder holds more, the least recently used entries
+  are deleted until it holds 80 % of the bound; an entry used in the last
+  :data:`KEEP_RECENT_S` seconds is never evicted (a study's other worker processes may be
+  reading it).
+* **Why not diskcache.** It keeps values in its own SQLite and file names; meshio and the
+  user (``geometry --out`` copies the ``.groups.msh``) need the ``.msh`` files themselves
+  on disk, and the eviction needed here is a few lines over ``os.scandir``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import platformdirs
+
+from ..core import InputError
+
+__all__ = ["DEFAULT_SIZE", "KEEP_RECENT_S", "CacheEntry", "cache_dir", "cache_entries", "cache_limit", "clear_cache",
+           "evict", "touch"]
+
+#: default bound of the mesh cache [bytes] (module docstring)
+DEFAULT_SIZE = 1_000_000_000
+#: an entry used this recently [s] is never evicted
+KEEP_RECENT_S = 600.0
+_UNITS = {"": 1, "b": 1, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12, "kib": 1024, "mib": 1024 ** 2,
+          "gib": 1024 ** 3}
+
+
+@dataclass(frozen=True)
+class CacheEntry:
+    """One cached mesh: its name (``<concept>-<key>``), files, total size [bytes] and last
+    use (Unix time)."""
+
+    name: str
+    files: tuple[Path, ...]
+    size: int
+    used: float
+
+
+def cache_dir() -> Path:
+    """The mesh cache folder (module docstring), created on first use."""
+    env = os.environ.get("CLUTCHFEM_CACHE")
+    root = Path(env) if env else Path(platformdirs.user_cache_dir("clutchfem", appauthor=False))
+    where = f"CLUTCHFEM_CACHE={env}" if env else f"the cache folder {root}"
+    d = root / "meshes"
+    if root.exists() and not root.is_dir():
+        raise InputError(f"{where}: is a file, not a folder; point CLUTCHFEM_CACHE to a folder (or unset it: the "
+                         "default is the platform's cache folder, ~/.cache/clutchfem on Linux)")
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"{where}: cannot make the mesh cache {d} ({exc.strerror or exc}); point CLUTCHFEM_CACHE "
+                         "to a folder you can write") from None
+    if not os.access(d, os.W_OK | os.X_OK):
+        raise InputError(f"{where}: no permission to write in {d}; point CLUTCHFEM_CACHE to a folder you can write")
+    return d
+
+
+def cache_limit() -> int:
+    """The cache bound [bytes]: ``$CLUTCHFEM_CACHE_SIZE`` (``"2GB"``) or :data:`DEFAULT_SIZE`."""
+    raw = os.environ.get("CLUTCHFEM_CACHE_SIZE")
+    if raw is None or not raw.strip():
+        return DEFAULT_SIZE
+    m = re.fullmatch(r"\s*(\d+(?:\.\d*)?)\s*([A-Za-z]*)\s*", raw)
+    if not m or m.group(2).lower() not in _UNITS or float(m.group(1)) <= 0:
+        raise InputError(f"CLUTCHFEM_CACHE_SIZE={raw!r}: expected a size > 0 with a unit, e.g. 500MB or 2GB")
+    return int(float(m.group(1)) * _UNITS[m.group(2).lower()])
+
+
+def cache_entries(d: Path | None = None) -> list[CacheEntry]:
+    """Every entry of the cache, least recently used first."""
+    d = cache_dir() if d is None else d
+    groups: dict[str, list] = {}
+    for e in os.scandir(d):
+        if not e.is_file():
+            continue
+        name = e.name
+        for suffix in (".groups.msh", ".msh", ".json", ".json.tmp"):
+            if name.endswith(suffix):
+                name = name[:-len(suffix)]
+                break
+        try:
+            st = e.stat()
+        except OSError:
+            continue
+        groups.setdefault(name, []).append((Path(e.path), st.st_size, st.st_mtime, e.name.endswith(".json")))
+    out = []
+    for name, fs in groups.items():
+        side = [m for _, _, m, is_side in fs if is_side]
+        used = max(side) if side else max(m for _, _, m, _ in fs)
+        out.append(CacheEntry(name, tuple(p for p, *_ in fs), sum(s for _, s, _, _ in fs), used))
+    return sorted(out, key=lambda x: x.used)
+
+
+def touch(side_car: Path) -> None:
+    """Mark an entry as used now (its side-car's modification time)."""
+    try:
+        os.utime(side_car)
+    except OSError:
+        pass
+
+
+def evict(limit: int | None = None, d: Path | None = None) -> tuple[int, int]:
+    """Delete the least recently used entries while the cache holds more than ``limit``
+    (default :func:`cache_limit`), down to 80 % of it; entries used in the last
+    :data:`KEEP_RECENT_S` stay.  Returns (entries deleted, bytes freed)."""
+    limit = cache_limit() if limit is None else limit
+    entries = cache_entries(d)
+    total = sum(e.size for e in entries)
+    if total <= limit:
+        return 0, 0
+    now, n, freed = time.time(), 0, 0
+    for e in entries:
+        if total <= 0.8 * limit:
+            break
+        if now - e.used < KEEP_RECENT_S:
+            continue
+        for f in e.files:
+            try:
+                f.unlink()
+            except OSError:
+                pass
+        total -= e.size
+        freed += e.size
+        n += 1
+    return n, freed
+
+
+def clear_cache(d: Path | None = None) -> tuple[int, int]:
+    """Delete every entry of the cache; (entries deleted, bytes freed)."""
+    entries = cache_entries(d)
+    for e in entries:
+        for f in e.files:
+            try:
+                f.unlink()
+            except OSError:
+                pass
+    return len(entries), sum(e.size for e in entries)
