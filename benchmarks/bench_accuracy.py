@@ -56,6 +56,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scipy.stats import qmc
 
 import clutchfem as cf
 from clutchfem.accuracy import NonlinearModel
@@ -65,7 +66,6 @@ from clutchfem.clutch import EngineCurve
 from clutchfem.core import ClutchfemError, rad_s_to_rpm, rpm_to_rad_s, tune_malloc
 from clutchfem.fe import von_mises
 from clutchfem.geometry import MeshSettings, get_concept
-from scipy.stats import qmc
 
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE / "results_accuracy.jsonl"

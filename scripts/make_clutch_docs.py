@@ -221,7 +221,7 @@ def main(argv=None):
       "number is smaller because the model has a perfectly round rigid drum and a new shoe (no "
       "running-in wear, no drum expansion, no shoe-face tolerance), all of which spread the contact. "
       "The direction of the error is the same. (The FE arc's ends lie between the contact nodes, "
-      "each within 0.4 node spacings, about 0.2 deg with the default mesh: BENCHMARKS.md section 13.)\n")
+      "each within 0.4 node spacings, about 0.2 deg with the default mesh: BENCHMARKS.md section 17.)\n")
     w("Eq 7 assumes the Shigley pressure law p ~ sin(phi) over phi_1..phi_2 (angles from the pivot). "
       "For a shoe pivoted about P, the apply moment F L is balanced by the moment of the normal "
       "pressure about P (lever A sin(phi)) plus that of the friction (lever R - A cos(phi), which "

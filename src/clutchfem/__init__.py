@@ -10,11 +10,12 @@ imported on first use)::
     a = cf.analyze(d)                           # every answer with its error: cf.Analysis
     print(a.engagement_rpm, a.slip_rpm)
 
-Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``),
+Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``), :func:`morph`,
 :class:`OperatingPoint`, :class:`Material`, :class:`MeshSettings`.  Answers:
 :func:`analyze`, :class:`Analysis`, :class:`SweepResult`, :class:`EngineCurve`,
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
-:func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`,
+:func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`, :func:`sensitivities`,
+:func:`robust_optimize`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
 :func:`write_report`, :func:`torque_speed_plot`.  Cutting: :func:`export` (DXF, STEP, drawing sheet,
 manufacturability check, as-cut analysis), :class:`ProcessRules`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
@@ -34,6 +35,7 @@ _API: dict[str, tuple[str, str]] = {
     "MeshSettings": ("clutchfem.geometry", "MeshSettings"),
     "Design": ("clutchfem.loadcase", "Design"),
     "OperatingPoint": ("clutchfem.loadcase", "OperatingPoint"),
+    "morph": ("clutchfem.loadcase", "morph"),
     "SweepResult": ("clutchfem.loadcase", "SweepResult"),
     "Material": ("clutchfem.core", "Material"),
     "get_material": ("clutchfem.core", "get_material"),
@@ -48,6 +50,8 @@ _API: dict[str, tuple[str, str]] = {
     "Targets": ("clutchfem.studies", "Targets"),
     "optimize": ("clutchfem.studies", "optimize"),
     "tolerance": ("clutchfem.studies", "tolerance"),
+    "sensitivities": ("clutchfem.studies", "sensitivities"),
+    "robust_optimize": ("clutchfem.studies", "robust_optimize"),
     "compensate": ("clutchfem.studies", "compensate"),
     "SlipScenario": ("clutchfem.durability", "SlipScenario"),
     "slip_heat": ("clutchfem.analysis", "slip_heat"),
@@ -102,10 +106,20 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .cutting import CuttingError, ProcessRules, export
     from .durability import SlipScenario
     from .geometry import MeshSettings, concepts, get_concept
-    from .loadcase import Design, OperatingPoint, SweepResult
+    from .loadcase import Design, OperatingPoint, SweepResult, morph
     from .report import comparison_plot as torque_speed_plot
     from .report import design_report as write_report
-    from .studies import StudySpec, Targets, compensate, optimize, run_grid, run_study, tolerance
+    from .studies import (
+        StudySpec,
+        Targets,
+        compensate,
+        optimize,
+        robust_optimize,
+        run_grid,
+        run_study,
+        sensitivities,
+        tolerance,
+    )
     from .studies import load_spec as load_study
     from .studies import run_guidelines as guidelines
     from .validation import validate

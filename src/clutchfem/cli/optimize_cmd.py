@@ -3,6 +3,7 @@ largest torque margin), on the study engine."""
 
 from __future__ import annotations
 
+import math
 from typing import List, Optional
 
 import typer
@@ -69,12 +70,24 @@ def optimize(
                                rich_help_panel="Search"),
     max_evals: int = typer.Option(300, "--max-evals", help="budget of analysed designs (refusals are free)",
                                   rich_help_panel="Search"),
+    tol: List[str] = typer.Option([], "--tol", help="robust design: tolerance name=+-value with its unit, e.g. "
+                                  "flexure_thickness=+-0.05mm (repeat per dimension); every target then holds for "
+                                  "the --yield share of parts", rich_help_panel="Robust design"),
+    yield_: str = typer.Option("0.99", "--yield", help="share of made parts that must meet every target (with --tol)",
+                               rich_help_panel="Robust design"),
+    dist: str = typer.Option("normal", "--dist", help="normal (tolerance = +-3 sigma, ASSUMED) or uniform",
+                             rich_help_panel="Robust design"),
+    model_error: bool = typer.Option(True, "--model-error/--no-model-error", help="add each answer's model-error "
+                                     "band (as +-2 sigma) to its spread", rich_help_panel="Robust design"),
+    check: int = typer.Option(0, "--check", help="Monte Carlo parts through remeshed designs to check the robust "
+                              "design's yield (0: none)", rich_help_panel="Robust design"),
     workers: O.Workers = None,
     scheduler: O.Scheduler = None,
     out: O.Out = None,
     json_: O.Json = False,
 ):
-    """Find a design that meets the targets at least part mass (or largest torque margin)."""
+    """Find a design that meets the targets at least part mass (or largest torque margin);
+    with --tol, one whose targets hold for the --yield share of made parts."""
     from ..analysis import Requirements, analyze
     from ..core import dumps
     from ..loadcase import Design
@@ -112,8 +125,13 @@ def optimize(
                                      "option --range")
             lo_s, hi_s = r.split(":", 1)
             ranges[n] = (P.parse_value(n, lo_s), P.parse_value(n, hi_s))
-        res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
-                  scheduler=scheduler, log=lambda m: err.print(escape(m)))
+        robust = None
+        if tol:
+            robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, workers)
+            res = robust.result
+        else:
+            res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
+                      scheduler=scheduler, log=lambda m: err.print(escape(m)))
         final = None
         if out is not None or not json_:  # the final design analysed again, with its error estimate
             d = Design.from_concept(s.concept, s.params(res.best["params"]), s.operating_point(), s.mesh_settings())
@@ -122,14 +140,58 @@ def optimize(
         if out is not None:
             wrote(optimization_report(res, final, out))
         if json_:
-            d = res.to_json()
+            d = res.to_json() if robust is None else robust.to_json()
             d.pop("path")
             d["path_length"] = len(res.path)
             print(dumps(d))
             return
         _print_optimization(res, final)
+        if robust is not None:
+            _print_robust(robust)
     except ClutchfemError as exc:
         fail(exc)
+
+
+def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_evals, workers):
+    """The robust optimisation of ``optimize --tol`` (clutchfem.studies.robust)."""
+    from ..studies import parse_tolerance, robust_optimize
+
+    tols = {}
+    for item in tol:
+        name, half = parse_tolerance(P, item)
+        if name in tols:
+            raise ParameterError(name, item, "one tolerance per dimension (given twice)", "option --tol")
+        tols[name] = half
+    y = quantity("--yield", yield_, "-", above=0.0)
+    if not 0.5 < y < 1.0:
+        raise ParameterError("yield", yield_, "a share of parts in (0.5, 1), e.g. 0.99", "option --yield")
+    if dist not in ("normal", "uniform"):
+        raise ParameterError("dist", dist, "normal or uniform", "option --dist")
+    if check and not 8 <= check <= 100000:
+        raise ParameterError("check", check, "0 (no check) or 8 to 100000 parts", "option --check")
+    return robust_optimize(s, tols, yield_target=y, dist=dist, model_error=model_error, targets=targets, free=names,
+                           max_evals=max_evals, check=check, workers=workers, log=lambda m: err.print(escape(m)))
+
+
+def _print_robust(r):
+    units = {"engagement_rpm_with_ripple": "rpm", "slip_rpm": "rpm"}
+    console.print("the limits above are the shifted ones; nominal: " + ", ".join(
+        f"{c[1]} {c[3]} {c[2]:.4g}" for c in r.targets.constraints()))
+    console.print("robust design: every limit moved inward by z sigma (chance constraints, linearised spread "
+                  "from sensitivities on morphed meshes" + (", model-error bands included" if r.model_error
+                                                             else ", model error left out") + "):")
+    for k, m in r.margins.items():
+        u = units.get(k, "")
+        console.print(f"  {escape(k)}: margin {m:.3g} {u} (sigma {r.sigma.get(k, 0.0):.3g} {u})")
+    console.print(f"yield asked {r.yield_target:.2%}, predicted {r.predicted_yield:.2%} (linearised, constraints "
+                  f"independent); {r.evaluations} designs in {len(r.rounds)} round(s), {r.seconds:.0f} s")
+    if not r.converged:
+        console.print("[yellow]the final design needs larger margins than it was optimised with (see --json "
+                      "rounds): run more rounds or check with --check[/yellow]")
+    c = r.check_share_in_spec
+    if c is not None:
+        console.print(f"Monte Carlo check ({r.check.n} remeshed parts): {c[0]:.2%} in spec "
+                      f"(95 % Wilson interval {c[1]:.2%} .. {c[2]:.2%})")
 
 
 def _print_optimization(res, final):
@@ -149,7 +211,10 @@ def _print_optimization(res, final):
         if final is not None and not sf:
             e = (final.errors or {}).get("engagement_rpm" if "engagement" in c["key"] else c["key"])
             if e and e.get("total") is not None:
-                err_txt = f" (+- {e['total']:.0f} rpm)"
+                err_txt = f" (+- {e['total']:.0f} rpm"
+                if e["total"] > 0 and c["slack"] is not None and math.isfinite(c["slack"]):
+                    err_txt += f"; {c['slack'] / e['total']:+.2f} bands from the limit"
+                err_txt += ")"
         t.add_row(escape(c["name"]), escape(vs + err_txt), escape(f"{c['sense']} " + (f"{c['limit']:.2f}" if sf else
                                                                                      f"{c['limit']:.0f} rpm")),
                   "VIOLATED" if c.get("violated") else ("yes" if c["binds"] else "no"))

@@ -28,7 +28,7 @@ from .concept import Concept, ConceptParams, MeshSettings
 occ = gmsh.model.occ
 #: the modules of the generic geometry code that shape every mesh; with the concept's own
 #: file they make the mesh cache key (:func:`source_files`)
-SHAPING_MODULES = ("concept.py", "build.py", "occ.py", "sketch.py", "profile.py")
+SHAPING_MODULES = ("concept.py", "build.py", "curves.py", "occ.py", "sketch.py", "profile.py")
 
 
 def source_files() -> list[Path]:

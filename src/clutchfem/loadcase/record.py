@@ -43,6 +43,8 @@ def design_inputs(design) -> dict:
         d["concept"] = design.name
         d["params"] = design.params.model_dump()
         d["mesh_settings"] = dict(cm.mesh_settings)
+        if (cm.morph or {}).get("morphed"):  # another discretisation of the same design
+            d["mesh_morphed_from"] = dict(cm.morph["reference"])
     else:
         d["mesh_file"] = cm.source
         d["mesh_sha256"] = _file_sha256(cm.source)

@@ -12,6 +12,8 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.dxf` -- a DXF drawing's outline (what a cutter's file holds) as outline loops;
 * :mod:`.topology` -- P2 nodes, facet nodes and cells, areas and perimeters of element sets;
 * :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model;
+* :mod:`.morph` -- a design's mesh moved from a reference design's (mesh morphing);
+* :mod:`.quality` -- element quality, and of a moved mesh against its reference;
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
 """
 
@@ -21,8 +23,19 @@ from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
+from .morph import (
+                       CACHE_SIZE,
+                       MorphReference,
+                       MorphRefused,
+                       morph_or_mesh,
+                       morph_reference,
+                       morph_to,
+                       quality_of,
+                       reference_key,
+)
 from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
+from .quality import MAX_DISTORTION, MIN_SCALED_JACOBIAN, MorphQuality, assess, distortion, scaled_jacobian
 from .topology import (
                        element_components,
                        element_set_area,
@@ -37,7 +50,9 @@ from .topology import (
 from .user import load_user_geometry
 from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_length_unit
 
-__all__ = ["AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
+__all__ = ["CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
+           "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
+           "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
            "bore_centre", "cache_entries", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
            "loops_to_occ", "orient_loops", "step_length_unit", "step_unit", "cache_dir", "cache_key",
            "check_orientation", "cyclic_pairing",

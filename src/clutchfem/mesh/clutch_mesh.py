@@ -43,6 +43,9 @@ class ClutchMesh:
     msh_path: Path | None = None
     mesh_time_s: float = 0.0
     cached: bool = False
+    #: how a morphed mesh was made (:mod:`.morph`: reference, quality), or why a morph was
+    #: refused; None for a mesh made from scratch without a reference
+    morph: dict | None = None
 
     @property
     def sector_copies(self) -> int:

@@ -35,7 +35,16 @@ import numpy as np
 
 from .. import __version__
 from ..core import GeometryError, MeshError
-from ..geometry import BuiltModel, Concept, ConceptParams, MeshSettings, build_model, gmsh_session, source_files
+from ..geometry import (
+    BuiltModel,
+    Concept,
+    ConceptParams,
+    MeshSettings,
+    build_model,
+    gmsh_session,
+    occ_tolerances,
+    source_files,
+)
 from .cache import cache_dir, evict, touch
 from .clutch_mesh import ClutchMesh
 from .convert import meshio_to_skfem, read_msh
@@ -146,8 +155,7 @@ def _check_size(name: str, n_est: int, ms: MeshSettings, max_elements: int | Non
 def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
               max_elements: int | None = None) -> BuiltModel:
     with gmsh_session(concept.name):
-        gmsh.option.setNumber("Geometry.Tolerance", 1e-10)
-        gmsh.option.setNumber("Geometry.ToleranceBoolean", 1e-10)
+        occ_tolerances()
         try:
             built = build_model(concept, p, ms)
             _check_size(concept.name, estimate_elements(built, p, ms), ms, max_elements)

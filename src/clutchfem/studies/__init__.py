@@ -13,7 +13,8 @@ resumable SQLite store):
 * design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets and
   a derivative-free search), :mod:`.tolerancing` (Monte Carlo of manufacturing
   tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
-  that survive ``--set``), :mod:`.target_charts`;
+  that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
+  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts);
 * a finished study recognised without loading the FE stack: :mod:`.rerun`.
 
 The names are imported on first use (PEP 562, as :mod:`clutchfem` does): a command that
@@ -56,11 +57,15 @@ _NAMES: dict[str, str | None] = {
     "parse_tolerance": "tolerancing",
     "resolution": "values",
     "ResultStore": "store",
+    "RobustResult": "robust",
+    "robust_optimize": "robust",
     "run_grid": "grid",
     "run_guidelines": "guideline_study",
     "run_points": "runner",
     "run_study": "runner",
     "RunResult": "runner",
+    "Sensitivities": "sensitivity",
+    "sensitivities": "sensitivity",
     "Settings": "point",
     "SpecError": "schema",
     "STORE_NAME": "store",

@@ -79,6 +79,9 @@ class EvalSettings:
     store: str | None = None
     #: an engine curve given as an object (the API); wins over ``engine_csv``
     curve: EngineCurve | None = None
+    #: morph the designs' meshes from this reference design ((name, SI value) pairs,
+    #: :attr:`clutchfem.studies.Settings.morph`); None: mesh every design from scratch
+    morph: tuple | None = None
 
     @classmethod
     def from_design(cls, design, *, engine=None, idle_rpm: float | None = None, requirements=None,
@@ -149,7 +152,7 @@ class EvalSettings:
         fixed = tuple(sorted(self.values().items()))
         return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
                         engine=self.engine() if (self.engine_csv or self.curve is not None) else None, idle_rpm=self.idle_rpm, a=self.a,
-                        b=self.b, min_safety_factor=self.min_safety_factor)
+                        b=self.b, min_safety_factor=self.min_safety_factor, morph=self.morph)
 
 
 @contextlib.contextmanager
@@ -216,7 +219,7 @@ def from_study_row(r: dict, point: dict) -> dict:
         "max_engine_torque_Nm": _num(r.get("max_engine_torque_Nm")),
         "yield_strength_Pa": None if ys is None else ys * 1e6,
         "warnings": [w for w in (r.get("warnings") or "").split("\n") if w], "elements": r.get("n_elements"),
-        "worker": r.get("worker")})
+        "worker": r.get("worker"), "mesh_morphed": r.get("mesh_morphed"), "morph_note": r.get("morph_note")})
     return row
 
 

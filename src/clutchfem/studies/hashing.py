@@ -10,7 +10,9 @@ meshing it):
   leaving it out is the same design); for a user mesh, the SHA-256 of the file's content;
 * the operating point (material with its constants, mu, rotation, softening, formulation,
   drum wall ...) with the point's operating-point values, the mesh settings, the engine
-  curve's numbers (not its file name), the idle speed and the requirement factors.
+  curve's numbers (not its file name), the idle speed and the requirement factors;
+* for a study that morphs its meshes (:attr:`~clutchfem.studies.Settings.morph`), the full
+  parameter set of the reference design.
 
 Floats are written with 12 significant digits, so ``1.5mm`` parsed as 0.0015000000000000002
 and 0.0015 typed in metres are one design.  The model version (see
@@ -65,6 +67,10 @@ def canonical_inputs(point: dict, settings) -> dict:
         op[k] = v
     doc.update(op=op, mesh=base["mesh"], engine=base["engine"], idle_rpm=base["idle_rpm"],
                requirements=base["requirements"])
+    if "morph_reference" in base:  # a morphed mesh: another discretisation, another row
+        ref = {k: f.default for k, f in get_concept(settings.concept).Params.model_fields.items()}
+        ref.update(base["morph_reference"])
+        doc["morph_reference"] = ref
     return _norm(doc)
 
 

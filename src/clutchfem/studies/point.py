@@ -53,7 +53,7 @@ from ..clutch import EngineCurve
 from ..core import ClutchfemError, GeometryError, InputError, MeshError, ParameterError, dumps, tune_malloc
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import Design, OperatingPoint
-from ..mesh import load_user_geometry, mesh_concept, source_hash
+from ..mesh import load_user_geometry, mesh_concept, morph_or_mesh, source_hash
 
 #: the row: (column, SQL type, meaning with unit).  The store creates its table from it.
 COLUMNS: tuple[tuple[str, str, str], ...] = (
@@ -105,6 +105,9 @@ COLUMNS: tuple[tuple[str, str, str], ...] = (
     ("stress_err_MPa", "REAL", "error band of max_von_mises_MPa [MPa]"),
     ("stress_disc_MPa", "REAL", "its discretisation part [MPa]"),
     ("n_elements", "INTEGER", "triangles in the mesh"),
+    ("mesh_morphed", "INTEGER", "1: the mesh was morphed from the study's reference design (answers smooth in the "
+                                "parameters); 0: meshed from scratch (empty: the study morphs nothing)"),
+    ("morph_note", "TEXT", "why a morph was refused (the mesh was then made from scratch), or its quality"),
     ("mesh_cached", "INTEGER", "mesh read from the content-hash cache (1/0)"),
     ("t_mesh_s", "REAL", "geometry + meshing (or cache read) [s]"),
     ("t_assembly_s", "REAL", "assembly of K, load, constraints, mass [s]"),
@@ -142,7 +145,8 @@ class Settings:
     full-throttle curve (None: the built-in ASSUMED 56.5 cc curve); idle_rpm: overrides the
     curve's idle speed; a, b: requirement factors; min_safety_factor: required yield safety
     factor at the engine's maximum speed; mesh_file / mesh_bytes: a user mesh (its content
-    travels with the settings, so remote workers need no shared disk).
+    travels with the settings, so remote workers need no shared disk); morph: the reference
+    design of morphed meshes (None: each design meshed from scratch).
     """
 
     concept: str | None
@@ -156,6 +160,10 @@ class Settings:
     min_safety_factor: float = 1.0
     mesh_file: str | None = None
     mesh_bytes: bytes | None = field(default=None, repr=False)
+    #: morph every design's mesh from this reference design's ((name, value) pairs over the
+    #: concept's defaults, :mod:`clutchfem.mesh.morph`), meshing from scratch only where the
+    #: morph is refused; None: every design meshed from scratch
+    morph: tuple[tuple[str, Any], ...] | None = None
 
     @property
     def design_name(self) -> str:
@@ -169,11 +177,14 @@ class Settings:
         if self.engine is not None:
             eng = {"rpm": list(self.engine.rpm), "torque": list(self.engine.torque),
                    "idle_rpm": self.engine.idle_rpm}
-        return {"concept": self.concept, "fixed": dict(self.fixed),
+        doc = {"concept": self.concept, "fixed": dict(self.fixed),
                 "mesh_file_sha256": hashlib.sha256(self.mesh_bytes).hexdigest() if self.mesh_bytes else None,
                 "op": op.model_dump(mode="json"), "mesh": ms.model_dump(mode="json"),
                 "engine": eng, "idle_rpm": self.idle_rpm,
                 "requirements": {"a": self.a, "b": self.b, "min_safety_factor": self.min_safety_factor}}
+        if self.morph is not None:  # a morphed mesh is another discretisation of the design
+            doc["morph_reference"] = dict(self.morph)
+        return doc
 
 
 # ---------------------------------------------------------------------------------------
@@ -280,8 +291,11 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "", errors: boo
             row["inputs_json"] = _json({"settings": settings.canonical(), "point": point,
                                         "params": params.model_dump(mode="json"),
                                         "op": op.model_dump(mode="json")})
-            cm = mesh_concept(concept, params, settings.mesh if settings.mesh is not None
-                              else MeshSettings.preset(op.fidelity))
+            ms = settings.mesh if settings.mesh is not None else MeshSettings.preset(op.fidelity)
+            if settings.morph is None:
+                cm = mesh_concept(concept, params, ms)
+            else:
+                cm = morph_or_mesh(concept, params, ms, reference=concept.Params(**dict(settings.morph)))
             name = concept.name
         else:
             params = None
@@ -352,6 +366,8 @@ def _fill(row: dict, an, design, settings: Settings, cm) -> None:
         feasible=int(bool(req["engagement_ok"]) and bool(req["slip_ok"]) and stress_ok),
         engagement_limit_rpm=_num(req["engagement_limit_rpm"]), slip_limit_rpm=_num(req["slip_limit_rpm"]),
         n_elements=cm.n_elements, mesh_cached=int(bool(cm.cached)),
+        mesh_morphed=None if cm.morph is None else int(bool(cm.morph.get("morphed"))),
+        morph_note=_morph_note(cm.morph),
         warnings="\n".join(an.warnings) or None,
     )
     err = getattr(an, "errors", None) or {}
@@ -366,6 +382,16 @@ def _fill(row: dict, an, design, settings: Settings, cm) -> None:
                                           else None)
     else:
         row["errors_estimated"] = 0
+
+
+def _morph_note(info: dict | None) -> str | None:
+    if not info:
+        return None
+    if not info.get("morphed"):
+        return f"meshed from scratch: {info.get('reason', '')}"
+    q = info.get("quality") or {}
+    return (f"morphed: largest node move {info.get('max_node_move_m', 0.0) * 1e3:.4g} mm, shape distortion "
+            f"{q.get('max_distortion', float('nan')):.3f}, min scaled Jacobian {q.get('min_scaled_jacobian', float('nan')):.3f}")
 
 
 def warm_up(concept: str | None = None) -> str:
