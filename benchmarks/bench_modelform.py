@@ -179,7 +179,6 @@ def thickness_study(name: str, thicknesses) -> list[dict]:
         for form in ("plane-stress", "plane-strain", "3d"):
             d = Design(cm, OperatingPoint(formulation=form, softening="off"), params=p)
             e[form] = d.case().engagement_rpm
-        tf = max(getattr(p, "flexure_thicknesses", lambda: [p.flexure_thickness])())
         rows.append({"concept": name, "h_mm": h * 1e3, "h_over_tf": h / p.flexure_thickness,
                      "PS_rpm": e["plane-stress"], "PE_rpm": e["plane-strain"], "3D_rpm": e["3d"],
                      "3D/PS-1": e["3d"] / e["plane-stress"] - 1,
