@@ -45,7 +45,7 @@ def test_model_form_terms_follow_the_measurements():
     # the fast path's rigid drum is a model-form term; the best path models the drum: its
     # wall is a sensitivity, and the thickness effect is computed, so only its residual stays
     assert model_form(d, "torque_at_max_engine_torque_Nm", 3.0, w0=4200.0, w=8000.0)[0]["rigid_drum"] < 0
-    best = Design.from_concept("concept4", mesh=MeshSettings(size=2.5e-3))
+    best = Design.from_concept("concept4", mesh=MeshSettings(size=2.5e-3), fidelity="best")
     tb, _ = model_form(best, "torque_at_max_engine_torque_Nm", 3.0, w0=4200.0, w=8000.0)
     assert set(tb) == {"thickness_3d_residual", "geometric_nonlinearity"}
     tf, _ = model_form(d, "torque_at_max_engine_torque_Nm", 3.0, w0=4200.0, w=8000.0)
