@@ -32,6 +32,24 @@ USER_THICKNESS = 11e-3
 DRUM_GAP_LIMIT = 1.5
 
 
+
+def split_values(concept, values: dict) -> tuple[dict, dict]:
+    """(geometry, operating) of keyword values: each name is a parameter of ``concept`` or
+    of :class:`OperatingPoint`; any other name is refused, listing both."""
+    geometry, op_values = {}, {}
+    for name, value in values.items():
+        if name in concept.Params.model_fields:
+            geometry[name] = value
+        elif name in OperatingPoint.model_fields:
+            op_values[name] = value
+        else:
+            raise ParameterError(name, value, "a parameter of the concept (" + ", ".join(concept.Params.model_fields)
+                                 + ") or of the operating point (" + ", ".join(
+                                     n for n in OperatingPoint.model_fields if n not in ("drum_radius", "thickness"))
+                                 + ")", concept.name)
+    return geometry, op_values
+
+
 class Design:
     """A meshed design at an operating point (see module docstring): one FE model and
     factorisation, any number of load cases.  Made with :meth:`from_concept` or
@@ -144,18 +162,7 @@ class Design:
         True
         """
         c = get_concept(concept) if isinstance(concept, str) else concept
-        geometry, op_values = {}, {}
-        for name, value in values.items():
-            if name in c.Params.model_fields:
-                geometry[name] = value
-            elif name in OperatingPoint.model_fields:
-                op_values[name] = value
-            else:
-                raise ParameterError(name, value, "a parameter of the concept (" + ", ".join(c.Params.model_fields)
-                                     + ") or of the operating point (" + ", ".join(
-                                         n for n in OperatingPoint.model_fields if n not in ("drum_radius",
-                                                                                             "thickness")) + ")",
-                                     c.name)
+        geometry, op_values = split_values(c, values)
         if params is not None and not isinstance(params, c.Params):
             raise ParameterError("params", type(params).__name__, f"a {c.Params.__name__} of {c.name} (or None)")
         p = params if params is not None else c.params()

@@ -13,8 +13,7 @@ from __future__ import annotations
 from ..core import ParameterError
 from ..geometry import MeshSettings
 from ..mesh import morph_or_mesh
-from .design import Design
-from .operating import OperatingPoint
+from .design import Design, split_values
 
 
 def morph(design: Design, **values) -> Design:
@@ -50,15 +49,7 @@ def morph(design: Design, **values) -> Design:
         raise ParameterError("design", type(design).__name__, "a concept's Design (Design.from_concept): a user mesh "
                              "has no parameters to change")
     c = design.concept
-    geometry, op_values = {}, {}
-    for name, value in values.items():
-        if name in c.Params.model_fields:
-            geometry[name] = value
-        elif name in OperatingPoint.model_fields:
-            op_values[name] = value
-        else:
-            raise ParameterError(name, value, "a parameter of the concept (" + ", ".join(c.Params.model_fields)
-                                 + ") or of the operating point", c.name)
+    geometry, op_values = split_values(c, values)
     p = design.params.replace(**geometry) if geometry else design.params
     op = design.op.replace(**op_values) if op_values else design.op
     ref = design.params
