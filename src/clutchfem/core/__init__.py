@@ -8,8 +8,7 @@ or the unit parser does not load scipy (``roots``: 0.7 s) or pydantic (``params`
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from .lazy import lazy_names
 
 #: public name -> the module of this package it lives in
 _NAMES: dict[str, str] = {
@@ -41,6 +40,7 @@ _NAMES: dict[str, str] = {
     "SolverError": "errors",
     "tag_png": "figures",
     "tune_malloc": "runtime",
+    "lazy_names": "lazy",
     "UnitError": "units",
     "wrap_angle": "units",
     "write": "jsonio",
@@ -49,14 +49,4 @@ _NAMES: dict[str, str] = {
 __all__ = sorted(_NAMES)
 
 
-def __getattr__(name: str) -> Any:
-    """Import a name on first use (PEP 562) and keep it."""
-    if name not in _NAMES:
-        raise AttributeError(f"module 'clutchfem.core' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_NAMES[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_NAMES))
+__getattr__, __dir__ = lazy_names(__name__, globals(), _NAMES)

@@ -24,8 +24,7 @@ only needs the store or a finished study's summary does not load the analysis st
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from ..core import lazy_names
 
 #: public name -> the module of this package it lives in (None: the module itself)
 _NAMES: dict[str, str | None] = {
@@ -84,16 +83,4 @@ _NAMES: dict[str, str | None] = {
 __all__ = sorted(_NAMES)
 
 
-def __getattr__(name: str) -> Any:
-    """Import a name on first use (PEP 562) and keep it."""
-    if name not in _NAMES:
-        raise AttributeError(f"module 'clutchfem.studies' has no attribute {name!r}")
-    module = _NAMES[name]
-    mod = importlib.import_module(f"{__name__}.{module or name}")
-    value = mod if module is None else getattr(mod, name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_NAMES))
+__getattr__, __dir__ = lazy_names(__name__, globals(), _NAMES)
