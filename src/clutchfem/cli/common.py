@@ -42,7 +42,8 @@ def working(what: str):
                    transient=True, redirect_stdout=False, redirect_stderr=False)
     with bar:
         task = bar.add_task(escape(what))
-        yield lambda text: bar.update(task, description=escape(f"{what}: {text}"))
+        # refresh at once: a stage shorter than the refresh tick is still shown (and seen by tests)
+        yield lambda text: bar.update(task, description=escape(f"{what}: {text}"), refresh=True)
 
 __all__ = ["working", "check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
            "operating_point", "quantity", "requirements_from", "wrote"]
