@@ -558,7 +558,7 @@ def test_concept_peak_stress_not_a_mesh_artefact(name):
     a small round meets a large arc (scaled Jacobian 0.007 on concept 4; detJ varies 5x
     inside it), whose vertex reads 2.7 GPa (concept 1, quadrature peak 0.38 GPa) and
     4.5 GPa (concept 4, 0.76 GPa); it grows under refinement (8.3 GPa at f = 0.25).
-    mesh._fix_invalid_high_order runs gmsh's high-order optimiser only for minDetJac <= 0;
+    mesh.highorder.optimise_high_order ran gmsh's high-order optimiser only for minDetJac <= 0;
     with a scaled-Jacobian threshold (minSJ < 0.2) the ratio drops to 1.04 / 1.07."""
     from clutchfem.geometry import MeshSettings, concepts, get_concept
     from clutchfem.mesh import mesh_concept

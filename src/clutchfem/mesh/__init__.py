@@ -14,6 +14,7 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.cyclic` -- the node pairing of the two cut lines of a one-sector model;
 * :mod:`.morph` -- a design's mesh moved from a reference design's (mesh morphing);
 * :mod:`.quality` -- element quality, and of a moved mesh against its reference;
+* :mod:`.highorder` -- the guard against nearly degenerate curved elements after meshing;
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
 """
 
@@ -22,6 +23,7 @@ from .cad import import_planar, step_unit
 from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
+from .highorder import GUARD_MIN_SJ, MAX_SAGITTA, GuardReport, guard_high_order, p2_scaled_jacobian
 from .generate import MAX_ELEMENTS, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
 from .morph import (
                        CACHE_SIZE,
@@ -50,7 +52,7 @@ from .topology import (
 from .user import load_user_geometry
 from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_length_unit
 
-__all__ = ["CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
+__all__ = ["GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
            "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
            "bore_centre", "cache_entries", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",

@@ -48,6 +48,7 @@ from ..geometry import (
 from .cache import cache_dir, evict, touch
 from .clutch_mesh import ClutchMesh
 from .convert import meshio_to_skfem, read_msh
+from .highorder import guard_high_order, optimise_high_order
 
 #: meshes estimated above this many elements are refused (a one-sector default mesh has ~2-3
 #: thousand; 250 000 P2 triangles are ~1 M unknowns, minutes and GBs for one design)
@@ -62,8 +63,8 @@ def source_hash(concept: Concept) -> str:
     files = {inspect.getfile(cls) for cls in type(concept).__mro__
              if cls.__module__.startswith("clutchfem_geometries.")}
     files |= {str(f) for f in source_files()}
-    # the meshing pipeline itself: generation (high-order fix-up) and meshio -> scikit-fem
-    files |= {__file__, inspect.getfile(meshio_to_skfem)}
+    # the meshing pipeline itself: generation, the high-order guard and meshio -> scikit-fem
+    files |= {__file__, inspect.getfile(meshio_to_skfem), inspect.getfile(guard_high_order)}
     for f in sorted(files):
         h.update(Path(f).read_bytes())
     return h.hexdigest()[:16]
@@ -165,7 +166,13 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
             gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
             gmsh.model.mesh.generate(2)
             if ms.order == 2:
-                _fix_invalid_high_order()
+                optimise_high_order()
+                g = guard_high_order(concept.name, mirrored=built.mirrored)
+                if g.moved_interior or g.moved_outline:
+                    log.info("%s: nearly degenerate curved elements repaired (worst scaled Jacobian %.2g -> %.2g; "
+                             "%d interior mid-side nodes moved, %d outline ones straightened, chord error <= %.2g um)",
+                             concept.name, g.worst_before, g.worst_after, g.moved_interior, g.moved_outline,
+                             g.max_sagitta * 1e6)
             if built.mirrored:  # minus arrangement: reflect the canonical mesh, y -> -y
                 gmsh.model.mesh.affineTransform([1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0])
         except (GeometryError, MeshError):
@@ -196,21 +203,6 @@ def _atomic_write(path: Path) -> None:
     os.close(fd)
     gmsh.write(tmp)
     os.replace(tmp, path)
-
-
-def _fix_invalid_high_order() -> None:
-    """Run gmsh's high-order optimiser if some curved element is invalid or nearly so
-    (scaled Jacobian < 0.2): a valid but nearly singular P2 element gives garbage raw vertex
-    stresses (several GPa where the field peaks at a few hundred MPa)."""
-    types, tags, _ = gmsh.model.mesh.getElements(2)
-    worst = 1.0
-    for t in tags:
-        q = gmsh.model.mesh.getElementQualities(t, "minSJ")
-        if len(q):
-            worst = min(worst, float(np.min(q)))
-    if worst < 0.2:
-        gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
-        gmsh.model.mesh.optimize("HighOrder")
 
 
 def _load_generated(msh: Path, meta: dict, source: str) -> ClutchMesh:
