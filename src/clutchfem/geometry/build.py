@@ -189,7 +189,7 @@ def build_model(concept: Concept, p: ConceptParams, ms: MeshSettings) -> BuiltMo
         dims[name] = dim
         if tags:
             gmsh.model.addPhysicalGroup(dim, tags, name=name)
-    _size_fields(p, ms, groups)
+    _size_fields(p, ms, groups, -1.0 if mirrored else 1.0)
     return BuiltModel(concept=concept.name, n_shoes_total=n, n_shoes_model=n_model,
                       sector_angle=Theta if sector else None,
                       sector_start=cut_angles[0] if cut_angles else None, mirrored=mirrored,
@@ -197,10 +197,12 @@ def build_model(concept: Concept, p: ConceptParams, ms: MeshSettings) -> BuiltMo
                       contact_arcs=arcs)
 
 
-def _size_fields(p: ConceptParams, ms: MeshSettings, groups: dict[str, list[int]]) -> None:
+def _size_fields(p: ConceptParams, ms: MeshSettings, groups: dict[str, list[int]], ysign: float = 1.0) -> None:
     f = gmsh.model.mesh.field
     h = ms.size
     fields = []
+    if ms.refine_radius > 0 and ms.refine_size < h:  # the refined disc (final frame -> canonical: y * ysign)
+        fields.append(disc_size_field(ms.refine_x, ysign * ms.refine_y, ms.refine_radius, ms.refine_size, h))
 
     def threshold(curves: list[int], size: float, dist: float) -> None:
         if not curves or size >= h:
@@ -245,6 +247,21 @@ def _size_fields(p: ConceptParams, ms: MeshSettings, groups: dict[str, list[int]
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+
+
+def disc_size_field(x: float, y: float, radius: float, size: float, h: float) -> int:
+    """Add a gmsh size field to the current model: ``size`` within ``radius`` of (x, y) [m],
+    growing linearly to ``h`` over the next 4 h; returns its tag (to combine in a Min field)."""
+    f = gmsh.model.mesh.field
+    d = f.add("MathEval")
+    f.setString(d, "F", f"Sqrt((x-({x!r}))^2+(y-({y!r}))^2)")
+    t = f.add("Threshold")
+    f.setNumber(t, "InField", d)
+    f.setNumber(t, "SizeMin", size)
+    f.setNumber(t, "SizeMax", h)
+    f.setNumber(t, "DistMin", radius)
+    f.setNumber(t, "DistMax", radius + 4 * h)
+    return t
 
 
 def _mass_properties(groups: dict[str, list[int]], n_model: int) -> dict:

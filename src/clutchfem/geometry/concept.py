@@ -204,6 +204,10 @@ class MeshSettings(ParamSet):
     flexure_factor, contact_factor, fillet_factor : float
         Local sizes: in flexures as a fraction of their thickness, on contact surfaces and on
         small arcs (fillets) relative to the global size / the arc radius.
+    refine_radius, refine_x, refine_y, refine_size : float
+        A disc of radius ``refine_radius`` around (``refine_x``, ``refine_y``) meshed at
+        ``refine_size`` (0: none): the local refinement of a stress peak
+        (:func:`clutchfem.fe.peak_stress_converged` sets it).
     order : int
         Element order (2: curved P2 triangles).
     model : {"sector", "full"}
@@ -224,6 +228,12 @@ class MeshSettings(ParamSet):
     fillet_factor: float = param(0.5, "-", 0.05, 2.0, "element size on small arcs (fillets) / arc radius")
     fillet_reach: float = param(0.0, "-", 0.0, 5.0, "distance from a fillet within which its size holds / its radius "
                                 "(0: on the arc only, then growing to the global size)")
+    refine_radius: float = param(0.0, "m", 0.0, 0.05, "radius of a disc refined to refine_size around "
+                                 "(refine_x, refine_y) (0: none; the peak-stress refinement sets it)")
+    refine_x: float = param(0.0, "m", -0.5, 0.5, "centre of the refined disc, x (final frame)")
+    refine_y: float = param(0.0, "m", -0.5, 0.5, "centre of the refined disc, y (final frame)")
+    refine_size: float = param(1e-4, "m", 1e-6, 10e-3, "element size inside the refined disc, growing to the "
+                               "global size over 4 global sizes outside it")
     order: int = param(2, "-", 1, 2, "element order (2: curved P2 triangles)")
     model: Literal["sector", "full"] = choice("sector", "one cyclic sector or the full 360 degree part")
 

@@ -1,0 +1,168 @@
+"""Peak stress converged where it governs: the free-spin von Mises peak refined locally
+(a disc of elements around it, halved level by level) until Richardson's estimate of its
+discretisation error is within a tolerance, with the feature that carries it.
+
+Load: the free spin (no contact), plane stress or strain as the model, stress per unit
+omega^2 [Pa / (rad/s)^2] -- the field is linear in omega^2 before the shoes touch the drum.
+After contact the peak's *location* stays at the same feature on the concepts measured
+(BENCHMARKS.md section 13), its size does not: scale with the analysis' own ratio.
+
+Levels: level 0 is the given mesh; its peak point x0 and the size h0 = sqrt(2 A) of the
+element there set the disc: centre x0, radius max(R, 8 h0 / 2) with R the outline's radius
+of curvature at x0 (a fillet's stress gradient decays over ~R), size h0 / 2^k at level k
+(growing to the global size over 4 global sizes outside it: ``MeshSettings.refine_*``).
+The peak is taken over the whole mesh at every level (it may move).
+
+Error (levels k-2, k-1, k of the refined family, ratio 2): d1 = v(k-1) - v(k-2), d2 = v(k)
+- v(k-1).  Monotone (d1 / d2 > 1): observed order p = log2(d1 / d2), error of v(k) =
+d2 / (2^min(p, 2) - 1) (Richardson; the order capped at P2's nominal order 2 of the vertex
+stress, ASSUMED (section 12 measured 1.86-2.27): a faster observed decay is not trusted to
+continue, so the estimate stays conservative).  Otherwise (oscillating, or not yet asymptotic): error =
+|d2|, p reported as NaN.  Stop when the error <= ``tol`` x the peak, at ``max_levels``, or
+before a level would exceed ``max_elements``.
+
+Feature: the outline's radius of curvature at the peak (a circle fitted to the five P2
+nodes of the two outline edges at the peak vertex) and the zone (shoe / flexure / hub)
+of the element; a radius below 0.25 x the drum radius is called a fillet.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ..core import Material, ParameterError
+from ..geometry import Concept, ConceptParams, MeshSettings
+from ..mesh import ClutchMesh, mesh_concept
+from .model import FEModel
+
+
+@dataclass(frozen=True)
+class PeakLevel:
+    """One refinement level: peak [Pa/(rad/s)^2], its point [m], elements, seconds."""
+
+    peak: float
+    at: tuple[float, float]
+    elements: int
+    refine_size: float
+    time_s: float
+
+
+@dataclass(frozen=True)
+class PeakStress:
+    """The converged free-spin peak von Mises (module docstring)."""
+
+    peak: float
+    """von Mises per unit omega^2 [Pa / (rad/s)^2] at the finest level"""
+    at: tuple[float, float]
+    """its point [m] (final frame)"""
+    feature: str
+    """the outline feature carrying it, e.g. 'fillet R 0.80 mm, shoe_0'"""
+    radius: float
+    """the outline's radius of curvature there [m] (inf: straight)"""
+    error: float
+    """estimated discretisation error of ``peak`` [Pa / (rad/s)^2] (>= 0)"""
+    order: float
+    """observed convergence order (NaN if not observable)"""
+    converged: bool
+    levels: list[PeakLevel] = field(default_factory=list)
+
+    def at_rpm(self, rpm: float) -> float:
+        """The peak [Pa] at ``rpm`` of free spin."""
+        return self.peak * (rpm * math.pi / 30.0) ** 2
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def peak_stress_converged(concept: Concept, p: ConceptParams, material: Material, ms: MeshSettings | None = None,
+                          *, tol: float = 0.01, max_levels: int = 4, max_elements: int = 60_000,
+                          formulation: str = "plane-stress") -> PeakStress:
+    """The free-spin peak von Mises of ``concept`` with ``p``, refined locally until its
+    estimated discretisation error is <= ``tol`` of the peak (module docstring)."""
+    if not (0 < tol < 1):
+        raise ParameterError("tol", tol, "a relative error in (0, 1)")
+    ms = ms or MeshSettings.preset("best")
+    t0 = time.perf_counter()
+    cm = mesh_concept(concept, p, ms)
+    v, x, e, m = _peak(cm, material, formulation)
+    levels = [PeakLevel(v, x, cm.n_elements, 0.0, time.perf_counter() - t0)]
+    radius, where = _feature(m, x, e, p.drum_radius)
+    h0 = math.sqrt(2.0 * float(_area(cm, e)))
+    disc = max(radius if math.isfinite(radius) else 0.0, 4.0 * h0)
+    err, order = math.inf, math.nan
+    for k in range(1, max_levels + 1):
+        s = h0 / 2 ** k
+        est = levels[-1].elements * (4 if k > 1 else 2)
+        if k > 1 and est > max_elements:
+            break
+        t0 = time.perf_counter()
+        msk = ms.replace(refine_x=x[0], refine_y=x[1], refine_radius=disc, refine_size=s)
+        cm = mesh_concept(concept, p, msk)
+        vk, xk, ek, mk = _peak(cm, material, formulation)
+        levels.append(PeakLevel(vk, xk, cm.n_elements, s, time.perf_counter() - t0))
+        if k >= 3:
+            err, order = richardson([lv.peak for lv in levels[-3:]])
+        elif k == 2:
+            err = abs(levels[-1].peak - levels[-2].peak)
+        if k >= 3 and err <= tol * abs(vk):
+            break
+    last = levels[-1]
+    radius, where = _feature(mk, last.at, ek, p.drum_radius)
+    kind = f"fillet R {radius * 1e3:.2f} mm" if radius < 0.25 * p.drum_radius else (
+        "straight edge" if not math.isfinite(radius) else f"arc R {radius * 1e3:.1f} mm")
+    return PeakStress(peak=last.peak, at=last.at, feature=f"{kind}, {where}", radius=radius, error=err, order=order,
+                      converged=bool(err <= tol * abs(last.peak)), levels=levels)
+
+
+def richardson(v: list[float], ratio: float = 2.0, p_max: float = 2.0) -> tuple[float, float]:
+    """(error of v[-1], observed order) from three values at sizes h, h/ratio, h/ratio^2
+    (module docstring: the order used capped at ``p_max``; order NaN and error |last
+    change| when not monotone)."""
+    d1, d2 = v[1] - v[0], v[2] - v[1]
+    if d2 == 0.0:
+        return 0.0, math.nan
+    q = d1 / d2
+    if q > 1.0:
+        p = math.log(q) / math.log(ratio)
+        return abs(d2) / (ratio ** min(p, p_max) - 1.0), p
+    return abs(d2), math.nan
+
+
+def _peak(cm: ClutchMesh, material: Material, formulation: str):
+    m = FEModel(cm, material, formulation=formulation)
+    vm = m.von_mises(m.stress(m.u1))
+    i = int(np.argmax(vm))
+    x = m.stress.points[:, i]
+    return float(vm[i]), (float(x[0]), float(x[1])), int(m.stress.element[i]), m
+
+
+def _area(cm: ClutchMesh, e: int) -> float:
+    a, b, c = cm.mesh.p[:, cm.mesh.t[:, e]].T
+    return 0.5 * abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+
+
+def _feature(m: FEModel, x: tuple[float, float], e: int, drum_radius: float) -> tuple[float, str]:
+    """(outline radius of curvature at x [m], zone name of element e)."""
+    mesh = m.cm.mesh
+    zone = next((k for k, v in (mesh.subdomains or {}).items() if k != "solid" and e in set(np.asarray(v).tolist())),
+                "solid")
+    v = int(np.argmin(np.hypot(mesh.p[0] - x[0], mesh.p[1] - x[1])))
+    bf = mesh.boundary_facets()
+    facets = bf[np.any(mesh.facets[:, bf] == v, axis=0)]
+    if facets.size == 0:
+        return math.inf, zone
+    pts = np.concatenate([mesh.p[:, mesh.facets[:, facets].ravel()], mesh.doflocs[:, mesh.nvertices + facets]], axis=1)
+    pts = np.unique(np.round(pts.T, 12), axis=0)
+    if len(pts) < 3:
+        return math.inf, zone
+    # algebraic circle fit x^2 + y^2 + D x + E y + F = 0
+    A = np.column_stack([pts[:, 0], pts[:, 1], np.ones(len(pts))])
+    rhs = -(pts[:, 0] ** 2 + pts[:, 1] ** 2)
+    (D, E, F), *_ = np.linalg.lstsq(A, rhs, rcond=None)
+    r2 = D * D / 4 + E * E / 4 - F
+    r = math.sqrt(r2) if r2 > 0 else math.inf
+    return (r if r < 10 * drum_radius else math.inf), zone
