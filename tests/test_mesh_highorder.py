@@ -5,6 +5,7 @@ import gmsh
 import numpy as np
 import pytest
 
+from clutchfem import Design, OperatingPoint
 from clutchfem.core import MeshError, get_material
 from clutchfem.fe import FEModel
 from clutchfem.geometry import MeshSettings, get_concept, gmsh_session
@@ -87,3 +88,23 @@ def test_concept4_fine_fillets_peak_is_the_notch_not_a_sliver():
                                             2 * mu * exy]))))
     assert vm[i] < 1.1 * vq
     assert np.hypot(*(m.stress.points[:, i] - [26.97e-3, -1.35e-3])) < 0.2e-3
+
+
+def test_best_preset_reshapes_cusp_slivers_the_thick_model_reads():
+    """Concept 1 design lhs03 (bench_accuracy.py), best preset refined once, the thick plane
+    model at 14 000 rpm: a curved sliver (scaled Jacobian 0.1-0.14, valid) in the cusp where
+    the R 0.65 mm fillet meets the shoe-zone line y = 0 tangentially read 1427 MPa at (27.29,
+    0) mm, the fillet peak being 1077 MPa (the 'reference' 1504 MPa of BENCHMARKS.md section
+    13).  The best preset reshapes below 0.2: the peak is the fillet's, within 3 % of the
+    unrefined best mesh's 1062 MPa.  FAILS with reshape_below=0.05."""
+    lhs03 = {"flexure_thickness": 0.00176, "flexure_length": 0.01404, "shoe_arc": 57.849, "thickness": 0.012948,
+             "clearance": 0.000458, "fillet_radius": 0.000648}
+    best = MeshSettings.preset("best")
+    peaks = []
+    for ms in (best, best.replace(size=3e-3, flexure_factor=0.25, fillet_factor=0.125)):
+        d = Design.from_concept("concept1", operating=OperatingPoint(fidelity="best"), mesh=ms, **lhs03)
+        row = d.sweep([14000.0]).curve.iloc[0]
+        peaks.append((row.max_von_mises_Pa, row.max_vm_x_m, row.max_vm_y_m))
+    (v0, *_), (v1, x1, y1) = peaks
+    assert abs(v1 / v0 - 1) < 0.03
+    assert y1 < -0.3e-3  # on the fillet, not at the cusp on y = 0

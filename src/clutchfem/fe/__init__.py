@@ -16,13 +16,13 @@ from .model3d import (
                       geometric_stiffness_3d,
                       lame_3d,
 )
-from .peak import PeakLevel, PeakStress, peak_stress_converged, richardson
+from .peak import PeakLevel, PeakStress, free_spin_peak, peak_stress_converged, richardson
 from .size3d import check_3d_size, estimate_3d, max_model_memory
 from .stress import VertexStress, VertexStress3D, p2_vertex_gradients, von_mises
 from .thick import FEModelThick, ThickSettings, ThickStress, thick_modes
 from .vtu import ZONES, RingMesh, in_plane_stresses, pvd_text, ring_stresses, write_vtk, zone_ids
 
-__all__ = ["PeakLevel", "PeakStress", "peak_stress_converged", "richardson", "COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
+__all__ = ["PeakLevel", "PeakStress", "free_spin_peak", "peak_stress_converged", "richardson", "COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
            "FEModelThick", "ThickSettings", "ThickStress", "p2_vertex_gradients", "thick_modes",
            "Kinematics", "geometric_stiffness",
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",

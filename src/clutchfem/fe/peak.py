@@ -2,13 +2,15 @@
 (a disc of elements around it, halved level by level) until Richardson's estimate of its
 discretisation error is within a tolerance, with the feature that carries it.
 
-Load: the free spin (no contact), plane stress or strain as the model, stress per unit
-omega^2 [Pa / (rad/s)^2] -- the field is linear in omega^2 before the shoes touch the drum.
-After contact the peak's *location* stays at the same feature on the concepts measured
-(BENCHMARKS.md section 13), its size does not: scale with the analysis' own ratio.
+Load: by default the free spin (no contact), plane stress or strain, stress per unit
+omega^2 [Pa / (rad/s)^2] (linear in omega^2 before the shoes touch the drum); any other
+analysis is passed as ``evaluate(mesh) -> (peak, point)`` (``benchmarks/bench_peak.py``
+converges analyze's 14 000 rpm contact peak that way).  On concepts 1 and 4 at their
+defaults the peak sits on the same fillet at 4000 (free), 8000 and 14 000 rpm (measured
+2026-11-26, fast and best presets).
 
 Levels: level 0 is the given mesh; its peak point x0 and the size h0 = sqrt(2 A) of the
-element there set the disc: centre x0, radius max(R, 8 h0 / 2) with R the outline's radius
+element there set the disc: centre x0, radius max(R, 4 h0) with R the outline's radius
 of curvature at x0 (a fillet's stress gradient decays over ~R), size h0 / 2^k at level k
 (growing to the global size over 4 global sizes outside it: ``MeshSettings.refine_*``).
 The peak is taken over the whole mesh at every level (it may move).
@@ -17,9 +19,13 @@ Error (levels k-2, k-1, k of the refined family, ratio 2): d1 = v(k-1) - v(k-2),
 - v(k-1).  Monotone (d1 / d2 > 1): observed order p = log2(d1 / d2), error of v(k) =
 d2 / (2^min(p, 2) - 1) (Richardson; the order capped at P2's nominal order 2 of the vertex
 stress, ASSUMED (section 12 measured 1.86-2.27): a faster observed decay is not trusted to
-continue, so the estimate stays conservative).  Otherwise (oscillating, or not yet asymptotic): error =
-|d2|, p reported as NaN.  Stop when the error <= ``tol`` x the peak, at ``max_levels``, or
-before a level would exceed ``max_elements``.
+continue, so the estimate stays conservative).  Otherwise (oscillating, or not yet
+asymptotic): error = max(|d1|, |d2|), p reported as NaN.  (A disc of radius R / 2 cost
+2.5x fewer elements but oscillated by 0.1-0.6 % between levels on concepts 1 and 4; the
+radius max(R, 4 h0) gave monotone sequences with observed orders 2.6-3.5, 2026-11-26.)
+With two refined levels only: error = |d2|.  Stop when the error <= ``tol`` x the peak
+(at least three refined levels), at ``max_levels``, or before a level would exceed
+``max_elements`` (then ``converged`` is False).
 
 Feature: the outline's radius of curvature at the peak (a circle fitted to the five P2
 nodes of the two outline edges at the peak vertex) and the zone (shoe / flexure / hub)
@@ -28,8 +34,10 @@ of the element; a radius below 0.25 x the drum radius is called a fillet.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -38,6 +46,11 @@ from ..core import Material, ParameterError
 from ..geometry import Concept, ConceptParams, MeshSettings
 from ..mesh import ClutchMesh, mesh_concept
 from .model import FEModel
+
+#: the refined levels' curved elements below this scaled Jacobian are reshaped (module docstring)
+RESHAPE_BELOW = 0.2
+#: what the refinement converges: mesh -> (peak, (x, y) [m])
+Evaluate = Callable[[ClutchMesh], tuple[float, tuple[float, float]]]
 
 
 @dataclass(frozen=True)
@@ -56,7 +69,7 @@ class PeakStress:
     """The converged free-spin peak von Mises (module docstring)."""
 
     peak: float
-    """von Mises per unit omega^2 [Pa / (rad/s)^2] at the finest level"""
+    """the peak at the finest level (free spin: von Mises per unit omega^2 [Pa / (rad/s)^2])"""
     at: tuple[float, float]
     """its point [m] (final frame)"""
     feature: str
@@ -71,38 +84,46 @@ class PeakStress:
     levels: list[PeakLevel] = field(default_factory=list)
 
     def at_rpm(self, rpm: float) -> float:
-        """The peak [Pa] at ``rpm`` of free spin."""
+        """The peak [Pa] at ``rpm`` of free spin (for the default ``evaluate`` only)."""
         return self.peak * (rpm * math.pi / 30.0) ** 2
 
     def as_dict(self) -> dict:
         return asdict(self)
 
 
-def peak_stress_converged(concept: Concept, p: ConceptParams, material: Material, ms: MeshSettings | None = None,
-                          *, tol: float = 0.01, max_levels: int = 4, max_elements: int = 60_000,
+def peak_stress_converged(concept: Concept, p: ConceptParams, ms: MeshSettings | None = None, *,
+                          material: Material | None = None, evaluate: Evaluate | None = None, tol: float = 0.01,
+                          max_levels: int = 4, max_elements: int = 60_000,
                           formulation: str = "plane-stress") -> PeakStress:
-    """The free-spin peak von Mises of ``concept`` with ``p``, refined locally until its
-    estimated discretisation error is <= ``tol`` of the peak (module docstring)."""
+    """The peak von Mises of ``concept`` with ``p``, refined locally around it until its
+    estimated discretisation error is <= ``tol`` of the peak (module docstring).
+
+    ``evaluate(cm) -> (peak, (x, y))``: the peak [any stress unit] and its point [m] of
+    the analysis wanted on a mesh (e.g. a contact state at one speed, built by the caller);
+    default: the free spin of ``material`` per unit omega^2 [Pa / (rad/s)^2]."""
     if not (0 < tol < 1):
         raise ParameterError("tol", tol, "a relative error in (0, 1)")
+    if evaluate is None:
+        if material is None:
+            raise ParameterError("material", None, "a Material (or give evaluate=...)")
+        evaluate = functools.partial(free_spin_peak, material=material, formulation=formulation)
     ms = ms or MeshSettings.preset("best")
     t0 = time.perf_counter()
     cm = mesh_concept(concept, p, ms)
-    v, x, e, m = _peak(cm, material, formulation)
+    v, x = evaluate(cm)
     levels = [PeakLevel(v, x, cm.n_elements, 0.0, time.perf_counter() - t0)]
-    radius, where = _feature(m, x, e, p.drum_radius)
-    h0 = math.sqrt(2.0 * float(_area(cm, e)))
-    disc = max(radius if math.isfinite(radius) else 0.0, 4.0 * h0)
+    radius, _ = _feature(cm, x, p.drum_radius)
+    h0 = math.sqrt(2.0 * _area_at(cm, x))
+    disc = max(radius if math.isfinite(radius) else 0.0, 4.0 * h0)  # NaN / inf: 4 h0
     err, order = math.inf, math.nan
     for k in range(1, max_levels + 1):
         s = h0 / 2 ** k
-        est = levels[-1].elements * (4 if k > 1 else 2)
-        if k > 1 and est > max_elements:
+        if k > 1 and levels[-1].elements * 4 > max_elements:
             break
         t0 = time.perf_counter()
-        msk = ms.replace(refine_x=x[0], refine_y=x[1], refine_radius=disc, refine_size=s)
-        cm = mesh_concept(concept, p, msk)
-        vk, xk, ek, mk = _peak(cm, material, formulation)
+        cm = mesh_concept(concept, p, ms.replace(refine_x=x[0], refine_y=x[1], refine_radius=disc, refine_size=s,
+                                                 reshape_below=RESHAPE_BELOW))
+        vk, xk = evaluate(cm)
         levels.append(PeakLevel(vk, xk, cm.n_elements, s, time.perf_counter() - t0))
         if k >= 3:
             err, order = richardson([lv.peak for lv in levels[-3:]])
@@ -111,17 +132,31 @@ def peak_stress_converged(concept: Concept, p: ConceptParams, material: Material
         if k >= 3 and err <= tol * abs(vk):
             break
     last = levels[-1]
-    radius, where = _feature(mk, last.at, ek, p.drum_radius)
-    kind = f"fillet R {radius * 1e3:.2f} mm" if radius < 0.25 * p.drum_radius else (
-        "straight edge" if not math.isfinite(radius) else f"arc R {radius * 1e3:.1f} mm")
+    radius, where = _feature(cm, last.at, p.drum_radius)
+    if math.isnan(radius):
+        kind = "inside the part"
+    elif radius < 0.25 * p.drum_radius:
+        kind = f"fillet R {radius * 1e3:.2f} mm"
+    else:
+        kind = "straight edge" if math.isinf(radius) else f"arc R {radius * 1e3:.1f} mm"
     return PeakStress(peak=last.peak, at=last.at, feature=f"{kind}, {where}", radius=radius, error=err, order=order,
                       converged=bool(err <= tol * abs(last.peak)), levels=levels)
 
 
+def free_spin_peak(cm: ClutchMesh, material: Material, formulation: str = "plane-stress") -> tuple[float, tuple]:
+    """(peak von Mises per unit omega^2 [Pa / (rad/s)^2], its point [m]) of the free spin
+    (no contact, no softening) on ``cm``: raw P2 vertex stresses."""
+    m = FEModel(cm, material, formulation=formulation)
+    vm = m.von_mises(m.stress(m.u1))
+    i = int(np.argmax(vm))
+    x = m.stress.points[:, i]
+    return float(vm[i]), (float(x[0]), float(x[1]))
+
+
 def richardson(v: list[float], ratio: float = 2.0, p_max: float = 2.0) -> tuple[float, float]:
     """(error of v[-1], observed order) from three values at sizes h, h/ratio, h/ratio^2
-    (module docstring: the order used capped at ``p_max``; order NaN and error |last
-    change| when not monotone)."""
+    (module docstring: the order used capped at ``p_max``; order NaN and error the larger
+    change when not monotone)."""
     d1, d2 = v[1] - v[0], v[2] - v[1]
     if d2 == 0.0:
         return 0.0, math.nan
@@ -129,32 +164,32 @@ def richardson(v: list[float], ratio: float = 2.0, p_max: float = 2.0) -> tuple[
     if q > 1.0:
         p = math.log(q) / math.log(ratio)
         return abs(d2) / (ratio ** min(p, p_max) - 1.0), p
-    return abs(d2), math.nan
+    return max(abs(d1), abs(d2)), math.nan
 
 
-def _peak(cm: ClutchMesh, material: Material, formulation: str):
-    m = FEModel(cm, material, formulation=formulation)
-    vm = m.von_mises(m.stress(m.u1))
-    i = int(np.argmax(vm))
-    x = m.stress.points[:, i]
-    return float(vm[i]), (float(x[0]), float(x[1])), int(m.stress.element[i]), m
+def _element_at(cm: ClutchMesh, x: tuple[float, float]) -> tuple[int, int]:
+    """(nearest vertex, an element having it) of the point ``x``."""
+    v = int(np.argmin(np.hypot(cm.mesh.p[0] - x[0], cm.mesh.p[1] - x[1])))
+    return v, int(np.nonzero(np.any(cm.mesh.t == v, axis=0))[0][0])
 
 
-def _area(cm: ClutchMesh, e: int) -> float:
-    a, b, c = cm.mesh.p[:, cm.mesh.t[:, e]].T
+def _area_at(cm: ClutchMesh, x: tuple[float, float]) -> float:
+    """The straight-sided area [m^2] of the element at ``x``."""
+    a, b, c = cm.mesh.p[:, cm.mesh.t[:, _element_at(cm, x)[1]]].T
     return 0.5 * abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
 
 
-def _feature(m: FEModel, x: tuple[float, float], e: int, drum_radius: float) -> tuple[float, str]:
-    """(outline radius of curvature at x [m], zone name of element e)."""
-    mesh = m.cm.mesh
+def _feature(cm: ClutchMesh, x: tuple[float, float], drum_radius: float) -> tuple[float, str]:
+    """(outline radius of curvature at x [m]: inf straight, NaN not on the outline; zone
+    name of the element there)."""
+    mesh = cm.mesh
+    v, e = _element_at(cm, x)
     zone = next((k for k, v in (mesh.subdomains or {}).items() if k != "solid" and e in set(np.asarray(v).tolist())),
                 "solid")
-    v = int(np.argmin(np.hypot(mesh.p[0] - x[0], mesh.p[1] - x[1])))
     bf = mesh.boundary_facets()
     facets = bf[np.any(mesh.facets[:, bf] == v, axis=0)]
     if facets.size == 0:
-        return math.inf, zone
+        return math.nan, zone
     pts = np.concatenate([mesh.p[:, mesh.facets[:, facets].ravel()], mesh.doflocs[:, mesh.nvertices + facets]], axis=1)
     pts = np.unique(np.round(pts.T, 12), axis=0)
     if len(pts) < 3:

@@ -189,8 +189,12 @@ class ConceptParams(ParamSet):
 #: ``best`` puts the elements where the answers are decided (flexures, fillets, the contact
 #: surface) and keeps the rest coarse, so that the thick plane model costs what the fast
 #: path's plane-stress model does (BENCHMARKS.md, best-estimate section)
+#: the best preset reshapes curved elements below scaled Jacobian 0.2 (the fast one only below
+#: 0.05, its mesh pinned by tests/test_core_reference.py): the thick plane model read 1427 MPa
+#: at a cusp sliver (0.1-0.14) of concept 1 design lhs03's refined mesh where its fillet peak
+#: is 1077 MPa; engagement and torque move by ~1e-6 (BENCHMARKS.md section 13)
 MESH_PRESETS = {"fast": {}, "best": {"size": 6e-3, "contact_factor": 0.25, "flexure_factor": 0.5,
-                                     "fillet_factor": 0.25}}
+                                     "fillet_factor": 0.25, "reshape_below": 0.2}}
 
 
 class MeshSettings(ParamSet):
@@ -208,6 +212,10 @@ class MeshSettings(ParamSet):
         A disc of radius ``refine_radius`` around (``refine_x``, ``refine_y``) meshed at
         ``refine_size`` (0: none): the local refinement of a stress peak
         (:func:`clutchfem.fe.peak_stress_converged` sets it).
+    reshape_below : float
+        Curved elements below this scaled Jacobian get their interior mid-side nodes
+        reshaped after meshing (:func:`clutchfem.mesh.guard_high_order`); below 0.05 an
+        element is repaired or refused whatever this says.
     order : int
         Element order (2: curved P2 triangles).
     model : {"sector", "full"}
@@ -234,6 +242,9 @@ class MeshSettings(ParamSet):
     refine_y: float = param(0.0, "m", -0.5, 0.5, "centre of the refined disc, y (final frame)")
     refine_size: float = param(1e-4, "m", 1e-6, 10e-3, "element size inside the refined disc, growing to the "
                                "global size over 4 global sizes outside it")
+    reshape_below: float = param(0.05, "-", 0.05, 0.5, "curved elements below this scaled Jacobian get their "
+                                 "interior mid-side nodes reshaped (clutchfem.mesh.guard_high_order; 0.05 keeps the "
+                                 "presets' meshes as they were, the peak-stress refinement uses 0.2)")
     order: int = param(2, "-", 1, 2, "element order (2: curved P2 triangles)")
     model: Literal["sector", "full"] = choice("sector", "one cyclic sector or the full 360 degree part")
 

@@ -167,7 +167,7 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
             gmsh.model.mesh.generate(2)
             if ms.order == 2:
                 optimise_high_order()
-                g = guard_high_order(concept.name, mirrored=built.mirrored)
+                g = guard_high_order(concept.name, mirrored=built.mirrored, reshape_below=ms.reshape_below)
                 if g.moved_interior or g.moved_outline:
                     log.info("%s: nearly degenerate curved elements repaired (worst scaled Jacobian %.2g -> %.2g; "
                              "%d interior mid-side nodes moved, %d outline ones straightened, chord error <= %.2g um)",
