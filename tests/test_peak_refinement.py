@@ -26,7 +26,7 @@ from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, FacetBasis, 
 from skfem.helpers import ddot, sym_grad, trace
 from skfem.io.meshio import from_meshio
 
-from clutchfem.core import get_material
+from clutchfem.core import ParameterError, get_material
 from clutchfem.fe import p2_vertex_gradients, peak_stress_converged, richardson, von_mises
 from clutchfem.geometry import MeshSettings, disc_size_field, get_concept, gmsh_session
 
@@ -136,3 +136,11 @@ def test_concept4_peak_converged_in_its_notch_fillet():
     # the best preset's own peak reads low by ~1.2 % (its discretisation error at this point)
     assert 0.0 < 1.0 - r.levels[0].peak / r.peak < 0.03
     assert r.levels[-1].elements < 20_000
+
+
+@pytest.mark.parametrize("bad", [{"tol": 0.0}, {"tol": "1%"}, {"tol": True}, {"max_levels": 2}, {"material": None}])
+def test_peak_refinement_refuses_bad_settings(bad):
+    c = get_concept("concept4")
+    kw = {"material": get_material("51CrV4"), **bad}
+    with pytest.raises(ParameterError, match=next(iter(bad))):
+        peak_stress_converged(c, c.params(), **kw)

@@ -101,8 +101,10 @@ def peak_stress_converged(concept: Concept, p: ConceptParams, ms: MeshSettings |
     ``evaluate(cm) -> (peak, (x, y))``: the peak [any stress unit] and its point [m] of
     the analysis wanted on a mesh (e.g. a contact state at one speed, built by the caller);
     default: the free spin of ``material`` per unit omega^2 [Pa / (rad/s)^2]."""
-    if not (0 < tol < 1):
-        raise ParameterError("tol", tol, "a relative error in (0, 1)")
+    if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not (0 < tol < 1):
+        raise ParameterError("tol", tol, "a relative error in (0, 1), e.g. 0.01")
+    if isinstance(max_levels, bool) or not isinstance(max_levels, int) or max_levels < 3:
+        raise ParameterError("max_levels", max_levels, "an integer >= 3 (three refined levels give the observed order)")
     if evaluate is None:
         if material is None:
             raise ParameterError("material", None, "a Material (or give evaluate=...)")

@@ -138,13 +138,20 @@ def estimate_elements(built: BuiltModel, p: ConceptParams, ms: MeshSettings) -> 
     h = ms.size
     ts = p.flexure_thicknesses()
     hf = min(h, ms.flexure_factor * min(ts)) if ts else h
-    return int(2.3 * (max(A - Af, 0.0) / h ** 2 + Af / hf ** 2))
+    n = 2.3 * (max(A - Af, 0.0) / h ** 2 + Af / hf ** 2)
+    if ms.refine_radius > 0 and ms.refine_size < h:  # the refined disc (at most the whole part)
+        n += 2.3 * min(np.pi * ms.refine_radius ** 2, A) / ms.refine_size ** 2
+    return int(n)
 
 
 def _check_size(name: str, n_est: int, ms: MeshSettings, max_elements: int | None) -> None:
     limit = MAX_ELEMENTS if max_elements is None else max_elements
     if n_est > limit:
         fit = ms.size * (n_est / limit) ** 0.5
+        if ms.refine_radius > 0 and ms.refine_size < ms.size:
+            raise MeshError(f"{name}: a refined disc of radius {ms.refine_radius * 1e3:g} mm at {ms.refine_size * 1e3:g} mm "
+                            f"elements would give about {n_est:,} elements (estimate), more than the limit {limit:,}; "
+                            "use a larger refine_size or a smaller refine_radius")
         raise MeshError(f"{name}: mesh size {ms.size * 1e3:g} mm would give about {n_est:,} elements (estimate), "
                         f"more than the limit {limit:,} (minutes of meshing and GBs of memory for one design); "
                         f"use a mesh size of at least {fit * 1e3:.2g} mm, or raise the limit "
