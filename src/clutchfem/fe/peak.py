@@ -98,9 +98,40 @@ def peak_stress_converged(concept: Concept, p: ConceptParams, ms: MeshSettings |
     """The peak von Mises of ``concept`` with ``p``, refined locally around it until its
     estimated discretisation error is <= ``tol`` of the peak (module docstring).
 
-    ``evaluate(cm) -> (peak, (x, y))``: the peak [any stress unit] and its point [m] of
-    the analysis wanted on a mesh (e.g. a contact state at one speed, built by the caller);
-    default: the free spin of ``material`` per unit omega^2 [Pa / (rad/s)^2]."""
+    Parameters
+    ----------
+    concept, p : Concept, ConceptParams
+        The design.
+    ms : MeshSettings, optional
+        Level 0's mesh (default: the best preset); the refined levels add a disc to it.
+    material : Material, optional
+        For the default ``evaluate``: the free spin per unit omega^2 [Pa / (rad/s)^2].
+    evaluate : callable, optional
+        ``evaluate(cm) -> (peak, (x, y))``: the peak [any stress unit] and its point [m]
+        of the analysis wanted on a mesh (e.g. a contact state at one speed, built by the
+        caller; ``benchmarks/bench_peak.py``).
+    tol : float
+        Relative error at which to stop (default 1 %).
+    max_levels, max_elements : int
+        At most this many refined levels (>= 3), none above this many elements.
+    formulation : {"plane-stress", "plane-strain"}
+        Of the default ``evaluate``.
+
+    Returns
+    -------
+    PeakStress
+        The finest level's peak and point, the feature carrying it, its error estimate and
+        observed order, ``converged`` (error <= tol), and every level.
+
+    Examples
+    --------
+    >>> from clutchfem.core import get_material
+    >>> from clutchfem.geometry import get_concept
+    >>> c = get_concept("concept4")
+    >>> r = peak_stress_converged(c, c.params(), material=get_material("51CrV4"))  # doctest: +SKIP
+    >>> r.feature, r.converged  # doctest: +SKIP
+    ('fillet R 0.80 mm, flexure_0', True)
+    """
     if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not (0 < tol < 1):
         raise ParameterError("tol", tol, "a relative error in (0, 1), e.g. 0.01")
     if isinstance(max_levels, bool) or not isinstance(max_levels, int) or max_levels < 3:
