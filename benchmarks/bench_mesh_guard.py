@@ -24,7 +24,7 @@ repairs: list[str] = []
 
 class _Count(logging.Handler):
     def emit(self, record):
-        if "nearly degenerate" in record.getMessage():
+        if "curved elements repaired" in record.getMessage():
             repairs.append(record.getMessage())
 
 

@@ -176,7 +176,7 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
                 optimise_high_order()
                 g = guard_high_order(concept.name, mirrored=built.mirrored, reshape_below=ms.reshape_below)
                 if g.moved_interior or g.moved_outline:
-                    log.info("%s: nearly degenerate curved elements repaired (worst scaled Jacobian %.2g -> %.2g; "
+                    log.info("%s: distorted curved elements repaired (worst scaled Jacobian %.2g -> %.2g; "
                              "%d interior mid-side nodes moved, %d outline ones straightened, chord error <= %.2g um)",
                              concept.name, g.worst_before, g.worst_after, g.moved_interior, g.moved_outline,
                              g.max_sagitta * 1e6)

@@ -128,9 +128,10 @@ def guard_high_order(where: str, *, mirrored: bool = False, threshold: float = G
     moved_in: set[int] = set()
     moved_out: set[int] = set()
     sag_max = 0.0
+    owners = _mid_owners(conn, len(xy))
     for e in np.argsort(sj)[: int(np.sum(sj < target))]:
         if sj[e] < target:
-            moved_in |= _reshape_interior(e, conn, xy, outline)
+            moved_in |= _reshape_interior(e, conn, xy, outline, owners)
     sj = p2_scaled_jacobian(xy[conn])
     for e in np.nonzero(sj < threshold)[0]:
         for k, (a, b) in enumerate(_EDGES):
@@ -155,7 +156,20 @@ def guard_high_order(where: str, *, mirrored: bool = False, threshold: float = G
     return GuardReport(worst0, worst, len(moved_in), len(moved_out), sag_max)
 
 
-def _reshape_interior(e: int, conn: np.ndarray, xy: np.ndarray, outline: np.ndarray) -> set[int]:
+def _mid_owners(conn: np.ndarray, nnodes: int) -> np.ndarray:
+    """(nnodes, 2) the (at most two) elements having each node as a mid-side node, -1 none."""
+    flat = conn[:, 3:].ravel()
+    el = np.repeat(np.arange(len(conn)), 3)
+    order = np.argsort(flat, kind="stable")
+    f, el = flat[order], el[order]
+    first = np.r_[True, f[1:] != f[:-1]]
+    own = np.full((nnodes, 2), -1, dtype=np.int64)
+    own[f[first], 0] = el[first]
+    own[f[~first], 1] = el[~first]
+    return own
+
+
+def _reshape_interior(e: int, conn: np.ndarray, xy: np.ndarray, outline: np.ndarray, owners: np.ndarray) -> set[int]:
     """Place the interior mid-side nodes of element ``e`` (not on the outline) where the
     smallest scaled Jacobian of the elements sharing them is largest, among: where they
     are, their edge's midpoint, and the midpoint shifted by the bow (mid-side node minus
@@ -169,7 +183,8 @@ def _reshape_interior(e: int, conn: np.ndarray, xy: np.ndarray, outline: np.ndar
     chord = {k: 0.5 * (xy[conn[e, a]] + xy[conn[e, b]]) for k, (a, b) in enumerate(_EDGES)}
     bows = [xy[mids[k]] - chord[k] for k in range(3) if outline[mids[k]]]
     options = {k: [xy[mids[k]].copy(), chord[k]] + [chord[k] + d for d in bows] for k in free}
-    near = np.nonzero(np.isin(conn[:, 3:], mids[free]).any(axis=1))[0]
+    near = np.unique(owners[mids[free]])
+    near = near[near >= 0]
     best, best_q = None, -np.inf
     for combo in itertools.product(*(range(len(options[k])) for k in free)):
         for k, i in zip(free, combo):
