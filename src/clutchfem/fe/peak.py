@@ -27,6 +27,10 @@ With two refined levels only: error = |d2|.  Stop when the error <= ``tol`` x th
 (at least three refined levels), at ``max_levels``, or before a level would exceed
 ``max_elements`` (then ``converged`` is False).
 
+The sequence must be of one feature: if a peak of the last three levels lies outside the
+disc (another feature, unrefined, took over: concept 3, 17.35 against 17.38 MPa), the
+result says so and is not ``converged``.
+
 Feature: the outline's radius of curvature at the peak (a circle fitted to the five P2
 nodes of the two outline edges at the peak vertex) and the zone (shoe / flexure / hub)
 of the element; a radius below 0.25 x the drum radius is called a fillet.
@@ -172,8 +176,12 @@ def peak_stress_converged(concept: Concept, p: ConceptParams, ms: MeshSettings |
         kind = f"fillet R {radius * 1e3:.2f} mm"
     else:
         kind = "straight edge" if math.isinf(radius) else f"arc R {radius * 1e3:.1f} mm"
+    # the Richardson sequence is one feature's only if its peaks sit in the refined disc
+    inside = all(math.hypot(lv.at[0] - x[0], lv.at[1] - x[1]) <= disc + h0 for lv in levels[-3:])
+    if not inside:
+        where += " (the peak left the refined disc: another feature, not converged)"
     return PeakStress(peak=last.peak, at=last.at, feature=f"{kind}, {where}", radius=radius, error=err, order=order,
-                      converged=bool(err <= tol * abs(last.peak)), levels=levels)
+                      converged=bool(err <= tol * abs(last.peak) and inside), levels=levels)
 
 
 def free_spin_peak(cm: ClutchMesh, material: Material, formulation: str = "plane-stress") -> tuple[float, tuple]:
