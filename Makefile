@@ -2,6 +2,7 @@
 #   make demo   set up, then build every concept and run the main job on the default design
 #   make test   set up, then run the test suite
 #   make pictures  regenerate the README's and docs' study, target, field, report and cutting pictures
+#   make bench-peer  install CalculiX (Debian calculix-ccx, benchmarks only) and run the peer checks
 PYTHON ?= python3.11
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -11,8 +12,10 @@ OUT ?= out/demo
 # SuiteSparse headers for the CHOLMOD solver back-end (scikit-sparse builds from source).
 APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 libgl1 libosmesa6 \
             libsuitesparse-dev chromium
+# The peer solver of the benchmarks only (never a runtime or test dependency): CalculiX 2.20.
+BENCH_APT_PKGS := calculix-ccx
 
-.PHONY: setup sysdeps demo test bench pictures clean
+.PHONY: setup sysdeps demo test bench bench-peer pictures clean
 
 sysdeps:
 	@bash scripts/sysdeps.sh $(APT_PKGS)
@@ -41,6 +44,10 @@ pictures: setup
 bench: setup
 	$(PY) benchmarks/bench_sweep.py && $(PY) benchmarks/bench_solvers.py && $(PY) benchmarks/bench_stress.py \
 	  && $(PY) benchmarks/bench_sweep_throughput.py && $(PY) benchmarks/bench_modelform.py
+
+bench-peer: setup
+	@bash scripts/sysdeps.sh $(BENCH_APT_PKGS)
+	$(PY) benchmarks/bench_calculix.py && $(PY) benchmarks/bench_calculix_nl.py
 
 clean:
 	rm -rf out .pytest_cache

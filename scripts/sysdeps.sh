@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Install (idempotently) the Debian shared libraries that the gmsh wheel and off-screen VTK
-# need.  Does nothing when they are already present; uses sudo only when not root.
+# Install (idempotently) the Debian packages named: the shared libraries that the gmsh wheel and
+# off-screen VTK need (make setup), the benchmarks' peer solver CalculiX (make bench-peer).
+# Does nothing when they are already present; uses sudo only when not root.
 set -euo pipefail
 missing=()
 for p in "$@"; do
