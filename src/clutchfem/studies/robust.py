@@ -101,7 +101,7 @@ def spreads(settings: EvalSettings, targets: Targets, tolerances: dict, dist: st
     """(sigma per constraint answer key, the answers at the design): the linearised spread of
     each constrained answer (module docstring)."""
     s = sensitivities(settings, list(tolerances), workers=workers)
-    bands = _bands(settings) if model_error else {}
+    bands = model_bands(settings) if model_error else {}
     sig = {}
     for _, key, _, _ in targets.constraints():
         var = 0.0
@@ -115,7 +115,7 @@ def spreads(settings: EvalSettings, targets: Targets, tolerances: dict, dist: st
     return sig, s.base
 
 
-def _bands(settings: EvalSettings) -> dict:
+def model_bands(settings: EvalSettings) -> dict:
     """The model-error band of each constrained answer at the design (analyze with errors:
     its ``total`` band, in the answer's unit; the safety factor's from its stress's)."""
     p = settings.params()
