@@ -44,8 +44,11 @@ from .sensitivity import sensitivities
 from .targets import Targets
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 
-#: the error-band key of each constrained answer (analyze's ``errors``), None: no band
-BAND_KEY = {"engagement_rpm_with_ripple": "engagement_rpm_with_ripple", "slip_rpm": "slip_rpm",
+#: the error-band key of each constrained answer (analyze's ``errors``), None: no band.  The
+#: engagement with ripple has no band of its own: it takes the static engagement's, at the
+#: same relative size (analyze's ``errors`` has no "engagement_rpm_with_ripple" key; before
+#: this mapping the engagement band was silently left out of every robust margin)
+BAND_KEY = {"engagement_rpm_with_ripple": "engagement_rpm", "slip_rpm": "slip_rpm",
             "safety_factor": "max_von_mises_Pa", "fatigue_safety_factor": None}
 #: margins that move less than this share between rounds have converged
 CONVERGED = 0.05
@@ -130,6 +133,10 @@ def model_bands(settings: EvalSettings) -> dict:
             continue
         if key == "safety_factor" and a.max_von_mises_Pa:
             tot = tot / a.max_von_mises_Pa * (a.safety_factor or 0.0)  # same relative band
+        if key == "engagement_rpm_with_ripple":
+            if not (a.engagement_rpm and a.engagement_rpm_with_ripple):
+                continue
+            tot = tot / a.engagement_rpm * a.engagement_rpm_with_ripple  # same relative band
         out[key] = float(tot)
     return out
 
