@@ -14,7 +14,8 @@ resumable SQLite store):
   a derivative-free search), :mod:`.tolerancing` (Monte Carlo of manufacturing
   tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
   that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
-  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts);
+  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts), :mod:`.allocation`
+  (tolerance allocation for a yield, the mass-yield trade-off);
 * a finished study recognised without loading the FE stack: :mod:`.rerun`.
 
 The names are imported on first use (PEP 562, as :mod:`clutchfem` does): a command that
@@ -28,6 +29,9 @@ from ..core import lazy_names
 
 #: public name -> the module of this package it lives in (None: the module itself)
 _NAMES: dict[str, str | None] = {
+    "allocate_linear": "allocation",
+    "allocate_tolerances": "allocation",
+    "Allocation": "allocation",
     "check_address": "cluster",
     "ClusterError": "cluster",
     "COLUMNS": "point",
@@ -66,6 +70,7 @@ _NAMES: dict[str, str | None] = {
     "Sensitivities": "sensitivity",
     "sensitivities": "sensitivity",
     "Settings": "point",
+    "shown": "allocation",
     "SpecError": "schema",
     "STORE_NAME": "store",
     "StoreLocked": "store",
@@ -77,6 +82,7 @@ _NAMES: dict[str, str | None] = {
     "tolerance": "tolerancing",
     "ToleranceResult": "tolerancing",
     "why_no_answer": "guideline_study",
+    "yield_front": "allocation",
     "workers_machine_holds": "cluster",
 }
 
