@@ -35,7 +35,8 @@ def tolerance(
                                   "dimension such that every target holds for the --yield share of parts (linearised "
                                   "spreads from one sensitivities call; the --tol widths are the reference of the cost "
                                   "model)", rich_help_panel="Allocation"),
-    yield_: str = typer.Option("0.99", "--yield", help="with --allocate: share of parts that must meet every target",
+    yield_: Optional[str] = typer.Option(None, "--yield", help="with --allocate: share of parts that must meet every "
+                                         "target (default 0.99)",
                                rich_help_panel="Allocation"),
     model_error: bool = typer.Option(True, "--model-error/--no-model-error", help="with --allocate: add each "
                                      "answer's model-error band (as +-2 sigma) to its spread",
@@ -67,6 +68,12 @@ def tolerance(
         if seed < 0:
             raise ParameterError("seed", seed, "an integer >= 0 (the same seed draws the same parts)", "option --seed")
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
+        given = [(o, v) for o, v in (("--yield", yield_), ("--cost", " ".join(cost)),
+                                     ("--no-model-error", "given" if not model_error else "")) if v]
+        if given and not allocate:
+            raise ParameterError(given[0][0].lstrip("-"), given[0][1], "an option of --allocate only (--yield, --cost, "
+                                 "--no-model-error): add --allocate", f"option {given[0][0]}")
+        y = _yield(yield_) if allocate else None
         s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
         P = type(base.params)
         tols = {}
@@ -77,12 +84,9 @@ def tolerance(
             tols[name] = t
         t0 = Targets.defaults(s, sf)
         if allocate:
-            _allocate(s, base, set_, tols, Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), yield_, dist,
+            _allocate(s, base, set_, tols, Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), y, dist,
                       model_error, cost, n, seed, workers, scheduler, out, json_)
             return
-        if yield_ != "0.99" or cost or not model_error:
-            raise ParameterError("yield", yield_, "--yield, --cost and --no-model-error only with --allocate",
-                                 "option --allocate")
         n = 64 if n is None else n
         res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf),
                   shifts=shifts, workers=workers, scheduler=scheduler, log=lambda m: err.print(escape(m)))
@@ -146,7 +150,15 @@ def _print_tolerance(res):
         console.print(f"[dim]note: {escape(n_)}[/]")
 
 
-def _allocate(s, base, set_, tols, targets, yield_, dist, model_error, cost, n, seed, workers, scheduler, out, json_):
+def _yield(raw):
+    """The --yield share of --allocate (refused before any work)."""
+    y = 0.99 if raw is None else quantity("--yield", raw, "-", above=0.0)
+    if not 0.5 < y < 1.0:
+        raise ParameterError("yield", raw, "a share of parts in (0.5, 1), e.g. 0.99", "option --yield")
+    return y
+
+
+def _allocate(s, base, set_, tols, targets, y, dist, model_error, cost, n, seed, workers, scheduler, out, json_):
     """``tolerance --allocate``: the allocation (clutchfem.studies.allocation) and, with --n,
     a Monte Carlo check of the allocated widths."""
     from pathlib import Path
@@ -155,9 +167,6 @@ def _allocate(s, base, set_, tols, targets, yield_, dist, model_error, cost, n, 
     from ..studies import allocate_tolerances, parse_tolerance
     from ..studies import tolerance as run
 
-    y = quantity("--yield", yield_, "-", above=0.0)
-    if not 0.5 < y < 1.0:
-        raise ParameterError("yield", yield_, "a share of parts in (0.5, 1), e.g. 0.99", "option --yield")
     if dist not in ("normal", "uniform"):
         raise ParameterError("dist", dist, "normal or uniform", "option --dist")
     weights = {}
@@ -224,8 +233,10 @@ def _print_allocation(a, check):
     style = "" if a.feasible else "bold red"
     console.print((f"[{style}]" if style else "") + escape(a.message) + (f"[/{style}]" if style else ""))
     if a.feasible:
-        console.print(f"predicted yield at the given widths: {100 * a.predicted_yield:.2f} % (linearised, targets "
-                      f"independent); z = {a.z:.3f} (Bonferroni over {len(a.constraints)} targets)")
+        console.print(f"predicted yield at the given widths: {100 * a.predicted_yield:.2f} % (linearised, joint normal "
+                      f"of the answers; {100 * a.predicted_yield_independent:.2f} % if the targets were independent); "
+                      f"at the allocated widths: {100 * a.allocated_yield:.2f} % (z = {a.z:.3f}: Bonferroni over "
+                      f"{len(a.constraints)} targets, conservative)")
         if a.ranking:
             console.print("tighten first (share of the binding target's variance at the given widths): "
                           + escape(", ".join(a.ranking))

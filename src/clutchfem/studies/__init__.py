@@ -51,6 +51,7 @@ _NAMES: dict[str, str | None] = {
     "fatigue_note": "optimization",
     "GuidelineResult": "guidelines",
     "GuidelineSettings": "guidelines",
+    "joint_yield": "allocation",
     "load_spec": "resolve",
     "model_version": "point",
     "OptimizationResult": "optimization",

@@ -46,12 +46,19 @@ Ranking "cost of tightening": at the given widths, the share of the variance of 
 constraint that binds the scale that each dimension's sigma takes, (g_ji t0_i / k)^2 /
 sigma_j^2 (the model-error share beside it): the dimension to tighten first is the largest.
 
+Predicted yield (:func:`joint_yield`): the answers are linear in the same normal
+deviations, so they are jointly normal and the share of parts meeting every target is a
+multivariate normal probability, with the correlation the product prod_j Phi(s_j / sigma_j)
+of :mod:`.robust` leaves out.  It matters: at today's deterministic optimum the engagement
+(>= limit) and the slip (<= limit) both rise with the clearance, so a part misses one *or*
+the other, and the product over-predicts the yield (42 % against the joint 30 % and the
+Monte Carlo's 34 %, BENCHMARKS.md "Tolerance allocation").  Both are reported.
+
 The trade-off (:func:`yield_front`): along a given set of designs (e.g. the deterministic
 and the robust optimum and the straight path between them) the predicted yield at the given
-tolerances (prod_j Phi(s_j / sigma_j), constraints taken as independent, as
-:mod:`.robust`) and the tolerance scale each yield allows, against the part mass.  It is
-**not** the true Pareto front (one robust optimisation per yield, hundreds of designs
-each): its masses are an upper bound on the front's at those yields.
+tolerances and the tolerance scale each yield allows, against the part mass.  It is **not**
+the true Pareto front (one robust optimisation per yield, hundreds of designs each): its
+masses are an upper bound on the front's at those yields.
 """
 
 from __future__ import annotations
@@ -62,6 +69,7 @@ from dataclasses import dataclass, field
 from statistics import NormalDist
 
 import numpy as np
+from scipy.stats import multivariate_normal
 
 from ..core import ParameterError, clean
 from ..geometry import get_concept
@@ -77,7 +85,7 @@ ANSWER_UNIT = {"engagement_rpm_with_ripple": "rpm", "slip_rpm": "rpm", "safety_f
 #: (scale, unit) each parameter unit is shown in
 SHOWN = {"m": (1e3, "mm"), "deg": (1.0, "deg")}
 #: the default yields of the trade-off
-FRONT_YIELDS = (0.5, 0.9, 0.95, 0.99, 0.999)
+FRONT_YIELDS = (0.9, 0.95, 0.99, 0.999)
 
 
 def shown(unit: str, value: float | None, digits: int = 4) -> str:
@@ -109,7 +117,12 @@ class Allocation:
     message: str
     scale: float | None = None
     scale_binds: str | None = None
+    #: at the given widths: joint normal (:func:`joint_yield`), and the product of the
+    #: per-target probabilities (targets independent, as :mod:`.robust`)
     predicted_yield: float | None = None
+    predicted_yield_independent: float | None = None
+    #: joint normal at the allocated widths (>= the yield asked: Bonferroni is conservative)
+    allocated_yield: float | None = None
     perfect_part_yield: float | None = None
     ranking: list = field(default_factory=list)
     #: the model-error share of the variance of the target binding the scale (given widths)
@@ -119,6 +132,18 @@ class Allocation:
     base: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
     seconds: float = 0.0
+    #: the linearised constraints (slack, gradient, model sigma): :meth:`at` reuses them
+    linearisation: list = field(default_factory=list)
+    cost: dict | None = None
+
+    def at(self, yield_target: float, model_error: bool | None = None) -> dict:
+        """The allocation algebra (:func:`allocate_linear`) at another yield, on the same
+        derivatives (no FE run); ``model_error=False`` drops the bands."""
+        cons = self.linearisation
+        if model_error is False:
+            cons = [{**c, "sigma_model": 0.0} for c in cons]
+        return allocate_linear(cons, self.tolerances, yield_target=yield_target, dist=self.dist, cost=self.cost,
+                               units=self.units)
 
     @property
     def allocated(self) -> dict:
@@ -128,7 +153,8 @@ class Allocation:
     def to_json(self) -> dict:
         return clean({"allocation": {k: getattr(self, k) for k in (
             "concept", "yield_target", "dist", "model_error", "z", "tolerances", "units", "feasible", "message",
-            "scale", "scale_binds", "predicted_yield", "perfect_part_yield", "ranking", "model_share", "constraints", "dims",
+            "scale", "scale_binds", "predicted_yield", "predicted_yield_independent", "allocated_yield",
+            "perfect_part_yield", "ranking", "model_share", "constraints", "dims",
             "derivatives", "methods", "notes", "seconds")},
             "method": {"spread": "linearised: sigma^2 = sum (dA/dx t/k)^2 + (band/2)^2, k = 3 normal, sqrt(3) uniform",
                        "yield": "Bonferroni over the constraints: z = Phi^-1(1 - (1 - Y)/m)",
@@ -161,7 +187,9 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
     dict
         ``feasible``, ``message``, ``z``, ``scale``, ``scale_binds``, ``constraints`` (with
         budgets), ``dims`` (given, allocated, ratio, binds, alone, alone_binds, share,
-        cost), ``ranking``, ``predicted_yield``, ``perfect_part_yield``.
+        cost), ``ranking``, ``predicted_yield`` (joint normal) and
+        ``predicted_yield_independent`` (product) at the given widths, ``allocated_yield``
+        (joint normal at the allocated widths), ``perfect_part_yield``.
 
     Examples
     --------
@@ -220,7 +248,8 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
             blocked.append(row)
     dims = [{"name": n, "unit": units.get(n, ""), "given": float(t0[i]), "cost_weight": w[n]}
             for i, n in enumerate(names)]
-    out = {"z": z, "constraints": cons, "dims": dims, "predicted_yield": pred, "perfect_part_yield": perfect,
+    out = {"z": z, "constraints": cons, "dims": dims, "predicted_yield_independent": pred,
+           "perfect_part_yield": perfect, "predicted_yield": joint_yield(constraints, dict(zip(names, t0)), dist),
            "scale": None, "scale_binds": None, "ranking": []}
     if blocked:
         for d in dims:
@@ -275,12 +304,48 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
                                 if d["binds"] else None)
     for j, c in enumerate(cons):
         c["multiplier"] = float(mu[j])
+    out["allocated_yield"] = joint_yield(constraints, {d["name"]: d["allocated"] if math.isfinite(d["allocated"])
+                                                             else 0.0 for d in dims}, dist)
     out["feasible"] = True
     worst = min(lam) if m else math.inf
     out["message"] = ("the given tolerances meet the yield" + (f" with room: every width x {worst:.3g}" if worst >= 1
                                                                else "") if worst >= 1 else
                       f"the given tolerances MISS the yield: every width x {worst:.3g} meets it")
     return out
+
+
+def joint_yield(constraints: list[dict], widths: dict, dist: str = "normal") -> float:
+    """The predicted share of parts meeting every target at half-widths ``widths``, from the
+    joint normal of the linearised answers (module docstring): margin_j = s_j + sgn_j g_j . d
+    + e_j with d ~ N(0, diag((t_i / k)^2)) and independent model errors e_j ~ N(0, sigma_model,j^2)
+    (ASSUMED independent between answers), sgn_j = +1 for a '>=' target ('sense', the
+    default) and -1 for '<='.  Unlike the product of the per-target probabilities it counts
+    the correlation of the answers (engagement and slip both rise with the clearance, so a
+    part misses one limit *or* the other); the multivariate normal CDF by Genz's method
+    (scipy, seeded, absolute error 1e-5)."""
+    k = 3.0 if dist == "normal" else math.sqrt(3.0)
+    names = list(widths)
+    if any(c.get("slack") is None or not math.isfinite(c["slack"]) for c in constraints):
+        return 0.0
+    if not constraints:
+        return 1.0
+    sig = np.array([float(widths[n] or 0.0) / k for n in names])
+    G = np.array([[(1.0 if c.get("sense", ">=") == ">=" else -1.0) * ((c.get("grad") or {}).get(n) or 0.0)
+                   for n in names] for c in constraints])
+    C = (G * sig ** 2) @ G.T + np.diag([float(c.get("sigma_model") or 0.0) ** 2 for c in constraints])
+    s = np.array([float(c["slack"]) for c in constraints])
+    sure = np.diag(C) <= 0.0                      # no spread: the target holds or not
+    if np.any(s[sure] < 0):
+        return 0.0
+    C, s = C[~sure][:, ~sure], s[~sure]
+    if s.size == 0:
+        return 1.0
+    if s.size == 1:
+        return NormalDist().cdf(s[0] / math.sqrt(C[0, 0]))
+    sd = np.sqrt(np.diag(C))
+    R = C / np.outer(sd, sd) + np.eye(len(s)) * 1e-9   # standardised; fewer dimensions than targets: singular
+    return float(multivariate_normal(mean=np.zeros(len(s)), cov=R, allow_singular=True).cdf(
+        s / sd, rng=np.random.default_rng(0)))
 
 
 def _reciprocal_cost(A: np.ndarray, B: np.ndarray, t0: np.ndarray, w: np.ndarray, scale: float):
@@ -388,7 +453,8 @@ def allocate_tolerances(design, tolerances: dict, *, yield_target: float = 0.99,
     --------
     >>> import clutchfem as cf
     >>> d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
-    >>> a = cf.allocate_tolerances(d, {"flexure_thickness": "0.05mm"}, model_error=False, workers=0)
+    >>> t = cf.Targets(3510, None, None, None)                # engagement with ripple >= 3510 rpm only
+    >>> a = cf.allocate_tolerances(d, {"flexure_thickness": "0.05mm"}, targets=t, model_error=False, workers=0)
     >>> a.feasible, a.allocated["flexure_thickness"] > 0      # a half-width in m
     (True, True)
     """
@@ -414,8 +480,11 @@ def allocate_tolerances(design, tolerances: dict, *, yield_target: float = 0.99,
                       z=r["z"], tolerances=tols, units=units, constraints=r["constraints"], dims=r["dims"],
                       feasible=r["feasible"], message=r["message"], scale=r["scale"], scale_binds=r["scale_binds"],
                       predicted_yield=r["predicted_yield"], perfect_part_yield=r["perfect_part_yield"],
+                      predicted_yield_independent=r["predicted_yield_independent"],
+                      allocated_yield=r.get("allocated_yield"),
                       ranking=r["ranking"], model_share=r.get("model_share"), derivatives={n: dict(v) for n, v in s.derivatives.items()},
-                      methods=dict(s.methods), base=dict(s.base), notes=notes, seconds=time.perf_counter() - t0)
+                      methods=dict(s.methods), base=dict(s.base), notes=notes, seconds=time.perf_counter() - t0,
+                      linearisation=cons, cost=cost)
 
 
 def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: str = "normal",
@@ -439,7 +508,9 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
     Returns
     -------
     list of dict
-        Per design: ``mass_kg``, ``predicted_yield`` at the given widths, ``perfect_part_yield``,
+        Per design: ``mass_kg``, ``predicted_yield`` at the given widths (joint normal;
+        ``predicted_yield_independent``: the product over the targets;
+        ``predicted_yield_tolerances_only``: the bands left out), ``perfect_part_yield``,
         ``scale`` (yield -> common factor on the given widths, None where none meets it),
         ``pareto`` (no other design is lighter with at least its yield), ``slack`` and
         ``sigma_given`` per constraint (answer units).
@@ -469,8 +540,12 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
             scale[y] = r["scale"] if r["feasible"] else None
             if alloc is None:
                 alloc = r
+        bare = allocate_linear([{**c, "sigma_model": 0.0} for c in cons], tols, yield_target=yields[0], dist=dist,
+                               units=units)
         rows.append({"concept": settings.concept, "set": list(settings.base), "mass_kg": s.base.get("mass_kg"),
                      "predicted_yield": alloc["predicted_yield"], "perfect_part_yield": alloc["perfect_part_yield"],
+                     "predicted_yield_independent": alloc["predicted_yield_independent"],
+                     "predicted_yield_tolerances_only": bare["predicted_yield"],
                      "scale": scale, "slack": {c["key"] + " " + c["sense"]: c["slack"] for c in cons},
                      "sigma_given": {c["key"]: r_["sigma_given"] for c, r_ in zip(cons, alloc["constraints"])}})
     for r in rows:
