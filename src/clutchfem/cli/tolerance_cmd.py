@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import List, Optional
 
 import typer
@@ -161,8 +162,6 @@ def _yield(raw):
 def _allocate(s, base, set_, tols, targets, y, dist, model_error, cost, n, seed, workers, scheduler, out, json_):
     """``tolerance --allocate``: the allocation (clutchfem.studies.allocation) and, with --n,
     a Monte Carlo check of the allocated widths."""
-    from pathlib import Path
-
     from ..core import dumps, write
     from ..studies import allocate_tolerances, parse_tolerance
     from ..studies import tolerance as run

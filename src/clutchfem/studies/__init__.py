@@ -15,7 +15,8 @@ resumable SQLite store):
   tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
   that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
   answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts), :mod:`.allocation`
-  (tolerance allocation for a yield, the mass-yield trade-off);
+  (tolerance allocation for a yield, the mass-yield trade-off) with its algebra
+  :mod:`.tolerance_algebra`;
 * a finished study recognised without loading the FE stack: :mod:`.rerun`.
 
 The names are imported on first use (PEP 562, as :mod:`clutchfem` does): a command that
@@ -29,7 +30,7 @@ from ..core import lazy_names
 
 #: public name -> the module of this package it lives in (None: the module itself)
 _NAMES: dict[str, str | None] = {
-    "allocate_linear": "allocation",
+    "allocate_linear": "tolerance_algebra",
     "allocate_tolerances": "allocation",
     "Allocation": "allocation",
     "check_address": "cluster",
@@ -51,7 +52,7 @@ _NAMES: dict[str, str | None] = {
     "fatigue_note": "optimization",
     "GuidelineResult": "guidelines",
     "GuidelineSettings": "guidelines",
-    "joint_yield": "allocation",
+    "joint_yield": "tolerance_algebra",
     "load_spec": "resolve",
     "model_version": "point",
     "OptimizationResult": "optimization",
