@@ -34,6 +34,8 @@ ANSWER_UNIT = {"engagement_rpm_with_ripple": "rpm", "slip_rpm": "rpm", "safety_f
                "fatigue_safety_factor": "-"}
 #: (scale, unit) each parameter unit is shown in
 SHOWN = {"m": (1e3, "mm"), "deg": (1.0, "deg")}
+#: widths beyond this multiple of the given one are flagged as extrapolated
+FAR = 2.0
 #: the default yields of the trade-off
 FRONT_YIELDS = (0.9, 0.95, 0.99, 0.999)
 
@@ -205,6 +207,11 @@ def allocate_tolerances(design, tolerances: dict, *, yield_target: float = 0.99,
     for c, row in zip(cons, r["constraints"]):
         row.update({k: c[k] for k in ("limit", "sense", "value", "unit", "band")})
     notes = [f"{n}: derivative method {s.methods[n]}" for n in tols if s.methods[n] != "central, morphed"] + list(s.notes)
+    far = [d["name"] for d in r["dims"] if (d.get("ratio") or 0.0) > FAR or ((d.get("alone") or 0.0) > FAR * d["given"])]
+    if far:
+        notes.append(f"{', '.join(far)}: allocated or alone-widest width beyond {FAR:g} x the given one -- the spread "
+                     "is linearised at the nominal (derivatives over 0.01 mm / 0.01 deg steps), so so wide a band is "
+                     "an extrapolation: check it with a Monte Carlo of those widths (tolerance --n)")
     for c in cons:
         gone = [n for n, g in c["grad"].items() if g is None]
         if gone:

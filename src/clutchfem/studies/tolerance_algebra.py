@@ -164,7 +164,7 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
         out["feasible"] = False
         out["message"] = ("NO TOLERANCE MEETS the yield " + f"{yield_target:.4g}: " + "; ".join(
             f"{r['name']}: {r['reason']}" for r in blocked)
-            + f" (a perfect part, every tolerance zero, reaches a predicted yield of {100 * perfect:.3g} %)")
+            + f" (a perfect part, every tolerance zero, reaches a predicted yield of {100 * perfect:.4g} %)")
         return out
     B = np.array([c["budget"] for c in cons])
     # the common scale on the given widths
