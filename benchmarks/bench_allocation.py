@@ -32,6 +32,10 @@ def say(*a):
     print(*a, flush=True)
 
 
+def num(v) -> str:
+    return "-" if v is None else f"{v:.3f}"
+
+
 def path_point(alpha: float) -> tuple[str, ...]:
     """x = x_det + alpha (x_rob - x_det), every parameter, as exact --set texts."""
     P = get_concept("concept4").Params
@@ -75,7 +79,8 @@ def trade_offs(rob, args):
             r = a.at(y, model_error=me)
             dims = "; ".join(f"{d['name']} +-{(d['allocated'] or 0) * 1e3:.4f} mm (x{d['ratio'] or 0:.3f}, alone "
                              f"+-{(d['alone'] or 0) * 1e3:.4f} mm)" for d in r["dims"])
-            say(f"  Y = {y}: {r['message']}; scale {r['scale']}; binds {r['scale_binds']}; {dims}")
+            say(f"  Y = {y}: {r['message']}; scale {r['scale']} (joint normal: {r.get('scale_joint')}); binds "
+                f"{r['scale_binds']}; {dims}; joint yield at the allocated widths {r.get('allocated_yield')}")
         r = a.at(0.99, model_error=me)
         say(f"  predicted yield at the given widths {r['predicted_yield']:.4%} (joint normal; product over the targets "
             f"{r['predicted_yield_independent']:.4%}); at the allocated widths {r.get('allocated_yield')}; perfect part "
@@ -99,11 +104,11 @@ def trade_offs(rob, args):
     rows = cf.yield_front([es for _, es in designs], TOLS, yields=(0.9, 0.95, 0.99, 0.999), workers=args.workers)
     say(f"trade-off, model error in ({time.perf_counter() - t:.0f} s):")
     for (al, es), r in zip(designs, rows):
-        sc = ", ".join(f"{y}: {'-' if v is None else f'{v:.3f}'}" for y, v in r["scale"].items())
+        sc = ", ".join(f"{y}: {num(v)} / {num(r['scale_joint'][y])}" for y, v in r["scale"].items())
         say(f"  alpha {al}: mass {r['mass_kg'] * 1e3:.2f} g, predicted yield {r['predicted_yield']:.4%} (product "
             f"{r['predicted_yield_independent']:.4%}; tolerances "
             f"only {r['predicted_yield_tolerances_only']:.4%}), perfect part {r['perfect_part_yield']:.4%}, pareto "
-            f"{r['pareto']}; scale per yield {{{sc}}}; slack " + ", ".join(f"{k} {v:.4g}" for k, v in r["slack"].items())
+            f"{r['pareto']}; scale per yield (Bonferroni / joint) {{{sc}}}; slack " + ", ".join(f"{k} {v:.4g}" for k, v in r["slack"].items())
             + "; sigma " + ", ".join(f"{k} {v:.4g}" for k, v in r["sigma_given"].items()))
 
 

@@ -143,6 +143,12 @@ def test_joint_yield_counts_the_correlation():
     # the allocation's widths hold the yield (Bonferroni: at least Y, here with two targets)
     r = allocate_linear([lo, hi], {"t": t}, yield_target=0.95)
     assert r["allocated_yield"] >= 0.95 - 2e-4 and r["predicted_yield"] == pytest.approx(window, abs=2e-4)
+    # the exact (joint) scale gives the yield, and is wider than the Bonferroni one
+    lam = r["scale_joint"]
+    assert joint_yield([lo, hi], {"t": lam * t}) == pytest.approx(0.95, abs=2e-4)
+    assert lam > r["scale"]
+    one_target = allocate_linear([lo], {"t": t}, yield_target=0.95)   # one target: Bonferroni is exact
+    assert one_target["scale_joint"] == pytest.approx(one_target["scale"], rel=1e-5)
 
 
 def test_refusals():

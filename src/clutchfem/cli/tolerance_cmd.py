@@ -231,6 +231,9 @@ def _print_allocation(a, check):
     console.print(c)
     style = "" if a.feasible else "bold red"
     console.print((f"[{style}]" if style else "") + escape(a.message) + (f"[/{style}]" if style else ""))
+    if a.scale_joint is not None and a.feasible:
+        console.print(f"without the Bonferroni share (joint normal of the answers): every width x {a.scale_joint:.3g} "
+                      "gives the yield exactly")
     if a.feasible:
         console.print(f"predicted yield at the given widths: {100 * a.predicted_yield:.2f} % (linearised, joint normal "
                       f"of the answers; {100 * a.predicted_yield_independent:.2f} % if the targets were independent); "

@@ -52,6 +52,7 @@ _NAMES: dict[str, str | None] = {
     "fatigue_note": "optimization",
     "GuidelineResult": "guidelines",
     "GuidelineSettings": "guidelines",
+    "joint_scale": "tolerance_algebra",
     "joint_yield": "tolerance_algebra",
     "load_spec": "resolve",
     "model_version": "point",

@@ -26,7 +26,7 @@ from .batch import EvalSettings
 from .robust import model_bands
 from .sensitivity import Sensitivities, sensitivities
 from .targets import Targets
-from .tolerance_algebra import allocate_linear
+from .tolerance_algebra import allocate_linear, joint_scale
 from .tolerancing import parse_tolerance
 
 #: the unit each constrained answer is shown in
@@ -69,6 +69,8 @@ class Allocation:
     message: str
     scale: float | None = None
     scale_binds: str | None = None
+    #: the common factor at which the joint-normal yield is the target (no Bonferroni)
+    scale_joint: float | None = None
     #: at the given widths: joint normal (:func:`joint_yield`), and the product of the
     #: per-target probabilities (targets independent, as :mod:`.robust`)
     predicted_yield: float | None = None
@@ -105,7 +107,7 @@ class Allocation:
     def to_json(self) -> dict:
         return clean({"allocation": {k: getattr(self, k) for k in (
             "concept", "yield_target", "dist", "model_error", "z", "tolerances", "units", "feasible", "message",
-            "scale", "scale_binds", "predicted_yield", "predicted_yield_independent", "allocated_yield",
+            "scale", "scale_binds", "scale_joint", "predicted_yield", "predicted_yield_independent", "allocated_yield",
             "perfect_part_yield", "ranking", "model_share", "constraints", "dims",
             "derivatives", "methods", "notes", "seconds")},
             "method": {"spread": "linearised: sigma^2 = sum (dA/dx t/k)^2 + (band/2)^2, k = 3 normal, sqrt(3) uniform",
@@ -219,6 +221,7 @@ def allocate_tolerances(design, tolerances: dict, *, yield_target: float = 0.99,
     return Allocation(concept=settings.concept, yield_target=yield_target, dist=dist, model_error=model_error,
                       z=r["z"], tolerances=tols, units=units, constraints=r["constraints"], dims=r["dims"],
                       feasible=r["feasible"], message=r["message"], scale=r["scale"], scale_binds=r["scale_binds"],
+                      scale_joint=r.get("scale_joint"),
                       predicted_yield=r["predicted_yield"], perfect_part_yield=r["perfect_part_yield"],
                       predicted_yield_independent=r["predicted_yield_independent"],
                       allocated_yield=r.get("allocated_yield"),
@@ -251,7 +254,8 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
         Per design: ``mass_kg``, ``predicted_yield`` at the given widths (joint normal;
         ``predicted_yield_independent``: the product over the targets;
         ``predicted_yield_tolerances_only``: the bands left out), ``perfect_part_yield``,
-        ``scale`` (yield -> common factor on the given widths, None where none meets it),
+        ``scale`` (yield -> common factor on the given widths by the Bonferroni margins,
+        None where none meets it), ``scale_joint`` (the same by the joint normal),
         ``pareto`` (no other design is lighter with at least its yield), ``slack`` and
         ``sigma_given`` per constraint (answer units).
 
@@ -274,10 +278,11 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
         nominal = targets or Targets.defaults(settings)
         cons, s = linearise(settings, nominal, list(tols), model_error, workers)
         units = {n: P.unit(n) for n in tols}
-        scale, alloc = {}, None
+        scale, scale_joint, alloc = {}, {}, None
         for y in yields:
             r = allocate_linear(cons, tols, yield_target=y, dist=dist, units=units)
             scale[y] = r["scale"] if r["feasible"] else None
+            scale_joint[y] = joint_scale(cons, tols, y, dist)
             if alloc is None:
                 alloc = r
         bare = allocate_linear([{**c, "sigma_model": 0.0} for c in cons], tols, yield_target=yields[0], dist=dist,
@@ -286,7 +291,7 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
                      "predicted_yield": alloc["predicted_yield"], "perfect_part_yield": alloc["perfect_part_yield"],
                      "predicted_yield_independent": alloc["predicted_yield_independent"],
                      "predicted_yield_tolerances_only": bare["predicted_yield"],
-                     "scale": scale, "slack": {c["key"] + " " + c["sense"]: c["slack"] for c in cons},
+                     "scale": scale, "scale_joint": scale_joint, "slack": {c["key"] + " " + c["sense"]: c["slack"] for c in cons},
                      "sigma_given": {c["key"]: r_["sigma_given"] for c, r_ in zip(cons, alloc["constraints"])}})
     for r in rows:
         r["pareto"] = not any(o is not r and o["mass_kg"] is not None and r["mass_kg"] is not None

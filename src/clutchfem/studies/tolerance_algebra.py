@@ -26,7 +26,9 @@ morphed designs per toleranced dimension, plus one ``analyze`` with errors for t
 Monte Carlo in the loop):
 
 * **scale**: the largest common factor lambda on the given widths, lambda = min_j
-  sqrt(B_j / sum_i a_ji t0_i^2) (>= 1: the given tolerances meet Y with room);
+  sqrt(B_j / sum_i a_ji t0_i^2) (>= 1: the given tolerances meet Y with room); beside it
+  the exact linearised factor at which the joint-normal yield is Y (:func:`joint_scale`,
+  larger: Bonferroni is conservative);
 * **alone**: the widest t_i with the other given widths held, min_j sqrt((B_j - sum_k!=i
   a_jk t0_k^2) / a_ji) (none where the others alone already miss Y);
 * **allocated**: the cost-optimal widths of tolerance synthesis with the reciprocal cost
@@ -66,7 +68,7 @@ from scipy.stats import multivariate_normal
 
 from ..core import ParameterError
 
-__all__ = ["allocate_linear", "joint_yield"]
+__all__ = ["allocate_linear", "joint_scale", "joint_yield"]
 
 
 def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: float, dist: str = "normal",
@@ -211,6 +213,7 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
                                 if d["binds"] else None)
     for j, c in enumerate(cons):
         c["multiplier"] = float(mu[j])
+    out["scale_joint"] = joint_scale(constraints, dict(zip(names, t0)), yield_target, dist)
     out["allocated_yield"] = joint_yield(constraints, {d["name"]: d["allocated"] if math.isfinite(d["allocated"])
                                                              else 0.0 for d in dims}, dist)
     out["feasible"] = True
@@ -253,6 +256,27 @@ def joint_yield(constraints: list[dict], widths: dict, dist: str = "normal") -> 
     R = C / np.outer(sd, sd) + np.eye(len(s)) * 1e-9   # standardised; fewer dimensions than targets: singular
     return float(multivariate_normal(mean=np.zeros(len(s)), cov=R, allow_singular=True).cdf(
         s / sd, rng=np.random.default_rng(0)))
+
+
+def joint_scale(constraints: list[dict], tolerances: dict, yield_target: float, dist: str = "normal") -> float | None:
+    """The common factor lambda on the widths ``tolerances`` at which the joint-normal yield
+    (:func:`joint_yield`) equals ``yield_target`` -- the exact linearised answer that the
+    Bonferroni scale bounds from below; None where even perfect parts (lambda = 0) miss it,
+    inf where no width does (no target depends on the dimensions).  Brent's method on the
+    monotone yield(lambda), to 1e-6 of lambda."""
+    from scipy.optimize import brentq
+
+    def f(lam):
+        return joint_yield(constraints, {n: lam * t for n, t in tolerances.items()}, dist) - yield_target
+
+    if f(0.0) < 0:
+        return None
+    hi = 1.0
+    while f(hi) >= 0:
+        hi *= 2.0
+        if hi > 1e6:
+            return math.inf
+    return float(brentq(f, 0.0, hi, xtol=1e-9, rtol=1e-6))
 
 
 def _reciprocal_cost(A: np.ndarray, B: np.ndarray, t0: np.ndarray, w: np.ndarray, scale: float):
