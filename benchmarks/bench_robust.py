@@ -22,6 +22,11 @@ DET = ("hub_radius=11.84mm", "shoe_arc=87.1deg", "shoe_thickness=7.01mm", "flexu
        "flexure_thickness=1.75mm", "flexure_taper=1.3", "flexure_angle=32.3deg", "fillet_radius=2.06mm",
        "clearance=0.231mm")
 
+#: the gradient method's deterministic optimum (105.4 g, benchmarks/bench_optimize.py)
+DET_GRADIENT = ("clearance=0.4081mm", "fillet_radius=2.2883mm", "hub_radius=11.7258mm", "shoe_arc=109.9851deg",
+                "shoe_thickness=4.1725mm", "flexure_length=20.2743mm", "flexure_thickness=2.3956mm",
+                "flexure_taper=0.868482", "flexure_angle=35.9993deg")
+
 
 def say(*a):
     print(*a, flush=True)
@@ -43,6 +48,9 @@ def main() -> None:
     ap.add_argument("--n", type=int, default=1000)
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--skip-det", action="store_true")
+    ap.add_argument("--n-det", type=int, default=None, help="parts of the deterministic optima's checks "
+                    "(default: --n)")
+    ap.add_argument("--method", default="auto", help="optimize's method inside the robust rounds")
     args = ap.parse_args()
     say(f"machine: {platform.machine()}, python {platform.python_version()}, {args.workers} workers; "
         f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")
@@ -50,6 +58,7 @@ def main() -> None:
     for model_error in (True, False):
         t = time.perf_counter()
         r = cf.robust_optimize(d, TOLS, yield_target=0.99, model_error=model_error, workers=args.workers,
+                               method=args.method,
                                log=lambda s: say("   ", s) if s.startswith("round") else None)
         res = r.result
         say(f"robust (model error {'in' if model_error else 'out'}): feasible {res.feasible}, mass "
@@ -63,8 +72,11 @@ def main() -> None:
             check(dataclasses_replace(r), args.n, args.workers, "the robust design")
             break
     if not args.skip_det:
-        es = EvalSettings(concept="concept4", base=DET)
-        check(es, args.n, args.workers, "today's deterministic optimum (122.3 g)")
+        n_det = args.n_det or args.n
+        check(EvalSettings(concept="concept4", base=DET_GRADIENT), n_det, args.workers,
+              "the gradient method's deterministic optimum (105.4 g)")
+        check(EvalSettings(concept="concept4", base=DET), n_det, args.workers,
+              "the pattern search's deterministic optimum (122.3 g)")
 
 
 def dataclasses_replace(r):

@@ -75,13 +75,18 @@ def test_targets_and_space_refuse_bad_input():
     assert e.value.name == "profile"
 
 
-def test_optimize_json_params_are_confirmed_by_analyze(tmp_path):
+@pytest.mark.parametrize("method", ["gradient", "pattern"])
+def test_optimize_json_params_are_confirmed_by_analyze(tmp_path, method):
     """A small search (two free parameters, coarse mesh, targets the start misses on slip) and the
     check the issue asks for: `analyze --set` with the printed parameters meets every target."""
     r = run("optimize", "concept4", "--free", "flexure_thickness,flexure_length", "--slip-rpm-max", "8150",
-            "--safety-factor-min", "0.5", "--sample", "4", "--max-evals", "40", "--mesh-size", SIZE, "--json")
+            "--safety-factor-min", "0.5", "--sample", "4", "--max-evals", "40", "--mesh-size", SIZE, "--json",
+            "--method", method)
     res = json.loads(r.stdout)
     assert res["feasible"], res["message"]
+    assert res["message"].startswith("gradient method") == (method == "gradient")
+    if method == "gradient":  # progress in designs of the budget (refusals count)
+        assert "of at most 40 designs, " in r.stderr, r.stderr
     assert res["evaluations_total"] >= 5 and res["seconds"] > 0
     assert set(res["params"]) >= {"flexure_thickness", "flexure_length"}
     assert all(v.endswith("mm") for v in res["params"].values())
@@ -100,7 +105,7 @@ def test_optimize_json_params_are_confirmed_by_analyze(tmp_path):
 
 def test_infeasible_targets_name_the_binding_constraint(tmp_path):
     r = run("optimize", "concept4", "--free", "flexure_thickness", "--safety-factor-min", "20", "--sample", "0",
-            "--max-evals", "6", "--mesh-size", SIZE, "--out", str(tmp_path), "--json")
+            "--max-evals", "6", "--mesh-size", SIZE, "--out", str(tmp_path), "--json", "--method", "pattern")
     res = json.loads(r.stdout)
     assert not res["feasible"]
     # progress (issue 24: no total, no ETA): each line names the evaluations of the budget and the time

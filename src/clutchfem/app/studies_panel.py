@@ -81,8 +81,9 @@ class StudiesPanel:
 
     async def run_optimize(self) -> None:
         d = self.outcome.design if self.outcome else None
-        res = await self._study("optimisation (a short search: 8 samples, 40 designs)", lambda log: optimize(
-            d, sample=8, max_evals=40, engine=self.s.engine, requirements=self.s.requirements, workers=0, log=log))
+        res = await self._study("optimisation (a short search: gradient method on morphed meshes, 40 designs)",
+                                lambda log: optimize(d, sample=8, max_evals=40, engine=self.s.engine,
+                                                     requirements=self.s.requirements, workers=0, log=log))
         if res is None:
             return
         self.optimum = res

@@ -68,8 +68,11 @@ def optimize(
                                      "flexure_thickness=1mm:3mm (default: the declared range)", rich_help_panel="Search"),
     sample: int = typer.Option(32, "--sample", help="space-filling (Sobol) designs before the pattern search",
                                rich_help_panel="Search"),
-    max_evals: int = typer.Option(300, "--max-evals", help="budget of analysed designs (refusals are free)",
-                                  rich_help_panel="Search"),
+    max_evals: int = typer.Option(300, "--max-evals", help="budget of analysed designs (refusals are free; "
+                                  "gradient/auto: every design counts)", rich_help_panel="Search"),
+    method: str = typer.Option("auto", "--method", help="pattern (Sobol sample + pattern search), gradient "
+                               "(trust-region SQP on morphed meshes) or auto (gradient, then the pattern search "
+                               "if it found no feasible design)", rich_help_panel="Search"),
     tol: List[str] = typer.Option([], "--tol", help="robust design: tolerance name=+-value with its unit, e.g. "
                                   "flexure_thickness=+-0.05mm (repeat per dimension); every target then holds for "
                                   "the --yield share of parts", rich_help_panel="Robust design"),
@@ -127,11 +130,11 @@ def optimize(
             ranges[n] = (P.parse_value(n, lo_s), P.parse_value(n, hi_s))
         robust = None
         if tol:
-            robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, workers)
+            robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, workers, method)
             res = robust.result
         else:
             res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
-                      scheduler=scheduler, log=lambda m: err.print(escape(m)))
+                      scheduler=scheduler, method=method, log=lambda m: err.print(escape(m)))
         final = None
         if out is not None or not json_:  # the final design analysed again, with its error estimate
             d = Design.from_concept(s.concept, s.params(res.best["params"]), s.operating_point(), s.mesh_settings())
@@ -152,7 +155,7 @@ def optimize(
         fail(exc)
 
 
-def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_evals, workers):
+def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_evals, workers, method):
     """The robust optimisation of ``optimize --tol`` (clutchfem.studies.robust)."""
     from ..studies import parse_tolerance, robust_optimize
 
@@ -170,7 +173,8 @@ def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_eva
     if check and not 8 <= check <= 100000:
         raise ParameterError("check", check, "0 (no check) or 8 to 100000 parts", "option --check")
     return robust_optimize(s, tols, yield_target=y, dist=dist, model_error=model_error, targets=targets, free=names,
-                           max_evals=max_evals, check=check, workers=workers, log=lambda m: err.print(escape(m)))
+                           max_evals=max_evals, check=check, workers=workers, method=method,
+                           log=lambda m: err.print(escape(m)))
 
 
 def _print_robust(r):

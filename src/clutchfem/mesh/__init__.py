@@ -23,8 +23,8 @@ from .cad import import_planar, step_unit
 from .clutch_mesh import ClutchMesh
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
-from .highorder import GUARD_MIN_SJ, MAX_SAGITTA, GuardReport, guard_high_order, p2_scaled_jacobian
 from .generate import MAX_ELEMENTS, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
+from .highorder import GUARD_MIN_SJ, MAX_SAGITTA, GuardReport, guard_high_order, p2_scaled_jacobian
 from .morph import (
                        CACHE_SIZE,
                        MorphReference,

@@ -204,10 +204,19 @@ def optimization_page(res, final_an, folder: Path) -> Page:
         sections.append(("Final design, full analysis (with error estimate)",
                          [Table("", ["quantity", "value"], [list(x) for x in summary_rows(final_an)])]))
     sections.append(("Path", [path_t]))
-    sections.append(("Method", [Text("", [
+    pattern = [
         "pattern search with an extreme barrier over the free parameters' ranges (normalised to [0, 1]), "
         f"after a {sum(1 for r in res.path if r.get('phase') == 'sample')}-design Sobol sample around the start; "
-        "each poll is one parallel batch; a refused or failed design is worse than every analysed one",
+        "each poll is one parallel batch; a refused or failed design is worse than every analysed one"]
+    if res.message.startswith("gradient method"):
+        pattern = [
+            "gradient method: a trust-region SQP with the l1 merit over the free parameters' ranges (normalised "
+            "to [0, 1]); forward differences on meshes morphed from each iterate, one parallel batch per "
+            "iteration; the concept's rules learned as linear constraints (rule checks only, no analysis); the "
+            "final design checked on a mesh made from scratch"] + (
+            ["then the pattern search from its best design (the gradient method found no feasible design)"]
+            if "pattern search" in res.message else [])
+    sections.append(("Method", [Text("", pattern + [
         "comparison: feasible beats infeasible; infeasible by the sum of relative violations; feasible by the "
         "objective (improvements below 0.1 % are noise)",
         "answers of analyze (errors off) on the default mesh of each design; the final design is re-analysed "

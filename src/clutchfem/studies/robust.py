@@ -39,7 +39,7 @@ from ..geometry import get_concept
 from ..loadcase import Design
 from ..mesh import mesh_concept
 from .batch import EvalSettings
-from .optimization import OptimizationResult, optimize
+from .optimization import METHODS, OptimizationResult, optimize
 from .sensitivity import sensitivities
 from .targets import Targets
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
@@ -156,7 +156,7 @@ def shifted(targets: Targets, margins: dict) -> Targets:
 def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dist: str = "normal",
                     model_error: bool = True, targets: Targets | None = None, free: list[str] | None = None,
                     engine=None, requirements=None, max_evals: int = 300, rounds: int = 3, check: int = 0,
-                    workers: int | None = None, seed: int = 1, log=None) -> RobustResult:
+                    workers: int | None = None, seed: int = 1, method: str = "auto", log=None) -> RobustResult:
     """The lightest design that meets every target for ``yield_target`` of made parts.
 
     Parameters
@@ -181,6 +181,8 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         Monte Carlo parts through remeshed designs at the result (0: no check).
     seed, log
         The check's seed; a progress callback.
+    method : {"auto", "gradient", "pattern"}
+        The search of each round (:func:`optimize`).
 
     Returns
     -------
@@ -200,6 +202,8 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         raise ParameterError("yield", yield_target, "a share of parts in (0.5, 1), e.g. 0.99", "optimize")
     if dist not in ("normal", "uniform"):
         raise ParameterError("dist", dist, "normal or uniform", "optimize")
+    if method not in METHODS:
+        raise ParameterError("method", method, "one of " + ", ".join(METHODS), "optimize")
     if not tolerances:
         raise ParameterError("tol", None, "at least one tolerance name=+-value", "optimize")
     settings = design if isinstance(design, EvalSettings) else EvalSettings.from_design(
@@ -228,7 +232,8 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         margins = new
         if res is not None and moved < CONVERGED:
             break
-        res = optimize(start, shifted(nominal, margins), free, max_evals=max_evals, workers=workers, log=log)
+        res = optimize(start, shifted(nominal, margins), free, max_evals=max_evals, workers=workers, method=method,
+                       log=log)
         evals += sum(res.evaluations.values())
         history.append({"round": k + 1, "margins": dict(margins), "sigma": dict(sigma), "feasible": res.feasible,
                         "mass_kg": res.best.get("mass_kg"), "evaluations": sum(res.evaluations.values())})
