@@ -1,6 +1,6 @@
 """Tolerance allocation and the mass-yield trade-off (issue 21): the allocation at concept 4's
 robust design (BENCHMARKS.md section 18) for several yields, with and without the
-model-error bands; the trade-off along the straight path from today's deterministic optimum
+model-error bands; the trade-off along the straight path from the pattern search's deterministic optimum
 (122.3 g) to the robust design (129.1 g) and a little beyond; a Monte Carlo check through
 remeshed designs (``tolerance``) of the predicted yield at one point of the path.
 

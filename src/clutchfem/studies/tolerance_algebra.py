@@ -51,7 +51,7 @@ sigma_j^2 (the model-error share beside it): the dimension to tighten first is t
 Predicted yield (:func:`joint_yield`): the answers are linear in the same normal
 deviations, so they are jointly normal and the share of parts meeting every target is a
 multivariate normal probability, with the correlation the product prod_j Phi(s_j / sigma_j)
-of :mod:`.robust` leaves out.  It matters: at today's deterministic optimum the engagement
+of :mod:`.robust` leaves out.  It matters: at the 122.3 g deterministic optimum the engagement
 (>= limit) and the slip (<= limit) both rise with the clearance, so a part misses one *or*
 the other, and the product over-predicts the yield (tolerances only: the product 42.2 %,
 the joint normal 34.1 %, a Monte Carlo of 1000 remeshed parts 34.1 %, Wilson 31.2-37.1 %;
