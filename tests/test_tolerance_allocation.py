@@ -164,6 +164,24 @@ def test_refusals():
         allocate_linear(c, {"t": 1e-5}, yield_target=0.9, cost={"t": 0.0})
 
 
+def test_api_refuses_before_any_fe_work():
+    es = EvalSettings("concept4", mesh_size=3e-3)
+    for tols, word in (({}, "tolerances"), ({"clearance": True}, "clearance"), ({"nope": "0.02mm"}, "nope"),
+                       ({"clearance": "0mm"}, "clearance"), ({"clearance": "0.02kg"}, "clearance")):
+        with pytest.raises(ParameterError, match=word):
+            cf.allocate_tolerances(es, tols, workers=0)
+    with pytest.raises(ParameterError, match="yield"):
+        cf.allocate_tolerances(es, {"clearance": "0.02mm"}, yield_target=1.5, workers=0)
+    with pytest.raises(ParameterError, match="cost"):
+        cf.allocate_tolerances(es, {"clearance": "0.02mm"}, cost={"hub_radius": 1.0}, workers=0)
+    with pytest.raises(ParameterError, match="yield"):
+        cf.yield_front([es], {"clearance": "0.02mm"}, yields=(0.9, 1.0), workers=0)
+    with pytest.raises(ParameterError, match="yields"):
+        cf.yield_front([es], {"clearance": "0.02mm"}, yields=0.9, workers=0)
+    with pytest.raises(ParameterError, match="designs"):
+        cf.yield_front([], {"clearance": "0.02mm"}, workers=0)
+
+
 @pytest.fixture(scope="module")
 def coarse():
     return EvalSettings("concept4", mesh_size=3e-3)
@@ -197,9 +215,14 @@ def test_cli_allocate(tmp_path):
     args = CLI + ["tolerance", "concept4", *sum((["--set", x] for x in ROB), []), "--mesh-size", "3mm",
                   "--tol", "flexure_thickness=+-0.05mm", "--tol", "clearance=+-0.02mm", "--allocate",
                   "--yield", "0.95", "--workers", "0"]
-    r = subprocess.run(args + ["--out", str(tmp_path), "--json"], capture_output=True, text=True, timeout=600)
+    r = subprocess.run(args + ["--out", str(tmp_path), "--json", "--n", "8"], capture_output=True, text=True,
+                       timeout=600)
     assert r.returncode == 0, r.stderr[-2000:]
     doc = json.loads(r.stdout)
+    # --n: a Monte Carlo check of the allocated widths (8 parts: only that it ran on those widths)
+    assert doc["check"]["n"] == 8 and 0.0 <= doc["check"]["share_in_spec"] <= 1.0
+    assert doc["check"]["widths_si"] == pytest.approx({d["name"]: d["allocated"] for d in doc["allocation"]["dims"]},
+                                                      rel=1e-9)
     assert "wrote" in r.stderr and (tmp_path / "allocation.json").exists()
     assert doc["design"]["label"] == "concept4" and doc["design"]["set"] == list(ROB)
     al = doc["allocation"]

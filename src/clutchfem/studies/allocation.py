@@ -26,7 +26,7 @@ from .batch import EvalSettings
 from .robust import model_bands
 from .sensitivity import Sensitivities, sensitivities
 from .targets import Targets
-from .tolerance_algebra import allocate_linear, joint_scale
+from .tolerance_algebra import allocate_linear, check_yield, joint_scale
 from .tolerancing import parse_tolerance
 
 #: the unit each constrained answer is shown in
@@ -196,6 +196,7 @@ def allocate_tolerances(design, tolerances: dict, *, yield_target: float = 0.99,
     (True, True)
     """
     t0 = time.perf_counter()
+    check_yield(yield_target, dist)
     settings, tols, P = _settings_and_tols(design, tolerances, engine, requirements)
     if cost:
         for n in cost:
@@ -267,9 +268,10 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
     >>> f[0]["mass_kg"] > 0, f[0]["pareto"]
     (True, True)
     """
+    if isinstance(yields, (int, float)) or not yields:
+        raise ParameterError("yields", yields, "a sequence of shares of parts in (0.5, 1)", "yield_front")
     for y in yields:
-        if not (isinstance(y, (int, float)) and 0.5 < y < 1.0):
-            raise ParameterError("yields", y, "shares of parts in (0.5, 1)", "yield_front")
+        check_yield(y, dist)
     if not designs:
         raise ParameterError("designs", designs, "at least one design", "yield_front")
     rows = []

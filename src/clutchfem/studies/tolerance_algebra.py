@@ -68,7 +68,15 @@ from scipy.stats import multivariate_normal
 
 from ..core import ParameterError
 
-__all__ = ["allocate_linear", "joint_scale", "joint_yield"]
+__all__ = ["allocate_linear", "check_yield", "joint_scale", "joint_yield"]
+
+
+def check_yield(yield_target, dist: str = "normal") -> None:
+    """Refuse a yield outside (0.5, 1) or an unknown distribution (ParameterError)."""
+    if isinstance(yield_target, bool) or not (isinstance(yield_target, (int, float)) and 0.5 < yield_target < 1.0):
+        raise ParameterError("yield", yield_target, "a share of parts in (0.5, 1), e.g. 0.99", "allocation")
+    if dist not in ("normal", "uniform"):
+        raise ParameterError("dist", dist, "normal or uniform", "allocation")
 
 
 def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: float, dist: str = "normal",
@@ -110,10 +118,7 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
     >>> round(a["dims"][0]["allocated"] * 1e6, 2), round(3 * 100.0 / (a["z"] * 2.0e6) * 1e6, 2)   # um
     (64.48, 64.48)
     """
-    if not (isinstance(yield_target, (int, float)) and 0.5 < yield_target < 1.0):
-        raise ParameterError("yield", yield_target, "a share of parts in (0.5, 1), e.g. 0.99", "allocation")
-    if dist not in ("normal", "uniform"):
-        raise ParameterError("dist", dist, "normal or uniform", "allocation")
+    check_yield(yield_target, dist)
     if not tolerances:
         raise ParameterError("tol", None, "at least one tolerance name=+-value", "allocation")
     for n, t in tolerances.items():
