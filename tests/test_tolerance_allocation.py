@@ -104,6 +104,28 @@ def test_reciprocal_cost_two_targets_against_an_independent_solver():
     assert a["scale"] == pytest.approx(lam.min())
 
 
+def test_optimal_split_and_a_start_on_the_boundary():
+    """Two targets, one far from its limit: the reciprocal-cost optimum holds the closed form
+    of its one active target (t_u / t_t = (a_t / a_u)^(1/3)) although SLSQP starts on the
+    boundary; the optimal split of the failure budget (Boole) gives the far target's share
+    to the near one: at its widths the joint yield is Y itself, and they cost less."""
+    cons = [{**one(150.0, {"t": 3e6, "u": 1e6}, 20.0, key="a"), "sense": ">="},
+            {**one(500.0, {"t": 1e6, "u": 1e6}, 10.0, key="b"), "sense": "<="}]
+    t0 = {"t": 4e-5, "u": 4e-5}
+    a = allocate_linear(cons, t0, yield_target=0.99)
+    d = {x["name"]: x for x in a["dims"]}
+    assert d["u"]["allocated"] / d["t"]["allocated"] == pytest.approx((9.0) ** (1 / 3), rel=1e-5)
+    assert d["t"]["binds"] == d["u"]["binds"] == "target a"
+    union = {n: d[n]["allocated_union"] for n in t0}
+    assert joint_yield(cons, union) == pytest.approx(0.99, abs=1e-4)
+    assert a["allocated_yield"] > 0.994                            # Bonferroni: conservative
+    assert sum(t0[n] / union[n] for n in t0) < sum(t0[n] / d[n]["allocated"] for n in t0)
+    assert a["scale_union"] == pytest.approx(a["scale_joint"], rel=1e-4) and a["scale_union"] > a["scale"]
+    single = allocate_linear(cons[:1], t0, yield_target=0.99)     # one target: the two splits agree
+    for x in single["dims"]:
+        assert x["allocated_union"] == pytest.approx(x["allocated"], rel=1e-5)
+
+
 def test_the_model_band_alone_eats_the_margin():
     """z sigma_model >= slack: no width meets the yield; said, with no (negative) width."""
     z = PHI.inv_cdf(0.99)

@@ -211,14 +211,16 @@ def _print_allocation(a, check):
 
     t = Table(title=escape(f"{a.concept}: tolerance allocation for {a.yield_target:.4g} of parts in spec ({a.dist}, "
                            + ("model-error bands included" if a.model_error else "model error left out") + ")"))
-    for c in ("dimension", "given +-", "allocated +-", "x given", "binds", "widest alone +-", "variance share"):
+    for c in ("dimension", "given +-", "allocated +-", "x given", "binds", "widest alone +-", "variance share",
+              "optimal split +-"):
         t.add_column(c, justify="left" if c in ("dimension", "binds") else "right")
     for d in a.dims:
         t.add_row(escape(d["name"]), escape(shown(d["unit"], d["given"])), escape(shown(d["unit"], d["allocated"])),
                   escape("-" if d.get("ratio") is None else f"{d['ratio']:.3g}"), escape(d.get("binds") or "-"),
                   escape(shown(d["unit"], d.get("alone")) if d.get("alone") or not d.get("alone_note")
                          else "none: the others miss"),
-                  escape("-" if d.get("share") is None else f"{100 * d['share']:.1f} %"))
+                  escape("-" if d.get("share") is None else f"{100 * d['share']:.1f} %"),
+                  escape(shown(d["unit"], d.get("allocated_union"))))
     console.print(t)
     c = Table(title="targets at the nominal design (linearised spreads)")
     for h in ("target", "value", "slack", "sigma model", "sigma at given widths", "z sigma needed"):
@@ -244,7 +246,9 @@ def _print_allocation(a, check):
                           + escape(", ".join(a.ranking))
                           + (f"; model error {100 * a.model_share:.1f} %" if getattr(a, "model_share", None) else ""))
         console.print("allocated: least total cost sum w t_given / t (reciprocal cost model, Chase & Greenwood 1988, "
-                      "ASSUMED); widest alone: the other widths held at their given values")
+                      "ASSUMED), every target its equal share of the failures (Bonferroni, as optimize --tol); "
+                      "optimal split: the same with the failure budget split optimally between the targets (Boole); "
+                      "widest alone: the other widths held at their given values")
     if check is not None:
         console.print(f"Monte Carlo check of the allocated widths ({check['n']} remeshed parts, tolerances only): "
                       f"{100 * check['share_in_spec']:.2f} % in spec (95 % Wilson interval "

@@ -71,6 +71,8 @@ class Allocation:
     scale_binds: str | None = None
     #: the common factor at which the joint-normal yield is the target (no Bonferroni)
     scale_joint: float | None = None
+    #: the common factor by the optimal split of the failure budget (Boole)
+    scale_union: float | None = None
     #: at the given widths: joint normal (:func:`joint_yield`), and the product of the
     #: per-target probabilities (targets independent, as :mod:`.robust`)
     predicted_yield: float | None = None
@@ -107,7 +109,7 @@ class Allocation:
     def to_json(self) -> dict:
         return clean({"allocation": {k: getattr(self, k) for k in (
             "concept", "yield_target", "dist", "model_error", "z", "tolerances", "units", "feasible", "message",
-            "scale", "scale_binds", "scale_joint", "predicted_yield", "predicted_yield_independent", "allocated_yield",
+            "scale", "scale_binds", "scale_joint", "scale_union", "predicted_yield", "predicted_yield_independent", "allocated_yield",
             "perfect_part_yield", "ranking", "model_share", "constraints", "dims",
             "derivatives", "methods", "notes", "seconds")},
             "method": {"spread": "linearised: sigma^2 = sum (dA/dx t/k)^2 + (band/2)^2, k = 3 normal, sqrt(3) uniform",
@@ -222,7 +224,7 @@ def allocate_tolerances(design, tolerances: dict, *, yield_target: float = 0.99,
     return Allocation(concept=settings.concept, yield_target=yield_target, dist=dist, model_error=model_error,
                       z=r["z"], tolerances=tols, units=units, constraints=r["constraints"], dims=r["dims"],
                       feasible=r["feasible"], message=r["message"], scale=r["scale"], scale_binds=r["scale_binds"],
-                      scale_joint=r.get("scale_joint"),
+                      scale_joint=r.get("scale_joint"), scale_union=r.get("scale_union"),
                       predicted_yield=r["predicted_yield"], perfect_part_yield=r["perfect_part_yield"],
                       predicted_yield_independent=r["predicted_yield_independent"],
                       allocated_yield=r.get("allocated_yield"),
