@@ -78,8 +78,9 @@ def trade_offs(rob, args):
         for y in (0.9, 0.95, 0.99, 0.999):
             r = a.at(y, model_error=me)
             dims = "; ".join(f"{d['name']} +-{(d['allocated'] or 0) * 1e3:.4f} mm (x{d['ratio'] or 0:.3f}, alone "
-                             f"+-{(d['alone'] or 0) * 1e3:.4f} mm)" for d in r["dims"])
-            say(f"  Y = {y}: {r['message']}; scale {r['scale']} (joint normal: {r.get('scale_joint')}); binds "
+                             f"+-{(d['alone'] or 0) * 1e3:.4f} mm, optimal split +-{(d['allocated_union'] or 0) * 1e3:.4f}"
+                             f" mm)" for d in r["dims"])
+            say(f"  Y = {y}: {r['message']}; scale {r['scale']} (joint normal: {r.get('scale_joint')}; optimal split {r.get('scale_union')}); binds "
                 f"{r['scale_binds']}; {dims}; joint yield at the allocated widths {r.get('allocated_yield')}")
         r = a.at(0.99, model_error=me)
         say(f"  predicted yield at the given widths {r['predicted_yield']:.4%} (joint normal; product over the targets "

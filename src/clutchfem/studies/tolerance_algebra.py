@@ -347,7 +347,7 @@ def _union_split(out: dict, A: np.ndarray, constraints: list[dict], t0: np.ndarr
         dfail = ((pdf * u / np.where(sig2 > 0, sig2, 1.0))[:, None] * Al * t2[None, :]).sum(axis=0)
         return -dfail / budget
 
-    y0 = np.full(int(live.sum()), math.log(lam * (1 - 1e-9)))
+    y0 = np.full(int(live.sum()), math.log(lam * 0.98))   # inside: SLSQP may not leave a start on the boundary
     res = minimize(lambda y: float(c @ np.exp(-y)), y0, jac=lambda y: -c * np.exp(-y), method="SLSQP",
                    constraints=[{"type": "ineq", "fun": g, "jac": dg}], options={"ftol": 1e-14, "maxiter": 500})
     ok = np.all(np.isfinite(res.x)) and g(res.x) >= -1e-9      # as _reciprocal_cost: feasible and cheaper
@@ -376,7 +376,7 @@ def _reciprocal_cost(A: np.ndarray, B: np.ndarray, t0: np.ndarray, w: np.ndarray
         return t, mu
     Q = A[:, live] * t0[live] ** 2 / B[:, None]   # sum_i Q_ji e^{2 y_i} <= 1, y = ln(t / t0)
     c = w[live]
-    y0 = np.full(int(live.sum()), math.log(scale))
+    y0 = np.full(int(live.sum()), math.log(scale * 0.98))   # inside: SLSQP may not leave a start on the boundary
     res = minimize(lambda y: float(c @ np.exp(-y)), y0, jac=lambda y: -c * np.exp(-y), method="SLSQP",
                    constraints=[{"type": "ineq", "fun": lambda y: 1.0 - Q @ np.exp(2 * y),
                                  "jac": lambda y: -2.0 * Q * np.exp(2 * y)[None, :]}],
