@@ -47,6 +47,13 @@ def test_one_dimension_one_target_closed_form(dist, k):
     assert a["predicted_yield"] == pytest.approx(PHI.cdf(s / (abs(g) * t0 / k)), rel=1e-12)
 
 
+def test_a_dimension_no_target_depends_on_is_unlimited():
+    a = allocate_linear([one(100.0, {"t": 1e6, "u": 0.0})], {"t": 1e-5, "u": 1e-5}, yield_target=0.9)
+    d = {x["name"]: x for x in a["dims"]}
+    assert d["u"]["unlimited"] and d["u"]["allocated"] == math.inf and d["u"]["binds"] is None
+    assert not d["t"]["unlimited"] and d["t"]["allocated"] == pytest.approx(3 * 100.0 / (a["z"] * 1e6))
+
+
 def test_bonferroni_shares_the_yield():
     cons = [one(100.0, {"t": 1e6}, key="a"), one(100.0, {"t": 2e6}, key="b")]
     a = allocate_linear(cons, {"t": 1e-5}, yield_target=0.99)

@@ -218,6 +218,7 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
     for i, d in enumerate(dims):
         ti = float(t[i])
         d["allocated"] = ti
+        d["unlimited"] = not math.isfinite(ti)   # no target depends on it (JSON shows inf as null)
         d["ratio"] = ti / d["given"] if math.isfinite(ti) else math.inf
         d["cost"] = d["cost_weight"] * d["given"] / ti if math.isfinite(ti) else 0.0
         if not math.isfinite(ti):
