@@ -271,9 +271,11 @@ def test_cli_allocate(tmp_path):
                                         (["--allocate", "--yield", "abc"], "yield"),
                                         (["--allocate", "--cost", "hub_radius=2"], "cost"),
                                         (["--allocate", "--cost", "clearance=-1"], "cost"),
-                                        (["--yield", "0.9"], "allocate")])
+                                        (["--yield", "0.9"], "allocate"),
+                                        (["--allocate", "--scheduler", "tcp://127.0.0.1:1"], "sensitivities run")])
 def test_cli_allocate_refusals(extra, word):
     r = subprocess.run(CLI + ["tolerance", "concept4", "--mesh-size", "3mm", "--tol", "clearance=+-0.02mm",
-                              "--workers", "0", *extra], capture_output=True, text=True, timeout=300)
+                              *([] if "--scheduler" in extra else ["--workers", "0"]), *extra],
+                       capture_output=True, text=True, timeout=300)
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert word in r.stderr

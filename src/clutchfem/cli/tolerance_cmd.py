@@ -75,6 +75,9 @@ def tolerance(
             raise ParameterError(given[0][0].lstrip("-"), given[0][1], "an option of --allocate only (--yield, --cost, "
                                  "--no-model-error): add --allocate", f"option {given[0][0]}")
         y = _yield(yield_) if allocate else None
+        if allocate and scheduler is not None:
+            raise ParameterError("scheduler", scheduler, "no --scheduler with --allocate: its sensitivities run on "
+                                 "a local cluster (use --workers N)", "option --scheduler")
         s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
         P = type(base.params)
         tols = {}
