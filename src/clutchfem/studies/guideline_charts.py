@@ -55,14 +55,15 @@ def summary_table(res: GuidelineResult):
                              f"an operating input on the design's own mesh; from scratch = a morph was refused "
                              f"(remeshing noise; the notes say why).  ~: unstable (E at {CHECK_FACTOR:g}x the step "
                              f"differs by more than {STABLE_ABS} + {STABLE_REL:.0%}); ?: unchecked (the wider step "
-                             "has no answer); 1: one-sided (one side refused); -: no answer"))
+                             "has no answer); 1: one-sided (one side refused); -: no answer; rank -: an operating input (not "
+                             "ranked)"))
     t.add_column("rank")
     t.add_column("parameter", no_wrap=True)
     t.add_column("value", justify="right")
     for col, _ in ANSWERS:
         t.add_column(SHORT[col], justify="right")
     t.add_column("method")
-    rows = [(str(k), n) for k, n in enumerate(res.ranking, start=1)] + [("input", n) for n in res.inputs]
+    rows = [(str(k), n) for k, n in enumerate(res.ranking, start=1)] + [("-", n) for n in res.inputs]
     for k, n in rows:
         cells = []
         unit = x0 = None
@@ -179,7 +180,7 @@ def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
         ax.invert_yaxis()
         ax.axvline(0, color="0.3", lw=0.8)
         ax.set_title(label, fontsize=9)
-        ax.set_xlabel("elasticity d ln(answer) / d ln(parameter) [-]", fontsize=8)
+        ax.set_xlabel("elasticity (x / A) dA/dx [-]", fontsize=8)
         ax.grid(alpha=0.3, axis="x")
         ax.tick_params(labelsize=7)
     handles = [Patch(color="C0", label="stable"), Patch(color="C1", label="unchecked\n(the wider step\nhas no answer)"),
