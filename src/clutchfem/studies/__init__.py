@@ -10,8 +10,10 @@ resumable SQLite store):
   :mod:`.charts`;
 * design guidelines: :mod:`.guidelines` (elasticities with a step-stability check,
   one-at-a-time sweeps), :mod:`.guideline_study` (running one), :mod:`.guideline_charts`;
-* design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets and
-  a derivative-free search), :mod:`.tolerancing` (Monte Carlo of manufacturing
+* design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets, the
+  search and its pattern-search method), :mod:`.gradient` (the gradient method on morphed
+  meshes, with :mod:`.sqp` its model pieces and :mod:`.rules` the concept's rules as linear
+  constraints), :mod:`.tolerancing` (Monte Carlo of manufacturing
   tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
   that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
   answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts);
