@@ -78,3 +78,15 @@ def test_operating_inputs_refused_as_a_user_would_hear_it(design, tmp_path):
                       progress=False, charts=False)
     with pytest.raises(ParameterError, match="operating inputs among"):
         cf.guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["rpm"], workers=0, progress=False)
+
+
+def test_drum_wall_derivative_on_an_elastic_drum():
+    """An elastic drum's wall is an operating input (the fast path's rigid drum has none):
+    differentiated on the design's own mesh; a thicker wall yields less under the shoes,
+    so the shoes push harder: more torque."""
+    d = cf.Design.from_concept("concept4", mesh=MESH, drum_wall="2mm")
+    s = cf.sensitivities(d, ["drum_wall"], workers=0)
+    assert s.values["drum_wall"] == 0.002 and s.steps["drum_wall"] == 1e-5 and s.units["drum_wall"] == "m"
+    assert s.methods["drum_wall"] == "central, same mesh (operating input)" and s.kinds["drum_wall"] == "operating input"
+    assert s.derivatives["drum_wall"]["torque_at_max_engine_torque_Nm"] > 0
+    assert s.derivatives["drum_wall"]["mass_kg"] == 0.0  # the part is not the drum
