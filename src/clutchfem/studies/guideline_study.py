@@ -99,6 +99,10 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
         raise ParameterError("inputs", "drum_wall", "operating inputs this design has: " + ", ".join(available)
                              + " (its drum is rigid: no wall to differentiate)",
                              "guidelines")
+    zero = [n for n in inputs if n in available and available[n] == 0]
+    input_notes = ["operating inputs not studied (zero at the design point, no elasticity): " + ", ".join(zero)] \
+        if zero else []  # (x / A) dA/dx is 0 at x = 0 whatever dA/dx is: not a guideline
+    inputs = [n for n in inputs if n not in zero]
     names = list(gs.params) + inputs
     run = run_points(points, gs.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
                      progress=progress, source=f"guidelines {gs.concept}", desc="guidelines",
@@ -107,7 +111,7 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
         df = st.frame(run.model_version, run.keys)
     by_hash = {r["design_hash"]: r for r in df.to_dict("records")}
     base_row = by_hash.get(design_hash({}, gs.settings))
-    notes = list(gs.notes)
+    notes = list(gs.notes) + input_notes
     if base_row is None or base_row["status"] != "ok":
         msg = base_row["message"] if base_row is not None else "not computed"
         raise InputError(f"guidelines {gs.concept}: the design point itself has no answer ({msg})")
