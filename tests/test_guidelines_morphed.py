@@ -14,7 +14,7 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import ParameterError
-from clutchfem.studies.guidelines import SENSITIVITY_KEY
+from clutchfem.studies.guidelines import SENSITIVITY_KEY, GuidelineSettings
 
 MESH = cf.MeshSettings(size="3mm")
 
@@ -90,3 +90,12 @@ def test_drum_wall_derivative_on_an_elastic_drum():
     assert s.methods["drum_wall"] == "central, same mesh (operating input)" and s.kinds["drum_wall"] == "operating input"
     assert s.derivatives["drum_wall"]["torque_at_max_engine_torque_Nm"] > 0
     assert s.derivatives["drum_wall"]["mass_kg"] == 0.0  # the part is not the drum
+
+
+def test_an_operating_input_at_zero_is_not_studied_and_said(tmp_path):
+    """(x / A) dA/dx is 0 at x = 0 whatever the derivative: mu = 0 gets a note, not a row."""
+    d = cf.Design.from_concept("concept4", mesh=MESH, mu=0.0)
+    gs = GuidelineSettings.from_design(d, ["clearance"], points=3, inputs=["mu"])
+    g = cf.guidelines(gs, tmp_path, workers=0, progress=False, charts=False)
+    assert g.inputs == [] and not any(r["parameter"] == "mu" for r in g.table)
+    assert any(n.startswith("operating inputs not studied") and n.endswith("mu") for n in g.notes)
