@@ -26,8 +26,16 @@ from ..geometry import get_concept
 from ..loadcase import Design, OperatingPoint
 from .batch import EvalSettings
 from .guideline_charts import elasticity_chart, oat_chart
-from .guidelines import (ANSWERS, CHECK_FACTOR, SENSITIVITY_KEY, GuidelineResult, GuidelineSettings, elasticity,
-                         morphed_elasticity, plan)
+from .guidelines import (
+    ANSWERS,
+    CHECK_FACTOR,
+    SENSITIVITY_KEY,
+    GuidelineResult,
+    GuidelineSettings,
+    elasticity,
+    morphed_elasticity,
+    plan,
+)
 from .hashing import design_hash
 from .point import COLUMNS
 from .runner import ERROR_COLUMNS, run_points
