@@ -176,7 +176,7 @@ def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
             ax.text(end, yy, "0.00" if abs(v) < 0.005 else f"{v:+.2f}", va="center",
                     ha="left" if v >= 0 else "right", fontsize=7)
         ax.set_xlim(-1.35 * span, 1.35 * span)
-        ax.set_yticks(y, [f"{n}\n({short_method(res.methods.get(n, ''))})" for n in names], fontsize=6)
+        ax.set_yticks(y, [f"{n} ({short_method(res.methods.get(n, ''))})" for n in names], fontsize=6)
         ax.invert_yaxis()
         ax.axvline(0, color="0.3", lw=0.8)
         ax.set_title(label, fontsize=9)
