@@ -50,7 +50,7 @@ def main() -> None:
     ap.add_argument("--skip-det", action="store_true")
     ap.add_argument("--n-det", type=int, default=None, help="parts of the deterministic optima's checks "
                     "(default: --n)")
-    ap.add_argument("--method", default="auto", help="optimize's method inside the robust rounds")
+    ap.add_argument("--method", default="pattern", help="optimize's method inside the robust rounds")
     args = ap.parse_args()
     say(f"machine: {platform.machine()}, python {platform.python_version()}, {args.workers} workers; "
         f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")

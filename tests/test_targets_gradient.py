@@ -72,3 +72,10 @@ def test_gradient_search_finds_the_pattern_searchs_optimum_on_one_parameter():
     assert sum(rg.evaluations.values()) < sum(rp.evaluations.values())
     with pytest.raises(cf.ParameterError, match="method"):
         optimize(d, t, method="newton", **kw)
+
+
+def test_subproblem_without_targets_is_the_trust_box_newton_step():
+    # no constraint rows (an optimisation without targets): d = -B^-1 g, clipped to the box
+    g, B = np.array([0.2, -4.0]), np.eye(2)
+    d, lam = S.subproblem(g, np.zeros((0, 2)), np.zeros(0), B, np.full(2, -1.0), np.full(2, 1.0), 10.0)
+    assert d == pytest.approx([-0.2, 1.0], abs=1e-6) and lam.size == 0

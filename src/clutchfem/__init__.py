@@ -15,7 +15,7 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``), :f
 :func:`analyze`, :class:`Analysis`, :class:`SweepResult`, :class:`EngineCurve`,
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
 :func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`, :func:`sensitivities`,
-:func:`robust_optimize`,
+:func:`robust_optimize`, :func:`allocate_tolerances`, :func:`yield_front`,
 :func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
 :func:`write_report`, :func:`torque_speed_plot`.  Cutting: :func:`export` (DXF, STEP, drawing sheet,
 manufacturability check, as-cut analysis), :class:`ProcessRules`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
@@ -52,6 +52,8 @@ _API: dict[str, tuple[str, str]] = {
     "tolerance": ("clutchfem.studies", "tolerance"),
     "sensitivities": ("clutchfem.studies", "sensitivities"),
     "robust_optimize": ("clutchfem.studies", "robust_optimize"),
+    "allocate_tolerances": ("clutchfem.studies", "allocate_tolerances"),
+    "yield_front": ("clutchfem.studies", "yield_front"),
     "compensate": ("clutchfem.studies", "compensate"),
     "SlipScenario": ("clutchfem.durability", "SlipScenario"),
     "slip_heat": ("clutchfem.analysis", "slip_heat"),
@@ -112,6 +114,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
     from .studies import (
         StudySpec,
         Targets,
+        allocate_tolerances,
         compensate,
         optimize,
         robust_optimize,
@@ -119,6 +122,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
         run_study,
         sensitivities,
         tolerance,
+        yield_front,
     )
     from .studies import load_spec as load_study
     from .studies import run_guidelines as guidelines

@@ -54,9 +54,10 @@ class StudiesPanel:
         self.study_out.clear()
         with self.study_out:
             rows = [{"parameter": r["parameter"], "answer": r["label"], "elasticity": f"{r['E']:+.2f}"
-                     if r.get("E") is not None else "-", "verdict": r.get("verdict", "")} for r in res.table]
+                     if r.get("E") is not None else "-", "verdict": r.get("verdict", ""),
+                     "method": r.get("method", "")} for r in res.table]
             ui.table(columns=[{"name": k, "label": k, "field": k} for k in ("parameter", "answer", "elasticity",
-                                                                            "verdict")],
+                                                                            "verdict", "method")],
                      rows=rows).props("dense flat")
             for f in res.files:
                 if str(f).endswith(".png"):

@@ -70,9 +70,10 @@ def optimize(
                                rich_help_panel="Search"),
     max_evals: int = typer.Option(300, "--max-evals", help="budget of analysed designs (refusals are free; "
                                   "gradient/auto: every design counts)", rich_help_panel="Search"),
-    method: str = typer.Option("auto", "--method", help="pattern (Sobol sample + pattern search), gradient "
-                               "(trust-region SQP on morphed meshes) or auto (gradient, then the pattern search "
-                               "if it found no feasible design)", rich_help_panel="Search"),
+    method: Optional[str] = typer.Option(None, "--method", help="pattern (Sobol sample + pattern search), gradient "
+                                         "(trust-region SQP on morphed meshes) or auto (gradient, then the pattern "
+                                         "search if it found no feasible design); default: auto, with --tol pattern "
+                                         "(the robust configuration checked by Monte Carlo)", rich_help_panel="Search"),
     tol: List[str] = typer.Option([], "--tol", help="robust design: tolerance name=+-value with its unit, e.g. "
                                   "flexure_thickness=+-0.05mm (repeat per dimension); every target then holds for "
                                   "the --yield share of parts", rich_help_panel="Robust design"),
@@ -130,11 +131,12 @@ def optimize(
             ranges[n] = (P.parse_value(n, lo_s), P.parse_value(n, hi_s))
         robust = None
         if tol:
-            robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, workers, method)
+            robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, workers,
+                             method or "pattern")
             res = robust.result
         else:
             res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
-                      scheduler=scheduler, method=method, log=lambda m: err.print(escape(m)))
+                      scheduler=scheduler, method=method or "auto", log=lambda m: err.print(escape(m)))
         final = None
         if out is not None or not json_:  # the final design analysed again, with its error estimate
             d = Design.from_concept(s.concept, s.params(res.best["params"]), s.operating_point(), s.mesh_settings())

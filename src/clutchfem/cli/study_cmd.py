@@ -14,7 +14,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError
+from ..core import ClutchfemError, ParameterError
 from . import options as O
 from .common import (
     check_cluster,
@@ -159,9 +159,17 @@ def guidelines(
     params: Optional[str] = typer.Option(None, "--params", help="parameters to study, comma separated (default: "
                                          "every continuous parameter with a non-zero value)",
                                          rich_help_panel="Guidelines"),
-    step: float = typer.Option(0.02, "--step", help="relative finite-difference step h: central differences at h, "
-                               "h/2 and 2h and a fit decide whether the derivative is stable",
+    step: float = typer.Option(0.02, "--step", help="with --remeshed-check: its relative step h (central "
+                               "differences at h, h/2 and 2h on remeshed designs and a fit)",
                                rich_help_panel="Guidelines"),
+    inputs: Optional[str] = typer.Option(None, "--inputs", help="operating inputs to differentiate on the design's "
+                                         "own mesh, comma separated: mu, drum_wall (elastic drum only), idle_rpm; "
+                                         "'none' for none (default: every one available)",
+                                         rich_help_panel="Guidelines"),
+    remeshed_check: bool = typer.Option(False, "--remeshed-check", help="also the former seven-point fit on "
+                                        "remeshed designs (E_remeshed and its verdict next to the morphed "
+                                        "elasticity; six more meshed designs per parameter)",
+                                        rich_help_panel="Guidelines"),
     points: int = typer.Option(7, "--points", help="points of each one-at-a-time sweep", rich_help_panel="Guidelines"),
     span: float = typer.Option(0.5, "--span", help="one-at-a-time range: design value x (1 -+ span), within the "
                                "parameter's declared range", rich_help_panel="Guidelines"),
@@ -170,10 +178,12 @@ def guidelines(
     out: O.Out = None,
     json_: O.Json = False,
 ):
-    """Design guidelines: per parameter, elasticities d ln(answer) / d ln(parameter) of
-    engagement, slip rpm, torque at max engine torque, peak stress, shoe mass and contact arc
-    at the design point (with a check of the step against mesh noise), and a one-at-a-time
-    sweep over its range; ranked table and small-multiple charts."""
+    """Design guidelines: per parameter, elasticities (x / A) dA/dx of engagement, slip rpm,
+    torque at max engine torque, peak stress, shoe mass and contact arc at the design point
+    (central differences on meshes morphed from the design, checked at ten times the step,
+    the method named per row), the same for the operating inputs (mu, drum wall, idle speed)
+    on the design's own mesh, and a one-at-a-time sweep of each parameter over its range;
+    ranked table and small-multiple charts."""
     from ..studies import GuidelineSettings, StudyInterrupted, run_guidelines, summary_table
 
     try:
@@ -182,7 +192,14 @@ def guidelines(
         design = design_from(concept, set_, None, op=operating_point(mu=mu, material=material_from(material)),
                              mesh_size=mesh_size, mesh_allowed=False)
         names = None if params is None else [x.strip() for x in params.split(",") if x.strip()]
-        gs = GuidelineSettings.from_design(design, names, engine=eng, step=step, points=points, span=span)
+        ins = None if inputs is None else [x.strip() for x in inputs.split(",") if x.strip()]
+        if ins is not None and [x.lower() for x in ins] == ["none"]:
+            ins = []
+        elif ins is not None and not ins:
+            raise ParameterError("--inputs", inputs, "operating inputs, comma separated (mu, drum_wall, idle_rpm), "
+                                 "or none", "guidelines")
+        gs = GuidelineSettings.from_design(design, names, engine=eng, step=step, points=points, span=span,
+                                           inputs=ins, remeshed_check=remeshed_check)
         out = check_out_dir(out if out is not None else Path(f"{gs.concept}-guidelines"))
         try:
             with _ctrl_c_as_keyboard_interrupt():

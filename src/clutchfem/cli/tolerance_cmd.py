@@ -1,8 +1,10 @@
-"""``clutchfem tolerance``: Monte Carlo of manufacturing tolerances on the study engine."""
+"""``clutchfem tolerance``: Monte Carlo of manufacturing tolerances on the study engine, and
+(``--allocate``) the widest tolerance per dimension for a yield target."""
 
 from __future__ import annotations
 
-from typing import List
+from pathlib import Path
+from typing import List, Optional
 
 import typer
 from rich.markup import escape
@@ -19,7 +21,9 @@ def tolerance(
     set_: O.Set = [],
     tol: List[str] = typer.Option(..., "--tol", help="tolerance name=+-value with its unit, e.g. "
                                   "flexure_thickness=+-0.05mm (repeat for each dimension)", rich_help_panel="Tolerances"),
-    n: int = typer.Option(64, "--n", help="number of Monte Carlo parts", rich_help_panel="Tolerances"),
+    n: Optional[int] = typer.Option(None, "--n", help="number of Monte Carlo parts (default 64; with --allocate: "
+                                    "a Monte Carlo check of the allocated widths, none unless given)",
+                                    rich_help_panel="Tolerances"),
     dist: str = typer.Option("normal", "--dist", help="normal (tolerance = +-3 sigma, ASSUMED) or uniform",
                              rich_help_panel="Tolerances"),
     seed: int = typer.Option(1, "--seed", help="random seed (the same seed draws the same parts)",
@@ -28,6 +32,19 @@ def tolerance(
                                 "+-0.5 mm alone (the thesis's '0.2-0.5 mm' question)", rich_help_panel="Tolerances"),
     safety_factor_min: str = typer.Option("1.5", "--safety-factor-min", help="spec: minimum safety factor",
                                           rich_help_panel="Tolerances"),
+    allocate: bool = typer.Option(False, "--allocate", help="tolerance allocation: the widest half-width per --tol "
+                                  "dimension such that every target holds for the --yield share of parts (linearised "
+                                  "spreads from one sensitivities call; the --tol widths are the reference of the cost "
+                                  "model)", rich_help_panel="Allocation"),
+    yield_: Optional[str] = typer.Option(None, "--yield", help="with --allocate: share of parts that must meet every "
+                                         "target (default 0.99)",
+                               rich_help_panel="Allocation"),
+    model_error: bool = typer.Option(True, "--model-error/--no-model-error", help="with --allocate: add each "
+                                     "answer's model-error band (as +-2 sigma) to its spread",
+                                     rich_help_panel="Allocation"),
+    cost: List[str] = typer.Option([], "--cost", help="with --allocate: cost weight name=W of a dimension at its "
+                                   "--tol width (default 1 each; reciprocal cost model, ASSUMED)",
+                                   rich_help_panel="Allocation"),
     mesh_size: O.MeshSize = None,
     mu: O.Mu = None,
     engine: O.Engine = None,
@@ -52,6 +69,15 @@ def tolerance(
         if seed < 0:
             raise ParameterError("seed", seed, "an integer >= 0 (the same seed draws the same parts)", "option --seed")
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
+        given = [(o, v) for o, v in (("--yield", yield_), ("--cost", " ".join(cost)),
+                                     ("--no-model-error", "given" if not model_error else "")) if v]
+        if given and not allocate:
+            raise ParameterError(given[0][0].lstrip("-"), given[0][1], "an option of --allocate only (--yield, --cost, "
+                                 "--no-model-error): add --allocate", f"option {given[0][0]}")
+        y = _yield(yield_) if allocate else None
+        if allocate and scheduler is not None:
+            raise ParameterError("scheduler", scheduler, "no --scheduler with --allocate: its sensitivities run on "
+                                 "a local cluster (use --workers N)", "option --scheduler")
         s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
         P = type(base.params)
         tols = {}
@@ -61,6 +87,11 @@ def tolerance(
                 raise ParameterError(name, item, "one tolerance per dimension (given twice)", "option --tol")
             tols[name] = t
         t0 = Targets.defaults(s, sf)
+        if allocate:
+            _allocate(s, base, set_, tols, Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), y, dist,
+                      model_error, cost, n, seed, workers, scheduler, out, json_)
+            return
+        n = 64 if n is None else n
         res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf),
                   shifts=shifts, workers=workers, scheduler=scheduler, log=lambda m: err.print(escape(m)))
         if out is not None:
@@ -120,4 +151,110 @@ def _print_tolerance(res):
                       escape(f"{x['stiffness_change_pct']:+.1f} %" if x["stiffness_change_pct"] is not None else "-"))
         console.print(s)
     for n_ in res.notes:
+        console.print(f"[dim]note: {escape(n_)}[/]")
+
+
+def _yield(raw):
+    """The --yield share of --allocate (refused before any work)."""
+    y = 0.99 if raw is None else quantity("--yield", raw, "-", above=0.0)
+    if not 0.5 < y < 1.0:
+        raise ParameterError("yield", raw, "a share of parts in (0.5, 1), e.g. 0.99", "option --yield")
+    return y
+
+
+def _allocate(s, base, set_, tols, targets, y, dist, model_error, cost, n, seed, workers, scheduler, out, json_):
+    """``tolerance --allocate``: the allocation (clutchfem.studies.allocation) and, with --n,
+    a Monte Carlo check of the allocated widths."""
+    from ..core import dumps, write
+    from ..studies import allocate_tolerances, parse_tolerance
+    from ..studies import tolerance as run
+
+    if dist not in ("normal", "uniform"):
+        raise ParameterError("dist", dist, "normal or uniform", "option --dist")
+    weights = {}
+    for item in cost:
+        name, _, raw = item.partition("=")
+        name = name.strip()
+        if name not in tols:
+            raise ParameterError("cost", item, "name=W for a dimension given with --tol (" + ", ".join(tols) + ")",
+                                 "option --cost")
+        weights[name] = quantity("--cost", raw, "-", above=0.0)
+    if n is not None and not 8 <= n <= 100000:
+        raise ParameterError("n", n, "8 to 100000 Monte Carlo parts (the check of the allocated widths)", "option --n")
+    a = allocate_tolerances(s, tols, yield_target=y, dist=dist, model_error=model_error, targets=targets,
+                            cost=weights or None, workers=workers)
+    chk = None
+    if n is not None and a.feasible:
+        P = type(base.params)
+        alloc = {k: v for k, v in a.allocated.items() if v is not None and v != float("inf")}
+        for k, v in alloc.items():
+            try:
+                parse_tolerance(P, f"{k}=+-{v!r}")
+            except ParameterError as exc:
+                raise ParameterError("n", n, f"a Monte Carlo check of widths the sampler can draw; {k} is allocated "
+                                     f"+-{v:.3g} (SI): {exc}", "option --n") from None
+        chk = run(s, alloc, n=n, dist=dist, seed=seed, targets=targets, shifts=False, workers=workers,
+                  scheduler=scheduler, log=lambda m: err.print(escape(m)))
+    doc = {"design": {"label": base.name, "set": list(set_)}, **a.to_json()}
+    if chk is not None:
+        o = chk.out_of_spec["any"]
+        doc["check"] = {"n": o["n"], "in_spec": o["n"] - o["k"], "share_in_spec": 1 - o["share"],
+                        "ci95_in_spec": [1 - o["ci95"][1], 1 - o["ci95"][0]], "seed": seed,
+                        "widths_si": dict(chk.tolerances), "model_error_in_check": False}
+    if out is not None:
+        wrote([write(Path(out) / "allocation.json", doc, indent=1)])
+    if json_:
+        print(dumps(doc))
+        return
+    _print_allocation(a, doc.get("check"))
+
+
+def _print_allocation(a, check):
+    from ..studies import shown
+
+    t = Table(title=escape(f"{a.concept}: tolerance allocation for {a.yield_target:.4g} of parts in spec ({a.dist}, "
+                           + ("model-error bands included" if a.model_error else "model error left out") + ")"))
+    for c in ("dimension", "given +-", "allocated +-", "x given", "binds", "widest alone +-", "variance share",
+              "optimal split +-"):
+        t.add_column(c, justify="left" if c in ("dimension", "binds") else "right")
+    for d in a.dims:
+        t.add_row(escape(d["name"]), escape(shown(d["unit"], d["given"])), escape(shown(d["unit"], d["allocated"])),
+                  escape("-" if d.get("ratio") is None else f"{d['ratio']:.3g}"), escape(d.get("binds") or "-"),
+                  escape(shown(d["unit"], d.get("alone")) if d.get("alone") or not d.get("alone_note")
+                         else "none: the others miss"),
+                  escape("-" if d.get("share") is None else f"{100 * d['share']:.1f} %"),
+                  escape(shown(d["unit"], d.get("allocated_union"))))
+    console.print(t)
+    c = Table(title="targets at the nominal design (linearised spreads)")
+    for h in ("target", "value", "slack", "sigma model", "sigma at given widths", "z sigma needed"):
+        c.add_column(h, justify="left" if h == "target" else "right")
+    for r in a.constraints:
+        u = f" {r['unit']}" if r["unit"] not in ("-", "") else ""
+        f = (lambda v: "-" if v is None else f"{v:.4g}{u}")
+        c.add_row(escape(r["name"]), escape(f(r["value"])), escape(f(r["slack"])), escape(f(r["sigma_model"])),
+                  escape(f(r["sigma_given"])), escape(f(a.z * r["sigma_given"])))
+    console.print(c)
+    style = "" if a.feasible else "bold red"
+    console.print((f"[{style}]" if style else "") + escape(a.message) + (f"[/{style}]" if style else ""))
+    if a.scale_joint is not None and a.feasible:
+        console.print(f"without the Bonferroni share (joint normal of the answers): every width x {a.scale_joint:.3g} "
+                      "gives the yield exactly")
+    if a.feasible:
+        console.print(f"predicted yield at the given widths: {100 * a.predicted_yield:.2f} % (linearised, joint normal "
+                      f"of the answers; {100 * a.predicted_yield_independent:.2f} % if the targets were independent); "
+                      f"at the allocated widths: {100 * a.allocated_yield:.2f} % (z = {a.z:.3f}: Bonferroni over "
+                      f"{len(a.constraints)} targets, conservative)")
+        if a.ranking:
+            console.print("tighten first (share of the binding target's variance at the given widths): "
+                          + escape(", ".join(a.ranking))
+                          + (f"; model error {100 * a.model_share:.1f} %" if getattr(a, "model_share", None) else ""))
+        console.print("allocated: least total cost sum w t_given / t (reciprocal cost model, Chase & Greenwood 1988, "
+                      "ASSUMED), every target its equal share of the failures (Bonferroni, as optimize --tol); "
+                      "optimal split: the same with the failure budget split optimally between the targets (Boole); "
+                      "widest alone: the other widths held at their given values")
+    if check is not None:
+        console.print(f"Monte Carlo check of the allocated widths ({check['n']} remeshed parts, tolerances only): "
+                      f"{100 * check['share_in_spec']:.2f} % in spec (95 % Wilson interval "
+                      f"{100 * check['ci95_in_spec'][0]:.2f} .. {100 * check['ci95_in_spec'][1]:.2f} %)")
+    for n_ in a.notes:
         console.print(f"[dim]note: {escape(n_)}[/]")

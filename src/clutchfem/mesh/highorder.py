@@ -100,7 +100,26 @@ def optimise_high_order() -> None:
             worst = min(worst, float(np.min(q)))
     if worst < OPTIMISE_BELOW:
         gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
-        gmsh.model.mesh.optimize("HighOrder")
+        # gmsh raises its optimiser's "Failed to reach critical value ... ScaledJac" as an error:
+        # from inside an OpenMP region that is std::terminate (the process aborts, measured in a
+        # robust-design run), elsewhere an exception that refused a usable design.  The optimiser
+        # then hands back the mesh it started from; :func:`guard_high_order` judges (and repairs
+        # or refuses) it after this, so gmsh only reports here (AbortOnError 1) instead of throwing.
+        # A failed optimisation may leave a worse mesh than it started from: it is undone.
+        tags, coords, _ = gmsh.model.mesh.getNodes(-1, -1, includeBoundary=True, returnParametricCoord=False)
+        prev = gmsh.option.getNumber("General.AbortOnError")
+        gmsh.option.setNumber("General.AbortOnError", 1)
+        gmsh.logger.start()
+        try:
+            gmsh.model.mesh.optimize("HighOrder")
+            failed = any(m.startswith("Error") for m in gmsh.logger.get())
+        finally:
+            gmsh.logger.stop()
+            gmsh.option.setNumber("General.AbortOnError", prev)
+        if failed:
+            xyz = np.asarray(coords).reshape(-1, 3)
+            for t, c in zip(tags, xyz):
+                gmsh.model.mesh.setNode(int(t), c.tolist(), [])
 
 
 def guard_high_order(where: str, *, mirrored: bool = False, threshold: float = GUARD_MIN_SJ,

@@ -10,11 +10,15 @@ resumable SQLite store):
   :mod:`.charts`;
 * design guidelines: :mod:`.guidelines` (elasticities with a step-stability check,
   one-at-a-time sweeps), :mod:`.guideline_study` (running one), :mod:`.guideline_charts`;
-* design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets and
-  a derivative-free search), :mod:`.tolerancing` (Monte Carlo of manufacturing
+* design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets, the
+  search and its pattern-search method), :mod:`.gradient` (the gradient method on morphed
+  meshes, with :mod:`.sqp` its model pieces and :mod:`.rules` the concept's rules as linear
+  constraints), :mod:`.tolerancing` (Monte Carlo of manufacturing
   tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
   that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
-  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts);
+  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts), :mod:`.allocation`
+  (tolerance allocation for a yield, the mass-yield trade-off) with its algebra
+  :mod:`.tolerance_algebra`;
 * a finished study recognised without loading the FE stack: :mod:`.rerun`.
 
 The names are imported on first use (PEP 562, as :mod:`clutchfem` does): a command that
@@ -28,6 +32,9 @@ from ..core import lazy_names
 
 #: public name -> the module of this package it lives in (None: the module itself)
 _NAMES: dict[str, str | None] = {
+    "allocate_linear": "tolerance_algebra",
+    "allocate_tolerances": "allocation",
+    "Allocation": "allocation",
     "check_address": "cluster",
     "ClusterError": "cluster",
     "COLUMNS": "point",
@@ -47,6 +54,8 @@ _NAMES: dict[str, str | None] = {
     "fatigue_note": "optimization",
     "GuidelineResult": "guidelines",
     "GuidelineSettings": "guidelines",
+    "joint_scale": "tolerance_algebra",
+    "joint_yield": "tolerance_algebra",
     "load_spec": "resolve",
     "model_version": "point",
     "OptimizationResult": "optimization",
@@ -66,6 +75,7 @@ _NAMES: dict[str, str | None] = {
     "Sensitivities": "sensitivity",
     "sensitivities": "sensitivity",
     "Settings": "point",
+    "shown": "allocation",
     "SpecError": "schema",
     "STORE_NAME": "store",
     "StoreLocked": "store",
@@ -77,6 +87,7 @@ _NAMES: dict[str, str | None] = {
     "tolerance": "tolerancing",
     "ToleranceResult": "tolerancing",
     "why_no_answer": "guideline_study",
+    "yield_front": "allocation",
     "workers_machine_holds": "cluster",
 }
 

@@ -82,6 +82,8 @@ class EvalSettings:
     #: morph the designs' meshes from this reference design ((name, SI value) pairs,
     #: :attr:`clutchfem.studies.Settings.morph`); None: mesh every design from scratch
     morph: tuple | None = None
+    #: the mesh settings as an object (the API; a guideline study's): wins over ``mesh_size``
+    mesh: MeshSettings | None = None
 
     @classmethod
     def from_design(cls, design, *, engine=None, idle_rpm: float | None = None, requirements=None,
@@ -137,7 +139,10 @@ class EvalSettings:
         return OperatingPoint(**self.op)
 
     def mesh_settings(self):
-        """The fidelity's mesh (:meth:`MeshSettings.preset`), with ``mesh_size`` if given."""
+        """``mesh`` if given, else the fidelity's mesh (:meth:`MeshSettings.preset`), with
+        ``mesh_size`` if given."""
+        if self.mesh is not None:
+            return self.mesh
         return MeshSettings.preset(self.operating_point().fidelity,
                                    **({} if self.mesh_size is None else {"size": self.mesh_size}))
 
@@ -211,7 +216,9 @@ def from_study_row(r: dict, point: dict) -> dict:
         "torque_margin_Nm": _num(r.get("torque_margin_Nm")),
         "max_von_mises_Pa": None if mpa is None else mpa * 1e6, "safety_factor": _num(r.get("safety_factor")),
         "fatigue_safety_factor": _num(r.get("fatigue_safety_factor")), "fatigue_cycle": r.get("fatigue_cycle"),
-        "mass_kg": None if g is None else g * 1e-3, "contact_arc_deg": _num(r.get("contact_arc_deg")),
+        "mass_kg": None if g is None else g * 1e-3,
+        "shoe_mass_kg": None if _num(r.get("shoe_mass_g")) is None else _num(r.get("shoe_mass_g")) * 1e-3,
+        "contact_arc_deg": _num(r.get("contact_arc_deg")),
         "contact_share": _num(r.get("contact_arc_fraction")),
         "engagement_ok": bool(r.get("engagement_ok")), "slip_ok": bool(r.get("slip_ok")),
         "engagement_limit_rpm": _num(r.get("engagement_limit_rpm")), "slip_limit_rpm": _num(r.get("slip_limit_rpm")),

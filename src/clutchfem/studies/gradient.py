@@ -214,7 +214,7 @@ class Evaluator:
         if self.f0 is None:
             self.f0 = abs(f) or 1.0
         c = np.array([constraint_value(c, min(self.worst, 0.0) + MISS) for c in a["constraints"]])
-        self.worst = min(self.worst, float(np.min(c)))
+        self.worst = min(self.worst, float(np.min(c))) if c.size else self.worst
         return f / self.f0, c
 
     def elapsed(self) -> str:

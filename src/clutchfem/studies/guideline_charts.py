@@ -1,14 +1,15 @@
 """Charts and the terminal table of a guideline study (:mod:`.guidelines`).
 
-* :func:`summary_table`: a rich table, parameters ranked, the elasticity of each answer
-  marked ``~`` (unstable derivative), ``?`` (unchecked: a step has no answer), ``1``
-  (one-sided: one side refused), ``-`` (no answer);
+* :func:`summary_table`: a rich table, parameters ranked (then the operating inputs), the
+  elasticity of each answer marked ``~`` (unstable: its check at ten times the step
+  differs), ``?`` (unchecked: the wider step has no answer), ``1`` (one-sided: one side
+  refused), ``-`` (no answer), and the method of each row in words;
 * :func:`oat_chart`: small multiples, one panel per answer: the answer against x / x0 for
   every parameter (one at a time), the design point marked with its value, dotted where a
   design has no answer;
-* :func:`elasticity_chart`: small multiples, one per answer: each parameter's elasticity
-  as a bar labelled with its value, the spread of the step check as its error bar,
-  coloured by verdict.
+* :func:`elasticity_chart`: small multiples, one per answer: each parameter's (and
+  operating input's) elasticity as a bar labelled with its value, the spread of the step
+  check as its error bar, coloured by verdict, the method under each name.
 
 Legends sit beside the panels (never on the data); parameters a design does not use (the
 other profiles' controls) are not studied, and the charts say so under their title.
@@ -27,7 +28,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..core import figure, save_figure
-from .guidelines import ANSWERS, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
+from .guidelines import ANSWERS, CHECK_FACTOR, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
 from .spec import display_value
 
 #: unit of each guideline answer (as its label states it)
@@ -35,20 +36,35 @@ UNITS = {"engagement_rpm": "rpm", "slip_rpm": "rpm", "torque_at_max_engine_torqu
          "max_von_mises_MPa": "MPa", "shoe_mass_g": "g", "contact_arc_deg": "deg"}
 
 
+def short_method(method: str) -> str:
+    """A table cell's short form of an elasticity's method (:func:`.guidelines.method_text`)."""
+    if "operating input" in method:
+        return "same mesh"
+    if "meshed from scratch" in method:
+        return "from scratch"
+    return "morphed" if "morphed" in method else method[:24]
+
+
 def summary_table(res: GuidelineResult):
-    """A rich table: parameters ranked, elasticity of each answer (~: unstable derivative)."""
-    t = Table(title=escape(f"{res.concept}: elasticities d ln(answer) / d ln(parameter) at the design point"),
+    """A rich table: parameters ranked, then the operating inputs; elasticity of each answer
+    (~: unstable derivative) and the method of each row."""
+    t = Table(title=escape(f"{res.concept}: elasticities (x / A) dA/dx at the design point"),
               caption=escape(f"engage: engagement rpm; slip: slip rpm; torque: at the rpm of max engine torque; "
                              f"stress: peak von Mises at max rpm; shoe m: shoe mass; arc: contact arc.  "
-                             f"Step h = {res.step:.0%}; ~: unstable (E at h/2, 2h or the fit differs from E at h "
-                             f"by more than {STABLE_ABS} + {STABLE_REL:.0%}); ?: unchecked (a step has no answer); "
-                             "1: one-sided (one side refused); -: no answer"))
+                             f"method: morphed = central difference on meshes morphed from the design; same mesh = "
+                             f"an operating input on the design's own mesh; from scratch = a morph was refused "
+                             f"(remeshing noise; the notes say why).  ~: unstable (E at {CHECK_FACTOR:g}x the step "
+                             f"differs by more than {STABLE_ABS} + {STABLE_REL:.0%}); ?: unchecked (the wider step "
+                             "has no answer); 1: one-sided (one side refused); -: no answer; rank -: an operating input (not "
+                             "ranked)"))
     t.add_column("rank")
     t.add_column("parameter", no_wrap=True)
     t.add_column("value", justify="right")
     for col, _ in ANSWERS:
         t.add_column(SHORT[col], justify="right")
-    for k, n in enumerate(res.ranking, start=1):
+    t.add_column("method")
+    rows = [(str(k), n) for k, n in enumerate(res.ranking, start=1)] + [("-", n) for n in res.inputs]
+    for k, n in rows:
         cells = []
         unit = x0 = None
         for col, _ in ANSWERS:
@@ -56,10 +72,11 @@ def summary_table(res: GuidelineResult):
             unit, x0 = e["unit"], e["x0"]
             v = e["E"]
             mark = {"stable": "", "unchecked": "?", "unstable": "~"}.get(e["verdict"], "")
-            side = "" if e["method"] == "central" else "1"
+            side = "1" if e["method"].startswith("one-sided") else ""
             cells.append("-" if not math.isfinite(v) else f"{mark}{v:+.2f}{side}")
         shown = {"m": "mm", "-": ""}.get(unit, unit)
-        t.add_row(str(k), escape(n), escape(f"{display_value(x0, unit):.4g} {shown}".strip()), *cells)
+        t.add_row(k, escape(n), escape(f"{display_value(x0, unit):.4g} {shown}".strip()), *cells,
+                  escape(short_method(res.methods.get(n, ""))))
     return t
 
 
@@ -139,7 +156,7 @@ def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
 
     path = Path(path)
     fig, axes = figure(2, 3, figsize=(15.0, 8.0), layout="constrained", squeeze=False)
-    names = res.ranking
+    names = list(res.ranking) + list(res.inputs)
     colour = {"stable": "C0", "unchecked": "C1"}
     for k, (col, label) in enumerate(ANSWERS):
         ax = axes.flat[k]
@@ -159,17 +176,18 @@ def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
             ax.text(end, yy, "0.00" if abs(v) < 0.005 else f"{v:+.2f}", va="center",
                     ha="left" if v >= 0 else "right", fontsize=7)
         ax.set_xlim(-1.35 * span, 1.35 * span)
-        ax.set_yticks(y, names, fontsize=7)
+        ax.set_yticks(y, [f"{n} ({short_method(res.methods.get(n, ''))})" for n in names], fontsize=6)
         ax.invert_yaxis()
         ax.axvline(0, color="0.3", lw=0.8)
         ax.set_title(label, fontsize=9)
-        ax.set_xlabel("elasticity d ln(answer) / d ln(parameter) [-]", fontsize=8)
+        ax.set_xlabel("elasticity (x / A) dA/dx [-]", fontsize=8)
         ax.grid(alpha=0.3, axis="x")
         ax.tick_params(labelsize=7)
-    handles = [Patch(color="C0", label="stable"), Patch(color="C1", label="unchecked\n(a step refused)"),
-               Patch(color="0.7", label="unstable against\nmesh noise")]
-    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="verdict; error bar:\nspread over h/2, 2h\n"
-               "and the fit", title_fontsize=8)
-    fig.suptitle(f"{res.concept}: elasticities at the design point (1 % more parameter: E % more answer)"
+    handles = [Patch(color="C0", label="stable"), Patch(color="C1", label="unchecked\n(the wider step\nhas no answer)"),
+               Patch(color="0.7", label=f"unstable: E at\n{CHECK_FACTOR:g}x the step differs")]
+    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title=f"verdict; error bar:\n|E - E at "
+               f"{CHECK_FACTOR:g}x step|\n\nmethod under each name:\nmorphed: central difference\non morphed meshes\n"
+               "same mesh: operating\ninput, design's mesh\nfrom scratch: morph\nrefused (notes)", title_fontsize=8)
+    fig.suptitle(f"{res.concept}: elasticities (x / A) dA/dx at the design point (1 % more parameter: E % more answer)"
                  + _footnote(res), fontsize=10)
     return save_figure(fig, path)

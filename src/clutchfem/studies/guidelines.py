@@ -5,35 +5,46 @@ For each studied parameter x of a concept at a design point x0, and each answer 
 :data:`ANSWERS` (engagement rpm, slip rpm, torque at the rpm of maximum engine torque, peak
 von Mises at the engine's maximum speed, shoe mass, contact arc), the **local elasticity**
 
-    E = d ln A / d ln x   (1 % more x gives about E % more A)
+    E = (x0 / A) dA/dx   (1 % more x gives about E % more A)
 
 and a **one-at-a-time sweep** of x over x0 (1 -+ span) within its declared range, the other
 parameters at the design point.  Everything runs on the study engine
 (:func:`clutchfem.studies.runner.run_points`: Dask, store, resume): :mod:`.guideline_study`
 runs a guideline study and writes its tables, :mod:`.guideline_charts` draws them.  This
 module holds the method: what is studied (:class:`GuidelineSettings`), the designs it takes
-(:func:`plan`), the elasticity with its stability check (:func:`elasticity`) and the result
-(:class:`GuidelineResult`).
+(:func:`plan`), the elasticity and its checks (:func:`morphed_elasticity`,
+:func:`elasticity`) and the result (:class:`GuidelineResult`).
 
-Finite differences against mesh noise.  Every design is meshed anew and the mesh topology
-changes with the parameters, so A(x) carries a small, non-smooth noise eps (relative) on
-top of its smooth trend.  A central difference with relative step r,
+The elasticity (issue 21).  dA/dx is the design sensitivity of :func:`.sensitivity.sensitivities`:
+a central difference on meshes *morphed* from the design's own (step 0.01 mm, 0.01 deg or
+1e-3 of a dimensionless value), smooth in the parameters, with no remeshing noise.  Its
+method is named per parameter (:func:`method_text`): "central difference on morphed
+meshes"; "one-sided (+/-) difference on morphed meshes" where the concept's rules refuse one
+side; "... meshed from scratch (morph refused: reason)" where a morph is refused.  Its
+**check**: the same difference at ten times the step (0.1 mm); the elasticity is **stable**
+when the two agree within 0.05 + 10 % of |E| (0.05: below it a parameter has no influence
+worth a guideline; 10 %: the precision a guideline needs), **unstable** otherwise (the
+answer has steps of its own at that scale: the contact arc moves by one contact node, the
+peak stress jumps between nodes, the slip root has a tolerance), **unchecked** where the
+wider step has no answer.  The operating inputs (mu, the elastic drum's wall, the idle
+speed) get the same elasticity on the design's own mesh ("central difference, same mesh
+(operating input)"); they are listed, not ranked (a designer does not choose them).
+
+The remeshed check (option ``remeshed_check``, CLI ``--remeshed-check``): the former method,
+kept as a cross-check against designs meshed from scratch.  Each parameter is evaluated at
+seven remeshed designs, x0 and x0 (1 -+ r) for r = h/2, h and 2h (h = 2 % by default); the
+central differences of ln A in ln x,
 
     E_r = [ln A(x0 (1 + r)) - ln A(x0 (1 - r))] / [ln(1 + r) - ln(1 - r)],
 
-has a truncation error ~ r^2 (curvature) and a noise error ~ eps / (sqrt 2 r): too small a
-step amplifies the mesh noise, too large a step sees the curvature.  Each parameter is
-therefore evaluated at seven designs, x0 and x0 (1 -+ r) for r = h/2, h and 2h (h = 2 %
-by default), and a quadratic in ln x is fitted through all seven (least squares: its slope
-at x0 is E_fit, its residual is the noise estimate eps).  The reported elasticity is E_h,
-and it is called **stable** when E_h/2, E_2h and E_fit all agree with it within
-0.05 + 10 % of |E_h| (0.05: below it a parameter has no influence worth a guideline; 10 %:
-the precision a guideline needs).  An unstable derivative is reported as such, with its
-spread, never silently: typically the contact arc, which moves in steps of one contact
-node, or the peak stress, which sits on one node of a fillet.  Where the concept refuses
-the design on one side of x0 (x0 on the edge of its feasible set), the differences are
-one-sided on the other side, marked; where a step has no answer the verdict is
-'unchecked'.  Parameters are ranked by their largest |E| that is not unstable.
+and a quadratic in ln x fitted through all seven (slope E_fit, residual: the noise estimate
+eps) give E_remeshed = E_h, stable when E_h/2, E_2h and E_fit agree with it within the rule
+above.  Remeshing adds a non-smooth noise eps to A(x); its error on E_r is ~ eps / (sqrt 2
+r): measured on concept 4's defaults (BENCHMARKS.md, "Guidelines from morphed
+sensitivities"), it left most stress elasticities unstable.  It is an option, not the
+default, because it costs six meshed designs per parameter (most of a guideline study's
+designs) to measure the remeshing noise rather than the derivative.  Parameters are ranked
+by their largest |E| that is not unstable.
 """
 
 from __future__ import annotations
@@ -49,6 +60,7 @@ from ..core import ParameterError, clean
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import OperatingPoint
 from .point import Settings
+from .sensitivity import Sensitivities
 from .values import param_bounds, round12
 
 #: answers of the guidelines: (row column, label with unit)
@@ -66,14 +78,23 @@ SHORT = {"engagement_rpm": "engage", "slip_rpm": "slip", "torque_at_max_engine_t
 #: agreement required of E_h/2, E_2h and E_fit with E_h: absolute + relative part
 STABLE_ABS = 0.05
 STABLE_REL = 0.10
-#: the step multiples evaluated (relative to h)
+#: the step multiples evaluated (relative to h) by the remeshed check
 STEP_FACTORS = (0.5, 1.0, 2.0)
+#: the check of a morphed elasticity: the difference at this multiple of its step
+CHECK_FACTOR = 10.0
+#: the guideline answer -> the sensitivities' answer (same quantity, SI units)
+SENSITIVITY_KEY = {"engagement_rpm": "engagement_rpm", "slip_rpm": "slip_rpm",
+                   "torque_at_max_engine_torque_Nm": "torque_at_max_engine_torque_Nm",
+                   "max_von_mises_MPa": "max_von_mises_Pa", "shoe_mass_g": "shoe_mass_kg",
+                   "contact_arc_deg": "contact_arc_deg"}
 
 
 @dataclass(frozen=True)
 class GuidelineSettings:
-    """What to study: concept, design point (``--set`` values), parameters, relative step h,
-    one-at-a-time points and span, and the shared analysis settings."""
+    """What to study: concept, design point (``--set`` values), parameters, relative step h
+    of the remeshed check, one-at-a-time points and span, the shared analysis settings,
+    the operating inputs (None: every one :func:`.sensitivity.operating_inputs` offers) and
+    whether to run the remeshed check."""
 
     concept: str
     params: tuple[str, ...]
@@ -83,6 +104,8 @@ class GuidelineSettings:
     span: float = 0.5
     notes: tuple[str, ...] = ()
     errors: bool = True
+    inputs: tuple[str, ...] | None = None
+    remeshed_check: bool = False
 
     @property
     def base(self) -> dict:
@@ -91,9 +114,12 @@ class GuidelineSettings:
     @classmethod
     def create(cls, concept: str, base: dict | None = None, params=None, *, step: float = 0.02, points: int = 7,
                span: float = 0.5, mesh=None, op=None, engine=None, idle_rpm=None, a: float = 1.3,
-               b: float = 1.0, min_safety_factor: float = 1.0) -> "GuidelineSettings":
+               b: float = 1.0, min_safety_factor: float = 1.0, inputs=None,
+               remeshed_check: bool = False) -> "GuidelineSettings":
         """Validated settings (API); ``base`` concept parameters in their units, ``params``
-        names (default: every continuous parameter with a non-zero design value)."""
+        names (default: every continuous parameter with a non-zero design value);
+        ``inputs`` operating inputs (default: every one available, ``()``: none);
+        ``remeshed_check``: also the seven-point fit on remeshed designs."""
         c = get_concept(concept)
         base = dict(base or {})
         p0 = c.Params(**base)  # the design point must itself be valid
@@ -128,12 +154,22 @@ class GuidelineSettings:
                                          "elasticity; --set it to a non-zero value)", "guidelines")
             if len(set(chosen)) != len(chosen):
                 raise ParameterError("params", ",".join(chosen), "each parameter once", "guidelines")
+        if inputs is not None:
+            inputs = tuple(inputs)
+            allowed = ("mu", "drum_wall", "idle_rpm")
+            for n in inputs:
+                if n not in allowed:
+                    raise ParameterError("inputs", n, "operating inputs among " + ", ".join(allowed), "guidelines")
+            if len(set(inputs)) != len(inputs):
+                raise ParameterError("inputs", ",".join(inputs), "each operating input once", "guidelines")
+        if not isinstance(remeshed_check, bool):
+            raise ParameterError("remeshed_check", remeshed_check, "True or False", "guidelines")
         op = op or OperatingPoint()
         settings = Settings(concept=c.name, fixed=tuple(sorted(base.items())), op=op,
                             mesh=mesh or MeshSettings.preset(op.fidelity), engine=engine, idle_rpm=idle_rpm, a=a, b=b,
                             min_safety_factor=min_safety_factor)
         return cls(concept=c.name, params=tuple(chosen), settings=settings, step=float(step), points=points,
-                   span=float(span), notes=tuple(notes))
+                   span=float(span), notes=tuple(notes), inputs=inputs, remeshed_check=remeshed_check)
 
     @classmethod
     def from_design(cls, design, params=None, *, engine=None, requirements=None, **kw) -> "GuidelineSettings":
@@ -195,14 +231,15 @@ def oat_values(x0: float, lo, hi, span: float, n: int) -> list[float]:
 
 
 def plan(gs: GuidelineSettings) -> tuple[list[dict], dict]:
-    """All points of a guideline study and, per parameter, its FD and OAT values."""
+    """All remeshed points of a guideline study and, per parameter, its FD (only with the
+    remeshed check) and OAT values."""
     P = get_concept(gs.concept).Params
     p0 = P(**gs.base)
     points, per = [{}], {}
     for n in gs.params:
         x0 = float(getattr(p0, n))
         lo, hi = param_bounds(P, n)
-        fd = fd_values(x0, gs.step)
+        fd = fd_values(x0, gs.step) if gs.remeshed_check else [x0]
         inside = [v for v in fd if (lo is None or v >= lo) and (hi is None or v <= hi)]
         oat = oat_values(x0, lo, hi, gs.span, gs.points)
         per[n] = {"x0": x0, "fd": fd, "fd_outside": [v for v in fd if v not in inside], "oat": oat,
@@ -214,6 +251,40 @@ def plan(gs: GuidelineSettings) -> tuple[list[dict], dict]:
 # ---------------------------------------------------------------------------------------
 # derivatives
 # ---------------------------------------------------------------------------------------
+def method_text(s: Sensitivities, name: str) -> str:
+    """The method of an elasticity, in words (module docstring), from the sensitivities'
+    short method and notes."""
+    m = s.methods.get(name, "")
+    if m.startswith("not evaluated"):
+        return m
+    how = m.split(",")[0]
+    if s.kinds.get(name) == "operating input":
+        return f"{how} difference, same mesh (operating input)"
+    if m.endswith("meshed from scratch"):
+        why = next((n.split(": ", 1)[1] for n in s.notes if n.startswith(f"{name}: ")), "")
+        return f"{how} difference, meshed from scratch (morph refused: {why})"
+    side = " (one side refused by the concept's rules)" if how.startswith("one-sided") else ""
+    return f"{how} difference on morphed meshes{side}"
+
+
+def morphed_elasticity(s: Sensitivities, check: Sensitivities, name: str, key: str) -> dict:
+    """E = (x0 / A) dA/dx from the sensitivities ``s`` at answer ``key``, its check at the
+    wider step (``check``), their spread and the verdict (module docstring)."""
+    e, e2 = s.elasticity(name, key), check.elasticity(name, key)
+    e = math.nan if e is None else float(e)
+    e2 = math.nan if e2 is None else float(e2)
+    spread = abs(e - e2) if math.isfinite(e) and math.isfinite(e2) else math.nan
+    if not math.isfinite(e):
+        verdict = "no answer"
+    elif not math.isfinite(e2):
+        verdict = "unchecked"
+    else:
+        verdict = "stable" if spread <= STABLE_ABS + STABLE_REL * abs(e) else "unstable"
+    return {"E": e, "method": method_text(s, name), "step": s.steps.get(name), "E_check": e2,
+            "check_step": check.steps.get(name), "check_method": method_text(check, name), "spread": spread,
+            "verdict": verdict, "stable": verdict == "stable"}
+
+
 def central(a_minus: float, a_plus: float, r: float) -> float:
     """E_r: the central difference of ln A in ln x at relative step r (module docstring)."""
     if not (_pos(a_minus) and _pos(a_plus)):
@@ -304,12 +375,24 @@ class GuidelineResult:
     notes: list[str] = field(default_factory=list)
     run: Any = None
     base_errors: dict = field(default_factory=dict)
+    #: the method of each parameter's / operating input's elasticity, in words
+    methods: dict = field(default_factory=dict)
+    #: the operating inputs in the table (listed, not ranked)
+    inputs: list[str] = field(default_factory=list)
+    #: True: the rows also carry the remeshed seven-point check (E_remeshed, remeshed_verdict)
+    remeshed: bool = False
 
     def as_json(self) -> dict:
-        return clean({"concept": self.concept, "design_point": self.base, "step": self.step,
-                      "stability_rule": f"E_h/2, E_2h and E_fit within {STABLE_ABS} + {STABLE_REL:.0%} of |E_h| "
-                                        "(verdicts: stable, unstable, unchecked, no answer)",
-                      "ranking": self.ranking, "elasticities": self.table, "notes": self.notes,
+        return clean({"concept": self.concept, "design_point": self.base,
+                      "elasticity": "E = (x / A) dA/dx, dA/dx by central differences on meshes morphed from the "
+                                    "design (operating inputs: on the design's own mesh); the method per row",
+                      "stability_rule": f"E at {CHECK_FACTOR:g}x the step within {STABLE_ABS} + {STABLE_REL:.0%} of "
+                                        "|E| (verdicts: stable, unstable, unchecked, no answer)",
+                      "methods": self.methods,
+                      "remeshed_check": ({"step": self.step, "rule": f"E_h/2, E_2h and E_fit within {STABLE_ABS} + "
+                                                                    f"{STABLE_REL:.0%} of |E_h| on remeshed designs"}
+                                         if self.remeshed else None),
+                      "ranking": self.ranking, "operating_inputs": self.inputs, "elasticities": self.table, "notes": self.notes,
                       "design_point_errors": self.base_errors,
                       "run": self.run.as_dict() if self.run is not None else None,
                       "files": [str(f) for f in self.files]})

@@ -325,8 +325,12 @@ def _gradient(settings, targets, free, ranges, sample, max_evals, seed, min_step
             log("no feasible design by the gradient method: the pattern search goes on from its best design")
         base = settings.set_args(tr.best["params"])
         rest = max_evals - sum(tr.counts.values())
-        res = _optimize(dataclasses.replace(settings, base=tuple(base)), targets, free, ranges, 0, rest, seed,
-                        min_step, log)
+        try:
+            res = _optimize(dataclasses.replace(settings, base=tuple(base)), targets, free, ranges, 0, rest, seed,
+                            min_step, log)
+        except InputError as exc:  # its start (the gradient method's best, meshed from scratch) has no answer
+            return _finish(settings, targets, free, space, start_texts, tr.best, tr.path, tr.counts, t0,
+                           tr.iterations, f"{what}; the pattern search could not go on from its best design ({exc})")
         res.path = tr.path + res.path
         for k, v in tr.counts.items():
             res.evaluations[k] = res.evaluations.get(k, 0) + v

@@ -22,8 +22,20 @@ the contact set), which morphing does not remove.
 
 Answers (SI units): engagement speed, engagement with ripple, slip speed [rpm], torque at the
 engine's maximum torque [N m], peak von Mises stress at the engine's maximum speed [Pa], its
-safety factor against yield [-], fatigue safety factor [-], part mass [kg].  Operating inputs (mu, drum, material) are not
-parameters of the morphed mesh: they are not differentiated here.
+safety factor against yield [-], fatigue safety factor [-], part mass, mass of one shoe [kg],
+contact arc at the rpm of maximum engine torque [deg] (it moves in steps of one contact node:
+its derivative is 0 or a jump, read it as such).
+
+Operating inputs (:data:`OPERATING`): the real-valued inputs that leave the geometry alone --
+the friction coefficient mu [-], the elastic drum's wall [m] (only where the drum is elastic:
+a rigid drum has no wall to differentiate), the idle speed [rpm] (the engine's, or
+``EvalSettings.idle_rpm``) -- are differentiated on the *same mesh* as the design (the
+design's own, no geometry change): the central difference above with steps 1 % of mu, 0.01
+mm of wall, 10 rpm of idle (method ``central, same mesh (operating input)``).  The idle speed
+enters no answer above but the engagement limit a x idle (d limit / d idle = a, exact), the
+fatigue duty and the requirement checks: its derivatives are zero where the analysis does not
+use it, and are reported as computed.  The material (a choice) and the axial thickness (a
+concept parameter) are not operating inputs here.
 """
 
 from __future__ import annotations
@@ -32,6 +44,7 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 
+from ..analysis import idle_speed
 from ..core import ParameterError
 from ..loadcase import Design
 from . import values as V
@@ -42,17 +55,24 @@ ANSWERS: tuple[tuple[str, str], ...] = (
     ("engagement_rpm", "rpm"), ("engagement_rpm_with_ripple", "rpm"), ("slip_rpm", "rpm"),
     ("torque_at_max_engine_torque_Nm", "N m"), ("max_von_mises_Pa", "Pa"), ("safety_factor", "-"),
     ("fatigue_safety_factor", "-"),
-    ("mass_kg", "kg"))
+    ("mass_kg", "kg"), ("shoe_mass_kg", "kg"), ("contact_arc_deg", "deg"))
 #: finite-difference step per parameter unit (module docstring); dimensionless: relative
 STEP = {"m": 1e-5, "deg": 0.01}
 REL_STEP = 1e-3
+#: operating inputs differentiated on the design's own mesh: name -> (unit, step, relative?)
+OPERATING: dict[str, tuple[str, float, bool]] = {"mu": ("-", 1e-2, True), "drum_wall": ("m", 1e-5, False),
+                                                 "idle_rpm": ("rpm", 10.0, False)}
+#: the method of an operating input's derivative
+SAME_MESH = "same mesh (operating input)"
 
 
 @dataclass
 class Sensitivities:
     """What :func:`sensitivities` returns: the answers at the design (``base``), and per
-    parameter its value, step, unit, derivative of every answer [answer unit / parameter
-    unit, SI] and the method used (``central, morphed`` where both sides were morphed)."""
+    parameter or operating input its value, step, unit, derivative of every answer [answer
+    unit / parameter unit, SI], the method used (``central, morphed`` where both sides were
+    morphed; ``central, same mesh (operating input)``) and its kind (``parameter`` or
+    ``operating input``)."""
 
     concept: str
     base: dict
@@ -62,6 +82,7 @@ class Sensitivities:
     derivatives: dict
     methods: dict
     notes: list = field(default_factory=list)
+    kinds: dict = field(default_factory=dict)
 
     def elasticity(self, name: str, answer: str) -> float | None:
         """(x / A) dA/dx: the % change of ``answer`` per % change of parameter ``name``."""
@@ -76,7 +97,7 @@ class Sensitivities:
         head = "parameter".ljust(22) + "".join(k.replace("_with_ripple", "+ripple")[:18].rjust(20) for k, _ in ANSWERS)
         lines = [head, "".ljust(22) + "".join(f"[{u}/unit]".rjust(20) for _, u in ANSWERS)]
         for n, der in self.derivatives.items():
-            scale, unit = {"m": (1e-3, "mm"), "deg": (1.0, "deg")}.get(self.units[n], (1.0, "-"))
+            scale, unit = {"m": (1e-3, "mm"), "deg": (1.0, "deg"), "rpm": (1.0, "rpm")}.get(self.units[n], (1.0, "-"))
             cells = "".join(("-" if der.get(k) is None else f"{der[k] * scale:.5g}").rjust(20) for k, _ in ANSWERS)
             lines.append(f"{n} /{unit}".ljust(22) + cells + f"   ({self.methods[n]})")
         return "\n".join(lines)
@@ -93,9 +114,39 @@ def step_for(P, name: str, value: float) -> float:
     return max(abs(value) * REL_STEP, 1e-6)
 
 
+def operating_inputs(es: EvalSettings) -> dict[str, float]:
+    """The operating inputs of ``es`` that can be differentiated, with their values (mu [-],
+    drum_wall [m] only where the drum is elastic, idle_rpm [rpm])."""
+    op = es.operating_point()
+    out = {"mu": float(op.mu)}
+    if op.drum_wall_m:
+        out["drum_wall"] = float(op.drum_wall_m)
+    out["idle_rpm"] = float(idle_speed(es.engine(), es.idle_rpm)[0])
+    return out
+
+
+def _with_input(es: EvalSettings, name: str, value: float) -> EvalSettings:
+    """``es`` with operating input ``name`` at ``value`` (the same geometry and mesh)."""
+    if name == "idle_rpm":
+        return dataclasses.replace(es, idle_rpm=value)
+    return dataclasses.replace(es, op={**es.op, name: value})
+
+
+def _evaluate_input(es: EvalSettings, name: str, value: float) -> dict:
+    """The row of the design with operating input ``name`` at ``value`` (refused: its reason)."""
+    try:
+        v = _with_input(es, name, value)
+        v.study()  # the operating point's own checks (mu >= 0, wall >= 0)
+    except ParameterError as exc:
+        return {"params": {name: value}, "status": "refused", "message": str(exc)}
+    return evaluate_many([{}], v)[0]
+
+
 def sensitivities(design, names: list[str] | None = None, *, engine=None, requirements=None,
-                  workers: int | None = None, morph: bool = True, steps: dict | None = None) -> Sensitivities:
-    """Derivatives of the main answers of ``design`` with respect to its concept parameters.
+                  workers: int | None = None, morph: bool = True, steps: dict | None = None,
+                  scheduler: str | None = None) -> Sensitivities:
+    """Derivatives of the main answers of ``design`` with respect to its concept parameters
+    and its operating inputs.
 
     Parameters
     ----------
@@ -103,8 +154,10 @@ def sensitivities(design, names: list[str] | None = None, *, engine=None, requir
         A concept's design (``Design.from_concept``) or the study settings of one: the point
         of the derivatives and the morph reference.
     names : list of str, optional
-        Parameters to differentiate (default: every real-valued parameter of the concept but
-        the drum radius, the axial thickness and the table profile's clearances).
+        Real-valued concept parameters and operating inputs (``mu``, ``drum_wall`` where the
+        drum is elastic, ``idle_rpm``) to differentiate (default: every real-valued parameter
+        of the concept but the drum radius, the axial thickness and the table profile's
+        clearances, and every operating input).
     engine, requirements : optional
         The engine curve and requirement factors of the answers (defaults as ``analyze``).
     workers : int, optional
@@ -113,21 +166,27 @@ def sensitivities(design, names: list[str] | None = None, *, engine=None, requir
         Morph the meshes (default).  False meshes every design from scratch: for measuring
         what morphing buys (the derivatives then carry remeshing noise).
     steps : dict, optional
-        name -> finite-difference step in SI units (default: :func:`step_for`).
+        name -> finite-difference step in SI units (default: :func:`step_for`; operating
+        inputs :data:`OPERATING`).
+    scheduler : str, optional
+        An existing Dask scheduler's address (instead of ``workers``).
 
     Returns
     -------
     Sensitivities
-        ``derivatives[name][answer]`` in SI units, ``elasticity(name, answer)``, ``table()``.
+        ``derivatives[name][answer]`` in SI units (per rpm for the idle speed),
+        ``elasticity(name, answer)``, ``table()``, ``methods`` and ``kinds``.
 
     Examples
     --------
     >>> import clutchfem as cf
     >>> d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
-    >>> s = cf.sensitivities(d, ["flexure_thickness"], workers=0)
-    >>> s.methods["flexure_thickness"]
-    'central, morphed'
+    >>> s = cf.sensitivities(d, ["flexure_thickness", "mu"], workers=0)
+    >>> s.methods["flexure_thickness"], s.methods["mu"]
+    ('central, morphed', 'central, same mesh (operating input)')
     >>> s.derivatives["flexure_thickness"]["engagement_rpm"] > 0    # rpm per m: stiffer beam
+    True
+    >>> s.derivatives["mu"]["torque_at_max_engine_torque_Nm"] > 0   # N m per unit of mu
     True
     """
     if isinstance(design, EvalSettings):
@@ -139,26 +198,43 @@ def sensitivities(design, names: list[str] | None = None, *, engine=None, requir
         raise ParameterError("design", type(design).__name__, "a concept's Design (Design.from_concept): a user "
                              "mesh has no parameters to differentiate")
     P = type(p0)
-    floats = [n for n, f in P.model_fields.items() if f.annotation is float and not n.startswith("table_c")
-              and n not in ("drum_radius", "thickness")]
-    names = list(floats if names is None else names)
+    floats = [n for n, f in P.model_fields.items() if f.annotation is float]
+    default = [n for n in floats if not n.startswith("table_c") and n not in ("drum_radius", "thickness")]
+    inputs = operating_inputs(es)
+    names = list(default + list(inputs) if names is None else names)
     for n in names:
-        if n not in floats:
-            raise ParameterError(n, None, "a real-valued parameter of the concept: " + ", ".join(floats), label)
+        if n == "drum_wall" and n not in inputs:
+            raise ParameterError(n, None, "an elastic drum to differentiate its wall (this design's drum is rigid: "
+                                 "set drum_wall, e.g. 2mm, or fidelity best)", label)
+        if n not in floats and n not in inputs:
+            raise ParameterError(n, None, "a real-valued parameter of the concept (" + ", ".join(default)
+                                 + ", ...) or an operating input (" + ", ".join(inputs) + ")", label)
+    if len(set(names)) != len(names):
+        raise ParameterError("names", ",".join(names), "each name once", label)
     if morph:
         es = dataclasses.replace(es, morph=tuple(sorted(es.values().items())))
     points: list[dict] = [{}]
-    plan = []
+    plan, ops = [], []
     for n in names:
-        x = float(getattr(p0, n))
-        h = float((steps or {}).get(n) or step_for(P, n, x))
+        x = float(inputs[n] if n in inputs else getattr(p0, n))
+        h = (steps or {}).get(n)
+        if h is None:
+            h = step_for(P, n, x) if n not in inputs else (max(abs(x) * OPERATING[n][1], 1e-6) if OPERATING[n][2]
+                                                          else OPERATING[n][1])
+        h = float(h)
         if not h > 0:
             raise ParameterError(f"steps[{n}]", h, "a positive step in SI units", label)
         lo, hi = V.round12(x - h), V.round12(x + h)
+        if n in inputs:
+            ops.append((n, x, h, lo, hi))
+            continue
         plan.append((n, x, h, len(points), len(points) + 1))
         points += [{n: V.exact_text(P, n, lo)}, {n: V.exact_text(P, n, hi)}]
-    with cluster(workers):
+    with cluster(workers, scheduler):
         rows = evaluate_many(points, es)
+        for n, x, h, lo, hi in ops:  # one batch per value: each is another operating point
+            plan.append((n, x, h, len(rows), len(rows) + 1))
+            rows += [_evaluate_input(es, n, lo), _evaluate_input(es, n, hi)]
     base = rows[0]
     if base["status"] != "ok":
         raise ParameterError("design", label, f"a design the analysis can evaluate ({base['message']})")
@@ -169,18 +245,30 @@ def sensitivities(design, names: list[str] | None = None, *, engine=None, requir
         ok_m, ok_p = rm["status"] == "ok", rp["status"] == "ok"
         pairs = ((rm, rp, 2 * h, "central") if ok_m and ok_p else (base, rp, h, "one-sided (+)") if ok_p
                  else (rm, base, h, "one-sided (-)") if ok_m else None)
-        out.values[n], out.steps[n], out.units[n] = x, h, P.unit(n)
+        out.values[n], out.steps[n] = x, h
+        out.units[n] = OPERATING[n][0] if n in inputs else P.unit(n)
+        out.kinds[n] = "operating input" if n in inputs else "parameter"
         if pairs is None:
             out.derivatives[n] = {k: None for k, _ in ANSWERS}
             out.methods[n] = "not evaluated: " + (rm.get("message") or rp.get("message") or "")
             continue
         a, b, dx, how = pairs
         used = [r for r in (a, b) if r is not base]
-        morphed = all(r.get("mesh_morphed") == 1 for r in used) if morph else False
-        out.methods[n] = f"{how}, " + ("morphed" if morphed else "meshed from scratch")
-        if morph and not morphed:
-            out.notes.append(f"{n}: " + "; ".join(r.get("morph_note") or "" for r in used))
+        if n in inputs:
+            out.methods[n] = f"{how}, {SAME_MESH}"
+            if any(r.get("elements") != base.get("elements") for r in used):
+                out.notes.append(f"{n}: the mesh differs from the design's (element counts "
+                                 f"{[r.get('elements') for r in used]} against {base.get('elements')})")
+        else:
+            morphed = all(r.get("mesh_morphed") == 1 for r in used) if morph else False
+            out.methods[n] = f"{how}, " + ("morphed" if morphed else "meshed from scratch")
+            if morph and not morphed:
+                out.notes.append(f"{n}: " + "; ".join(r.get("morph_note") or "" for r in used))
         out.derivatives[n] = {k: _diff(a.get(k), b.get(k), dx) for k, _ in ANSWERS}
+    if "idle_rpm" in out.derivatives:
+        out.notes.append("idle_rpm: the idle speed enters the engagement limit a x idle (d limit / d idle = "
+                         f"{es.a:g}, exact) and the requirement checks; the answers move only where the analysis "
+                         "uses it (fatigue duty)")
     return out
 
 

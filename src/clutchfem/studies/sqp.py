@@ -32,7 +32,7 @@ def subproblem(g, J, c, B, lo, hi, rho, rules=()) -> tuple[np.ndarray, np.ndarra
     A = np.hstack([J, np.eye(m)])
     z0 = np.concatenate([np.zeros(n), np.maximum(0.0, -c)])
     bounds = list(zip(lo, hi)) + [(0.0, None)] * m
-    cons = [{"type": "ineq", "fun": lambda z: c + A @ z, "jac": lambda z: A}]
+    cons = [{"type": "ineq", "fun": lambda z: c + A @ z, "jac": lambda z: A}] if m else []
     if rules:
         R = np.hstack([np.array([r for r, _ in rules]), np.zeros((len(rules), m))])
         rb = np.array([b for _, b in rules])
