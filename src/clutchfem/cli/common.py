@@ -290,3 +290,17 @@ def describe_groups(groups: dict) -> list[tuple[str, str, str, str]]:
             rows.append((name, r["unit"], format_quantity(r["default"], r["unit"]), f"{r['allowed']}: "
                          f"{r['description']}"))
     return rows
+
+
+def tolerances_from(P, items) -> dict:
+    """``--tol name=+-value`` items -> {name: half-width in SI} for parameter class ``P``
+    (each dimension once)."""
+    from ..studies import parse_tolerance
+
+    tols: dict = {}
+    for item in items:
+        name, half = parse_tolerance(P, item)
+        if name in tols:
+            raise ParameterError(name, item, "one tolerance per dimension (given twice)", "option --tol")
+        tols[name] = half
+    return tols

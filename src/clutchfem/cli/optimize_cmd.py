@@ -23,6 +23,7 @@ from .common import (
     operating_point,
     quantity,
     requirements_from,
+    tolerances_from,
     wrote,
 )
 
@@ -159,14 +160,9 @@ def optimize(
 
 def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_evals, workers, method):
     """The robust optimisation of ``optimize --tol`` (clutchfem.studies.robust)."""
-    from ..studies import parse_tolerance, robust_optimize
+    from ..studies import robust_optimize
 
-    tols = {}
-    for item in tol:
-        name, half = parse_tolerance(P, item)
-        if name in tols:
-            raise ParameterError(name, item, "one tolerance per dimension (given twice)", "option --tol")
-        tols[name] = half
+    tols = tolerances_from(P, tol)
     y = quantity("--yield", yield_, "-", above=0.0)
     if not 0.5 < y < 1.0:
         raise ParameterError("yield", yield_, "a share of parts in (0.5, 1), e.g. 0.99", "option --yield")

@@ -12,7 +12,7 @@ from rich.table import Table
 
 from ..core import ClutchfemError, ParameterError
 from . import options as O
-from .common import check_cluster, check_out_dir, console, err, fail, quantity, wrote
+from .common import check_cluster, check_out_dir, console, err, fail, quantity, tolerances_from, wrote
 from .optimize_cmd import study_settings
 
 
@@ -60,7 +60,7 @@ def tolerance(
     from ..analysis import Requirements
     from ..core import dumps
     from ..report import tolerance_report
-    from ..studies import Targets, parse_tolerance
+    from ..studies import Targets
     from ..studies import tolerance as run
 
     try:
@@ -80,12 +80,7 @@ def tolerance(
                                  "a local cluster (use --workers N)", "option --scheduler")
         s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
         P = type(base.params)
-        tols = {}
-        for item in tol:
-            name, t = parse_tolerance(P, item)
-            if name in tols:
-                raise ParameterError(name, item, "one tolerance per dimension (given twice)", "option --tol")
-            tols[name] = t
+        tols = tolerances_from(P, tol)
         t0 = Targets.defaults(s, sf)
         if allocate:
             _allocate(s, base, set_, tols, Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), y, dist,
