@@ -210,13 +210,7 @@ def _size_fields(p: ConceptParams, ms: MeshSettings, groups: dict[str, list[int]
         d = f.add("Distance")
         f.setNumbers(d, "CurvesList", curves)
         f.setNumber(d, "Sampling", 60)
-        t = f.add("Threshold")
-        f.setNumber(t, "InField", d)
-        f.setNumber(t, "SizeMin", size)
-        f.setNumber(t, "SizeMax", h)
-        f.setNumber(t, "DistMin", dist)
-        f.setNumber(t, "DistMax", dist + 4 * h)
-        fields.append(t)
+        fields.append(threshold_field(d, size, h, dist))
 
     threshold(groups.get("contact", []), ms.contact_factor * h, 0.5 * h)
     flex_ts = p.flexure_thicknesses()
@@ -255,13 +249,7 @@ def disc_size_field(x: float, y: float, radius: float, size: float, h: float) ->
     f = gmsh.model.mesh.field
     d = f.add("MathEval")
     f.setString(d, "F", f"Sqrt((x-({x!r}))^2+(y-({y!r}))^2)")
-    t = f.add("Threshold")
-    f.setNumber(t, "InField", d)
-    f.setNumber(t, "SizeMin", size)
-    f.setNumber(t, "SizeMax", h)
-    f.setNumber(t, "DistMin", radius)
-    f.setNumber(t, "DistMax", radius + 4 * h)
-    return t
+    return threshold_field(d, size, h, radius)
 
 
 def _mass_properties(groups: dict[str, list[int]], n_model: int) -> dict:
@@ -299,3 +287,16 @@ def _mass_properties(groups: dict[str, list[int]], n_model: int) -> dict:
         if f"flexure_{j}" in groups:
             out[f"flexure_{j}"] = props(groups[f"flexure_{j}"])
     return out
+
+
+def threshold_field(distance: int, size: float, h: float, dist: float) -> int:
+    """A gmsh Threshold field on the distance field ``distance``: elements of ``size`` within
+    ``dist``, growing to ``h`` over the next 4 h."""
+    f = gmsh.model.mesh.field
+    t = f.add("Threshold")
+    f.setNumber(t, "InField", distance)
+    f.setNumber(t, "SizeMin", size)
+    f.setNumber(t, "SizeMax", h)
+    f.setNumber(t, "DistMin", dist)
+    f.setNumber(t, "DistMax", dist + 4 * h)
+    return t
