@@ -4,12 +4,12 @@ annulus it is verified against)."""
 
 from .annulus import annulus_harmonic_compliance
 from .arc import EDGE_COMPLIANCE, END_ERROR, arc_error_deg, contact_ends, contact_modulus, signed_gap
-from .drum import Compliance, DrumContact
-from .lcp import lazy, lcp_residual, solve_lcp
+from .drum import MAX_SMOOTHING, Compliance, DrumContact
+from .lcp import lazy, lcp_residual, smooth_lcp, solve_lcp
 from .nodes import ContactNodes, build_contact_nodes, check_drum_radius, contact_nodes
 from .ring import DrumWall, RingDrum, lame_free_ring_expansion
 
 __all__ = ["EDGE_COMPLIANCE", "END_ERROR", "arc_error_deg", "contact_ends", "contact_modulus", "signed_gap",
            "Compliance", "ContactNodes", "DrumContact", "DrumWall", "RingDrum", "annulus_harmonic_compliance",
            "build_contact_nodes", "check_drum_radius", "contact_nodes", "lame_free_ring_expansion", "lazy",
-           "lcp_residual", "solve_lcp"]
+           "lcp_residual", "smooth_lcp", "solve_lcp", "MAX_SMOOTHING"]

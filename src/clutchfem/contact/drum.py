@@ -40,6 +40,9 @@ Rotation = Literal["ccw", "cw"]
 #: contact-node columns of the first set condensed on each side of a newly needed one (see
 #: Compliance)
 PREFETCH = 8
+#: largest gap scale [m] of the smoothed contact law: the peak-to-valley roughness of a turned
+#: drum (Rz ~10-20 um) bounds what a pressure-overclosure smoothing can stand for
+MAX_SMOOTHING = 2e-5
 
 
 
@@ -59,6 +62,8 @@ class DrumContact:
     #: the drum's load per unit model force: the mid-plane symmetry factor of a 3-D half model
     #: (its nodal forces are half the real ones; the drum carries both halves)
     symmetry: float = 1.0
+    #: gap scale [m] of the smoothed contact law (:func:`clutchfem.contact.smooth_lcp`); 0: exact
+    smoothing: float = 0.0
 
     def __post_init__(self):
         if isinstance(self.mu, bool) or not isinstance(self.mu, (int, float, np.floating)) \
@@ -66,6 +71,8 @@ class DrumContact:
             raise ParameterError("mu", self.mu, "a friction coefficient in [0, 1]")
         if self.rotation not in ("ccw", "cw"):
             raise ParameterError("rotation", self.rotation, "'ccw' or 'cw' (hub's sense of rotation)")
+        if not (math.isfinite(self.smoothing) and 0.0 <= self.smoothing <= MAX_SMOOTHING):
+            raise ParameterError("contact_smoothing", self.smoothing, f"a gap scale in [0, {MAX_SMOOTHING:g}] m")
 
     @property
     def drum_radius(self) -> float:

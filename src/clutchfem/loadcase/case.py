@@ -27,7 +27,7 @@ from itertools import combinations
 
 import numpy as np
 
-from ..contact import DrumContact, contact_modulus, lazy, solve_lcp
+from ..contact import DrumContact, contact_modulus, lazy, smooth_lcp, solve_lcp
 from ..core import SolverError, brentq, rad_s_to_rpm, rpm_to_rad_s
 from ..softening import Ritz, Softening, get_softening
 from .checks import check_numerics, condition_estimate, equilibrium
@@ -127,6 +127,8 @@ class LoadCase:
                 lam, act = self._held_state(G, q, active0)
             else:
                 lam, act = solve_lcp(G, q, active0)
+                if self.contact.smoothing > 0:  # the smoothed law, from the exact state
+                    lam, act = smooth_lcp(G, q, lam, self.contact.smoothing)
         except SolverError as exc:
             if beyond:
                 raise
