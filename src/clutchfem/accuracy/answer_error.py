@@ -160,7 +160,8 @@ def model_form(design, answer: str, value: float | None, *, w0: float | None = N
             notes.append("thickness effect not estimated (no flexure length): use the thick plane model "
                          "(--formulation thick, or --fidelity best)")
     # geometric non-linearity
-    soft = op.softening if op.softening != "modal" else "ritz"
+    # (the per-speed references carry their Ritz strategy's model form)
+    soft = {"modal": "ritz", "prestress-exact": "prestress"}.get(op.softening, op.softening)
     terms["geometric_nonlinearity"] = GNL[soft][answer]
     # rigid drum
     if op.drum_wall_m is None and RIGID_DRUM[answer]:

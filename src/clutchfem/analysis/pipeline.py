@@ -40,10 +40,12 @@ contact states the earlier ones solved (memoised per load case).
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from ..clutch import EngineCurve, RippleModel
-from ..core import ParameterError, as_bool, rpm_to_rad_s
+from ..core import EquilibriumError, ParameterError, as_bool, rpm_to_rad_s
 from ..loadcase import Design, design_inputs, design_label
 from ..mesh import mesh_mass_properties
 from .answers import Analysis, Requirements
@@ -115,6 +117,24 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
         raise ParameterError("drum_radius", None, "the drum's inner radius in m, larger than the outer radius "
                              "of the contact surface: a user mesh carries no drum, and without a drum there "
                              "is no friction torque", context="user mesh")
+    try:
+        return _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, fatigue_params)
+    except EquilibriumError as exc:
+        if design.op.softening != "prestress":
+            raise
+        # the pre-stress Ritz space misses equilibrium (a soft design far past engagement):
+        # the same design with the per-speed factorisation, said in the notes
+        t = time.perf_counter()
+        an = _steps(design.with_softening("prestress-exact"), engine, req, idle_rpm, ripple_model, errors,
+                    fatigue_loads, fatigue_params)
+        an.notes.append(f"spin softening: the pre-stress Ritz space missed equilibrium ({str(exc).split(':')[0]}); "
+                        f"solved with the per-speed factorisation instead (softening prestress-exact, "
+                        f"{time.perf_counter() - t:.1f} s)")
+        return an
+
+
+def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, fatigue_params) -> Analysis:
+    """The steps of :func:`analyze` on checked inputs."""
     idle_rpm, idle_assumed = idle_speed(engine, idle_rpm)
     hi = engine.rpm_range[1]
     op, material = design.op, design.model.material

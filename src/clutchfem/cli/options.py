@@ -62,7 +62,7 @@ DrumState = Annotated[Optional[str], typer.Option(
     "--drum-state", metavar="held|spinning", help="elastic drum held (default) or spinning with the clutch", rich_help_panel=OPERATING)]
 
 Softening = Annotated[Optional[str], typer.Option(
-    "--spin-softening", metavar="NAME", help="prestress (default: spin softening + centrifugal pre-stress), ritz, exact, off",
+    "--spin-softening", metavar="NAME", help="prestress (default: spin softening + centrifugal pre-stress), ritz, exact, off, prestress-exact (the per-speed reference of prestress)",
     rich_help_panel=MODEL)]
 Fidelity = Annotated[Optional[str], typer.Option(
     "--fidelity", metavar="best|fast", help="fast (default): the 2-D path (plane stress, rigid drum, 1.2 mm mesh; ~3x larger error band); "

@@ -27,6 +27,7 @@ _NAMES: dict[str, str] = {
     "get_material": "materials",
     "header_unit": "units",
     "header_units": "units",
+    "EquilibriumError": "errors",
     "InputError": "errors",
     "Material": "materials",
     "MeshError": "errors",

@@ -104,3 +104,16 @@ class SolverError(ClutchfemError):
     >>> issubclass(cf.SolverError, cf.ClutchfemError)
     True
     """
+
+
+class EquilibriumError(SolverError):
+    """A solved state failed its equilibrium check (the residual of K u = f past its bound):
+    the answer would be wrong, so it is refused (``analyze`` retries a pre-stress Ritz space
+    that misses with the per-speed factorisation, :class:`clutchfem.softening.PrestressExact`).
+
+    Examples
+    --------
+    >>> from clutchfem.core import EquilibriumError, SolverError
+    >>> issubclass(EquilibriumError, SolverError)
+    True
+    """

@@ -33,7 +33,7 @@ import math
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from ..core import SolverError
+from ..core import EquilibriumError, SolverError
 
 #: relative equilibrium residual above which a sweep is refused.  Exact solves leave ~1e-8
 #: (round-off x conditioning); the Ritz mode acceleration leaves its truncated high modes,
@@ -156,9 +156,9 @@ def check_numerics(residual: np.ndarray, cond: float, rpm: np.ndarray) -> list[s
     if residual.size:
         k = int(np.argmax(residual))
         if not np.all(np.isfinite(residual)) or residual[k] > RESIDUAL_FAIL:
-            raise SolverError(f"equilibrium residual {residual[k]:.2g} at {rpm[k]:.0f} rpm exceeds "
-                              f"{RESIDUAL_FAIL:g} of the applied load: the solution is not in equilibrium "
-                              "(spin softening near divergence? --spin-softening exact checks it)")
+            raise EquilibriumError(f"equilibrium residual {residual[k]:.2g} at {rpm[k]:.0f} rpm exceeds "
+                                   f"{RESIDUAL_FAIL:g} of the applied load: the solution is not in equilibrium "
+                                   "(spin softening near divergence? --spin-softening exact or prestress-exact checks it)")
     return warns
 
 

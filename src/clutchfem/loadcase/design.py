@@ -10,6 +10,8 @@ Monte Carlo sample are each one ``Design``.
 
 from __future__ import annotations
 
+import copy
+
 import math
 from functools import cached_property
 from pathlib import Path
@@ -256,7 +258,8 @@ class Design:
         sectors = self.cm.sector_copies
         drum = self.drum if drum_wall == "design" else self.ring(drum_wall)
         return DrumContact(self.nodes, self.op.mu if mu is None else mu, self.op.rotation, drum=drum,
-                           sectors=sectors, symmetry=float(getattr(self.model, "symmetry_factor", 1.0)))
+                           sectors=sectors, symmetry=float(getattr(self.model, "symmetry_factor", 1.0)),
+                           smoothing=self.op.contact_smoothing)
 
     def case(self, mu: float | None = None, softening=None, drum_wall: float | str | None = "design") -> LoadCase:
         """The load case with friction ``mu`` (default: the operating point's) and spin
@@ -275,6 +278,16 @@ class Design:
         if key not in self._cases:
             self._cases[key] = LoadCase(self.model, self.contact(mu, drum_wall), soft)
         return self._cases[key]
+
+    def with_softening(self, softening: str) -> "Design":
+        """The same design (mesh, FE model and its factorisation shared) with the operating
+        point's spin-softening strategy ``softening`` (a name of
+        :class:`~clutchfem.loadcase.OperatingPoint`'s ``softening``)."""
+        other = copy.copy(self)
+        other.op = OperatingPoint(**{**self.op.model_dump(), "softening": softening})
+        other._cases = {}
+        other.__dict__.pop("_memo", None)
+        return other
 
     def sweep(self, rpm=None, *, mu: float | None = None, softening=None, stresses: bool = True):
         """Sweep the speeds ``rpm`` (default: the operating point's, else 0:14000:250)."""
