@@ -11,7 +11,6 @@ Monte Carlo sample are each one ``Design``.
 from __future__ import annotations
 
 import copy
-
 import math
 from functools import cached_property
 from pathlib import Path
