@@ -17,8 +17,10 @@ deg, dimensionless values 1e-3 of the value (at least 1e-6).  Measured over h = 
 1e-1 mm on concept 4 (``benchmarks/bench_sensitivity.py``, BENCHMARKS.md, "Robust design"):
 on morphed meshes the engagement and mass derivatives scatter by 0-0.15 %, the peak stress's
 by 0.02-7 % (remeshed: 6-120 %); slip speed (0.1-0.9 %) and torque (1.5-3 %) scatter as much
-as on remeshed designs -- their extraction has steps of its own (the slip root's tolerance,
-the contact set), which morphing does not remove.
+as on remeshed designs: the answers are smooth to 1e-10 of their value, but piecewise -- each
+time a contact node enters or leaves, the slope jumps by ~2 % on the default rigid drum
+(``benchmarks/bench_derivative_smoothness.py``: a resolved contact zone or an elastic drum
+makes them smoother), which morphing does not remove.
 
 Answers (SI units): engagement speed, engagement with ripple, slip speed [rpm], torque at the
 engine's maximum torque [N m], peak von Mises stress at the engine's maximum speed [Pa], its
