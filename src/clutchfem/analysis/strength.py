@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 from ..clutch import EngineCurve, RippleModel
-from ..core import ParameterError, rpm_to_rad_s
+from ..core import ParameterError, SolverError, rpm_to_rad_s
 from ..durability import (
     FatigueLoads,
     FatigueParams,
@@ -149,7 +149,12 @@ def fatigue_step(design, res, engine: EngineCurve, *, loads=None, params=None,
         params = FatigueParams(yield_strength=min(material.yield_strength, FatigueParams().ultimate_strength))
     if not isinstance(params, FatigueParams):
         raise ParameterError("fatigue params", type(params).__name__, "a clutchfem.durability.fatigue.FatigueParams")
-    st, kw, ripple = _fatigue_states(design, res, engine, loads, ripple_model)
+    try:
+        st, kw, ripple = _fatigue_states(design, res, engine, loads, ripple_model)
+    except SolverError as exc:  # a service state the model cannot solve: the other answers stand
+        return FatigueAnswer(None, None, None, {
+            "available": False, "reason": f"a service state of the fatigue cycles has no solution ({exc}): the "
+            "friction-off and ripple states are solved at the operating and maximum speeds"})
     t1 = time.perf_counter()
     # Which points can be the worst, exactly, before any cycle is built (the chord searches
     # are the cost): with upper bounds of every cycle's amplitude and mean at a point

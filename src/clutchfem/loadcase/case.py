@@ -133,7 +133,9 @@ class LoadCase:
             if beyond:
                 raise
             if self.contact.mu == 0.0:
-                raise
+                lim = "" if self.omega_limit is None else f"; the free part diverges at {rad_s_to_rpm(self.omega_limit):.0f} rpm"
+                raise SolverError(f"no bounded frictionless contact solution at {rad_s_to_rpm(omega):.0f} rpm: the drum "
+                                  f"does not hold the shoe (too soft flexures for this speed{lim}) ({exc})") from None
             raise SolverError(f"no bounded contact solution at {rad_s_to_rpm(omega):.0f} rpm with mu = "
                               f"{self.contact.mu:g}: friction wedges the shoe into the drum (a self-locking plus "
                               "shoe: unbounded torque in the rigid-drum model, a grabbing clutch in reality); "
