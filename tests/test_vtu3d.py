@@ -6,8 +6,6 @@ SI-named fields whose unaveraged peak is the 3-D sweep's, read back by meshio an
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import meshio
 import numpy as np
@@ -118,3 +116,29 @@ def test_half_model_on_request(solved, tmp_path):
     assert m.points[:, 2].min() == pytest.approx(0.0, abs=1e-12) and set(np.unique(fr.cell_data["half_id"][0])) == {0}
     assert m.point_data["von_mises_max_Pa"].max() == pytest.approx(float(res.curve["max_von_mises_Pa"].iloc[0]),
                                                                    rel=1e-9)
+
+
+def test_cli_solve_3d_vtk(tmp_path):
+    """``solve --formulation 3d --vtk`` writes the .pvd and tetra10 .vtu files named after the
+    design's label (listed as written) and says why there is no PNG; ``--set formulation=3d``
+    is refused naming the option that sets it."""
+    from typer.testing import CliRunner
+
+    from clutchfem.cli import app
+
+    r = CliRunner().invoke(app, ["solve", "concept4", "--formulation", "3d", "--layers", "1", "--mesh-size", "3mm",
+                                 "--rpm", "4000,9000", "--vtk", "--no-errors", "--out", str(tmp_path)])
+    assert r.exit_code == 0, r.output
+    (res,) = tmp_path.glob("concept4-*_result.json")
+    label = res.name.removesuffix("_result.json")
+    doc = json.loads(res.read_text())
+    assert doc["inputs"]["model"]["formulation"] == "3d"
+    pvd = tmp_path / f"{label}_fields.pvd"
+    assert pvd.name in r.output.replace("\n", "") and "no PNG" in r.output
+    assert not list(tmp_path.glob("*.png"))
+    for rpm, row in zip((4000, 9000), doc["curve"]):
+        m = meshio.read(tmp_path / f"{label}_fields_{rpm}rpm.vtu")
+        assert m.cells[0].type == "tetra10"
+        assert m.point_data["von_mises_max_Pa"].max() == pytest.approx(row["max_von_mises_Pa"], rel=1e-9)
+    bad = CliRunner().invoke(app, ["solve", "concept4", "--set", "formulation=3d", "--vtk"])
+    assert bad.exit_code != 0 and "--formulation 3d" in bad.output and "Traceback" not in bad.output

@@ -4,18 +4,18 @@ geometric non-linearity; elastic drum), with the geometrically non-linear refere
 (:mod:`.nonlinear`) that measures part of it."""
 
 from .answer_error import (
+    ANSWERS,
+    NOT_ESTIMATED,
+    AnswerError,
+    discretisation,
     discretisation_3d,
+    format_error,
     layers_design,
     layers_error,
+    model_form,
+    refined_design,
+    sweep_errors,
     thick_twin,
-                           ANSWERS,
-                           NOT_ESTIMATED,
-                           AnswerError,
-                           discretisation,
-                           format_error,
-                           model_form,
-                           refined_design,
-                           sweep_errors,
 )
 from .nonlinear import NLState, NonlinearModel, NonlinearSettings, second_order_engagement
 from .plane_stress import PlaneStressEstimate, plane_stress_estimate

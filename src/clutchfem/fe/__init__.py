@@ -17,10 +17,10 @@ from .model3d import (
                       lame_3d,
 )
 from .peak import PeakLevel, PeakStress, free_spin_peak, peak_stress_converged, richardson
+from .ring import CELL_EDGES, ZONES, RingMesh, pvd_text, ring_stresses, zone_ids
 from .size3d import check_3d_size, estimate_3d, max_model_memory
 from .stress import VertexStress, VertexStress3D, p2_vertex_gradients, von_mises
 from .thick import FEModelThick, ThickSettings, ThickStress, thick_modes
-from .ring import CELL_EDGES, ZONES, RingMesh, pvd_text, ring_stresses, zone_ids
 from .vtu import Frames2D, in_plane_stresses, write_vtk
 from .vtu3d import Frames3D, tetra10_cells
 
