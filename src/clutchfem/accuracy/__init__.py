@@ -4,18 +4,22 @@ geometric non-linearity; elastic drum), with the geometrically non-linear refere
 (:mod:`.nonlinear`) that measures part of it."""
 
 from .answer_error import (
-                           ANSWERS,
-                           NOT_ESTIMATED,
-                           AnswerError,
-                           discretisation,
-                           format_error,
-                           model_form,
-                           refined_design,
-                           sweep_errors,
+    ANSWERS,
+    NOT_ESTIMATED,
+    AnswerError,
+    discretisation,
+    discretisation_3d,
+    format_error,
+    layers_design,
+    layers_error,
+    model_form,
+    refined_design,
+    sweep_errors,
+    thick_twin,
 )
 from .nonlinear import NLState, NonlinearModel, NonlinearSettings, second_order_engagement
 from .plane_stress import PlaneStressEstimate, plane_stress_estimate
 
-__all__ = ["ANSWERS", "NOT_ESTIMATED", "AnswerError", "NLState", "NonlinearModel", "NonlinearSettings",
+__all__ = ["discretisation_3d", "layers_design", "layers_error", "thick_twin", "ANSWERS", "NOT_ESTIMATED", "AnswerError", "NLState", "NonlinearModel", "NonlinearSettings",
            "PlaneStressEstimate", "discretisation", "format_error", "model_form", "plane_stress_estimate",
            "refined_design", "second_order_engagement", "sweep_errors"]

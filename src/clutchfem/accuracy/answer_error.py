@@ -11,6 +11,17 @@ the asymptotic range for the peak stress at the fillets (concept 4 at 14 000 rpm
 2132 / 2177 / 2193 MPa at sizes 2, 1, 1/2, 1/4 of the default), so a coarse level would
 report 732 MPa where the error is ~60 MPa.  A user mesh has a single level: not estimated.
 
+**Discretisation of the 3-D model** (``formulation="3d"``, issue 20), two measured terms
+summed: *through the thickness*, the same model with one more layer (n + 1; n - 1 at the
+largest layer count or past the memory limit), Richardson with p = 1 in the layer thickness
+H / n, e_n = |a_n - a_m| n^-p / |m^-p - n^-p| (n + 1 times the change for m = n + 1); *in
+plane*, the relative error the thick plane model (the 3-D answer at 2-D cost, on the same
+in-plane mesh) shows from a mesh twice as fine, times the 3-D answer: refining the 3-D
+model in plane costs ~4x its unknowns (minutes and GB), while the in-plane error is the
+2-D mesh's (``benchmarks/bench_3d_error.py`` measures both against 3-D models at two
+in-plane sizes and 1-3 layers: BENCHMARKS.md section 13, "3-D path").  Cost: one 3-D model
+with n + 1 layers and two thick plane models.
+
 **Model form, best-estimate path** (``fidelity="best"``: the thick plane model, an elastic
 ring drum, the pre-stress softening; ``benchmarks/results_accuracy.md``): what remains is
 the thick model's own distance from 3-D elasticity (its through-thickness order and the
@@ -46,18 +57,20 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..core import ParameterError
 from ..geometry import MeshSettings, get_concept
-from ..loadcase import Design
+from ..loadcase import Design, OperatingPoint
 from ..mesh import mesh_concept
 from .plane_stress import plane_stress_estimate
 
 NOT_ESTIMATED = {False: "discretisation not estimated: a user mesh has one mesh level",
-                  True: "discretisation not estimated for 3-D (a refined 3-D model costs minutes); measured: "
-                        "3 vs 4 layers <= 0.03 % in engagement, the in-plane mesh as in 2-D (BENCHMARKS.md)"}
+                  True: "in-plane discretisation not estimated: a user mesh has one mesh level (the layers term is)"}
 ANSWERS = {"engagement_rpm": "rpm", "slip_rpm": "rpm", "torque_at_max_engine_torque_Nm": "N m",
            "max_von_mises_Pa": "Pa"}
 #: Richardson order used for the discretisation estimate (see module docstring)
 P_ORDER = 1.0
+#: the largest layer count of an operating point
+LAYERS_MAX = int(next(m.le for m in OperatingPoint.model_fields["layers"].metadata if hasattr(m, "le")))
 
 
 @dataclass(frozen=True)
@@ -93,7 +106,8 @@ class AnswerError:
 
 
 def refined_design(design):
-    """The same design on a mesh twice as fine (None for a user mesh and for 3-D)."""
+    """The same design on a mesh twice as fine (None for a user mesh and for 3-D: its in-plane
+    term comes from :func:`thick_twin`'s)."""
     if design.params is None or design.op.model_formulation == "3d":
         return None  # a user mesh has one level; a refined 3-D model costs minutes
     ms = MeshSettings(**design.cm.mesh_settings)
@@ -101,6 +115,59 @@ def refined_design(design):
                       fillet_factor=max(0.5 * ms.fillet_factor, 0.05))
     cm = mesh_concept(get_concept(design.name), design.params, fine)
     return Design(cm, design.op, params=design.params, name=design.name)
+
+
+def thick_twin(design):
+    """The thick plane model of a 3-D design on the same in-plane mesh (the in-plane term of
+    the 3-D discretisation: module docstring)."""
+    return Design(design.cm, design.op.replace(formulation="thick"), params=design.params, name=design.name)
+
+
+def layers_design(design):
+    """(the 3-D design with one layer more, or one fewer at the largest count or past the memory
+    limit; None for 1 layer that cannot grow)."""
+    n = int(design.op.layers)
+    for m in (n + 1, n - 1):
+        if 1 <= m <= LAYERS_MAX:
+            try:
+                return Design(design.cm, design.op.replace(layers=m), params=design.params, name=design.name)
+            except ParameterError:  # past the memory limit
+                continue
+    return None
+
+
+def layers_error(value: float | None, n: int, value_m: float | None, m: int) -> float | None:
+    """Error of the answer ``value`` of n layers from that of m layers (Richardson, p =
+    :data:`P_ORDER` in the layer thickness): |a_n - a_m| n^-p / |m^-p - n^-p|."""
+    if value is None or value_m is None or not math.isfinite(value_m):
+        return None
+    p = P_ORDER
+    return abs(value - value_m) * n ** -p / abs(m ** -p - n ** -p)
+
+
+def discretisation_3d(design, answers) -> dict:
+    """The discretisation of a 3-D design's answers (module docstring): ``answers(design) ->
+    {name: value}`` computes them on a design.  Returns {name: (total, layers term, in-plane
+    term or None, note)}, absolute."""
+    values = answers(design)
+    ld = layers_design(design)
+    n = int(design.op.layers)
+    al = answers(ld) if ld is not None else {}
+    tw = thick_twin(design)
+    fine = refined_design(tw)
+    at, af = (answers(tw), answers(fine)) if fine is not None else ({}, {})
+    out = {}
+    for q, v in values.items():
+        dl = layers_error(v, n, al.get(q), int(ld.op.layers)) if ld is not None else None
+        di = None
+        if fine is not None and v is not None and at.get(q) and af.get(q) is not None:
+            di = abs(v) * discretisation(at[q], af[q]) / abs(at[q])
+        parts = [f"layers {n} vs {ld.op.layers}: {dl:.4g}" if dl is not None else "layers not estimated",
+                 f"in plane (thick plane model, mesh twice as fine): {di:.4g}" if di is not None else
+                 "in plane not estimated (a user mesh has one level)"]
+        tot = None if dl is None and di is None else (dl or 0.0) + (di or 0.0)
+        out[q] = (tot, dl, di, "3-D discretisation = " + " + ".join(parts))
+    return out
 
 
 #: the thick plane model's relative deviation from 3-D elasticity on the same in-plane mesh
@@ -208,12 +275,19 @@ def sweep_errors(design, res) -> dict:
     units = {"engagement_rpm": "rpm", "torque_Nm": "N m", "max_von_mises_Pa": "Pa"}
     keys = {"engagement_rpm": "engagement_rpm", "torque_Nm": "torque_at_max_engine_torque_Nm",
             "max_von_mises_Pa": "max_von_mises_Pa"}
+    stresses = not math.isnan(values["max_von_mises_Pa"])
+
+    def answers(d):
+        if d is design:
+            return values
+        fr = d.sweep([rpm_top], stresses=stresses)
+        return {"engagement_rpm": fr.engagement_rpm, "torque_Nm": float(fr.curve["torque_Nm"].iloc[0]),
+                "max_von_mises_Pa": float(fr.curve["max_von_mises_Pa"].iloc[0])}
+
+    three_d = design.op.model_formulation == "3d"
     fine = refined_design(design)
-    fv = {}
-    if fine is not None:
-        fr = fine.sweep([rpm_top], stresses=not math.isnan(values["max_von_mises_Pa"]))
-        fv = {"engagement_rpm": fr.engagement_rpm, "torque_Nm": float(fr.curve["torque_Nm"].iloc[0]),
-              "max_von_mises_Pa": float(fr.curve["max_von_mises_Pa"].iloc[0])}
+    fv = answers(fine) if fine is not None else {}
+    disc3 = discretisation_3d(design, answers) if three_d else {}
     w0 = res.engagement_rpm
     out = {}
     for q, v in values.items():
@@ -221,8 +295,13 @@ def sweep_errors(design, res) -> dict:
             continue
         terms, notes = model_form(design, keys[q], v, w0=w0, w=rpm_top)
         d = discretisation(v, fv.get(q)) if fine is not None else None
-        if fine is None:
-            notes = notes + (NOT_ESTIMATED[design.op.model_formulation == "3d"],)
+        if q in disc3:
+            d = disc3[q][0]
+            notes = notes + (disc3[q][3],)
+        elif fine is None:
+            notes = notes + (NOT_ESTIMATED[three_d],)
         out[q] = AnswerError(q, v, units[q], d, terms, notes).as_dict()
+        if q in disc3:
+            out[q]["discretisation_layers"], out[q]["discretisation_in_plane"] = disc3[q][1:3]
     out["at_rpm"] = rpm_top
     return out

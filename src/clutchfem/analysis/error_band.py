@@ -4,7 +4,9 @@ assumed inputs, reported apart from the band.
 
 Discretisation: the same answers on a mesh twice as fine (:func:`~clutchfem.accuracy.refined_design`:
 a second design, one more assembly and factorisation), Richardson's estimate at p = 1; a
-user mesh (one level) and a 3-D model are not estimated.  Model form: the measured terms
+user mesh (one level) is not estimated; a 3-D model's is the sum of a layers term (one layer
+more) and an in-plane term (the thick plane model on the same mesh and one twice as fine),
+:func:`~clutchfem.accuracy.discretisation_3d`.  Model form: the measured terms
 (best-estimate path: the thick plane model's residual against 3-D and the pre-stress
 softening's against the non-linear reference; fast path: axial thickness 2-D vs 3-D,
 geometric non-linearity of the softening model, rigid vs 2 mm steel drum), relative.  The
@@ -15,7 +17,15 @@ mu x 0.7 / x 1.3 (:func:`~.torque.mu_sensitivity_step`).
 
 from __future__ import annotations
 
-from ..accuracy import ANSWERS, NOT_ESTIMATED, AnswerError, discretisation, model_form, refined_design
+from ..accuracy import (
+    ANSWERS,
+    NOT_ESTIMATED,
+    AnswerError,
+    discretisation,
+    discretisation_3d,
+    model_form,
+    refined_design,
+)
 from ..clutch import EngineCurve
 from .torque import FETorque, slip_step
 
@@ -28,28 +38,40 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
     scales with (that of the torque with the rpm of maximum engine torque); ``drum``: the
     drum-wall sensitivity step's answers, ``mu``: the mu sensitivity's (``MuSensitivity.as_dict``)."""
     lo, hi = engine.rpm_range
-    coarse = {}
+
+    def answers(d):
+        case = d.case()
+        return {"engagement_rpm": case.engagement_rpm, "slip_rpm": slip_step(case, engine).rpm,
+                "torque_at_max_engine_torque_Nm": float(FETorque(case)(float(engine.rpm_max_torque))[0]),
+                "max_von_mises_Pa": float(d.sweep([hi]).curve["max_von_mises_Pa"].iloc[0])}
+
+    three_d = design.op.model_formulation == "3d"
     cd = refined_design(design)
-    if cd is not None:
-        case = cd.case()
-        coarse["engagement_rpm"] = case.engagement_rpm
-        coarse["slip_rpm"] = slip_step(case, engine).rpm
-        coarse["torque_at_max_engine_torque_Nm"] = float(FETorque(case)(float(engine.rpm_max_torque))[0])
-        coarse["max_von_mises_Pa"] = float(cd.sweep([hi]).curve["max_von_mises_Pa"].iloc[0])
+    coarse = answers(cd) if cd is not None else {}
+    disc3 = discretisation_3d(design, lambda d: values if d is design else answers(d)) if three_d else {}
     out = {}
     for q, unit in ANSWERS.items():
         v = values.get(q)
         w = {"slip_rpm": slip_rpm_value, "torque_at_max_engine_torque_Nm": float(engine.rpm_max_torque)}.get(q)
         terms, notes = model_form(design, q, v, w0=w0_rpm, w=w)
         d = discretisation(v, coarse.get(q)) if cd is not None else None
-        if cd is None:
-            notes = notes + (NOT_ESTIMATED[design.op.model_formulation == "3d"],)
+        if three_d and q in disc3:
+            d = disc3[q][0]
+            notes = notes + (disc3[q][3],)
+        elif cd is None:
+            notes = notes + (NOT_ESTIMATED[three_d],)
         out[q] = AnswerError(q, v, unit, d, terms, notes, sensitivities(q, drum, mu)).as_dict()
+        if three_d and q in disc3:
+            out[q]["discretisation_layers"], out[q]["discretisation_in_plane"] = disc3[q][1:3]
     fast = design.op.model_formulation in ("plane-stress", "plane-strain")
-    out["method"] = ("discretisation: 2 |a_h - a_h/2| (Richardson, p = 1) against the same design on a mesh twice "
-                     "as fine; model form: measured terms, relative ("
+    out["method"] = (("discretisation: layers (Richardson, p = 1, against one layer more) + in plane (the thick "
+                      "plane model's relative 2 |a_h - a_h/2| on the same mesh and one twice as fine)" if three_d else
+                      "discretisation: 2 |a_h - a_h/2| (Richardson, p = 1) against the same design on a mesh twice "
+                      "as fine") + "; model form: measured terms, relative ("
                      + ("fast path: axial thickness 2-D vs 3-D, geometric non-linearity of the softening model, rigid "
                         "vs 2 mm steel drum" if fast else
+                        "3-D elasticity: the geometric non-linearity left by the softening model, the rigid drum "
+                        "where no drum wall is modelled" if three_d else
                         "the thick plane model's residual against 3-D elasticity, the geometric non-linearity left "
                         "by the softening model")
                      + "); total = sum of magnitudes; sensitivities to the assumed inputs (drum wall, mu) apart, "

@@ -62,9 +62,10 @@ class Downloads:
         res = self.field_res
         if res is None:
             return
-        files = await run.io_bound(lambda: write_vtk(res, [rpm], self.dir, render=False, stem=self.outcome.label))
-        if files:
-            ui.download(files[0], files[0].name)
+        cm = getattr(self.outcome.design, "cm", None)  # the whole part from the sector
+        files = await run.io_bound(lambda: write_vtk(res, [rpm], self.dir, stem=self.outcome.label, cm=cm))
+        if files:  # [pvd, vtu]: the one frame is the .vtu (the .pvd names it, alone it shows nothing)
+            ui.download(files[-1], files[-1].name)
 
     async def dl_cutting(self) -> None:
         """The cutting files of the current concept design as one zip: DXF (mm), STEP and

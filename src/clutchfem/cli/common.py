@@ -183,6 +183,22 @@ def requirements_from(a: Optional[str], b: Optional[str]):
     return Requirements(**kw)
 
 
+#: the operating point's fields a user may try in ``--set`` and the option that sets each
+OPERATING_OPTIONS = {"mu": "--mu", "rotation": "--rotation", "material": "--material", "softening": "--spin-softening",
+                     "fidelity": "--fidelity", "formulation": "--formulation", "layers": "--layers",
+                     "drum_wall": "--drum-wall", "drum_state": "--drum-state", "rpm": "--rpm"}
+
+
+def operating_in_set(set_: list[str], params) -> None:
+    """Refuse an operating-point quantity given to ``--set`` (which sets the concept's geometry),
+    naming the option that sets it (``--set formulation=3d``: use ``--formulation 3d``)."""
+    for item in set_:
+        name, _, raw = (s.strip() for s in item.partition("="))
+        if name in OPERATING_OPTIONS and name not in params:
+            raise ParameterError(name, raw, f"not a geometry parameter: {name} is part of the operating point, set "
+                                 f"by its own option: {OPERATING_OPTIONS[name]} {raw}", "option --set")
+
+
 def design_from(concept: Optional[str], set_: list[str], mesh: Optional[Path], *, op=None,
                 mesh_size: Optional[str] = None, model: str = "sector", drum_radius: Optional[str] = None,
                 thickness: Optional[str] = None, solver=None, mesh_allowed: bool = True):
@@ -211,6 +227,7 @@ def design_from(concept: Optional[str], set_: list[str], mesh: Optional[Path], *
             raise ParameterError(exc.name, exc.value, exc.allowed, "option --mesh-size", shown=exc.shown) from None
     if concept is not None:
         c = get_concept(concept)
+        operating_in_set(set_, c.Params.model_fields)
         values = c.Params.parse_assignments(set_)
         for opt, name, raw in (("--drum-radius", "drum_radius", drum_radius), ("--thickness", "thickness", thickness)):
             if raw is not None:

@@ -42,8 +42,9 @@ def solve(
     no_errors: bool = typer.Option(False, "--no-errors", help="skip the error estimate (a mesh twice as fine)",
                                    rich_help_panel=O.MODEL),
     vtk: bool = typer.Option(False, "--vtk", help="write the fields for ParaView: one .pvd time series over the "
-                             "speeds of --vtk-rpm (a .vtu of the whole part per speed, SI units, zone ids) and a "
-                             "PNG of von Mises at the highest of them", rich_help_panel=O.OUTPUT),
+                             "speeds of --vtk-rpm (a .vtu of the whole part per speed, SI units, zone ids; 3d: "
+                             "quadratic tetrahedra over the full thickness) and a PNG of von Mises at the highest "
+                             "of them (plane models)", rich_help_panel=O.OUTPUT),
     vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds in rpm of the .pvd series (default: the "
                                           "speeds of --rpm, at most 30 of them: every k-th and the highest)", rich_help_panel=O.OUTPUT),
     out: O.Out = None,
@@ -78,7 +79,7 @@ def solve(
             errs = sweep_errors(design, res) if not no_errors and res.contact is not None else {}
         label = design_label(design)
         doc = {**res.to_json(), "label": label, "warnings": warns, "errors": errs, "inputs": design_inputs(design)}
-        files = []
+        files, notes = [], []
         if out is not None:
             res.curve.to_csv(out / f"{label}_curve.csv", index=False)
             files.append(out / f"{label}_curve.csv")
@@ -90,12 +91,18 @@ def solve(
             target = check_out_dir(out or Path("out/solve"))
             files += write_vtk(res, which, target, stem=label, cm=design.cm)
             top = float(np.max(which))
-            files.append(field_picture(res, top, target / f"{label}_fields_{int(round(top))}rpm.png", cm=design.cm,
-                                       title=f"{label}: von Mises at {top:.0f} rpm"))
+            if design.model.formulation != "3d":
+                files.append(field_picture(res, top, target / f"{label}_fields_{int(round(top))}rpm.png",
+                                           cm=design.cm, title=f"{label}: von Mises at {top:.0f} rpm"))
+            else:  # the picture is a plane drawing; the 3-D fields are for ParaView
+                notes.append("--vtk with --formulation 3d: no PNG (the picture draws a plane model); open the .pvd "
+                             "in ParaView (quadratic tetrahedra, the whole part mirrored to the full thickness)")
         wrote(files)
         if json_:
             print(dumps(doc))
             return
+        for n in notes:
+            console.print(f"note: {escape(n)}")
         _print_sweep(res, mat)
         _print_errors(errs)
         for w in warns:
