@@ -228,7 +228,7 @@ def reference(concept, vals, layers=REF_LAYERS) -> dict:
 
 def best(concept, vals) -> dict:
     t0 = time.perf_counter()
-    d = cf.Design.from_concept(concept, **vals)
+    d = cf.Design.from_concept(concept, fidelity="best", **vals)
     a = cf.analyze(d)
     out = {"time_s": time.perf_counter() - t0, "elements": int(d.cm.n_elements), "dofs": int(d.model.ndofs)}
     for q, k in (("engagement_rpm", "eng"), ("slip_rpm", "slip"), ("torque_at_max_engine_torque_Nm", "T"),
