@@ -285,7 +285,6 @@ class Design:
         other = copy.copy(self)
         other.op = OperatingPoint(**{**self.op.model_dump(), "softening": softening})
         other._cases = {}
-        other.__dict__.pop("_memo", None)
         return other
 
     def sweep(self, rpm=None, *, mu: float | None = None, softening=None, stresses: bool = True):
