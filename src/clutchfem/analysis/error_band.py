@@ -118,7 +118,7 @@ def corrected_peak(design, a0: float, disc: float | None, fine: dict, peak_at, n
     else:
         v_ext, e_ext = a0, disc
         how = ("not extrapolated: " + ("no finer mesh (a user mesh has one level)" if a1 is None else
-               "the refined mesh's peak is on another feature") + f"; discretisation 2 |a_h - a_h/2|")
+               "the refined mesh's peak is on another feature") + "; discretisation 2 |a_h - a_h/2|")
     note = (f"peak stress corrected: discretisation {how}; geometric non-linearity {100 * nl.delta:+.2f} % "
             f"(total-Lagrangian / linear pre-stressed plane-stress twin at {nl.rpm:.0f} rpm, "
             f"{nl.iterations} Newton iterations, {nl.time_s:.2f} s)")
