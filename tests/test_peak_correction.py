@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from clutchfem.accuracy import NonlinearModel, NonlinearSettings, extrapolated_peak, peak_nonlinearity
+from clutchfem.accuracy import NonlinearModel, NonlinearSettings, answer_nonlinearity, extrapolated_peak
 from clutchfem.analysis import analyze
 from clutchfem.core import rpm_to_rad_s
 from clutchfem.geometry import MeshSettings
@@ -53,25 +53,29 @@ def test_exact_contact_step_reaches_the_active_set_iterations_state_in_fewer_ste
 def test_peak_nonlinearity_equals_the_continuation_reference(best):
     """d_NL of the correction (Newton from the linear state) = that of the reference's
     continuation from rest through the speeds (bench_accuracy.nonlinear_delta's way)."""
-    pk = peak_nonlinearity(best, 14000.0)
+    pk = answer_nonlinearity(best, 14000.0, 8000.0)
+    tq = pk["torque_at_max_engine_torque_Nm"]
+    pk = pk["max_von_mises_Pa"]
     tw = _twin(best)
     case = tw.case()
     nl = NonlinearModel(tw.model, drum_radius=tw.drum_radius, mu=tw.op.mu, rotation=tw.op.rotation,
                         drum_compliance=case.contact.drum_compliance)
-    st = nl.sweep([rpm_to_rad_s(r) for r in (6000.0, 10000.0, 14000.0)])[-1]
+    st8, st = nl.sweep([rpm_to_rad_s(r) for r in (6000.0, 8000.0, 10000.0, 14000.0)])[1::2]
     ref = float(nl.vertex_von_mises(st.u).max())
-    assert pk.nonlinear_Pa == pytest.approx(ref, rel=1e-7)
+    assert pk.nonlinear == pytest.approx(ref, rel=1e-7)
+    assert tq.nonlinear == pytest.approx(nl.torque(st8), rel=1e-7)
+    assert abs(tq.delta) < 0.02
     assert 0.005 < pk.delta < 0.1  # the elastic drum's arc follows the shoe: the peak rises
     assert pk.iterations <= 5
 
 
 @pytest.mark.slow
-def test_best_path_reports_the_corrected_peak_with_a_narrower_band(best):
+def test_best_path_reports_the_corrected_peak_and_torque(best):
     an = analyze(best)
     e = an.errors["max_von_mises_Pa"]
     fix = e["corrections"]
     assert fix["extrapolated"] and 0 < fix["geometric_nonlinearity"] < 0.1
-    raw = fix["uncorrected_Pa"]
+    raw = fix["uncorrected"]
     expected = raw * (1 + fix["discretisation_extrapolation"]) * (1 + fix["geometric_nonlinearity"])
     assert an.max_von_mises_Pa == pytest.approx(expected, rel=1e-12) == e["value"]
     assert an.safety_factor == pytest.approx(an.yield_strength_Pa / an.max_von_mises_Pa)
@@ -84,6 +88,15 @@ def test_best_path_reports_the_corrected_peak_with_a_narrower_band(best):
     assert "corrections" not in fast.errors["max_von_mises_Pa"]
     raw_best = analyze(best, errors=False)
     assert raw_best.max_von_mises_Pa == pytest.approx(raw, rel=1e-9)
+    # the torque: corrected for its non-linearity only, its margin with it
+    t = an.errors["torque_at_max_engine_torque_Nm"]
+    ft = t["corrections"]
+    assert t["value"] == an.torque_at_max_engine_torque_Nm == pytest.approx(
+        raw_best.torque_at_max_engine_torque_Nm * (1 + ft["geometric_nonlinearity"]), rel=1e-9)
+    assert an.torque_margin_Nm == pytest.approx(an.torque_at_max_engine_torque_Nm - an.max_engine_torque_Nm)
+    assert "geometric_nonlinearity" not in t["model_form_relative"]
+    # engagement and slip keep the measured bound
+    assert "geometric_nonlinearity" in an.errors["slip_rpm"]["model_form_relative"]
 
 
 def test_extrapolated_peak_is_richardson_at_order_two():

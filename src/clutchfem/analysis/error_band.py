@@ -23,7 +23,7 @@ from ..accuracy import (
     ANSWERS,
     NOT_ESTIMATED,
     AnswerError,
-    PeakNonlinearity,
+    AnswerNonlinearity,
     discretisation,
     discretisation_3d,
     extrapolated_peak,
@@ -37,17 +37,19 @@ from .torque import FETorque, slip_step
 
 def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
                slip_rpm_value: float | None, drum: dict | None = None, mu: dict | None = None,
-               peak_at: tuple[float, float] | None = None, peak_nl: PeakNonlinearity | None = None) -> dict:
+               peak_at: tuple[float, float] | None = None,
+               nl: dict[str, AnswerNonlinearity] | None = None) -> dict:
     """The error of the main answers ``values`` (module docstring): per answer its value,
     discretisation, model-form terms, total and sensitivities.  ``w0_rpm``: the engagement
     speed and ``slip_rpm_value``: the slip speed, which the thickness term of the slip speed
     scales with (that of the torque with the rpm of maximum engine torque); ``drum``: the
     drum-wall sensitivity step's answers, ``mu``: the mu sensitivity's (``MuSensitivity.as_dict``).
-    ``peak_nl`` (best-estimate path): the peak stress's geometric non-linearity, corrected
-    here together with its discretisation (the refined mesh also refines the disc at
-    ``peak_at`` [m], and the peak is extrapolated from the two levels,
-    :func:`~clutchfem.accuracy.extrapolated_peak`): the answer's ``value`` is then the
-    corrected peak and ``corrections`` says by how much."""
+    ``nl`` (best-estimate path): the geometric non-linearity of the peak stress and the
+    torque (:func:`~clutchfem.accuracy.answer_nonlinearity`), corrected here; the peak
+    together with its discretisation (the refined mesh also refines the disc at ``peak_at``
+    [m], and the peak is extrapolated from the two levels,
+    :func:`~clutchfem.accuracy.extrapolated_peak`).  A corrected answer's ``value`` is the
+    corrected one and its ``corrections`` say by how much."""
     lo, hi = engine.rpm_range
 
     def answers(d):
@@ -59,20 +61,21 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
                 "peak_at": (float(row["max_vm_x_m"]), float(row["max_vm_y_m"]))}
 
     three_d = design.op.model_formulation == "3d"
-    corrected = peak_nl is not None
-    cd = refined_design(design, peak_at=peak_at if corrected else None)
+    nl = nl or {}
+    cd = refined_design(design, peak_at=peak_at if "max_von_mises_Pa" in nl else None)
     coarse = answers(cd) if cd is not None else {}
     disc3 = discretisation_3d(design, lambda d: values if d is design else answers(d)) if three_d else {}
     out = {}
     for q, unit in ANSWERS.items():
         v = values.get(q)
         w = {"slip_rpm": slip_rpm_value, "torque_at_max_engine_torque_Nm": float(engine.rpm_max_torque)}.get(q)
-        peak = corrected and q == "max_von_mises_Pa" and v is not None
-        terms, notes = model_form(design, q, v, w0=w0_rpm, w=w, corrected=peak)
+        fixed = q in nl and v is not None
+        terms, notes = model_form(design, q, v, w0=w0_rpm, w=w, corrected=fixed)
         d = discretisation(v, coarse.get(q)) if cd is not None else None
         fix = None
-        if peak:
-            v, d, fix = corrected_peak(design, v, d, coarse, peak_at, peak_nl)
+        if fixed:
+            v, d, fix = (corrected_peak(design, v, d, coarse, peak_at, nl[q]) if q == "max_von_mises_Pa"
+                         else corrected_answer(v, d, nl[q]))
             notes = notes + (fix["note"],)
         if three_d and q in disc3:
             d = disc3[q][0]
@@ -100,7 +103,18 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
     return out
 
 
-def corrected_peak(design, a0: float, disc: float | None, fine: dict, peak_at, nl: PeakNonlinearity):
+def corrected_answer(a0: float, disc: float | None, nl: AnswerNonlinearity):
+    """(value, discretisation, corrections) of an answer ``a0`` corrected for its geometric
+    non-linearity ``nl``: a0 (1 + d_NL)."""
+    f = 1.0 + nl.delta
+    note = (f"corrected for geometric non-linearity {100 * nl.delta:+.2f} % (total-Lagrangian / linear "
+            f"pre-stressed plane-stress twin at {nl.rpm:.0f} rpm, {nl.iterations} Newton iterations)")
+    fix = {"uncorrected": a0, "geometric_nonlinearity": nl.delta, "geometric_nonlinearity_iterations": nl.iterations,
+           "note": note}
+    return a0 * f, None if disc is None else disc * f, fix
+
+
+def corrected_peak(design, a0: float, disc: float | None, fine: dict, peak_at, nl: AnswerNonlinearity):
     """(value, discretisation, corrections) of the best-estimate peak stress: the design
     mesh's peak ``a0`` [Pa] extrapolated with the refined mesh's (``fine``: its answers and
     peak point) when the peak stayed on the same feature (within the refined disc), times
@@ -122,7 +136,7 @@ def corrected_peak(design, a0: float, disc: float | None, fine: dict, peak_at, n
     note = (f"peak stress corrected: discretisation {how}; geometric non-linearity {100 * nl.delta:+.2f} % "
             f"(total-Lagrangian / linear pre-stressed plane-stress twin at {nl.rpm:.0f} rpm, "
             f"{nl.iterations} Newton iterations, {nl.time_s:.2f} s)")
-    fix = {"uncorrected_Pa": a0, "discretisation_extrapolation": v_ext / a0 - 1.0, "extrapolated": same,
+    fix = {"uncorrected": a0, "discretisation_extrapolation": v_ext / a0 - 1.0, "extrapolated": same,
            "geometric_nonlinearity": nl.delta, "geometric_nonlinearity_iterations": nl.iterations, "note": note}
     return v_ext * f, None if e_ext is None else e_ext * f, fix
 

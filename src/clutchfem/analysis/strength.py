@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ..accuracy import PeakNonlinearity, peak_nonlinearity
+from ..accuracy import AnswerNonlinearity, answer_nonlinearity
 from ..clutch import EngineCurve, RippleModel
 from ..core import ParameterError, SolverError, rpm_to_rad_s
 from ..durability import (
@@ -52,8 +52,8 @@ def stress_step(res, rpm: float, material) -> StressAnswer:
 
 
 def best_estimate(design) -> bool:
-    """Whether ``design`` is a best-estimate model whose peak stress gets its geometric
-    non-linearity corrected (:func:`peak_correction_step`): the thick plane model with an
+    """Whether ``design`` is a best-estimate model whose peak stress and torque get their
+    geometric non-linearity corrected (:func:`nonlinearity_step`): the thick plane model with an
     elastic drum and the pre-stress softening (``fidelity="best"``'s model); the fast path
     keeps its band."""
     op = design.op
@@ -61,18 +61,20 @@ def best_estimate(design) -> bool:
             and op.softening in ("prestress", "prestress-exact"))
 
 
-def peak_correction_step(design, st: StressAnswer) -> tuple[PeakNonlinearity | None, str | None]:
-    """(the geometric non-linearity of the peak stress at its speed, or None; why not) for a
-    best-estimate ``design`` (:func:`best_estimate`; :func:`~clutchfem.accuracy.peak_nonlinearity`).
-    A non-linear state that does not converge leaves the peak uncorrected, with the reason:
-    its band then carries the measured bound instead."""
+def nonlinearity_step(design, peak_rpm: float, torque_rpm: float | None
+                      ) -> tuple[dict[str, AnswerNonlinearity] | None, str | None]:
+    """(the geometric non-linearity of the peak stress at ``peak_rpm`` and of the torque at
+    ``torque_rpm``, or None; why not) for a best-estimate ``design`` (:func:`best_estimate`;
+    :func:`~clutchfem.accuracy.answer_nonlinearity`).  A non-linear state that does not
+    converge leaves the answers uncorrected, with the reason: their bands then carry the
+    measured bound instead."""
     if not best_estimate(design):
         return None, None
     try:
-        return peak_nonlinearity(design, st.rpm), None
+        return answer_nonlinearity(design, peak_rpm, torque_rpm), None
     except SolverError as exc:
-        return None, (f"peak stress not corrected for geometric non-linearity ({exc}): its band carries the "
-                      "measured bound instead")
+        return None, (f"peak stress and torque not corrected for geometric non-linearity ({exc}): their bands "
+                      "carry the measured bound instead")
 
 
 def fatigue_cycles(design, res, engine: EngineCurve, loads=None,
