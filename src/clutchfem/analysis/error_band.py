@@ -82,7 +82,13 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
             notes = notes + (disc3[q][3],)
         elif cd is None:
             notes = notes + (NOT_ESTIMATED[three_d],)
-        out[q] = AnswerError(q, v, unit, d, terms, notes, sensitivities(q, drum, mu)).as_dict()
+        sens = sensitivities(q, drum, mu)
+        if fix is not None:  # the inputs' effect on the corrected answer: the same correction, ASSUMED
+            f = v / fix["uncorrected"]
+            sens = {k: [None if x is None else x * f for x in vals] for k, vals in sens.items()}
+            notes = notes + ("sensitivities scaled by the same correction (its dependence on the drum wall "
+                             "and mu is not computed)",)
+        out[q] = AnswerError(q, v, unit, d, terms, notes, sens).as_dict()
         if fix is not None:
             out[q]["corrections"] = {k: x for k, x in fix.items() if k != "note"}
         if three_d and q in disc3:
