@@ -177,8 +177,8 @@ def nonlinear_delta(concept, vals, ms) -> dict:
         {rpm_to_rad_s(lin["slip"])} if lin["slip"] else set()))
     speeds = [w for w in speeds if w > w_nl]
     states = dict(zip(speeds, nl.sweep(speeds)))
-    st8 = states[rpm_to_rad_s(RPM_T)]
-    out["T"] = nl.torque(st8) / lin["T"] - 1
+    st8 = states.get(rpm_to_rad_s(RPM_T))  # None: engages above it (no torque there)
+    out["T"] = nl.torque(st8) / lin["T"] - 1 if st8 is not None and lin["T"] else 0.0
     st14 = states[rpm_to_rad_s(RPM_S)]
     out["vM"] = float(nl.vertex_von_mises(st14.u).max()) / lin["vM"] - 1
     if lin["slip"]:
@@ -282,6 +282,8 @@ def run(part: str, which: str, redo: bool, only: tuple = ()) -> None:
             data = fn(concept, vals)
         except ClutchfemError as exc:
             data = {"error": str(exc)}
+        except Exception as exc:  # a benchmark bug: recorded, the other designs still run
+            data = {"error": f"{type(exc).__name__}: {exc} (benchmark script)"}
         save(label, concept, vals, part, data)
         print(f"{label}: {part} in {time.perf_counter() - t0:.1f} s", flush=True)
 
