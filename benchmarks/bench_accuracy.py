@@ -63,7 +63,7 @@ from clutchfem.accuracy import NonlinearModel
 from clutchfem.analysis import slip_step
 from clutchfem.analysis.torque import FETorque
 from clutchfem.clutch import EngineCurve
-from clutchfem.core import ClutchfemError, rad_s_to_rpm, rpm_to_rad_s, tune_malloc
+from clutchfem.core import ClutchfemError, EquilibriumError, rad_s_to_rpm, rpm_to_rad_s, tune_malloc
 from clutchfem.fe import von_mises
 from clutchfem.geometry import MeshSettings, get_concept
 
@@ -143,7 +143,18 @@ def averaged_peak(model, s) -> float:
 
 
 def lite(design) -> dict:
-    """Engagement, slip, torque at RPM_T, raw and averaged peak von Mises at RPM_S."""
+    """Engagement, slip, torque at RPM_T, raw and averaged peak von Mises at RPM_S; where the
+    pre-stress Ritz space misses equilibrium, the per-speed ``prestress-exact`` (as analyze
+    falls back), said in the result's ``softening``."""
+    try:
+        return _lite(design)
+    except EquilibriumError:
+        if design.op.softening != "prestress":
+            raise
+        return _lite(design.with_softening("prestress-exact"))
+
+
+def _lite(design) -> dict:
     t0 = time.perf_counter()
     case = design.case()
     slip = slip_step(case, ENGINE)
@@ -153,7 +164,8 @@ def lite(design) -> dict:
     s = design.model.stress(u)
     return {"eng": case.engagement_rpm, "slip": slip.rpm, "T": T, "vM": float(von_mises(s).max()),
             "vM_avg": averaged_peak(design.model, s), "dofs": int(design.model.ndofs),
-            "elements": int(design.cm.n_elements), "time_s": time.perf_counter() - t0}
+            "elements": int(design.cm.n_elements), "time_s": time.perf_counter() - t0,
+            "softening": design.op.softening}
 
 
 def make(concept, vals, ms, **op) -> cf.Design:
@@ -173,10 +185,10 @@ def nonlinear_delta(concept, vals, ms) -> dict:
     out = {}
     w_nl, _ = nl.engagement(rpm_to_rad_s(lin["eng"]))
     out["eng"] = rad_s_to_rpm(w_nl) / lin["eng"] - 1
-    speeds = sorted({1.02 * w_nl, rpm_to_rad_s(RPM_T), rpm_to_rad_s(RPM_S)} | (
+    w_s = rpm_to_rad_s(RPM_S)
+    speeds = sorted({rpm_to_rad_s(RPM_T), w_s} | ({1.02 * w_nl} if 1.02 * w_nl < w_s else set()) | (
         {rpm_to_rad_s(lin["slip"])} if lin["slip"] else set()))
-    speeds = [w for w in speeds if w > w_nl]
-    states = dict(zip(speeds, nl.sweep(speeds)))
+    states = dict(zip(speeds, nl.sweep(speeds)))  # (below engagement: the free non-linear part)
     st8 = states.get(rpm_to_rad_s(RPM_T))  # None: engages above it (no torque there)
     out["T"] = nl.torque(st8) / lin["T"] - 1 if st8 is not None and lin["T"] else 0.0
     st14 = states[rpm_to_rad_s(RPM_S)]
