@@ -34,3 +34,14 @@ def test_analyze_falls_back_and_says_so(design):
     assert a.inputs["model"]["softening"] == "prestress-exact"
     assert a.slip_rpm is not None and a.max_von_mises_Pa > 0
 
+
+
+def test_prestress_exact_where_the_prestress_outweighs_the_softening_everywhere():
+    """Concept 5's stretched beams: M - K_sigma1 is negative on every Ritz seed, so the free
+    part never diverges.  The per-speed strategy's divergence estimate used to stop on an
+    empty Krylov space (ValueError "need at least one array to concatenate"): now no limit."""
+    d = cf.Design.from_concept("concept5", mesh=cf.MeshSettings(size=3e-3), fidelity="best",
+                            formulation="plane-stress").with_softening("prestress-exact")
+    case = d.case()
+    assert case.omega_limit is None
+    assert case.engagement_rpm > 0

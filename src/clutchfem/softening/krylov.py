@@ -156,8 +156,10 @@ def krylov_blocks(model, seeds: list[np.ndarray], depth: int, inner,
 
 def krylov_space(model, seeds: list[np.ndarray], depth: int, inner) -> np.ndarray:
     """V = span{X, (K^-1 M) X, ..., (K^-1 M)^(depth-1) X}, X = K^-1 T' seeds, on the reduced
-    dofs of ``model``, orthonormal in the ``inner`` product matrix (:func:`krylov_blocks`)."""
-    return np.hstack(krylov_blocks(model, seeds, depth, inner)[0])
+    dofs of ``model``, orthonormal in the ``inner`` product matrix (:func:`krylov_blocks`;
+    no columns where ``inner`` is not positive on any of them)."""
+    blocks = krylov_blocks(model, seeds, depth, inner)[0]
+    return np.hstack(blocks) if blocks else np.zeros((model.Kr.shape[0], 0))
 
 
 def ritz_pairs(model, contact, depth: int, which: str = "load") -> tuple[np.ndarray, np.ndarray]:
@@ -181,13 +183,17 @@ def ritz_pairs_on(model, V: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return vals, model.T @ (V @ Y)
 
 
-def divergence_omega(model, contact) -> float:
+def divergence_omega(model, contact) -> float | None:
     """Divergence speed [rad/s] of the free part: the lowest load-dependent Ritz frequency
     (seeded by the centrifugal and both contact loads; cached on the model), i.e. where the
-    loaded deflection shapes lose their stiffness to spin softening."""
+    loaded deflection shapes lose their stiffness to spin softening.  None where the space
+    has no softening direction at all: a pre-stressed model whose M - K_sigma1 is negative
+    on every seed (the stiffening outweighs the softening: concept 5's 3-D model) never
+    diverges."""
     key = ("divergence", None if contact is None else id(contact.nodes))
     cache = model.__dict__.setdefault("_ritz_cache", {})
     if key not in cache:
-        cache[key] = (None if contact is None else contact.nodes,
-                      float(np.sqrt(ritz_pairs(model, contact, 3, "all")[0][0])))
+        V = krylov_space(model, krylov_seeds(model.f1, contact, "all"), 3, model.Mr)
+        w = float(np.sqrt(ritz_pairs_on(model, V)[0][0])) if V.shape[1] else None
+        cache[key] = (None if contact is None else contact.nodes, w)
     return cache[key][1]
