@@ -48,11 +48,12 @@ class Kinematics:
     def gradient(self, u: np.ndarray) -> np.ndarray:
         """H[e, q, c, a] = d u_c / d X_a."""
         U = u[self.dofs].reshape(len(self.dofs), -1, 2)  # (ne, nb, 2)
-        return np.einsum("ekc,eqka->eqca", U, self.G)
+        # H[e, q] = U[e]' G[e, q] (batched matmul: einsum of three operands was 4x slower)
+        return np.matmul(U.transpose(0, 2, 1)[:, None], self.G)
 
     def stress(self, H: np.ndarray):
         F = H + np.eye(2)
-        E = 0.5 * (np.einsum("eqca,eqcb->eqab", F, F) - np.eye(2))
+        E = 0.5 * (np.matmul(F.transpose(0, 1, 3, 2), F) - np.eye(2))
         tr = E[..., 0, 0] + E[..., 1, 1]
         S = 2 * self.mu * E + self.lam * tr[..., None, None] * np.eye(2)
         return F, E, S
@@ -60,15 +61,15 @@ class Kinematics:
     def residual_and_tangent(self, u: np.ndarray, tangent: bool = True):
         """Internal force r (N,) and tangent K (N x N sparse)."""
         F, _, S = self.stress(self.gradient(u))
-        P = np.einsum("eqcb,eqba->eqca", F, S)
-        re = np.einsum("eq,eqca,eqka->ekc", self.dx, P, self.G).reshape(len(self.dofs), -1)
+        P = np.matmul(F, S) * self.dx[:, :, None, None]  # dx F S
+        re = np.matmul(self.G, P.transpose(0, 1, 3, 2)).sum(axis=1).reshape(len(self.dofs), -1)
         r = np.bincount(self.dofs.ravel(), weights=re.ravel(), minlength=self.N)
         if not tangent:
             return r, None
         G, dx = self.G, self.dx
         # geometric: delta_cd G_k . S . G_l
-        GS = np.einsum("eqka,eqab->eqkb", G, S)
-        kg = np.einsum("eq,eqkb,eqlb->ekl", dx, GS, G)
+        GS = np.matmul(G, S * dx[:, :, None, None])
+        kg = np.matmul(GS, G.transpose(0, 1, 3, 2)).sum(axis=1)
         # material: dE(k, c)_ab = sym(F_ca G_kb), in Voigt form B = (dE_xx, dE_yy, 2 dE_xy)
         # (ne, nq, 3, nb, 2); km = sum_q dx B' D B with D the plane Lame matrix (batched matmul)
         ne, nq, nb = G.shape[0], G.shape[1], G.shape[2]
