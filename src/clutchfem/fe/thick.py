@@ -414,8 +414,7 @@ class ThickStress:
         fields = []
         for i in range(len(m.fields)):
             F = U[m.field_dofs(i)][self._t]  # (ne, 3 local fns, ncols): at vertex v its own dof
-            fields.append((F, np.einsum("evk,ekc->evc", self._g1[..., 0], F),
-                           np.einsum("evk,ekc->evc", self._g1[..., 1], F)))
+            fields.append((F, np.matmul(self._g1[..., 0], F), np.matmul(self._g1[..., 1], F)))
         out = []
         for zeta in self.LEVELS:
             z = np.array([zeta])
