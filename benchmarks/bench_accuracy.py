@@ -25,9 +25,9 @@ The reference (what "the real part" means here)
 So reference = a_3D (1 + d_in) (1 + d_NL) for engagement, slip and torque.
 
 The **peak stress** reference is the converged peak of the thick plane model at order 6
-(raw P2 vertex von Mises at RPM_S, small-strain as ``lite`` and d_NL's denominator; the best
-path's finite-rotation measure reads 2.3 % more: ``bench_peak.py``'s 2371 MPa is not this)
-times (1 + d_NL): ``--part refpeak``, :func:`clutchfem.fe.peak_stress_converged` from the
+(raw P2 vertex von Mises at RPM_S, small-strain as ``lite`` and d_NL's denominator; the sweep's
+finite-rotation measure reads 2.3 % more on concept 4: ``bench_peak.py``'s 2371 MPa is not this)
+times (1 + d_NL): ``--part refpeak`` (``accuracy_refpeak.py``), ``peak_stress_converged`` from the
 best preset (disc at the peak refined to h0/2, h0/4, h0/8, Richardson, stop at 1 %; stored
 ``vM_conv`` and ``error`` its estimate [Pa], a string if the run failed).  It replaced
 Richardson (p = 2) over the best and the globally refined mesh, which refines the fillet arc
@@ -35,7 +35,7 @@ only, not the gradient region a radius deep (BENCHMARKS.md 13, "Peak stress refi
 2026-11-26, the 15 designs with a reference: it moves -0.45 to +1.08 % (concept 4 2352.4
 against 2338.7 MPa, +0.58 %), error estimates 0.02-0.74 %, 19-32 s a design.  A level where
 the pre-stress Ritz space misses equilibrium redoes it with ``prestress-exact``
-(concept4-lhs02; level 0 2309.04 -> 2309.48 MPa).  Not measured: d_NL on refined meshes.
+(concept4-lhs02, 77 s; level 0 2309.04 -> 2309.48 MPa).  Not measured: d_NL on refined meshes.
 Model form (concepts 4 / 1, ``bench_refpeak_orders.py``): order 8 reads 1.0 / 0.4 % below
 order 6 on its finest solvable level, order 4 converges 1.4 / 0.7 % below; the tetrahedra's
 averaged nodal peak is 0.7 % below / 0.3 % above order 6's (``vM_3d_avg``,
@@ -65,6 +65,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from accuracy_refpeak import converged_peak
 from scipy.stats import qmc
 
 import clutchfem as cf
@@ -73,7 +74,7 @@ from clutchfem.analysis import slip_step
 from clutchfem.analysis.torque import FETorque
 from clutchfem.clutch import EngineCurve
 from clutchfem.core import ClutchfemError, EquilibriumError, rad_s_to_rpm, rpm_to_rad_s, tune_malloc
-from clutchfem.fe import peak_stress_converged, von_mises
+from clutchfem.fe import von_mises
 from clutchfem.geometry import MeshSettings, get_concept
 
 HERE = Path(__file__).resolve().parent
@@ -152,7 +153,18 @@ def averaged_peak(model, s) -> float:
 
 
 def lite(design) -> dict:
-    """Engagement, slip, torque at RPM_T, raw and averaged peak von Mises at RPM_S."""
+    """Engagement, slip, torque at RPM_T, raw and averaged peak von Mises at RPM_S; where the
+    pre-stress Ritz space misses equilibrium, the per-speed ``prestress-exact`` (as analyze
+    falls back), said in the result's ``softening``."""
+    try:
+        return _lite(design)
+    except EquilibriumError:
+        if design.op.softening != "prestress":
+            raise
+        return _lite(design.with_softening("prestress-exact"))
+
+
+def _lite(design) -> dict:
     t0 = time.perf_counter()
     case = design.case()
     slip = slip_step(case, ENGINE)
@@ -162,7 +174,8 @@ def lite(design) -> dict:
     s = design.model.stress(u)
     return {"eng": case.engagement_rpm, "slip": slip.rpm, "T": T, "vM": float(von_mises(s).max()),
             "vM_avg": averaged_peak(design.model, s), "dofs": int(design.model.ndofs),
-            "elements": int(design.cm.n_elements), "time_s": time.perf_counter() - t0}
+            "elements": int(design.cm.n_elements), "time_s": time.perf_counter() - t0,
+            "softening": design.op.softening}
 
 
 def make(concept, vals, ms, **op) -> cf.Design:
@@ -182,12 +195,12 @@ def nonlinear_delta(concept, vals, ms) -> dict:
     out = {}
     w_nl, _ = nl.engagement(rpm_to_rad_s(lin["eng"]))
     out["eng"] = rad_s_to_rpm(w_nl) / lin["eng"] - 1
-    speeds = sorted({1.02 * w_nl, rpm_to_rad_s(RPM_T), rpm_to_rad_s(RPM_S)} | (
+    w_s = rpm_to_rad_s(RPM_S)
+    speeds = sorted({rpm_to_rad_s(RPM_T), w_s} | ({1.02 * w_nl} if 1.02 * w_nl < w_s else set()) | (
         {rpm_to_rad_s(lin["slip"])} if lin["slip"] else set()))
-    speeds = [w for w in speeds if w > w_nl]
-    states = dict(zip(speeds, nl.sweep(speeds)))
-    st8 = states[rpm_to_rad_s(RPM_T)]
-    out["T"] = nl.torque(st8) / lin["T"] - 1
+    states = dict(zip(speeds, nl.sweep(speeds)))  # (below engagement: the free non-linear part)
+    st8 = states.get(rpm_to_rad_s(RPM_T))  # None: engages above it (no torque there)
+    out["T"] = nl.torque(st8) / lin["T"] - 1 if st8 is not None and lin["T"] else 0.0
     st14 = states[rpm_to_rad_s(RPM_S)]
     out["vM"] = float(nl.vertex_von_mises(st14.u).max()) / lin["vM"] - 1
     if lin["slip"]:
@@ -235,42 +248,6 @@ def reference(concept, vals, layers=REF_LAYERS) -> dict:
             "vM_3d_avg": r3["vM_avg"], "vM_thick6_avg": th["best"]["vM_avg"]}
 
 
-def peak_at_rpm_s(concept, vals, softening="prestress", order=6):
-    """``evaluate(cm) -> (peak [Pa], (x, y) [m])``: the raw P2 vertex von Mises peak at RPM_S on
-    ``cm`` of the thick model (``order``), 2 mm ring drum, pre-stress softening (as ``lite``)."""
-    c = get_concept(concept)
-    p = c.params().replace(**vals) if vals else c.params()
-    op = cf.OperatingPoint(formulation="thick", thick_order=order, drum_wall=WALL, softening=softening)
-
-    def evaluate(cm):
-        d = cf.Design(cm, op, params=p, name=c.name, concept=c)
-        u = d.sweep([RPM_S]).fields.displacement(0)
-        vm = von_mises(d.model.stress(u))
-        i = int(np.argmax(vm))
-        return float(vm[i]), tuple(float(x) for x in d.model.stress.points[:2, i])
-    return evaluate
-
-
-def refpeak(concept, vals) -> dict:
-    """The converged peak of ``peak_at_rpm_s`` (module docstring); where the pre-stress Ritz
-    space misses equilibrium on a level, the whole sequence again with its per-speed reference
-    ``prestress-exact`` (``analyze``'s own fallback), said in ``softening``."""
-    t0, c, out = time.perf_counter(), get_concept(concept), {}
-    p = c.params().replace(**vals) if vals else c.params()
-    for soft in ("prestress", "prestress-exact"):
-        try:
-            r = peak_stress_converged(c, p, ms=best_mesh(), evaluate=peak_at_rpm_s(concept, vals, soft), tol=0.01)
-            break
-        except EquilibriumError as exc:
-            if soft != "prestress":
-                raise
-            out["prestress_failed"] = str(exc)
-    return {"vM_conv": r.peak, "error": r.error, "order": None if math.isnan(r.order) else r.order,
-            "converged": r.converged, "feature": r.feature, "at": list(r.at),
-            "levels": [[lv.peak, lv.elements] for lv in r.levels], "time_s": time.perf_counter() - t0,
-            "softening": soft, **out}
-
-
 def best(concept, vals) -> dict:
     t0 = time.perf_counter()
     d = cf.Design.from_concept(concept, fidelity="best", **vals)
@@ -316,7 +293,8 @@ def save(label, concept, vals, part, data) -> None:
 
 def run(part: str, which: str, redo: bool, only: tuple = ()) -> None:
     done = load()
-    fn = {"reference": reference, "best": best, "fast": fast, "refpeak": refpeak}[part]
+    fn = {"reference": reference, "best": best, "fast": fast,
+          "refpeak": lambda concept, vals: converged_peak(concept, vals, RPM_S, WALL)}[part]
     for label, concept, vals in designs(which):
         if only and label not in only:
             continue
@@ -329,6 +307,8 @@ def run(part: str, which: str, redo: bool, only: tuple = ()) -> None:
             data = fn(concept, vals)
         except ClutchfemError as exc:
             data = {"error": str(exc)}
+        except Exception as exc:  # a benchmark bug: recorded, the other designs still run
+            data = {"error": f"{type(exc).__name__}: {exc} (benchmark script)"}
         save(label, concept, vals, part, data)
         msg = "" if "vM_conv" not in data else (
             f": {data['vM_conv'] / 1e6:.2f} MPa +- {data['error'] / 1e6:.2f} MPa, converged {data['converged']}, "

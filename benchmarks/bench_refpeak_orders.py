@@ -9,18 +9,19 @@ on the finest levels: condition estimate > 1e14) is printed as refused.
 
 import sys
 
-from bench_accuracy import best_mesh, peak_at_rpm_s
+from accuracy_refpeak import peak_at_rpm
+from bench_accuracy import RPM_S, WALL
 
 from clutchfem.core import ClutchfemError
 from clutchfem.fe import peak_stress_converged
-from clutchfem.geometry import get_concept
+from clutchfem.geometry import MeshSettings, get_concept
 
 ORDERS = (4, 6, 8)
 
 
 def main(names):
     for name in names:
-        evs = {o: peak_at_rpm_s(name, {}, order=o) for o in ORDERS}
+        evs = {o: peak_at_rpm(name, {}, RPM_S, WALL, order=o) for o in ORDERS}
 
         def ev(cm, name=name, evs=evs):
             out = {}
@@ -33,7 +34,7 @@ def main(names):
                     print(f"{name} {cm.n_elements} elements, order {o}: refused: {str(exc)[:100]}", flush=True)
             return out[6] if 6 in out else evs[6](cm)
         c = get_concept(name)
-        peak_stress_converged(c, c.params(), ms=best_mesh(), evaluate=ev, tol=0.01)
+        peak_stress_converged(c, c.params(), ms=MeshSettings.preset("best"), evaluate=ev, tol=0.01)
 
 
 if __name__ == "__main__":

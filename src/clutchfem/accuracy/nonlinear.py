@@ -64,8 +64,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..contact import contact_nodes
-from ..core import ParameterError, ParamSet, SolverError, param, rad_s_to_rpm
+from ..contact import contact_nodes, lazy, solve_lcp
+from ..core import ParameterError, ParamSet, SolverError, choice, param, rad_s_to_rpm
 from ..fe import Kinematics, von_mises
 
 __all__ = ["NonlinearSettings", "NonlinearModel", "NLState", "second_order_engagement"]
@@ -81,6 +81,10 @@ class NonlinearSettings(ParamSet):
                            "is ~1e-10 on clutch meshes: element forces cancel)")
     max_iter: int = param(40, "-", 3, 500, "Newton iterations per speed step")
     max_halvings: int = param(8, "-", 0, 30, "speed-step halvings before giving up")
+    contact_solver: Literal["lcp", "pdas"] = choice(
+        "lcp", doc="per Newton iteration: 'lcp' solves the linearised contact problem exactly "
+        "(condensed on the contact nodes, :func:`clutchfem.contact.solve_lcp`); 'pdas' updates the "
+        "active set by {lam - c g > 0} (one node per iteration leaves an elastic drum's arc)")
 
 
 @dataclass
@@ -150,12 +154,20 @@ class NonlinearModel:
         self.nodes = contact_nodes(fe, drum_radius) if drum_radius is not None else None
         self.timings: dict[str, float] = {}
         self.scale = float(fe.cm.sector_copies)
-        kdiag = self.kin.residual_and_tangent(np.zeros(fe.basis.N))[1].diagonal()
-        self._c = float(np.mean(kdiag[kdiag > 0]))
+        self._c_value: float | None = None
         #: optional drum compliance C (m x m, [m/N]): the drum's inner wall moves out by C lam
         #: (the gap gains C lam); see :mod:`clutchfem.contact.ring`
         self.Cd = None if drum_compliance is None else np.asarray(drum_compliance, dtype=float)
         self.drum_free = None  # optional (m,) free drum expansion [m] (spinning drum)
+
+    @property
+    def _c(self) -> float:
+        """The active-set constant c of 'pdas': the mean positive stiffness diagonal (lazy:
+        one tangent assembly, which the 'lcp' update does not need)."""
+        if self._c_value is None:
+            kdiag = self.kin.residual_and_tangent(np.zeros(self.fe.basis.N))[1].diagonal()
+            self._c_value = float(np.mean(kdiag[kdiag > 0]))
+        return self._c_value
 
     # -- contact geometry ---------------------------------------------------------------
     def positions(self, u: np.ndarray) -> np.ndarray:
@@ -189,20 +201,24 @@ class NonlinearModel:
         w2 = omega * omega
         fext = w2 * self.f1 + (0.0 if extra_load is None else extra_load)
         ref = max(float(np.linalg.norm(self.TT @ fext)), 1e-300)
-        c = self._c
+        pdas = use_c and st.contact_solver == "pdas"
+        c = self._c if pdas else 0.0
         u = u.copy()
         if use_c:
             active = (lam - c * self.gaps(u, lam)) > 0
         res = math.inf
+        r_int, K = self.kin.residual_and_tangent(u)
         for it in range(1, st.max_iter + 1):
-            r_int, K = self.kin.residual_and_tangent(u)
             r0 = r_int - w2 * (self.M @ u) - fext  # residual without contact forces
             A = K - w2 * self.M
             if use_c:
                 _, Kc, Dn, Nn = self._contact_terms(u, lam)
                 A = A - Kc  # the contact force turns with the node (at the current lam)
             Ar = (self.TT @ A @ self.T).tocsc()
-            if use_c and active.any():
+            if use_c and st.contact_solver == "lcp":
+                da, new_lam = self._lcp_step(Ar, r0, u, lam, omega)
+                idx = None
+            elif use_c and active.any():
                 # unknowns (da, lam_A), lam = 0 off the active set:
                 #   T'r0 + Ar da - D_A lam_A = 0
                 #   g_A(u) - N_A' T da + C_AA lam_A = 0   (exact gaps, linearised)
@@ -215,22 +231,23 @@ class NonlinearModel:
             else:
                 idx = np.zeros(0, dtype=np.int64)
                 Big, rhs = Ar, -(self.TT @ r0)
-            try:
-                sol = spla.splu(Big, permc_spec="COLAMD").solve(rhs)
-            except RuntimeError:
-                raise SolverError(f"non-linear system singular at {rad_s_to_rpm(omega):.0f} rpm") from None
-            nr = Ar.shape[0]
-            da = sol[:nr]
-            new_lam = np.zeros(m)
-            new_lam[idx] = sol[nr:]
+            if idx is not None:
+                try:
+                    sol = spla.splu(Big, permc_spec="COLAMD").solve(rhs)
+                except RuntimeError:
+                    raise SolverError(f"non-linear system singular at {rad_s_to_rpm(omega):.0f} rpm") from None
+                nr = Ar.shape[0]
+                da = sol[:nr]
+                new_lam = np.zeros(m)
+                new_lam[idx] = sol[nr:]
             u = u + self.T @ da
             res_prev = res
             if use_c:
                 lam = new_lam
                 g_new = self.gaps(u, lam)
                 new_active = (lam - c * g_new) > 0
-            # converged?  residual at the new state
-            r_int, _ = self.kin.residual_and_tangent(u, tangent=False)
+            # converged?  residual at the new state (its tangent serves the next iteration)
+            r_int, K = self.kin.residual_and_tangent(u)
             r = r_int - w2 * (self.M @ u) - fext
             if use_c:
                 r = r - self._contact_terms(u, lam, forces_only=True)
@@ -239,7 +256,8 @@ class NonlinearModel:
             ok = res <= st.res_tol and inc <= st.tol
             if use_c:
                 pen = float(np.max(-g_new, initial=0.0))
-                ok = ok and np.array_equal(new_active, active) and pen <= st.tol * self.R \
+                same = st.contact_solver == "lcp" or np.array_equal(new_active, active)
+                ok = ok and same and pen <= st.tol * self.R \
                     and float(np.min(lam, initial=0.0)) >= -st.tol * max(float(np.max(lam, initial=0.0)), 1e-300)
                 active = new_active
             if ok:
@@ -247,6 +265,42 @@ class NonlinearModel:
             if not math.isfinite(res) or (it > 8 and res > res_prev * 10 and res > 1e-3):
                 break
         raise _NoConvergence(omega, res)
+
+    def _lcp_step(self, Ar, r0, u, lam, omega):
+        """One Newton step with the linearised contact problem solved exactly: with da0 =
+        Ar^-1 (-T' r0) and the force directions D, gap gradients N (reduced), the gaps after
+        the step are w = q + G lam with q = g(u) - N' da0 and G = -N' Ar^-1 D + C_d (the
+        drum's compliance), 0 <= lam perp w >= 0 (:func:`~clutchfem.contact.solve_lcp`,
+        condensing only the columns its active set asks for); da = da0 + Ar^-1 D lam."""
+        _, _, Dn, Nn = self._contact_terms(u, lam)
+        try:
+            lu = spla.splu(Ar, permc_spec="COLAMD")
+        except RuntimeError:
+            raise SolverError(f"non-linear system singular at {rad_s_to_rpm(omega):.0f} rpm") from None
+        Dr = (self.TT @ Dn).tocsc()
+        Nr = (self.TT @ Nn).tocsc()
+        da0 = lu.solve(-(self.TT @ r0))
+        q = self.gaps(u) - Nr.T @ da0
+        cache: dict[int, np.ndarray] = {}
+
+        def columns(idx):
+            idx = np.atleast_1d(np.asarray(idx, dtype=np.int64))
+            new = [int(j) for j in idx if int(j) not in cache]
+            if new:
+                X = lu.solve(np.asarray(Dr[:, new].todense()))
+                for k, j in enumerate(new):
+                    cache[j] = X[:, k]
+            Y = np.column_stack([cache[int(j)] for j in idx]) if len(idx) else np.zeros((Ar.shape[0], 0))
+            Gc = -(Nr.T @ Y)
+            if self.Cd is not None:
+                Gc = Gc + self.Cd[:, idx]
+            return Gc
+
+        act0 = lam > 0 if lam is not None and np.any(lam > 0) else None
+        new_lam, _ = solve_lcp(lazy(columns), q, act0)
+        nz = np.nonzero(new_lam)[0]
+        da = da0 + (lu.solve(Dr[:, nz] @ new_lam[nz]) if len(nz) else 0.0)
+        return da, new_lam
 
     def _contact_terms(self, u, lam, forces_only: bool = False):
         """Contact force on the part fc (N,), its tangent Kc = d fc / d u at fixed lam, the

@@ -129,6 +129,12 @@ class StressAnswer:
     location_m: tuple[float, float]
     yield_strength_Pa: float
 
+    def corrected(self, max_von_mises_Pa: float) -> "StressAnswer":
+        """The same answer with the peak ``max_von_mises_Pa`` [Pa] (a corrected best estimate)
+        and its safety factor against yield."""
+        sf = self.yield_strength_Pa / max_von_mises_Pa if max_von_mises_Pa > 0 else self.safety_factor
+        return StressAnswer(self.rpm, float(max_von_mises_Pa), float(sf), self.location_m, self.yield_strength_Pa)
+
 
 @dataclass(frozen=True)
 class FatigueAnswer:

@@ -17,50 +17,80 @@ mu x 0.7 / x 1.3 (:func:`~.torque.mu_sensitivity_step`).
 
 from __future__ import annotations
 
+import math
+
 from ..accuracy import (
     ANSWERS,
     NOT_ESTIMATED,
     AnswerError,
+    AnswerNonlinearity,
     discretisation,
     discretisation_3d,
+    extrapolated_peak,
     model_form,
     refined_design,
 )
 from ..clutch import EngineCurve
+from ..fe import peak_disc
 from .torque import FETorque, slip_step
 
 
 def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
-               slip_rpm_value: float | None, drum: dict | None = None, mu: dict | None = None) -> dict:
+               slip_rpm_value: float | None, drum: dict | None = None, mu: dict | None = None,
+               peak_at: tuple[float, float] | None = None,
+               nl: dict[str, AnswerNonlinearity] | None = None) -> dict:
     """The error of the main answers ``values`` (module docstring): per answer its value,
     discretisation, model-form terms, total and sensitivities.  ``w0_rpm``: the engagement
     speed and ``slip_rpm_value``: the slip speed, which the thickness term of the slip speed
     scales with (that of the torque with the rpm of maximum engine torque); ``drum``: the
-    drum-wall sensitivity step's answers, ``mu``: the mu sensitivity's (``MuSensitivity.as_dict``)."""
+    drum-wall sensitivity step's answers, ``mu``: the mu sensitivity's (``MuSensitivity.as_dict``).
+    ``nl`` (best-estimate path): the geometric non-linearity of the peak stress and the
+    torque (:func:`~clutchfem.accuracy.answer_nonlinearity`), corrected here; the peak
+    together with its discretisation (the refined mesh also refines the disc at ``peak_at``
+    [m], and the peak is extrapolated from the two levels,
+    :func:`~clutchfem.accuracy.extrapolated_peak`).  A corrected answer's ``value`` is the
+    corrected one and its ``corrections`` say by how much."""
     lo, hi = engine.rpm_range
 
     def answers(d):
         case = d.case()
+        row = d.sweep([hi]).curve.iloc[0]
         return {"engagement_rpm": case.engagement_rpm, "slip_rpm": slip_step(case, engine).rpm,
                 "torque_at_max_engine_torque_Nm": float(FETorque(case)(float(engine.rpm_max_torque))[0]),
-                "max_von_mises_Pa": float(d.sweep([hi]).curve["max_von_mises_Pa"].iloc[0])}
+                "max_von_mises_Pa": float(row["max_von_mises_Pa"]),
+                "peak_at": (float(row["max_vm_x_m"]), float(row["max_vm_y_m"]))}
 
     three_d = design.op.model_formulation == "3d"
-    cd = refined_design(design)
+    nl = nl or {}
+    cd = refined_design(design, peak_at=peak_at if "max_von_mises_Pa" in nl else None)
     coarse = answers(cd) if cd is not None else {}
     disc3 = discretisation_3d(design, lambda d: values if d is design else answers(d)) if three_d else {}
     out = {}
     for q, unit in ANSWERS.items():
         v = values.get(q)
         w = {"slip_rpm": slip_rpm_value, "torque_at_max_engine_torque_Nm": float(engine.rpm_max_torque)}.get(q)
-        terms, notes = model_form(design, q, v, w0=w0_rpm, w=w)
+        fixed = q in nl and v is not None
+        terms, notes = model_form(design, q, v, w0=w0_rpm, w=w, corrected=fixed)
         d = discretisation(v, coarse.get(q)) if cd is not None else None
+        fix = None
+        if fixed:
+            v, d, fix = (corrected_peak(design, v, d, coarse, peak_at, nl[q]) if q == "max_von_mises_Pa"
+                         else corrected_answer(v, d, nl[q]))
+            notes = notes + (fix["note"],)
         if three_d and q in disc3:
             d = disc3[q][0]
             notes = notes + (disc3[q][3],)
         elif cd is None:
             notes = notes + (NOT_ESTIMATED[three_d],)
-        out[q] = AnswerError(q, v, unit, d, terms, notes, sensitivities(q, drum, mu)).as_dict()
+        sens = sensitivities(q, drum, mu)
+        if fix is not None:  # the inputs' effect on the corrected answer: the same correction, ASSUMED
+            f = v / fix["uncorrected"]
+            sens = {k: [None if x is None else x * f for x in vals] for k, vals in sens.items()}
+            notes = notes + ("sensitivities scaled by the same correction (its dependence on the drum wall "
+                             "and mu is not computed)",)
+        out[q] = AnswerError(q, v, unit, d, terms, notes, sens).as_dict()
+        if fix is not None:
+            out[q]["corrections"] = {k: x for k, x in fix.items() if k != "note"}
         if three_d and q in disc3:
             out[q]["discretisation_layers"], out[q]["discretisation_in_plane"] = disc3[q][1:3]
     fast = design.op.model_formulation in ("plane-stress", "plane-strain")
@@ -77,6 +107,44 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
                      + "); total = sum of magnitudes; sensitivities to the assumed inputs (drum wall, mu) apart, "
                      "not in the total")
     return out
+
+
+def corrected_answer(a0: float, disc: float | None, nl: AnswerNonlinearity):
+    """(value, discretisation, corrections) of an answer ``a0`` corrected for its geometric
+    non-linearity ``nl``: a0 (1 + d_NL)."""
+    f = 1.0 + nl.delta
+    note = (f"corrected for geometric non-linearity {100 * nl.delta:+.2f} % (total-Lagrangian / linear "
+            f"pre-stressed plane-stress twin at {nl.rpm:.0f} rpm, {nl.iterations} Newton iterations)")
+    fix = {"uncorrected": a0, "geometric_nonlinearity": nl.delta, "geometric_nonlinearity_iterations": nl.iterations,
+           "note": note}
+    return a0 * f, None if disc is None else disc * f, fix
+
+
+def corrected_peak(design, a0: float, disc: float | None, fine: dict, peak_at, nl: AnswerNonlinearity):
+    """(value, discretisation, corrections) of the best-estimate peak stress: the design
+    mesh's peak ``a0`` [Pa] extrapolated with the refined mesh's (``fine``: its answers and
+    peak point) when the peak stayed on the same feature (within the refined disc), times
+    (1 + d_NL) of ``nl``."""
+    f = 1.0 + nl.delta
+    a1, at1 = fine.get("max_von_mises_Pa"), fine.get("peak_at")
+    same = False
+    if a1 is not None and math.isfinite(a1) and at1 is not None and peak_at is not None:
+        radius, h0 = peak_disc(design.cm, tuple(peak_at), design.params.drum_radius)
+        same = math.hypot(at1[0] - peak_at[0], at1[1] - peak_at[1]) <= radius + h0
+    if same:
+        v_ext, e_ext = extrapolated_peak(a0, a1)
+        how = (f"extrapolated from the design mesh and one twice as fine with the peak's disc refined "
+               f"({a0 / 1e6:.1f} / {a1 / 1e6:.1f} MPa, Richardson p = 2: {100 * (v_ext / a0 - 1):+.2f} %)")
+    else:
+        v_ext, e_ext = a0, disc
+        how = ("not extrapolated: " + ("no finer mesh (a user mesh has one level)" if a1 is None else
+               "the refined mesh's peak is on another feature") + "; discretisation 2 |a_h - a_h/2|")
+    note = (f"peak stress corrected: discretisation {how}; geometric non-linearity {100 * nl.delta:+.2f} % "
+            f"(total-Lagrangian / linear pre-stressed plane-stress twin at {nl.rpm:.0f} rpm, "
+            f"{nl.iterations} Newton iterations, {nl.time_s:.2f} s)")
+    fix = {"uncorrected": a0, "discretisation_extrapolation": v_ext / a0 - 1.0, "extrapolated": same,
+           "geometric_nonlinearity": nl.delta, "geometric_nonlinearity_iterations": nl.iterations, "note": note}
+    return v_ext * f, None if e_ext is None else e_ext * f, fix
 
 
 def sensitivities(q: str, drum: dict | None, mu: dict | None) -> dict:

@@ -23,7 +23,14 @@ factorisation for everything below):
 9. :func:`~.error_band.error_step`: the error of engagement, slip, torque and peak stress
    (:mod:`clutchfem.accuracy`: a mesh twice as fine, measured model-form terms) and their
    sensitivity to the assumed drum wall (:func:`~.sensitivity.drum_sensitivity_step`) and
-   friction coefficient, apart from the band;
+   friction coefficient, apart from the band.  On the best-estimate path
+   (:func:`~.strength.best_estimate`) the peak stress and the torque are corrected there,
+   not only banded: their geometric non-linearity per design
+   (:func:`~.strength.nonlinearity_step`, total-Lagrangian solves of the plane-stress twin
+   at the engine's maximum speed and the rpm of its maximum torque) and the peak's
+   discretisation (the finer mesh also refines the disc at the peak; Richardson's
+   extrapolation from the two levels); the peak, safety factor, torque and torque margin
+   reported are the corrected ones (the curves stay the linear model's);
 10. :func:`~.requirements.whirl_step`: the crankshaft's first critical speed with this
     clutch on its overhang (:mod:`clutchfem.clutch.crankshaft`) against the engine's
     maximum speed;
@@ -54,7 +61,7 @@ from .error_band import error_step
 from .messages import design_notes, design_warnings
 from .requirements import idle_speed, requirements_step, whirl_step
 from .sensitivity import drum_sensitivity_step
-from .strength import fatigue_step, stress_step
+from .strength import fatigue_step, nonlinearity_step, stress_step
 from .torque import (
     character_step,
     check_speeds,
@@ -166,14 +173,22 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
     # 8-11: requirements, error of the main answers, crankshaft whirl, fatigue
     checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)
     drum = drum_sensitivity_step(design, engine, float(engine.rpm_max_torque), hi) if errors else None
+    t_rpm = float(engine.rpm_max_torque)
+    nl, nl_why = nonlinearity_step(design, hi, t_rpm if t_nom is not None and t_nom > 0 else None) if errors else (None, None)
     err = error_step(design, engine, {"engagement_rpm": eng.static_rpm, "slip_rpm": slip.rpm,
                                       "torque_at_max_engine_torque_Nm": t_nom,
                                       "max_von_mises_Pa": st.max_von_mises_Pa},
-                     eng.static_rpm, slip.rpm, drum=drum, mu=sens.as_dict()) if errors else {}
+                     eng.static_rpm, slip.rpm, drum=drum, mu=sens.as_dict(),
+                     peak_at=st.location_m, nl=nl) if errors else {}
+    if nl is not None:  # the best estimate's peak and torque: corrected in the error step
+        st = st.corrected(err["max_von_mises_Pa"]["value"])
+        t_nom = err["torque_at_max_engine_torque_Nm"]["value"]
     wh = whirl_step(design, hi)
     fat = fatigue_step(design, res, engine, loads=fatigue_loads, params=fatigue_params, ripple_model=ripple_model)
     warnings = design_warnings(res=res, material=material, mu=op.mu, slip=slip, eng=eng, ch=ch, character=character,
                                coupling=coupling, st=st, wh=wh, fat=fat, checks=checks)
+    if nl_why:
+        warnings.append(nl_why)
     notes = design_notes(engine=engine, req=req, idle_assumed=idle_assumed, ch=ch, cm=design.cm, sens=sens,
                          coupling=coupling, fat=fat)
     eng_info = {"source": engine.source, "assumed_shape": engine.assumed, "rpm_range": list(engine.rpm_range),

@@ -20,6 +20,7 @@ import time
 
 import numpy as np
 
+from ..accuracy import AnswerNonlinearity, answer_nonlinearity
 from ..clutch import EngineCurve, RippleModel
 from ..core import ParameterError, SolverError, rpm_to_rad_s
 from ..durability import (
@@ -48,6 +49,32 @@ def stress_step(res, rpm: float, material) -> StressAnswer:
     row = res.curve.iloc[res.index(rpm)]
     return StressAnswer(float(rpm), float(row["max_von_mises_Pa"]), float(row["safety_factor"]),
                         (float(row["max_vm_x_m"]), float(row["max_vm_y_m"])), float(material.yield_strength))
+
+
+def best_estimate(design) -> bool:
+    """Whether ``design`` is a best-estimate model whose peak stress and torque get their
+    geometric non-linearity corrected (:func:`nonlinearity_step`): the thick plane model with an
+    elastic drum and the pre-stress softening (``fidelity="best"``'s model); the fast path
+    keeps its band."""
+    op = design.op
+    return (op.model_formulation == "thick" and bool(op.drum_wall_m)
+            and op.softening in ("prestress", "prestress-exact"))
+
+
+def nonlinearity_step(design, peak_rpm: float, torque_rpm: float | None
+                      ) -> tuple[dict[str, AnswerNonlinearity] | None, str | None]:
+    """(the geometric non-linearity of the peak stress at ``peak_rpm`` and of the torque at
+    ``torque_rpm``, or None; why not) for a best-estimate ``design`` (:func:`best_estimate`;
+    :func:`~clutchfem.accuracy.answer_nonlinearity`).  A non-linear state that does not
+    converge leaves the answers uncorrected, with the reason: their bands then carry the
+    measured bound instead."""
+    if not best_estimate(design):
+        return None, None
+    try:
+        return answer_nonlinearity(design, peak_rpm, torque_rpm), None
+    except SolverError as exc:
+        return None, (f"peak stress and torque not corrected for geometric non-linearity ({exc}): their bands "
+                      "carry the measured bound instead")
 
 
 def fatigue_cycles(design, res, engine: EngineCurve, loads=None,

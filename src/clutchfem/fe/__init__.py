@@ -16,7 +16,7 @@ from .model3d import (
                       geometric_stiffness_3d,
                       lame_3d,
 )
-from .peak import PeakLevel, PeakStress, free_spin_peak, peak_stress_converged, richardson
+from .peak import PeakLevel, PeakStress, free_spin_peak, peak_disc, peak_stress_converged, richardson
 from .ring import CELL_EDGES, ZONES, RingMesh, pvd_text, ring_stresses, zone_ids
 from .size3d import check_3d_size, estimate_3d, max_model_memory
 from .stress import VertexStress, VertexStress3D, p2_vertex_gradients, von_mises
@@ -24,7 +24,7 @@ from .thick import FEModelThick, ThickSettings, ThickStress, thick_modes
 from .vtu import Frames2D, in_plane_stresses, write_vtk
 from .vtu3d import Frames3D, tetra10_cells
 
-__all__ = ["PeakLevel", "PeakStress", "free_spin_peak", "peak_stress_converged", "richardson", "COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
+__all__ = ["PeakLevel", "PeakStress", "free_spin_peak", "peak_disc", "peak_stress_converged", "richardson", "COUNTS", "ConstrainedOperators", "ExtrudedMesh", "ExtrusionSettings", "FEModel", "FEModel3D",
            "FEModelThick", "ThickSettings", "ThickStress", "p2_vertex_gradients", "thick_modes",
            "Kinematics", "geometric_stiffness",
            "Solver", "VertexStress", "VertexStress3D", "available", "build_fe_model_3d", "component_dofs",

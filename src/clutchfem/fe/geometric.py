@@ -69,13 +69,19 @@ class Kinematics:
         # geometric: delta_cd G_k . S . G_l
         GS = np.einsum("eqka,eqab->eqkb", G, S)
         kg = np.einsum("eq,eqkb,eqlb->ekl", dx, GS, G)
-        # material: dE(k, c)_ab = sym(F_ca G_kb)
-        FG = np.einsum("eqca,eqkb->eqkcab", F, G)
-        dE = 0.5 * (FG + FG.transpose(0, 1, 2, 3, 5, 4))
-        trd = dE[..., 0, 0] + dE[..., 1, 1]  # (ne, nq, nb, 2)
-        km = (2 * self.mu * np.einsum("eq,eqkcab,eqldab->ekcld", dx, dE, dE)
-              + self.lam * np.einsum("eq,eqkc,eqld->ekcld", dx, trd, trd))
-        nb = G.shape[2]
+        # material: dE(k, c)_ab = sym(F_ca G_kb), in Voigt form B = (dE_xx, dE_yy, 2 dE_xy)
+        # (ne, nq, 3, nb, 2); km = sum_q dx B' D B with D the plane Lame matrix (batched matmul)
+        ne, nq, nb = G.shape[0], G.shape[1], G.shape[2]
+        B = np.empty((ne, nq, 3, nb, 2))
+        B[:, :, 0] = F[:, :, None, :, 0] * G[:, :, :, None, 0]
+        B[:, :, 1] = F[:, :, None, :, 1] * G[:, :, :, None, 1]
+        B[:, :, 2] = F[:, :, None, :, 0] * G[:, :, :, None, 1] + F[:, :, None, :, 1] * G[:, :, :, None, 0]
+        lm, mu = self.lam, self.mu
+        D = np.array([[lm + 2 * mu, lm, 0.0], [lm, lm + 2 * mu, 0.0], [0.0, 0.0, mu]])
+        Bm = B.reshape(ne, nq * 3, nb * 2)
+        DB = np.einsum("ij,eqjm->eqim", D, B.reshape(ne, nq, 3, nb * 2)).reshape(ne, nq * 3, nb * 2)
+        DB *= np.repeat(dx, 3, axis=1)[:, :, None]
+        km = np.matmul(Bm.transpose(0, 2, 1), DB).reshape(ne, nb, 2, nb, 2)
         km[:, :, 0, :, 0] += kg
         km[:, :, 1, :, 1] += kg
         Ke = km.reshape(len(self.dofs), 2 * nb, 2 * nb)

@@ -149,9 +149,7 @@ def peak_stress_converged(concept: Concept, p: ConceptParams, ms: MeshSettings |
     cm = mesh_concept(concept, p, ms)
     v, x = evaluate(cm)
     levels = [PeakLevel(v, x, cm.n_elements, 0.0, time.perf_counter() - t0)]
-    radius, _ = _feature(cm, x, p.drum_radius)
-    h0 = math.sqrt(2.0 * _area_at(cm, x))
-    disc = max(radius if math.isfinite(radius) else 0.0, 4.0 * h0)  # NaN / inf: 4 h0
+    disc, h0 = peak_disc(cm, x, p.drum_radius)
     err, order = math.inf, math.nan
     for k in range(1, max_levels + 1):
         s = h0 / 2 ** k
@@ -182,6 +180,15 @@ def peak_stress_converged(concept: Concept, p: ConceptParams, ms: MeshSettings |
         where += " (the peak left the refined disc: another feature, not converged)"
     return PeakStress(peak=last.peak, at=last.at, feature=f"{kind}, {where}", radius=radius, error=err, order=order,
                       converged=bool(err <= tol * abs(last.peak) and inside), levels=levels)
+
+
+def peak_disc(cm: ClutchMesh, x: tuple[float, float], drum_radius: float) -> tuple[float, float]:
+    """(radius [m], h0 [m]) of the disc that refines the peak at ``x`` (module docstring):
+    h0 = sqrt(2 A) of the element there, radius max(R, 4 h0) with R the outline's radius of
+    curvature at x (4 h0 where the outline is straight or x is inside the part)."""
+    radius, _ = _feature(cm, x, drum_radius)
+    h0 = math.sqrt(2.0 * _area_at(cm, x))
+    return max(radius if math.isfinite(radius) else 0.0, 4.0 * h0), h0
 
 
 def free_spin_peak(cm: ClutchMesh, material: Material, formulation: str = "plane-stress") -> tuple[float, tuple]:

@@ -38,7 +38,12 @@ def _err(an, key: str, scale: float = 1.0, unit: str | None = None, fmt: str = "
         return ""
     u = unit or e["unit"]
     d = "n/a" if e["discretisation"] is None else f"{e['discretisation'] * scale:{fmt}}"
-    return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}})"
+    fix = e.get("corrections") or {}
+    how = [f"{lab} {100 * fix[k]:+.1f} %" for k, lab in (("geometric_nonlinearity", "non-linearity"),
+                                                         ("discretisation_extrapolation", "mesh extrapolation"))
+           if fix.get(k) is not None and (k != "discretisation_extrapolation" or fix.get("extrapolated"))]
+    corr = f"; corrected: {', '.join(how)}" if how else ""
+    return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}}{corr})"
 
 
 def model_row(an) -> tuple[str, str] | None:
