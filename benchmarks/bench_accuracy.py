@@ -343,6 +343,10 @@ def table() -> str:
             if v is None or x is None or b is None:
                 continue
             u, sc, f = UNITS[k]
+            if x == 0 or v == 0:  # no relative error (e.g. no torque: engages above RPM_T); not summarised
+                lines.append(f"| {label} | {k} [{u}] | {f.format(x * sc)} | {f.format(v * sc)} | {f.format(b * sc)} | "
+                             f"{'equal' if v == x else 'differ'} | - | - | - | |")
+                continue
             err = v - x
             within = abs(err) <= LIMITS[k] * abs(x)
             holds = abs(err) <= b
