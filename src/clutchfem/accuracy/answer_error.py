@@ -186,8 +186,14 @@ def discretisation_3d(design, answers) -> dict:
 #: and concepts 2 and 3 in tests/test_thick.py (< 0.1 %).  NOT covered: concept 5, whose
 #: beams are stretched, not bent (0.76 % stiff in engagement at 14 mm, a strict xfail in
 #: tests/test_thick.py); the space-filling validation set is partly run (section 13).
+#: The peak stress: the largest |best estimate - reference| over the designs the band is
+#: built from (concepts 1 and 4 at their defaults and their space-filling designs
+#: lhs01-lhs04; the reference's peak converged by local refinement at order 6) is 1.45 %
+#: (concept 4, the estimate low: order 4 reads 0.7-1.4 % below order 6 at the converged
+#: fillet peak, benchmarks/bench_refpeak_orders.py); the other designs are held out to test
+#: it (BENCHMARKS.md section 13).
 THICK_RESIDUAL = {4: {"engagement_rpm": 0.001, "slip_rpm": 0.001, "torque_at_max_engine_torque_Nm": 0.002,
-                      "max_von_mises_Pa": 0.01},
+                      "max_von_mises_Pa": 0.015},
                   2: {"engagement_rpm": 0.006, "slip_rpm": 0.003, "torque_at_max_engine_torque_Nm": 0.006,
                       "max_von_mises_Pa": 0.02}}
 #: geometric non-linearity left by each softening model (relative; total-Lagrangian reference,
