@@ -103,3 +103,18 @@ def test_extrapolated_peak_is_richardson_at_order_two():
     v = [1.0 - 0.3 * h ** 2 for h in (1.0, 0.5)]
     value, err = extrapolated_peak(*v)
     assert value == pytest.approx(1.0) and err == pytest.approx(abs(1.0 - v[1]))
+
+
+@pytest.mark.slow
+def test_a_correction_that_does_not_converge_leaves_the_bound_and_says_so(best, monkeypatch):
+    import clutchfem.analysis.strength as strength
+    from clutchfem.core import SolverError
+
+    def fails(*a, **k):
+        raise SolverError("non-linear reference: no convergence at 14000 rpm after 8 step halvings")
+
+    monkeypatch.setattr(strength, "answer_nonlinearity", fails)
+    an = analyze(best)
+    e = an.errors["max_von_mises_Pa"]
+    assert "corrections" not in e and e["model_form_relative"]["geometric_nonlinearity"] > 0.05
+    assert any("not corrected for geometric non-linearity" in w and "no convergence" in w for w in an.warnings)
