@@ -38,12 +38,19 @@ def _err(an, key: str, scale: float = 1.0, unit: str | None = None, fmt: str = "
         return ""
     u = unit or e["unit"]
     d = "n/a" if e["discretisation"] is None else f"{e['discretisation'] * scale:{fmt}}"
+    corr = corrections_text(e)
+    return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}}" + \
+        (f"; {corr})" if corr else ")")
+
+
+def corrections_text(e: dict) -> str:
+    """'corrected: non-linearity +1.1 %, mesh extrapolation +1.5 %' for an answer the best path
+    corrected (its ``corrections``), else ''."""
     fix = e.get("corrections") or {}
     how = [f"{lab} {100 * fix[k]:+.1f} %" for k, lab in (("geometric_nonlinearity", "non-linearity"),
                                                          ("discretisation_extrapolation", "mesh extrapolation"))
            if fix.get(k) is not None and (k != "discretisation_extrapolation" or fix.get("extrapolated"))]
-    corr = f"; corrected: {', '.join(how)}" if how else ""
-    return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}}{corr})"
+    return f"corrected: {', '.join(how)}" if how else ""
 
 
 def model_row(an) -> tuple[str, str] | None:
@@ -302,12 +309,14 @@ def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
         a2.fill_between(rpm, vm * (1 - rel), vm * (1 + rel), color="mistyrose",
                         label=f"error band +- {100 * rel:.0f} % (the peak's at {an.max_stress_rpm:.0f} rpm: mesh "
                               f"{d} MPa, model {e['model_form'] / 1e6:.0f} MPa)")
-    a2.plot(rpm, vm, "r-", label="peak von Mises (FE, unaveraged element vertices)")
+    fix = e.get("corrections") or {}
+    a2.plot(rpm, vm, "r-", label="peak von Mises (FE, unaveraged element vertices" +
+            ("; the linear model: the point is corrected)" if fix else ")"))
     a2.axhline(an.yield_strength_Pa / 1e6, color="k", ls="--", label=f"yield {an.yield_strength_Pa / 1e6:.0f} MPa")
     band = f" +- {e['total'] / 1e6:.0f} MPa" if rel is not None else ""
     a2.plot([an.max_stress_rpm], [an.max_von_mises_Pa / 1e6], "ko", mfc="none", ms=8, mew=2,
             label=f"{an.max_von_mises_Pa / 1e6:.0f} MPa{band} at {an.max_stress_rpm:.0f} rpm, "
-                  f"safety factor {an.safety_factor:.2f}")
+                  f"safety factor {an.safety_factor:.2f}" + (f"\n({corrections_text(e)})" if fix else ""))
     if an.safety_factor < 1:
         a2.set_title("peak stress: ABOVE YIELD at engine max speed", color="r", fontweight="bold")
     else:
