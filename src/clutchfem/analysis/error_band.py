@@ -3,7 +3,9 @@ maximum engine torque, peak stress), :mod:`clutchfem.accuracy`, and their sensit
 assumed inputs, reported apart from the band.
 
 Discretisation: the same answers on a mesh twice as fine (:func:`~clutchfem.accuracy.refined_design`:
-a second design, one more assembly and factorisation), Richardson's estimate at p = 1; a
+a second design, one more assembly and factorisation; its slip crossings bracketed every
+:data:`~.torque.GRID_RPM_SENSITIVITY` rpm, as the sensitivities', and refined to 1e-9),
+Richardson's estimate at p = 1; a
 user mesh (one level) is not estimated; a 3-D model's is the sum of a layers term (one layer
 more) and an in-plane term (the thick plane model on the same mesh and one twice as fine),
 :func:`~clutchfem.accuracy.discretisation_3d`.  Model form: the measured terms
@@ -32,7 +34,7 @@ from ..accuracy import (
 )
 from ..clutch import EngineCurve
 from ..fe import peak_disc
-from .torque import FETorque, slip_step
+from .torque import GRID_RPM_SENSITIVITY, FETorque, slip_step
 
 
 def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
@@ -55,7 +57,7 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
     def answers(d):
         case = d.case()
         row = d.sweep([hi]).curve.iloc[0]
-        return {"engagement_rpm": case.engagement_rpm, "slip_rpm": slip_step(case, engine).rpm,
+        return {"engagement_rpm": case.engagement_rpm, "slip_rpm": slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm,
                 "torque_at_max_engine_torque_Nm": float(FETorque(case)(float(engine.rpm_max_torque))[0]),
                 "max_von_mises_Pa": float(row["max_von_mises_Pa"]),
                 "peak_at": (float(row["max_vm_x_m"]), float(row["max_vm_y_m"]))}
