@@ -7,7 +7,9 @@ own, for several contact models:
   (``contact_smoothing``, :func:`clutchfem.contact.smooth_lcp`);
 * ``rigid, contact disc``: the contact zone meshed 20x finer (a refined disc of radius
   1.5 mm at 0.06 mm around the most loaded contact node);
-* ``elastic drum 2 mm`` with and without a 2 um smoothing.
+* ``elastic drum 2 mm`` with and without a 2 um smoothing;
+* ``best path``: ``fidelity="best"`` (thick plane model, 2 mm elastic drum, the best mesh
+  preset; the linear model, as studies evaluate it).
 
 For each answer it prints the largest jump of the slope between neighbouring steps of
 0.01 mm (a kink: piecewise-smooth answer) and the central-difference derivative at h = 1e-3,
@@ -54,7 +56,8 @@ def models(base) -> dict[str, tuple[dict, cf.MeshSettings]]:
             "rigid, smoothed 1 um": ({"contact_smoothing": 1e-6}, cf.MeshSettings()),
             "rigid, contact disc": ({}, disc),
             "elastic drum 2 mm": ({"drum_wall": 2e-3}, cf.MeshSettings()),
-            "elastic drum 2 mm, smoothed 2 um": ({"drum_wall": 2e-3, "contact_smoothing": 2e-6}, cf.MeshSettings())}
+            "elastic drum 2 mm, smoothed 2 um": ({"drum_wall": 2e-3, "contact_smoothing": 2e-6}, cf.MeshSettings()),
+            "best path": ({"fidelity": "best"}, cf.MeshSettings.preset("best"))}
 
 
 def scan(es, P, name, x0, offsets):
