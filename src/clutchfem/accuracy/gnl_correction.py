@@ -112,9 +112,7 @@ def answer_nonlinearity(design: Design, peak_rpm: float,
         lam, _ = case.solve(w, None)
         try:
             st = nl.solve(w, u0=u, lam0=lam)
-        except SolverError:
-            raise
-        except Exception as exc:  # _NoConvergence: the non-linear state was not reached
+        except SolverError as exc:  # the non-linear state was not reached
             raise SolverError(f"geometric non-linearity correction at {rpm:.0f} rpm: {exc}") from None
         if rpm == float(peak_rpm):
             # the linear peak in the measure the design reads its own peak with: a thick

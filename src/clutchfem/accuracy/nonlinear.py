@@ -188,10 +188,14 @@ class NonlinearModel:
               contact: bool = True, extra_load: np.ndarray | None = None) -> NLState:
         """Converged state at speed ``omega`` [rad/s], stepping from (u0, lam0) at a lower
         speed if Newton needs it (``u0`` is then taken to be the state at speed 0 unless
-        it comes with the speed it belongs to through :meth:`sweep`)."""
+        it comes with the speed it belongs to through :meth:`sweep`).  Raises
+        :class:`~clutchfem.core.SolverError` when Newton's method does not converge."""
         N = self.fe.basis.N
         u0 = np.zeros(N) if u0 is None else u0
-        return self._solve_at(omega, u0, lam0, contact, extra_load)
+        try:
+            return self._solve_at(omega, u0, lam0, contact, extra_load)
+        except _NoConvergence as exc:  # (sweep's continuation halves its step on it instead)
+            raise SolverError(f"non-linear reference: {exc}") from None
 
     def _solve_at(self, omega, u, lam, contact, extra_load):
         st = self.settings
