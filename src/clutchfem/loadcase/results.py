@@ -62,9 +62,11 @@ class Fields:
 
     def stresses(self, sl: slice) -> np.ndarray:
         """Vertex stresses (3, npts, len(sl)) of states ``sl``."""
-        if self.U is not None:
-            s = self.stress(self.U[:, sl])
-            return s.reshape(s.shape[0], -1, len(range(*sl.indices(self.n))))
+        n = len(range(*sl.indices(self.n)))
+        if self.U is not None or ("_bs" not in self.__dict__ and n < self.basis.shape[1]):
+            # (fewer states than basis vectors: their own stresses cost less than the basis')
+            s = self.stress(self.block(sl))
+            return s.reshape(s.shape[0], -1, n)
         return self._basis_stress @ self.coef[:, sl]
 
     @property
@@ -250,10 +252,12 @@ def curve_table(rpm, omega, lam, contact, scale: float, fields: Fields, stresses
         if stresses:
             # the thick plane model reads its peaks with the finite-rotation (Cauchy, Green-
             # Lagrange) measure of the same displacement (clutchfem.fe.ThickStress)
-            vm = fields.stress.von_mises(fields.stress(U, finite=True) if getattr(fields.stress, "FINITE", False)
-                                         else fields.stresses(sl))
-            vm_max[sl] = vm.max(axis=0)
-            kmax[sl] = vm.argmax(axis=0)
+            vm = fields.stress.von_mises(fields.stresses(sl))
+            if getattr(fields.stress, "FINITE", False):
+                vm_max[sl], kmax[sl] = fields.stress.finite_peak(U, vm)
+            else:
+                vm_max[sl] = vm.max(axis=0)
+                kmax[sl] = vm.argmax(axis=0)
     arcs = contact_arcs_deg(contact, lam, gaps, thickness, modulus)
     arc = np.mean(np.vstack([a for a, _ in arcs.values()]), axis=0) if arcs else np.zeros(ns)
     arc_err = np.mean(np.vstack([e for _, e in arcs.values()]), axis=0) if arcs else np.zeros(ns)
