@@ -122,8 +122,9 @@ class ThickStress:
         if not np.isfinite(rise) or rise > 0.5 * PEAK_CANDIDATE:
             vm = self.von_mises(self(U, finite=True))
             return vm.max(axis=0), vm.argmax(axis=0)
-        k = vm.argmax(axis=0)
-        return vm.max(axis=0), pts[k]
+        at = pts[vm.argmax(axis=0)]
+        at[top <= 0] = 0  # (an unloaded state: the first point, as an argmax over zeros)
+        return vm.max(axis=0), at
 
     def _points_of(self, elems: np.ndarray) -> np.ndarray:
         """Global stress-point indices of ``elems``' points, in the (level, element, vertex)
