@@ -213,6 +213,8 @@ class NonlinearModel:
         res = math.inf
         r_int, K = self.kin.residual_and_tangent(u)
         for it in range(1, st.max_iter + 1):
+            if K is None:  # (the tangent at a state that did not converge)
+                K = self.kin.residual_and_tangent(u)[1]
             r0 = r_int - w2 * (self.M @ u) - fext  # residual without contact forces
             A = K - w2 * self.M
             if use_c:
@@ -250,8 +252,8 @@ class NonlinearModel:
                 lam = new_lam
                 g_new = self.gaps(u, lam)
                 new_active = (lam - c * g_new) > 0
-            # converged?  residual at the new state (its tangent serves the next iteration)
-            r_int, K = self.kin.residual_and_tangent(u)
+            # converged?  residual at the new state (its tangent, for the next iteration only)
+            r_int, K = self.kin.residual_and_tangent(u, tangent=False)
             r = r_int - w2 * (self.M @ u) - fext
             if use_c:
                 r = r - self._contact_terms(u, lam, forces_only=True)

@@ -83,7 +83,8 @@ def equilibrium(model, contact, softened: bool, fields, omegas: np.ndarray, lam:
     ||K^-1 T' r|| / ||K^-1 T' load|| (the basis and active load columns back-solved once;
     explicit fields: one blocked back-solve per chunk): for softening
     operators with much stiff-mode content (the pre-stress stiffness K_sigma1), whose Ritz
-    truncation leaves force residuals ~1e4 x larger than the error they cause."""
+    truncation leaves force residuals ~1e4 x larger than the error they cause; fewer states
+    than ~1.5 basis vectors: the states' own residuals back-solved instead)."""
     ns = len(omegas)
     res = np.zeros(ns)
     tq = np.zeros(ns)
@@ -95,10 +96,14 @@ def equilibrium(model, contact, softened: bool, fields, omegas: np.ndarray, lam:
     rho = rotation_field(model.basis, model.ndofs)
     # the model's own facets (a 3-D model's bore is a face of its extruded mesh)
     bore = np.unique(model.basis.get_dofs(getattr(model, "boundary", model.cm.boundary)("bore")).all())
-    if fields.U is None:
+    # reduced fields (basis @ coef) are checked through the basis's columns, unless the
+    # preconditioned check would back-solve more of them (~3 a basis vector) than the states'
+    # own residuals need (2 a state: a one-speed sweep such as the error step's finer mesh)
+    explicit = fields.U is not None or (preconditioned and 2 * ns < 3 * fields.basis.shape[1])
+    if not explicit:
         KB = K @ fields.basis
         MB = M @ fields.basis if softened else None
-    if preconditioned and fields.U is None:
+    if preconditioned and not explicit:
         # K^-1 T' R is linear in the basis coefficients and the contact forces: back-solve the
         # few basis / load columns once instead of every speed's residual
         solve = model.factor.solve
@@ -109,12 +114,12 @@ def equilibrium(model, contact, softened: bool, fields, omegas: np.ndarray, lam:
     for a in range(0, ns, chunk):
         sl = slice(a, min(a + chunk, ns))
         w2 = omegas[sl] ** 2
-        if fields.U is None:
+        if not explicit:
             C = fields.coef[:, sl]
             Ku = KB @ C
             Mu = MB @ C if softened else None
         else:
-            U = fields.U[:, sl]
+            U = fields.block(sl)
             Ku = K @ U
             Mu = M @ U if softened else None
         load = f1[:, None] * w2[None, :]
@@ -123,7 +128,7 @@ def equilibrium(model, contact, softened: bool, fields, omegas: np.ndarray, lam:
         if D is not None:
             load = load + D @ lam[sl].T
         R = Ku - load  # all dofs: the reactions at the clamped ones
-        if preconditioned and fields.U is None:
+        if preconditioned and not explicit:
             zl = Zf[:, None] * w2[None, :]
             if softened:
                 zl = zl + (ZM @ C) * w2[None, :]
