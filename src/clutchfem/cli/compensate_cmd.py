@@ -42,6 +42,7 @@ def compensate(
                                  rich_help_panel="Compensation"),
     mesh_size: O.MeshSize = None,
     mu: O.Mu = None,
+    fidelity: O.Fidelity = None,
     engine: O.Engine = None,
     out: O.Out = None,
     json_: O.Json = False,
@@ -61,7 +62,7 @@ def compensate(
         eng, _ = engine_from(engine)
         with working(f"compensate {concept}") as stage:
             stage("meshing")
-            design = design_from(concept, set_, None, op=operating_point(mu=mu), mesh_size=mesh_size,
+            design = design_from(concept, set_, None, op=operating_point(mu=mu, fidelity=fidelity), mesh_size=mesh_size,
                                  mesh_allowed=False)
         mc = design.params.parse_value("clearance", mean_clearance) if mean_clearance is not None else None
         res = run(design, rpm=w, target_arc=share, arc_start=start, mean_clearance=mc, max_iter=max_iter,

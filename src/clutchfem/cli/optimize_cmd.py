@@ -28,7 +28,7 @@ from .common import (
 )
 
 
-def study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf: float = 1.5):
+def study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf: float = 1.5, fidelity=None):
     """(EvalSettings, base Design) of a design-to-targets command: the base design (meshed, so
     a bad --set is refused before any study work) with its engine, idle speed, requirement
     factors and the store in ``out``."""
@@ -36,7 +36,8 @@ def study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf
 
     req = requirements_from(a, b)
     eng, idle = engine_from(engine, idle_rpm)
-    design = design_from(concept, set_, None, op=operating_point(mu=mu), mesh_size=mesh_size, mesh_allowed=False)
+    design = design_from(concept, set_, None, op=operating_point(mu=mu, fidelity=fidelity), mesh_size=mesh_size,
+                         mesh_allowed=False)
     store = str(out / STORE_NAME) if out is not None else None
     s = EvalSettings.from_design(design, engine=engine if engine is not None else None, idle_rpm=idle,
                                  requirements=req, min_safety_factor=sf, store=store)
@@ -48,6 +49,7 @@ def optimize(
     set_: O.Set = [],
     mesh_size: O.MeshSize = None,
     mu: O.Mu = None,
+    fidelity: O.Fidelity = None,
     engine: O.Engine = None,
     idle_rpm: O.IdleRpm = None,
     a: O.A = None,
@@ -104,7 +106,7 @@ def optimize(
         scheduler = check_cluster(workers, scheduler)
         check_out_dir(out)
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
-        s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
+        s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf, fidelity)
         t0 = Targets.defaults(s, sf, objective)
         lo, hi = t0.engage_rpm_lo, None
         if engage_rpm is not None:

@@ -45,6 +45,7 @@ def slip_heat(
     drum_radius: O.DrumRadius = None,
     thickness: O.Thickness = None,
     mu: O.Mu = None,
+    fidelity: O.Fidelity = None,
     rotation: O.Rotation = None,
     engine: O.Engine = None,
     seconds: Optional[str] = typer.Option(None, "--seconds", help="duration of one slip event, e.g. 10s (default "
@@ -99,7 +100,7 @@ def slip_heat(
             raise
         fraction = quantity("--heat-fraction", heat_fraction, "-", 0.0, 1.0)
         eng, _ = engine_from(engine)
-        op = operating_point(mu=mu, rotation=rotation)
+        op = operating_point(mu=mu, rotation=rotation, fidelity=fidelity)
         with working(f"slip-heat {concept or mesh}") as stage:
             stage("meshing")
             design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model,

@@ -154,6 +154,7 @@ def guidelines(
     set_: O.Set = [],
     mesh_size: O.MeshSize = None,
     mu: O.Mu = None,
+    fidelity: O.Fidelity = None,
     material: O.MaterialName = None,
     engine: O.Engine = None,
     params: Optional[str] = typer.Option(None, "--params", help="parameters to study, comma separated (default: "
@@ -189,7 +190,7 @@ def guidelines(
     try:
         scheduler = check_cluster(workers, scheduler)
         eng = engine_from(engine)[0] if engine is not None else None
-        design = design_from(concept, set_, None, op=operating_point(mu=mu, material=material_from(material)),
+        design = design_from(concept, set_, None, op=operating_point(mu=mu, material=material_from(material), fidelity=fidelity),
                              mesh_size=mesh_size, mesh_allowed=False)
         names = None if params is None else [x.strip() for x in params.split(",") if x.strip()]
         ins = None if inputs is None else [x.strip() for x in inputs.split(",") if x.strip()]

@@ -47,6 +47,7 @@ def tolerance(
                                    rich_help_panel="Allocation"),
     mesh_size: O.MeshSize = None,
     mu: O.Mu = None,
+    fidelity: O.Fidelity = None,
     engine: O.Engine = None,
     idle_rpm: O.IdleRpm = None,
     a: O.A = None,
@@ -78,7 +79,7 @@ def tolerance(
         if allocate and scheduler is not None:
             raise ParameterError("scheduler", scheduler, "no --scheduler with --allocate: its sensitivities run on "
                                  "a local cluster (use --workers N)", "option --scheduler")
-        s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf)
+        s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf, fidelity)
         P = type(base.params)
         tols = tolerances_from(P, tol)
         t0 = Targets.defaults(s, sf)

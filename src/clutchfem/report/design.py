@@ -16,7 +16,7 @@ from ..clutch import BaselineClutch, EngineCurve
 from ..core import figure, save_figure
 from ..core import write as write_json
 from ..geometry import MeshSettings, concepts
-from ..loadcase import Design
+from ..loadcase import Design, OperatingPoint
 
 __all__ = ["summary_rows", "torque_plot", "arc_stress_plot", "comparison_plot", "write_analysis",
            "markdown_summary", "default_design_report"]
@@ -446,8 +446,10 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
     engine = EngineCurve.default()
     analyses, files = {}, []
     for name in concept_names:
-        ms = MeshSettings.preset("fast", **({} if mesh_size is None else {"size": mesh_size}))
-        an = analyze(Design.from_concept(name, mesh=ms), engine=engine)
+        # the shipped default (the best estimate; CLUTCHFEM_FIDELITY sets another) on its mesh
+        op = OperatingPoint()
+        ms = MeshSettings.preset(op.fidelity, **({} if mesh_size is None else {"size": mesh_size}))
+        an = analyze(Design.from_concept(name, operating=op, mesh=ms), engine=engine)
         analyses[name] = an
         files += write_analysis(an, engine, out, name)
     fig25 = comparison_plot(analyses, engine, out / "clutch_torque_comparison.png")

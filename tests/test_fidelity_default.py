@@ -1,0 +1,63 @@
+"""The shipped default is the best estimate (issue 20), and ``--fidelity`` reaches every
+command that builds a design.
+
+The rest of the suite runs its machinery tests on the fast path (``conftest.py`` sets
+``CLUTCHFEM_FIDELITY=fast``); these tests unset it to see what a user gets.
+"""
+
+from __future__ import annotations
+
+import inspect
+import json
+
+import pytest
+from typer.testing import CliRunner
+
+import clutchfem as cf
+from clutchfem.cli import app
+from clutchfem.loadcase.operating import FIDELITY_ENV
+
+
+def test_the_shipped_default_is_the_best_estimate(monkeypatch):
+    monkeypatch.delenv(FIDELITY_ENV, raising=False)
+    op = cf.OperatingPoint()
+    assert (op.fidelity, op.model_formulation, op.drum_wall_m) == ("best", "thick", 0.002)
+    assert cf.OperatingPoint(fidelity="fast").model_formulation == "plane-stress"
+    monkeypatch.setenv(FIDELITY_ENV, "FAST ")
+    assert cf.OperatingPoint().fidelity == "fast"
+    assert cf.OperatingPoint(fidelity="best").fidelity == "best"  # an explicit choice wins
+    monkeypatch.setenv(FIDELITY_ENV, "medium")
+    with pytest.raises(cf.ParameterError, match="CLUTCHFEM_FIDELITY.*'medium'.*best or fast"):
+        cf.OperatingPoint()
+
+
+def test_analyze_cli_default_is_the_corrected_best_estimate(monkeypatch):
+    """`clutchfem analyze concept4` with nothing set: the thick model on the 2 mm elastic
+    drum, the peak stress corrected (non-linearity and mesh extrapolation)."""
+    monkeypatch.delenv(FIDELITY_ENV, raising=False)
+    r = CliRunner().invoke(app, ["analyze", "concept4", "--mesh-size", "2.5mm", "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["inputs"]["model"]["formulation"] == "thick" and d["inputs"]["model"]["drum_wall_m"] == 0.002
+    fix = d["errors"]["max_von_mises_Pa"]["corrections"]
+    assert fix["uncorrected"] != d["errors"]["max_von_mises_Pa"]["value"] and "geometric_nonlinearity" in fix
+
+
+@pytest.mark.parametrize("name", ["analyze", "solve", "optimize", "tolerance", "guidelines", "compensate", "slip-heat"])
+def test_every_design_command_takes_fidelity(name):
+    cmd = next(c for c in app.registered_commands if (c.name or c.callback.__name__) == name)
+    assert "fidelity" in inspect.signature(cmd.callback).parameters
+
+
+def test_a_study_command_runs_on_the_fidelity_it_is_given():
+    """`tolerance --fidelity best` under a fast session default: the nominal design's
+    engagement is the best path's (the thick model's), not the fast one's."""
+    r = CliRunner().invoke(app, ["tolerance", "concept4", "--tol", "flexure_thickness=+-0.05mm", "--n", "8",
+                                 "--no-shifts", "--mesh-size", "3mm", "--workers", "0", "--fidelity", "best", "--json"])
+    assert r.exit_code == 0, r.output
+    nominal = json.loads(r.stdout)["nominal"]["engagement_rpm"]
+    ms = cf.MeshSettings.preset("best", size=3e-3)
+    best = cf.analyze(cf.Design.from_concept("concept4", mesh=ms, fidelity="best"), errors=False).engagement_rpm
+    fast = cf.analyze(cf.Design.from_concept("concept4", mesh=cf.MeshSettings.preset("fast", size=3e-3),
+                                             fidelity="fast"), errors=False).engagement_rpm
+    assert nominal == pytest.approx(best, rel=1e-9) and abs(best / fast - 1) > 0.01
