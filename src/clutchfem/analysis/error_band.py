@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..accuracy import (
     ANSWERS,
     NOT_ESTIMATED,
@@ -36,11 +38,16 @@ from ..clutch import EngineCurve
 from ..fe import peak_disc
 from .torque import GRID_RPM_SENSITIVITY, FETorque, slip_step
 
+#: a sweep's relative equilibrium residual at an answer's speed from which it is a term of
+#: that answer's band (below, < 0.01 %: negligible against the bands, >= 0.3 %)
+SOFTENING_RESIDUAL_TERM = 1e-4
+
 
 def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
                slip_rpm_value: float | None, drum: dict | None = None, mu: dict | None = None,
                peak_at: tuple[float, float] | None = None,
-               nl: dict[str, AnswerNonlinearity] | None = None) -> dict:
+               nl: dict[str, AnswerNonlinearity] | None = None, residual=None,
+               peak_exact: bool = False) -> dict:
     """The error of the main answers ``values`` (module docstring): per answer its value,
     discretisation, model-form terms, total and sensitivities.  ``w0_rpm``: the engagement
     speed and ``slip_rpm_value``: the slip speed, which the thickness term of the slip speed
@@ -51,12 +58,19 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
     together with its discretisation (the refined mesh also refines the disc at ``peak_at``
     [m], and the peak is extrapolated from the two levels,
     :func:`~clutchfem.accuracy.extrapolated_peak`).  A corrected answer's ``value`` is the
-    corrected one and its ``corrections`` say by how much."""
+    corrected one and its ``corrections`` say by how much.  ``residual``: (rpm, relative
+    equilibrium residual) of the sweep the answers come from; where it reaches
+    :data:`SOFTENING_RESIDUAL_TERM` at an answer's speed (the pre-stress Ritz space on a soft
+    design far past engagement: the residual is the displacement error it leaves, measured,
+    :data:`~clutchfem.loadcase.checks.RESIDUAL_FAIL_RITZ`), it is a model-form term of that
+    answer, ``softening_residual``.  ``peak_exact``: the peak stress was re-solved at its speed
+    with the per-speed factorisation (:func:`~.strength.peak_sweep`): so is the finer mesh's,
+    and the peak has no such term."""
     lo, hi = engine.rpm_range
 
     def answers(d):
         case = d.case()
-        row = d.sweep([hi]).curve.iloc[0]
+        row = (d.with_softening("prestress-exact") if peak_exact else d).sweep([hi]).curve.iloc[0]
         return {"engagement_rpm": case.engagement_rpm, "slip_rpm": slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm,
                 "torque_at_max_engine_torque_Nm": float(FETorque(case)(float(engine.rpm_max_torque))[0]),
                 "max_von_mises_Pa": float(row["max_von_mises_Pa"]),
@@ -73,6 +87,14 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
         w = {"slip_rpm": slip_rpm_value, "torque_at_max_engine_torque_Nm": float(engine.rpm_max_torque)}.get(q)
         fixed = q in nl and v is not None
         terms, notes = model_form(design, q, v, w0=w0_rpm, w=w, corrected=fixed)
+        at = {"engagement_rpm": w0_rpm, "max_von_mises_Pa": hi}.get(q, w)
+        if residual is not None and v is not None and at is not None and len(residual[0]) \
+                and not (peak_exact and q == "max_von_mises_Pa"):
+            r = float(np.interp(at, *residual))
+            if r >= SOFTENING_RESIDUAL_TERM:
+                terms["softening_residual"] = r
+                notes = notes + (f"spin softening: the pre-stress Ritz space's displacement error at {at:.0f} rpm "
+                                 f"(its equilibrium residual, {100 * r:.2g} %) is in the band",)
         d = discretisation(v, coarse.get(q)) if cd is not None else None
         fix = None
         if fixed:

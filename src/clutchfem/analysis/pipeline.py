@@ -17,7 +17,8 @@ factorisation for everything below):
 6. :func:`~.coupling.coupling_step`: the analytical plus/minus shoe model fitted to the FE,
    and the part's mass properties (:func:`clutchfem.mesh.mesh_mass_properties`);
 7. :func:`~.strength.stress_step`: peak stress and safety factor at the engine's maximum
-   speed;
+   speed (re-solved there with the per-speed factorisation where the pre-stress Ritz space
+   leaves a residual, :func:`~.strength.peak_sweep`);
 8. :func:`~.requirements.requirements_step`: engagement > a x idle, slip < b x rpm of max
    engine torque;
 9. :func:`~.error_band.error_step`: the error of engagement, slip, torque and peak stress
@@ -61,7 +62,7 @@ from .error_band import error_step
 from .messages import design_notes, design_warnings
 from .requirements import idle_speed, requirements_step, whirl_step
 from .sensitivity import drum_sensitivity_step
-from .strength import fatigue_step, nonlinearity_step, stress_step
+from .strength import fatigue_step, nonlinearity_step, peak_sweep, stress_step
 from .torque import (
     character_step,
     check_speeds,
@@ -167,7 +168,8 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
     models, arc_probe = torque_models(res, curves, float(engine.rpm_max_torque))
     t_nom = models["fe_torque_Nm"]
     # 7: stress at the engine's maximum speed
-    st = stress_step(res, hi, material)
+    res_peak, peak_exact = peak_sweep(design, res, hi)
+    st = stress_step(res_peak, hi, material)
     slip_power = None if slip.rpm is None else float(engine.torque_at(slip.rpm) * rpm_to_rad_s(slip.rpm))
     curves = answer_curves(res, curves, coupling, engine)
     # 8-11: requirements, error of the main answers, crankshaft whirl, fatigue
@@ -179,7 +181,10 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
                                       "torque_at_max_engine_torque_Nm": t_nom,
                                       "max_von_mises_Pa": st.max_von_mises_Pa},
                      eng.static_rpm, slip.rpm, drum=drum, mu=sens.as_dict(),
-                     peak_at=st.location_m, nl=nl) if errors else {}
+                     peak_at=st.location_m, nl=nl, peak_exact=peak_exact,
+                     # (the pre-stress check's residual is the displacement error; another's is a force)
+                     residual=(res.rpm, res.curve["residual"].to_numpy())
+                     if getattr(case.response, "precondition_check", False) else None) if errors else {}
     if nl is not None:  # the best estimate's peak and torque: corrected in the error step
         st = st.corrected(err["max_von_mises_Pa"]["value"])
         t_nom = err["torque_at_max_engine_torque_Nm"]["value"]

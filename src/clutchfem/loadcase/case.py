@@ -305,7 +305,7 @@ def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:
                                     case.softening.name != "off", fields, omegas, lam,
                                     preconditioned=getattr(case.response, "precondition_check", False))
     cond = condition_estimate(model)
-    warns = check_numerics(resid, cond, rpm)
+    warns = check_numerics(resid, cond, rpm, preconditioned=getattr(case.response, "precondition_check", False))
     curve["residual"] = resid
     curve["torque_balance_error"] = torque_err
     t4 = time.perf_counter()
