@@ -57,7 +57,7 @@ __all__ = ["AnswerNonlinearity", "answer_nonlinearity"]
 SETTINGS = NonlinearSettings(tol=1e-6, res_tol=1e-5)
 #: the twin's pre-stress Ritz residual from which its linear states are solved per speed
 #: (as analysis.strength.PEAK_RESIDUAL_EXACT)
-TWIN_RESIDUAL_EXACT = 1e-4
+TWIN_RESIDUAL_EXACT = 5e-4
 
 
 @dataclass(frozen=True)

@@ -41,6 +41,12 @@ from .torque import GRID_RPM_SENSITIVITY, FETorque, slip_step
 #: a sweep's relative equilibrium residual at an answer's speed from which it is a term of
 #: that answer's band (below, < 0.01 %: negligible against the bands, >= 0.3 %)
 SOFTENING_RESIDUAL_TERM = 1e-4
+#: the peak stress's error from the pre-stress Ritz space / its (global) residual: measured
+#: 0.6-15x against the per-speed solve (concepts 1, 2, 3.1, 4 and the soft concept4-lhs06,
+#: 6000-14 000 rpm, 28 states: largest 14.8x; concept 4 at 14 000 rpm 5.5x), so the largest
+#: is taken.  The contact forces' (torque, slip) error is ~1e-2 x the residual: the residual
+#: itself is their term
+PEAK_RESIDUAL_FACTOR = 15.0
 
 
 def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
@@ -91,10 +97,12 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
         if residual is not None and v is not None and at is not None and len(residual[0]) \
                 and not (peak_exact and q == "max_von_mises_Pa"):
             r = float(np.interp(at, *residual))
-            if r >= SOFTENING_RESIDUAL_TERM:
-                terms["softening_residual"] = r
-                notes = notes + (f"spin softening: the pre-stress Ritz space's displacement error at {at:.0f} rpm "
-                                 f"(its equilibrium residual, {100 * r:.2g} %) is in the band",)
+            t = r * (PEAK_RESIDUAL_FACTOR if q == "max_von_mises_Pa" else 1.0)
+            if t >= SOFTENING_RESIDUAL_TERM:
+                terms["softening_residual"] = t
+                notes = notes + (f"spin softening: the pre-stress Ritz space's error at {at:.0f} rpm (its equilibrium "
+                                 f"residual {r:.2g}" + (f" x {PEAK_RESIDUAL_FACTOR:g} for a local peak" if t != r else "")
+                                 + ") is in the band",)
         d = discretisation(v, coarse.get(q)) if cd is not None else None
         fix = None
         if fixed:

@@ -43,8 +43,10 @@ from .torque import secondary_case
 #: (their smallest factor bounds the part's: the screen of fatigue_step)
 FATIGUE_PROBE_POINTS = 32
 #: the pre-stress Ritz residual at the peak stress's speed from which the peak is re-solved
-#: with the per-speed factorisation (:func:`peak_sweep`)
-PEAK_RESIDUAL_EXACT = 1e-4
+#: with the per-speed factorisation (:func:`peak_sweep`: it costs an engagement search and a
+#: factorisation per speed, ~1-10 s); below it the peak's band carries
+#: :data:`~.error_band.PEAK_RESIDUAL_FACTOR` x the residual (concept 4's default: 1.4e-4)
+PEAK_RESIDUAL_EXACT = 5e-4
 
 
 def peak_sweep(design, res, rpm: float):
