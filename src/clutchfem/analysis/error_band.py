@@ -42,10 +42,10 @@ from .torque import GRID_RPM_SENSITIVITY, FETorque, slip_step
 #: that answer's band (below, < 0.01 %: negligible against the bands, >= 0.3 %)
 SOFTENING_RESIDUAL_TERM = 1e-4
 #: the peak stress's error from the pre-stress Ritz space / its (global) residual: measured
-#: 0.6-15x against the per-speed solve (concepts 1, 2, 3.1, 4 and the soft concept4-lhs06,
-#: 6000-14 000 rpm, 28 states: largest 14.8x; concept 4 at 14 000 rpm 5.5x), so the largest
-#: is taken.  The contact forces' (torque, slip) error is ~1e-2 x the residual: the residual
-#: itself is their term
+#: 0.6-14.8x against the per-speed solve (concepts 1, 2, 3.1, 4 and the soft concept4-lhs06,
+#: 6000-14 000 rpm, 22 states, benchmarks/bench_ritz_residual.py; concept 4 at 14 000 rpm:
+#: 5.5x), so a bound just above the largest is taken.  The contact forces' (torque, slip)
+#: error is ~1e-2 x the residual: the residual itself is their term
 PEAK_RESIDUAL_FACTOR = 15.0
 
 
