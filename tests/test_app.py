@@ -27,7 +27,21 @@ def test_session_refuses_at_the_parameter_and_keeps_the_last_design():
     assert s.params.flexure_thickness == pytest.approx(2.2e-3)  # unchanged
     assert s.set_value("flexure_thickness", 2.4) is None and s.params.flexure_thickness == pytest.approx(2.4e-3)
     assert s.set_value("drum_wall", 2.0) is None and s.op.drum_wall == pytest.approx(2e-3)
-    assert s.set_value("drum_wall", 0.0) is None and s.op.drum_wall is None
+    assert s.set_value("drum_wall", 0.0) is None and s.op.drum_wall == 0.0 and s.op.drum_wall_m is None  # rigid
+
+
+def test_session_fidelity_control_and_the_drum_it_shows(monkeypatch):
+    """The app's model control: the shipped default (best) shows its 2 mm drum (not 0, which
+    reads as rigid), and switching to fast gives the rigid drum and the fast mesh."""
+    monkeypatch.delenv("CLUTCHFEM_FIDELITY", raising=False)
+    s = DesignSession("concept4")
+    shown = {c.name: c.value for c in s.controls()}
+    assert shown["fidelity"] == "best" and shown["drum_wall"] == pytest.approx(2.0)
+    assert s.set_value("fidelity", "fast") is None
+    shown = {c.name: c.value for c in s.controls()}
+    assert shown["drum_wall"] == 0.0 and s.design().op.model_formulation == "plane-stress"
+    assert s.design().cm.mesh_settings == cf.MeshSettings.preset("fast").model_dump()
+    assert "fidelity" in (s.set_value("fidelity", "medium") or "") and s.op.fidelity == "fast"
 
 
 @pytest.fixture(scope="module")

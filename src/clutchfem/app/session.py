@@ -36,7 +36,7 @@ __all__ = ["Control", "DesignSession", "Outcome"]
 #: display unit and factor of a canonical unit (value shown = value x factor)
 _SHOW = {"m": ("mm", 1e3), "deg": ("deg", 1.0), "-": ("", 1.0), "": ("", 1.0)}
 #: operating-point fields the panel offers
-OP_FIELDS = ("mu", "rotation", "material", "drum_wall")
+OP_FIELDS = ("fidelity", "mu", "rotation", "material", "drum_wall")
 
 
 @dataclass(frozen=True)
@@ -133,8 +133,9 @@ class DesignSession:
                                                                                              "aluminium"),
                                    group="operating point"))
                 continue
-            if name == "drum_wall":
-                shown = 0.0 if v is None else v * 1e3
+            if name == "drum_wall":  # the wall used: the fidelity's when not set (best: 2 mm), 0 rigid
+                w = self.op.drum_wall_m
+                shown = 0.0 if w is None else w * 1e3
                 out.append(Control(name, "elastic drum wall (0: rigid drum)", "number", "mm", shown, 0.0, 30.0, 0.1,
                                    group="operating point"))
                 continue
@@ -181,7 +182,7 @@ class DesignSession:
         if name == "drum_wall":
             v = float(shown) if not isinstance(shown, str) else float(OperatingPoint.parse_value("drum_wall", shown)
                                                                       * 1e3)
-            return self.op.replace(drum_wall=None if v == 0 else f"{v}mm")
+            return self.op.replace(drum_wall="rigid" if v == 0 else f"{v}mm")
         if name == "material":
             return self.op.replace(material=str(shown))
         return self.op.replace(**{name: self._raw(OperatingPoint, name, shown)})
