@@ -127,9 +127,9 @@ PROBE = ("import sys\nfrom clutchfem.cli import app\nsys.argv = ['clutchfem', *s
          "if m in sys.modules], file=sys.stderr)\n")
 
 
-def _study(spec: Path, out: Path, *extra: str) -> tuple[dict, str]:
+def _study(spec: Path, out: Path, *extra: str, env: dict | None = None) -> tuple[dict, str]:
     r = subprocess.run([sys.executable, "-c", PROBE, "study", str(spec), "--out", str(out), "--json", *extra],
-                       env=_env(), capture_output=True, text=True, timeout=300)
+                       env={**_env(), **(env or {})}, capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-3000:]
     return json.loads(r.stdout), r.stderr
 
@@ -155,3 +155,6 @@ def test_a_rerun_of_a_finished_study_loads_no_fe_stack_and_resumes_when_anything
     with sqlite3.connect(out / "results.sqlite") as db:
         db.execute("DELETE FROM results WHERE rowid = (SELECT min(rowid) FROM results)")
     assert _study(spec, out, "--no-charts")[0]["computed"] == 1
+    # the session's default fidelity changed (the spec does not set it): the points are other
+    # designs, computed, not served from the finished summary
+    assert _study(spec, out, "--no-charts", env={"CLUTCHFEM_FIDELITY": "best"})[0]["computed"] == 2

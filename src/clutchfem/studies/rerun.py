@@ -81,6 +81,9 @@ def fingerprint(spec_path: str | Path, spec_text: str | None = None) -> str | No
             h.update(f.relative_to(root).as_posix().encode())
             h.update(f.read_bytes())
     h.update(f"gmsh {_version('gmsh')} scikit-fem {_version('scikit-fem')}".encode())
+    # the session's default fidelity (CLUTCHFEM_FIDELITY, as OperatingPoint reads it) shapes
+    # every answer of a spec that does not set settings.fidelity
+    h.update(f"fidelity {os.environ.get('CLUTCHFEM_FIDELITY', '').strip().lower() or 'best'}".encode())
     return h.hexdigest()
 
 
