@@ -178,8 +178,9 @@ def check_numerics(residual: np.ndarray, cond: float, rpm: np.ndarray, precondit
         if residual[k] > RESIDUAL_FAIL:
             warns.append(f"spin softening: the pre-stress Ritz space leaves a displacement error of up to "
                          f"{100 * residual[k]:.2g} % (its equilibrium residual at {rpm[k]:.0f} rpm), and up to 15x "
-                         "that in the stress curve's peak (measured); --spin-softening prestress-exact removes it. "
-                         "analyze carries it in the answers' error bands and re-solves the peak stress per speed")
+                         "that in the stress curve's peak and the fatigue states' stresses (measured); "
+                         "--spin-softening prestress-exact removes it.  analyze carries it in the answers' error "
+                         "bands and re-solves the peak stress per speed")
     return warns
 
 
