@@ -8,7 +8,6 @@ Needs Debian's chromium (installed by `make setup`)."""
 from __future__ import annotations
 
 import argparse
-import os
 import re
 import shutil
 import sys
@@ -19,10 +18,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 from support.browser import app_server, launch_chromium  # noqa: E402
-
-# the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
-# "best": the shipped default is the best estimate since issue 20
-os.environ.setdefault("CLUTCHFEM_FIDELITY", "fast")
 
 
 def main(argv=None) -> None:
