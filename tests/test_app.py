@@ -102,6 +102,13 @@ def test_live_design_in_a_real_browser(server):
             names = z.namelist()
         assert {Path(n).suffix for n in names} >= {".dxf", ".step", ".pdf"}, names
         assert all(n.startswith("concept4") or n.endswith(".json") for n in names), names
+        # the model control: best gives the thick model's answer and shows its 2 mm drum wall
+        best = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="1.9mm", fidelity="best"),
+                          errors=False)
+        page.locator("[data-testid=choice-fidelity]").click()
+        page.get_by_role("option", name="best").click()
+        expect(row).to_contain_text(f"{best.engagement_rpm:.0f} rpm", timeout=90_000)
+        expect(page.locator("input[data-testid=num-drum_wall]")).to_have_value("2")
         ARTIFACTS.mkdir(exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / "app.png"), full_page=True)
         browser.close()

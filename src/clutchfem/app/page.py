@@ -185,7 +185,7 @@ class DesignPage(StudiesPanel, Downloads):
         msg = self.s.set_value(name, value)
         self.messages[name].set_text(msg or "")
         if msg is None:
-            if name == "profile":  # other parameters become active
+            if name in ("profile", "fidelity"):  # other parameters become active; the drum wall used changes
                 self.values.clear()
                 self.widgets.clear()
                 self.messages.clear()

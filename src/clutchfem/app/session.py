@@ -133,6 +133,10 @@ class DesignSession:
                                                                                              "aluminium"),
                                    group="operating point"))
                 continue
+            if name == "fidelity":
+                out.append(Control(name, "model: best (best estimate) | fast (2-D, ~half the time)", "choice", "", v,
+                                   choices=("best", "fast"), group="operating point"))
+                continue
             if name == "drum_wall":  # the wall used: the fidelity's when not set (best: 2 mm), 0 rigid
                 w = self.op.drum_wall_m
                 shown = 0.0 if w is None else w * 1e3
