@@ -73,3 +73,29 @@ def test_a_small_ritz_residual_is_carried_in_the_band_and_the_peak_re_solved():
     assert "softening_residual" not in a.errors["max_von_mises_Pa"]["model_form_relative"]
     assert a.errors["torque_at_max_engine_torque_Nm"]["model_form_relative"]["softening_residual"] == \
         pytest.approx(r[0], rel=1e-6)
+
+
+def test_per_speed_engagement_starts_from_the_ritz_one_and_counts_modes_with_either_solver(design):
+    """The per-speed strategy's engagement search brackets the Ritz engagement first (fewer
+    factorisations, the same root), and the shifted matrix's negative eigenvalues (the free
+    part's modes past divergence) are counted alike by CHOLMOD's LDL' and SuperLU's LU."""
+    from clutchfem.fe import COUNTS, available, factorize
+
+    w_ritz = design.case().engagement[0]
+    counts = []
+    for hint in (True, False):
+        ex = design.with_softening("prestress-exact")
+        if not hint:
+            ex._engagement_hint = None
+        n0 = COUNTS["shifted"]
+        counts.append((ex.case().engagement[0], COUNTS["shifted"] - n0))
+    (w_h, n_h), (w_b, n_b) = counts
+    assert w_h == pytest.approx(w_b, rel=1e-9) and w_h == pytest.approx(w_ritz, rel=1e-4)
+    assert n_h < n_b
+    m = design.model
+    w_div = design.case(softening="ritz").omega_limit  # of K - w^2 M (spin softening alone)
+    for w, neg in ((0.5 * w_div, 0), (1.5 * w_div, None)):
+        A = (m.Kr - w * w * m.Mr).tocsc()
+        found = {b: factorize(A, b, kind="shifted").negative_pivots() for b in available()}
+        assert len(set(found.values())) == 1, found
+        assert (neg == 0) == (next(iter(found.values())) == 0)

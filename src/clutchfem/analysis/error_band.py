@@ -76,8 +76,9 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
 
     def answers(d):
         case = d.case()
+        eng = case.engagement_rpm  # (first: a per-speed re-solve's engagement search starts from it)
         row = (d.with_softening("prestress-exact") if peak_exact else d).sweep([hi]).curve.iloc[0]
-        return {"engagement_rpm": case.engagement_rpm, "slip_rpm": slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm,
+        return {"engagement_rpm": eng, "slip_rpm": slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm,
                 "torque_at_max_engine_torque_Nm": float(FETorque(case)(float(engine.rpm_max_torque))[0]),
                 "max_von_mises_Pa": float(row["max_von_mises_Pa"]),
                 "peak_at": (float(row["max_vm_x_m"]), float(row["max_vm_y_m"]))}

@@ -39,6 +39,11 @@ class _SuperLU:
             raise SolverError(f"stiffness matrix is singular ({exc}): is the part clamped "
                               "(bore group) and connected?") from None
 
+    def negative_pivots(self) -> int:
+        """Negative pivots of the symmetric-mode LU (no off-diagonal pivoting): by Sylvester's
+        law of inertia, the negative eigenvalues of a symmetric A."""
+        return int(np.count_nonzero(self._lu.U.diagonal() < 0))
+
     def solve(self, B: np.ndarray) -> np.ndarray:
         B = np.asarray(B, dtype=float)
         if B.ndim == 1 or B.shape[1] <= _BLOCK:
@@ -83,6 +88,11 @@ class _Cholmod:
         except CholmodNotPositiveDefiniteError as exc:
             raise SolverError(f"stiffness matrix is not positive definite ({exc}): is the part "
                               "clamped (bore group) and connected?") from None
+
+    def negative_pivots(self) -> int:
+        """Negative entries of D in CHOLMOD's P A P' = L D L' (simplicial: LDL', which an
+        indefinite A also has; supernodal LL' refuses one): the negative eigenvalues of A."""
+        return int(np.count_nonzero(self._f.D() < 0))
 
     def solve(self, B: np.ndarray) -> np.ndarray:
         return self._f(np.asarray(B, dtype=float))

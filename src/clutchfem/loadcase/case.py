@@ -38,14 +38,22 @@ __all__ = ["LoadCase", "sweep"]
 
 #: contact states a load case remembers (oldest dropped first): bounds its memory
 MEMO_STATES = 4096
+#: half-width (relative) of the bracket a non-linear engagement search tries first around an
+#: engagement hint (the pre-stress Ritz and per-speed engagements agree to ~1e-6)
+ENGAGEMENT_HINT_BAND = 2e-5
 
 
 class LoadCase:
     """(FE model, drum contact or None, spin-softening strategy): see module docstring."""
 
-    def __init__(self, model, contact: DrumContact | None = None, softening: Softening | str = Ritz()):
+    def __init__(self, model, contact: DrumContact | None = None, softening: Softening | str = Ritz(),
+                 engagement_hint: float | None = None):
         self.model = model
         self.contact = contact
+        #: a close estimate of the engagement speed [rad/s] (e.g. another softening strategy's
+        #: on the same model): a non-linear search first brackets the root within
+        #: ENGAGEMENT_HINT_BAND of it (a per-speed strategy factorises once per trial speed)
+        self.engagement_hint = engagement_hint
         self.softening = get_softening(softening)
         t0 = time.perf_counter()
         self.response = self.softening.bind(model, contact)
@@ -79,6 +87,12 @@ class LoadCase:
         def h(w):
             return float(np.min(g0 + self.contact.drum_gap(w) - r.free_normal(w)))
 
+        hint = self.engagement_hint
+        if hint is not None and hint > 0 and (r.omega_limit is None or hint * (1 + ENGAGEMENT_HINT_BAND) < r.omega_limit):
+            lo, hi = hint * (1 - ENGAGEMENT_HINT_BAND), hint * (1 + ENGAGEMENT_HINT_BAND)
+            if h(lo) > 0 >= h(hi):  # else: the full search below
+                w = brentq(h, lo, hi, xtol=1e-10 * hi, rtol=1e-13)
+                return w, int(np.argmin(g0 + self.contact.drum_gap(w) - r.free_normal(w)))
         hi = w0
         limit = r.omega_limit * (1 - 1e-6) if r.omega_limit else 10 * w0
         while h(hi) > 0:

@@ -275,7 +275,8 @@ class Design:
         soft = get_softening(self.op.softening if softening is None else softening)
         key = (mu, soft) if drum_wall == "design" else (mu, soft, drum_wall)
         if key not in self._cases:
-            self._cases[key] = LoadCase(self.model, self.contact(mu, drum_wall), soft)
+            self._cases[key] = LoadCase(self.model, self.contact(mu, drum_wall), soft,
+                                        engagement_hint=getattr(self, "_engagement_hint", None))
         return self._cases[key]
 
     def with_softening(self, softening: str) -> "Design":
@@ -284,6 +285,10 @@ class Design:
         :class:`~clutchfem.loadcase.OperatingPoint`'s ``softening``)."""
         other = copy.copy(self)
         other.op = OperatingPoint(**{**self.op.model_dump(), "softening": softening})
+        # the engagement this design found already (friction does not move it): where the
+        # other strategy's search starts (LoadCase.engagement_hint)
+        found = [c.__dict__["engagement"][0] for c in self._cases.values() if "engagement" in c.__dict__]
+        other._engagement_hint = next((w for w in found if w), getattr(self, "_engagement_hint", None))
         other._cases = {}
         return other
 
