@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 
 import clutchfem as cf
 from clutchfem.cli import app
-from clutchfem.loadcase.operating import FIDELITY_ENV
+from clutchfem.core import FIDELITY_ENV
 
 
 def test_the_shipped_default_is_the_best_estimate(monkeypatch):

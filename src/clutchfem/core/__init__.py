@@ -41,6 +41,8 @@ _NAMES: dict[str, str] = {
     "SolverError": "errors",
     "tag_png": "figures",
     "tune_malloc": "runtime",
+    "default_fidelity": "runtime",
+    "FIDELITY_ENV": "runtime",
     "lazy_names": "lazy",
     "UnitError": "units",
     "wrap_angle": "units",

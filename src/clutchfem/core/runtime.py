@@ -6,14 +6,38 @@ sizes are page-faulted in afresh.  A design allocates and frees tens of MB of ma
 fields and factor columns; keeping freed memory in the heap for the next one saves ~10 % of
 a sweep or an analysis (BENCHMARKS.md, section 4).  Called where clutchfem owns the process,
 never on import: a library does not change its host's allocator.
+
+:func:`default_fidelity`: the session's default analysis fidelity, from the environment
+variable ``CLUTCHFEM_FIDELITY`` (``best`` when unset): the operating point and a study
+rerun's fingerprint read it alike.
 """
 
 from __future__ import annotations
 
 import ctypes
+import os
 import sys
 
-__all__ = ["tune_malloc"]
+from .errors import ParameterError
+
+__all__ = ["FIDELITIES", "FIDELITY_ENV", "default_fidelity", "tune_malloc"]
+
+#: the environment variable that sets the default fidelity of a session
+FIDELITY_ENV = "CLUTCHFEM_FIDELITY"
+#: the analysis fidelities (clutchfem.loadcase.OperatingPoint.fidelity)
+FIDELITIES = ("best", "fast")
+
+
+def default_fidelity() -> str:
+    """The default fidelity: ``CLUTCHFEM_FIDELITY`` if set (``best`` or ``fast``, any case and
+    spacing), else ``best``; another value is refused naming the variable."""
+    v = os.environ.get(FIDELITY_ENV, "").strip().lower()
+    if not v:
+        return "best"
+    if v not in FIDELITIES:
+        raise ParameterError(FIDELITY_ENV, os.environ[FIDELITY_ENV], "best or fast (or unset: best)",
+                             "environment variable")
+    return v
 
 #: mallopt parameters (glibc malloc.h)
 _M_TRIM_THRESHOLD = -1

@@ -103,6 +103,12 @@ class LoadCase:
         return w, int(np.argmin(g0 + self.contact.drum_gap(w) - r.free_normal(w)))
 
     @property
+    def known_engagement(self) -> float | None:
+        """The engagement speed [rad/s] if this case has computed it (None: not yet, or never
+        engages): a hint for another strategy's search, at no cost."""
+        return self.__dict__["engagement"][0] if "engagement" in self.__dict__ else None
+
+    @property
     def engagement_rpm(self) -> float | None:
         w = self.engagement[0]
         return None if w is None else rad_s_to_rpm(w)

@@ -287,7 +287,7 @@ class Design:
         other.op = OperatingPoint(**{**self.op.model_dump(), "softening": softening})
         # the engagement this design found already (friction does not move it): where the
         # other strategy's search starts (LoadCase.engagement_hint)
-        found = [c.__dict__["engagement"][0] for c in self._cases.values() if "engagement" in c.__dict__]
+        found = (c.known_engagement for c in self._cases.values())
         other._engagement_hint = next((w for w in found if w), getattr(self, "_engagement_hint", None))
         other._cases = {}
         return other

@@ -31,13 +31,12 @@ on the drum (steel on steel here is similar; ASSUMED the same).
 from __future__ import annotations
 
 import math
-import os
 from typing import ClassVar, Literal
 
 import numpy as np
 from pydantic import field_validator
 
-from ..core import InputError, Material, ParameterError, ParamSet, choice, get_material, param
+from ..core import InputError, Material, ParameterError, ParamSet, choice, default_fidelity, get_material, param
 
 #: speeds above this are refused: no clutch survives them (and a mix-up of rad/s and rpm in
 #: a list is caught)
@@ -46,8 +45,6 @@ MAX_RPM = 1.0e6
 MAX_SPEEDS = 20000
 #: the drum wall of the best-estimate path [m] (ASSUMED: a pressed steel cup of a 60 cc saw)
 BEST_DRUM_WALL = 2.0e-3
-#: the environment variable that sets the default fidelity of a session
-FIDELITY_ENV = "CLUTCHFEM_FIDELITY"
 #: what each fidelity means when formulation is "auto" and drum_wall is None
 FIDELITY = {"best": {"formulation": "thick", "drum_wall": BEST_DRUM_WALL},
             "fast": {"formulation": "plane-stress", "drum_wall": None}}
@@ -193,18 +190,6 @@ class OperatingPoint(ParamSet):
         allowed = cls.allowed(name) if name != "material" else "51CrV4, titanium, aluminium"
         dflt = "the concept's" if d is None and name in ("drum_radius", "thickness") else d
         return f"{f.description} ({unit}; {allowed}; default {dflt})".replace("(-; ", "(")
-
-
-def default_fidelity() -> str:
-    """The default fidelity: ``CLUTCHFEM_FIDELITY`` if set (``best`` or ``fast``), else
-    ``best``."""
-    v = os.environ.get(FIDELITY_ENV, "").strip().lower()
-    if not v:
-        return "best"
-    if v not in FIDELITY:
-        raise ParameterError(FIDELITY_ENV, os.environ[FIDELITY_ENV], "best or fast (or unset: best)",
-                             "environment variable")
-    return v
 
 
 def parse_rpm(spec) -> np.ndarray:

@@ -32,6 +32,8 @@ import tomllib
 from importlib import metadata
 from pathlib import Path
 
+from ..core import default_fidelity
+
 __all__ = ["default_out", "finished_summary", "fingerprint", "geometry_dirs"]
 
 _PKG = Path(__file__).resolve().parents[1]
@@ -83,7 +85,7 @@ def fingerprint(spec_path: str | Path, spec_text: str | None = None) -> str | No
     h.update(f"gmsh {_version('gmsh')} scikit-fem {_version('scikit-fem')}".encode())
     # the session's default fidelity (CLUTCHFEM_FIDELITY, as OperatingPoint reads it) shapes
     # every answer of a spec that does not set settings.fidelity
-    h.update(f"fidelity {os.environ.get('CLUTCHFEM_FIDELITY', '').strip().lower() or 'best'}".encode())
+    h.update(f"fidelity {default_fidelity()}".encode())
     return h.hexdigest()
 
 
