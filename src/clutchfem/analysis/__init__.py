@@ -31,12 +31,14 @@ from .requirements import DEFAULT_IDLE_RPM, WHIRL_MARGIN, idle_speed, requiremen
 from .slip_heat import SlipHeatRun, slip_heat
 from .strength import fatigue_cycles, fatigue_step, stress_step
 from .torque import (
+    CONTACT_SPEED_OF,
     GRID_RPM,
     MU_FACTORS,
     FETorque,
     bracket_grid,
     character_step,
     check_speeds,
+    contact_sets_step,
     engagement_step,
     fe_sweep,
     mu_sensitivity_step,
@@ -46,10 +48,10 @@ from .torque import (
     slip_step,
 )
 
-__all__ = ["SlipHeatRun", "slip_heat", "DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
+__all__ = ["SlipHeatRun", "slip_heat", "DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "CONTACT_SPEED_OF", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
            "WHIRL_MARGIN", "Analysis", "CharacterAnswer", "EngagementAnswer", "FETorque", "FatigueAnswer",
            "MuSensitivity", "Requirements", "SlipAnswer", "StressAnswer", "analyze", "answer_curves", "bracket_grid",
-           "character_step", "check_speeds", "coupling_step", "design_notes", "design_warnings", "engagement_step",
+           "character_step", "check_speeds", "contact_sets_step", "coupling_step", "design_notes", "design_warnings", "engagement_step",
            "error_step", "fatigue_cycles", "fatigue_step", "fe_sweep", "idle_speed", "mesh_mass_properties",
            "mu_sensitivity_step", "probe_speed", "requirements_step", "secondary_case", "slip_answer", "slip_step",
            "stress_step", "torque_models", "whirl_step"]

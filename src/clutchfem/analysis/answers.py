@@ -241,6 +241,11 @@ class Analysis:
     fatigue_location: str | None = None
     fatigue_governing_cycle: str | None = None
     fatigue: dict = field(default_factory=dict)
+    #: the contact nodes carrying load (indices of the design's contact surface) at the slip
+    #: speed, the rpm of maximum engine torque and the engine's maximum speed: keys "slip",
+    #: "torque", "peak" (clutchfem.analysis.torque.contact_sets_step); designs morphed from one
+    #: reference share the numbering, and a change between them is a kink of those answers
+    contact_sets: dict = field(default_factory=dict)
 
     def to_json(self) -> dict:
         d = {k: v for k, v in self.__dict__.items() if k != "curves"}

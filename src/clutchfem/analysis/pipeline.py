@@ -66,6 +66,7 @@ from .strength import fatigue_step, nonlinearity_step, peak_sweep, stress_step
 from .torque import (
     character_step,
     check_speeds,
+    contact_sets_step,
     engagement_step,
     fe_sweep,
     mu_sensitivity_step,
@@ -188,6 +189,7 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
     if nl is not None:  # the best estimate's peak and torque: corrected in the error step
         st = st.corrected(err["max_von_mises_Pa"]["value"])
         t_nom = err["torque_at_max_engine_torque_Nm"]["value"]
+    sets = contact_sets_step(case, {"slip": slip.rpm, "torque": t_rpm, "peak": float(hi)})
     wh = whirl_step(design, hi)
     fat = fatigue_step(design, res, engine, loads=fatigue_loads, params=fatigue_params, ripple_model=ripple_model)
     warnings = design_warnings(res=res, material=material, mu=op.mu, slip=slip, eng=eng, ch=ch, character=character,
@@ -217,4 +219,4 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
                     inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
                     label=design_label(design), whirl=wh.as_dict(), fatigue_safety_factor=fat.safety_factor,
                     fatigue_location=fat.location, fatigue_governing_cycle=fat.governing_cycle,
-                    fatigue=fat.as_dict(), errors=err)
+                    fatigue=fat.as_dict(), errors=err, contact_sets=sets)

@@ -14,7 +14,12 @@ sensitivity, all from the exact FE torque of one design.
 * :func:`engagement_step`: static engagement (FE, closed form) and with the 2-stroke ripple;
 * :func:`character_step`: plus/minus character per shoe: the normal force with and without
   friction at the probe speed (:func:`probe_speed`: the rpm of maximum engine torque);
-* :func:`mu_sensitivity_step`: torque and slip speed at mu x 0.7 and x 1.3.
+* :func:`mu_sensitivity_step`: torque and slip speed at mu x 0.7 and x 1.3;
+* :func:`contact_sets_step`: which contact nodes carry load at the speeds the contact answers
+  are read at (slip speed, rpm of maximum engine torque, engine's maximum speed): designs
+  morphed from one reference share the node numbering, so a change of these sets between
+  neighbouring designs marks a kink of those answers (the slope jumps where a node enters
+  or leaves the contact zone), which design sensitivities report.
 
 Friction off and mu +-30 % are load cases of the same design (:func:`secondary_case`): the
 same model and factorisation, one shared Ritz space.
@@ -144,6 +149,32 @@ def fe_sweep(design, speeds):
     """The FE sweep with stresses at the output ``speeds`` [rpm] (a
     :class:`~clutchfem.loadcase.SweepResult`)."""
     return design.sweep(speeds, stresses=True)
+
+
+#: the contact answers -> the speed they are read at (:func:`contact_sets_step`'s keys)
+CONTACT_SPEED_OF = {"slip_rpm": "slip", "torque_at_max_engine_torque_Nm": "torque", "contact_arc_deg": "torque",
+                    "max_von_mises_Pa": "peak", "safety_factor": "peak"}
+
+
+def contact_sets_step(case, speeds: dict) -> dict:
+    """Per label of ``speeds`` (label -> rpm or None) the indices of the contact nodes with a
+    positive force in the solved state of ``case`` at that speed (sorted list; [] below
+    engagement; None where the speed is None or the state has no solution).  Solved states
+    are memoised, so the slip speed's and the torque speed's cost nothing; the engine's
+    maximum speed is one contact solve of the linear (Ritz) case, also where the peak stress
+    was re-solved per speed: the sets only locate kinks, they are no answer."""
+    out = {}
+    for label, rpm in speeds.items():
+        if rpm is None or not math.isfinite(rpm):
+            out[label] = None
+            continue
+        try:
+            lam, _ = case.solve(rpm_to_rad_s(float(rpm)))
+        except ClutchfemError:
+            out[label] = None
+            continue
+        out[label] = [int(i) for i in np.flatnonzero(np.asarray(lam) > 0)]
+    return out
 
 
 def engagement_step(res, ripple_model, in_range: bool, slip: SlipAnswer) -> EngagementAnswer:

@@ -112,7 +112,8 @@ class Allocation:
             "scale", "scale_binds", "scale_joint", "scale_union", "predicted_yield", "predicted_yield_independent", "allocated_yield",
             "perfect_part_yield", "ranking", "model_share", "constraints", "dims",
             "derivatives", "methods", "notes", "seconds")},
-            "method": {"spread": "linearised: sigma^2 = sum (dA/dx t/k)^2 + (band/2)^2, k = 3 normal, sqrt(3) uniform",
+            "method": {"spread": "linearised: sigma^2 = sum (dA/dx t/k)^2 + (band/2)^2, k = 3 normal, sqrt(3) uniform; "
+                                 "dA/dx the steeper one-sided slope where a contact event lies inside the step",
                        "yield": "Bonferroni over the constraints: z = Phi^-1(1 - (1 - Y)/m)",
                        "allocated": "min sum w_i t0_i / t_i (reciprocal cost, Chase & Greenwood 1988, ASSUMED) "
                                     "s.t. z sigma_j <= slack_j; SLSQP in ln t"}})
@@ -133,7 +134,7 @@ def linearise(settings: EvalSettings, targets: Targets, names: list[str], model_
         slack = None if v is None or not math.isfinite(v) else ((v - limit) if sense == ">=" else (limit - v))
         band = bands.get(key)
         cons.append({"name": name, "key": key, "limit": limit, "sense": sense, "value": v, "slack": slack,
-                     "unit": ANSWER_UNIT.get(key, ""), "grad": {n: s.derivatives[n].get(key) for n in names},
+                     "unit": ANSWER_UNIT.get(key, ""), "grad": {n: s.spread_derivative(n, key) for n in names},
                      "sigma_model": band / 2.0 if band else 0.0, "band": band})
     return cons, s
 

@@ -226,7 +226,8 @@ def from_study_row(r: dict, point: dict) -> dict:
         "max_engine_torque_Nm": _num(r.get("max_engine_torque_Nm")),
         "yield_strength_Pa": None if ys is None else ys * 1e6,
         "warnings": [w for w in (r.get("warnings") or "").split("\n") if w], "elements": r.get("n_elements"),
-        "worker": r.get("worker"), "mesh_morphed": r.get("mesh_morphed"), "morph_note": r.get("morph_note")})
+        "worker": r.get("worker"), "mesh_morphed": r.get("mesh_morphed"), "morph_note": r.get("morph_note"),
+        "contact_sets": json.loads(r["contact_sets"]) if r.get("contact_sets") else None})
     return row
 
 

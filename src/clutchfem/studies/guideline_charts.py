@@ -3,7 +3,8 @@
 * :func:`summary_table`: a rich table, parameters ranked (then the operating inputs), the
   elasticity of each answer marked ``~`` (unstable: its check at ten times the step
   differs), ``?`` (unchecked: the wider step has no answer), ``1`` (one-sided: one side
-  refused), ``-`` (no answer), and the method of each row in words;
+  refused), ``k`` (a contact node enters or leaves inside the step: the answer kinks there;
+  the row's ``E_left`` / ``E_right`` are the two sides), ``-`` (no answer), and the method of each row in words;
 * :func:`oat_chart`: small multiples, one panel per answer: the answer against x / x0 for
   every parameter (one at a time), the design point marked with its value, dotted where a
   design has no answer;
@@ -55,7 +56,8 @@ def summary_table(res: GuidelineResult):
                              f"an operating input on the design's own mesh; from scratch = a morph was refused "
                              f"(remeshing noise; the notes say why).  ~: unstable (E at {CHECK_FACTOR:g}x the step "
                              f"differs by more than {STABLE_ABS} + {STABLE_REL:.0%}); ?: unchecked (the wider step "
-                             "has no answer); 1: one-sided (one side refused); -: no answer; rank -: an operating input (not "
+                             "has no answer); 1: one-sided (one side refused); k: a contact node enters or leaves inside the step (the "
+                             "answer kinks there; both one-sided E in the JSON); -: no answer; rank -: an operating input (not "
                              "ranked)"))
     t.add_column("rank")
     t.add_column("parameter", no_wrap=True)
@@ -72,7 +74,7 @@ def summary_table(res: GuidelineResult):
             unit, x0 = e["unit"], e["x0"]
             v = e["E"]
             mark = {"stable": "", "unchecked": "?", "unstable": "~"}.get(e["verdict"], "")
-            side = "1" if e["method"].startswith("one-sided") else ""
+            side = ("1" if e["method"].startswith("one-sided") else "") + ("k" if "kink" in e else "")
             cells.append("-" if not math.isfinite(v) else f"{mark}{v:+.2f}{side}")
         shown = {"m": "mm", "-": ""}.get(unit, unit)
         t.add_row(k, escape(n), escape(f"{display_value(x0, unit):.4g} {shown}".strip()), *cells,

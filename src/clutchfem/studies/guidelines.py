@@ -26,7 +26,9 @@ when the two agree within 0.05 + 10 % of |E| (0.05: below it a parameter has no 
 worth a guideline; 10 %: the precision a guideline needs), **unstable** otherwise (the
 answer has steps of its own at that scale: the contact arc moves by one contact node, the
 peak stress jumps between nodes, the slip root has a tolerance), **unchecked** where the
-wider step has no answer.  The operating inputs (mu, the elastic drum's wall, the idle
+wider step has no answer.  Where a contact node enters or leaves the zone inside the step
+(:mod:`.sensitivity`, "Kinks"), ``kink`` says so and the one-sided elasticities of both
+sides are given (``E_left``, ``E_right``).  The operating inputs (mu, the elastic drum's wall, the idle
 speed) get the same elasticity on the design's own mesh ("central difference, same mesh
 (operating input)"); they are listed, not ranked (a designer does not choose them).
 
@@ -280,9 +282,15 @@ def morphed_elasticity(s: Sensitivities, check: Sensitivities, name: str, key: s
         verdict = "unchecked"
     else:
         verdict = "stable" if spread <= STABLE_ABS + STABLE_REL * abs(e) else "unstable"
-    return {"E": e, "method": method_text(s, name), "step": s.steps.get(name), "E_check": e2,
-            "check_step": check.steps.get(name), "check_method": method_text(check, name), "spread": spread,
-            "verdict": verdict, "stable": verdict == "stable"}
+    out = {"E": e, "method": method_text(s, name), "step": s.steps.get(name), "E_check": e2,
+           "check_step": check.steps.get(name), "check_method": method_text(check, name), "spread": spread,
+           "verdict": verdict, "stable": verdict == "stable"}
+    kink = s.kinks.get(name, {}).get(key)
+    a, x = s.base.get(key), s.values.get(name)
+    if kink and a and x is not None:  # a contact node enters or leaves inside the step: both sides
+        out["kink"] = f"a contact node enters or leaves inside the step (at the {kink['speed']} speed)"
+        out["E_left"], out["E_right"] = kink["left"] * x / a, kink["right"] * x / a
+    return out
 
 
 def central(a_minus: float, a_plus: float, r: float) -> float:

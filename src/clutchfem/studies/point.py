@@ -85,6 +85,9 @@ COLUMNS: tuple[tuple[str, str, str], ...] = (
     ("contact_arc_deg", "REAL", "shoe arc in contact at the rpm of max engine torque [deg]"),
     ("nominal_arc_deg", "REAL", "nominal shoe arc (lining angles phi2 - phi1) [deg]"),
     ("contact_arc_fraction", "REAL", "contact arc / nominal arc [-]"),
+    ("contact_sets", "TEXT", "the contact nodes carrying load at the slip speed, the rpm of max engine torque and "
+                             "the max engine rpm, JSON {slip|torque|peak: [node indices]}: designs morphed from one "
+                             "reference share the numbering; a change between neighbours is a kink of those answers"),
     ("spring_force_N", "REAL", "flexure force at engagement F_f = m R_Tp w_e^2 per shoe [N]"),
     ("character", "TEXT", "plus | minus | neutral (FE: friction raises/lowers the normal force)"),
     ("first_touch", "TEXT", "where the shoe touches first: tip | root | middle"),
@@ -369,6 +372,7 @@ def _fill(row: dict, an, design, settings: Settings, cm) -> None:
         mesh_morphed=None if cm.morph is None else int(bool(cm.morph.get("morphed"))),
         morph_note=_morph_note(cm.morph),
         warnings="\n".join(an.warnings) or None,
+        contact_sets=_json(an.contact_sets) if getattr(an, "contact_sets", None) else None,
     )
     err = getattr(an, "errors", None) or {}
     if err:

@@ -12,7 +12,10 @@ with sigma_i = t_i / 3 for a normal tolerance t_i at +-3 sigma (ASSUMED, as ``to
 t_i / sqrt(3) for a uniform one, and sigma_model,A = (error band of A) / 2 (the band taken as
 +-2 sigma, ASSUMED; ``model_error=False`` leaves it out).  The m constraints share the
 yield Y by Bonferroni: each holds with probability 1 - (1 - Y) / m, z = Phi^-1 of that, and
-each limit moves inward by its margin z sigma_A.  One deterministic optimisation with the
+each limit moves inward by its margin z sigma_A.  dA/dx_i is
+:meth:`~.sensitivity.Sensitivities.spread_derivative`: the central difference, or, where a
+contact node enters or leaves the zone inside the step (a kink of the contact answers), the
+steeper one-sided slope, so the spread is not under-estimated across the kink.  One deterministic optimisation with the
 shifted limits, the sensitivities at its optimum, new margins, again -- until the margins
 move by less than 5 % (at most ``rounds``).  A worst case over the tolerance box would ask
 for 3 sigma on every dimension at once (heavier for no measured gain); sampling inside the
@@ -109,7 +112,7 @@ def spreads(settings: EvalSettings, targets: Targets, tolerances: dict, dist: st
     for _, key, _, _ in targets.constraints():
         var = 0.0
         for n, t in tolerances.items():
-            d = s.derivatives[n].get(key)
+            d = s.spread_derivative(n, key)  # the steeper side where a contact event is in the step
             var += 0.0 if d is None else (d * _sigma_i(t, dist)) ** 2
         band = bands.get(key)
         if band:

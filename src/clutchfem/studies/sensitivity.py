@@ -22,6 +22,22 @@ time a contact node enters or leaves, the slope jumps by ~2 % on the default rig
 (``benchmarks/bench_derivative_smoothness.py``: a resolved contact zone or an elastic drum
 makes them smoother), which morphing does not remove.
 
+Kinks (contact events).  The contact answers are smooth between contact events but not
+across them: where a contact node enters or leaves the zone at the speed an answer is read at
+(slip speed; rpm of maximum engine torque for the torque and the contact arc; engine's
+maximum speed for the peak stress and its safety factor), that answer's slope jumps (by
+0.2-4 % on concept 4; BENCHMARKS.md, "Robust design").  Designs morphed from one reference
+share the contact nodes' numbering, so every evaluated row carries the loaded nodes at those
+speeds (study column ``contact_sets``), and where the sets at x - h and x + h differ the
+derivative straddles an event: ``kinks[name][answer]`` then gives the one-sided slopes on
+each side (``left`` = (A(x) - A(x - h)) / h, ``right`` = (A(x + h) - A(x)) / h), their jump
+relative to the central difference, and the nodes on each side, and
+:meth:`Sensitivities.spread_derivative` -- what the linearised tolerance spreads use (robust
+optimisation, tolerance allocation) -- takes the steeper side, so a spread is not
+under-estimated across the kink.  The central difference stays the derivative (the secant
+over the step: a generalised gradient for the optimiser).  Not detected where a side was
+meshed from scratch (the numbering differs): ``notes`` says so.
+
 Answers (SI units): engagement speed, engagement with ripple, slip speed [rpm], torque at the
 engine's maximum torque [N m], peak von Mises stress at the engine's maximum speed [Pa], its
 safety factor against yield [-], fatigue safety factor [-], part mass, mass of one shoe [kg],
@@ -46,7 +62,7 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 
-from ..analysis import idle_speed
+from ..analysis import CONTACT_SPEED_OF, idle_speed
 from ..core import ParameterError
 from ..loadcase import Design
 from . import values as V
@@ -85,6 +101,21 @@ class Sensitivities:
     methods: dict
     notes: list = field(default_factory=list)
     kinds: dict = field(default_factory=dict)
+    #: name -> answer -> the contact event inside the step (module docstring, "Kinks"): the
+    #: speed it is at, the one-sided slopes ``left`` / ``right`` [answer unit / SI unit], their
+    #: ``jump`` (right - left) / |central| and the loaded contact nodes at x - h, x, x + h
+    kinks: dict = field(default_factory=dict)
+
+    def spread_derivative(self, name: str, answer: str) -> float | None:
+        """dA/dx for a linearised spread: the central difference, or where a contact event
+        lies inside the step (``kinks``) the one-sided slope of larger magnitude, with the
+        central difference's sign (conservative across the kink)."""
+        d = self.derivatives.get(name, {}).get(answer)
+        k = self.kinks.get(name, {}).get(answer)
+        if d is None or not k:
+            return d
+        m = max(abs(v) for v in (d, k["left"], k["right"]) if v is not None)
+        return math.copysign(m, d) if d else m
 
     def elasticity(self, name: str, answer: str) -> float | None:
         """(x / A) dA/dx: the % change of ``answer`` per % change of parameter ``name``."""
@@ -101,7 +132,8 @@ class Sensitivities:
         for n, der in self.derivatives.items():
             scale, unit = {"m": (1e-3, "mm"), "deg": (1.0, "deg"), "rpm": (1.0, "rpm")}.get(self.units[n], (1.0, "-"))
             cells = "".join(("-" if der.get(k) is None else f"{der[k] * scale:.5g}").rjust(20) for k, _ in ANSWERS)
-            lines.append(f"{n} /{unit}".ljust(22) + cells + f"   ({self.methods[n]})")
+            kink = f"; kink: {', '.join(self.kinks[n])}" if self.kinks.get(n) else ""
+            lines.append(f"{n} /{unit}".ljust(22) + cells + f"   ({self.methods[n]}{kink})")
         return "\n".join(lines)
 
     def as_json(self) -> dict:
@@ -256,6 +288,7 @@ def sensitivities(design, names: list[str] | None = None, *, engine=None, requir
             continue
         a, b, dx, how = pairs
         used = [r for r in (a, b) if r is not base]
+        morphed = False
         if n in inputs:
             out.methods[n] = f"{how}, {SAME_MESH}"
             if any(r.get("elements") != base.get("elements") for r in used):
@@ -267,10 +300,49 @@ def sensitivities(design, names: list[str] | None = None, *, engine=None, requir
             if morph and not morphed:
                 out.notes.append(f"{n}: " + "; ".join(r.get("morph_note") or "" for r in used))
         out.derivatives[n] = {k: _diff(a.get(k), b.get(k), dx) for k, _ in ANSWERS}
+        if how == "central":
+            same_nodes = n in inputs or morphed
+            kinks = _kinks(rm, base, rp, h, out.derivatives[n]) if same_nodes else None
+            if kinks is None and morph:
+                out.notes.append(f"{n}: contact events not checked (a side was meshed from scratch, or a row has no "
+                                 "contact sets: the contact nodes cannot be compared)")
+            elif kinks:
+                out.kinks[n] = kinks
+                out.notes.append(f"{n}: a contact node enters or leaves within +-{_step_text(h, out.units[n])} at the "
+                                 + ", ".join(sorted({k['speed'] for k in kinks.values()}))
+                                 + " speed: " + ", ".join(kinks) + " kink there (one-sided slopes in kinks)")
+    if not morph:
+        out.notes.append("contact events not checked: every design was meshed from scratch (morph=False)")
     if "idle_rpm" in out.derivatives:
         out.notes.append("idle_rpm: the idle speed enters the engagement limit a x idle (d limit / d idle = "
                          f"{es.a:g}, exact) and the requirement checks; the answers move only where the analysis "
                          "uses it (fatigue duty)")
+    return out
+
+
+def _step_text(h: float, unit: str) -> str:
+    return f"{h * 1e3:g} mm" if unit == "m" else f"{h:g} {unit}" if unit != "-" else f"{h:g}"
+
+
+def _kinks(rm: dict, base: dict, rp: dict, h: float, central: dict) -> dict | None:
+    """The answers whose contact set changes between x - h and x + h (module docstring,
+    "Kinks"); None where the rows' sets cannot be compared (a side meshed from scratch, or a
+    row without them)."""
+    sets = [r.get("contact_sets") for r in (rm, base, rp)]
+    if any(s is None for s in sets):
+        return None
+    out = {}
+    for key, speed in CONTACT_SPEED_OF.items():
+        side = [s.get(speed) for s in sets]
+        if any(x is None for x in side) or side[0] == side[2] == side[1]:
+            continue
+        left, right = _diff(rm.get(key), base.get(key), h), _diff(base.get(key), rp.get(key), h)
+        c = central.get(key)
+        if left is None or right is None or c is None:
+            continue
+        out[key] = {"speed": speed, "left": left, "right": right,
+                    "jump": (right - left) / abs(c) if c else None,
+                    "nodes": {"-": side[0], "0": side[1], "+": side[2]}}
     return out
 
 
