@@ -25,12 +25,19 @@ def test_a_changed_contact_set_is_a_kink_with_both_one_sided_slopes():
     rm, base, rp = _row(8000.0, a), _row(8010.0, b), _row(8030.0, b)
     central = {"slip_rpm": (8030.0 - 8000.0) / 2e-5, "torque_at_max_engine_torque_Nm": 0.0}
     k = _kinks(rm, base, rp, 1e-5, central)
-    assert set(k) == {"slip_rpm"}  # the torque's and the peak's sets did not change
+    assert set(k) == {"slip_rpm"}  # the torque's and the peak's sets did not change (nor the fatigue's)
     assert k["slip_rpm"]["left"] == pytest.approx(10.0 / 1e-5) and k["slip_rpm"]["right"] == pytest.approx(20.0 / 1e-5)
     assert k["slip_rpm"]["jump"] == pytest.approx((20.0 - 10.0) / 15.0)
     assert k["slip_rpm"]["nodes"] == {"-": [0, 90, 170], "0": [0, 90], "+": [0, 90]}
     assert _kinks(rm, base, _row(8030.0, None), 1e-5, central) is None  # a row without sets: not comparable
     assert _kinks(_row(8000.0, b), base, rp, 1e-5, central) == {}
+    c = {"slip": [0], "torque": [0, 90, 91], "peak": [0, 51]}  # the torque speed's set: torque, arc and fatigue
+    rows = [_row(8000.0, b) | {"fatigue_safety_factor": 2.0}, _row(8000.0, b) | {"fatigue_safety_factor": 2.1},
+            _row(8000.0, c) | {"fatigue_safety_factor": 2.3}]
+    k = _kinks(*rows, 1e-5, {"torque_at_max_engine_torque_Nm": 1.0, "fatigue_safety_factor": 1e4, "slip_rpm": 1.0,
+                             "contact_arc_deg": 1.0})
+    assert set(k) == {"slip_rpm", "torque_at_max_engine_torque_Nm", "contact_arc_deg", "fatigue_safety_factor"}
+    assert k["fatigue_safety_factor"]["speed"] == "torque" and k["fatigue_safety_factor"]["right"] == pytest.approx(2e4)
 
 
 def test_spread_derivative_takes_the_steeper_side_with_the_central_sign():
@@ -53,14 +60,15 @@ def test_sensitivities_report_the_contact_events_the_analyses_show():
     x0 = d.params.flexure_thickness
     ans = {o: cf.analyze(cf.morph(d, flexure_thickness=round(x0 + o, 12)), errors=False) for o in (-h, 0.0, h)}
     kinks = s.kinks.get("flexure_thickness", {})
-    changed = {k for k, sp in CONTACT_SPEED_OF.items()
+    changed = {k for k, sps in CONTACT_SPEED_OF.items() for sp in sps
                if not ans[-h].contact_sets[sp] == ans[0.0].contact_sets[sp] == ans[h].contact_sets[sp]}
     assert set(kinks) == changed
     assert changed, "the 0.1 mm step on this mesh crosses at least one contact event (else the test checks nothing)"
     for key, k in kinks.items():
         attr = {"max_von_mises_Pa": "max_von_mises_Pa", "slip_rpm": "slip_rpm", "safety_factor": "safety_factor",
                 "torque_at_max_engine_torque_Nm": "torque_at_max_engine_torque_Nm",
-                "contact_arc_deg": "contact_arc_at_max_engine_torque_deg"}[key]
+                "contact_arc_deg": "contact_arc_at_max_engine_torque_deg",
+                "fatigue_safety_factor": "fatigue_safety_factor"}[key]
         a = {o: getattr(ans[o], attr) for o in ans}
         assert k["left"] == pytest.approx((a[0.0] - a[-h]) / h, rel=1e-6, abs=1e-9)
         assert k["right"] == pytest.approx((a[h] - a[0.0]) / h, rel=1e-6, abs=1e-9)

@@ -151,9 +151,13 @@ def fe_sweep(design, speeds):
     return design.sweep(speeds, stresses=True)
 
 
-#: the contact answers -> the speed they are read at (:func:`contact_sets_step`'s keys)
-CONTACT_SPEED_OF = {"slip_rpm": "slip", "torque_at_max_engine_torque_Nm": "torque", "contact_arc_deg": "torque",
-                    "max_von_mises_Pa": "peak", "safety_factor": "peak"}
+#: the contact answers -> the speeds they are read at (:func:`contact_sets_step`'s keys); the
+#: fatigue factor's service states are at the operating speed (the rpm of maximum engine
+#: torque) and the maximum speed (its friction-off and ripple states are other cases: their
+#: own contact events are not tracked)
+CONTACT_SPEED_OF = {"slip_rpm": ("slip",), "torque_at_max_engine_torque_Nm": ("torque",),
+                    "contact_arc_deg": ("torque",), "max_von_mises_Pa": ("peak",), "safety_factor": ("peak",),
+                    "fatigue_safety_factor": ("torque", "peak")}
 
 
 def contact_sets_step(case, speeds: dict) -> dict:

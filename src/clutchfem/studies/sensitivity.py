@@ -25,7 +25,8 @@ makes them smoother), which morphing does not remove.
 Kinks (contact events).  The contact answers are smooth between contact events but not
 across them: where a contact node enters or leaves the zone at the speed an answer is read at
 (slip speed; rpm of maximum engine torque for the torque and the contact arc; engine's
-maximum speed for the peak stress and its safety factor), that answer's slope jumps (by
+maximum speed for the peak stress and its safety factor; both of these for the fatigue
+factor), that answer's slope jumps (by
 0.2-4 % on concept 4; BENCHMARKS.md, "Robust design").  Designs morphed from one reference
 share the contact nodes' numbering, so every evaluated row carries the loaded nodes at those
 speeds (study column ``contact_sets``), and where the sets at x - h and x + h differ the
@@ -332,10 +333,13 @@ def _kinks(rm: dict, base: dict, rp: dict, h: float, central: dict) -> dict | No
     if any(s is None for s in sets):
         return None
     out = {}
-    for key, speed in CONTACT_SPEED_OF.items():
-        side = [s.get(speed) for s in sets]
-        if any(x is None for x in side) or side[0] == side[2] == side[1]:
+    for key, speeds in CONTACT_SPEED_OF.items():
+        changed = [sp for sp in speeds if None not in (sets[0].get(sp), sets[1].get(sp), sets[2].get(sp))
+                   and not sets[0][sp] == sets[1][sp] == sets[2][sp]]
+        if not changed:
             continue
+        side = [{sp: s[sp] for sp in changed} if len(changed) > 1 else s[changed[0]] for s in sets]
+        speed = " and ".join(changed)
         left, right = _diff(rm.get(key), base.get(key), h), _diff(base.get(key), rp.get(key), h)
         c = central.get(key)
         if left is None or right is None or c is None:
