@@ -45,6 +45,12 @@ def base():
     return d, an, values, levels, plain
 
 
+def _disc(a0, a1, a2):
+    """The finest level's discretisation by the rule: 2 |a_h/2 - a_h/4| if the three levels
+    converge monotonically, else 2 max(|a_h - a_h/2|, |a_h/2 - a_h/4|)."""
+    return 2 * (abs(a1 - a2) if (a1 - a0) * (a2 - a1) >= 0 else max(abs(a0 - a1), abs(a1 - a2)))
+
+
 def _step(d, an, values, **kw):
     return error_step(d, ENGINE, values, an.engagement_rpm, an.slip_rpm, **kw)
 
@@ -87,8 +93,8 @@ def test_rule_reports_the_finest_level_and_the_finer_pairs_error(base, monkeypat
         e, t = err[q], targets[q]
         a1, a2 = levels["h/2"][q], levels["h/4"][q]
         assert e["value"] == pytest.approx(a2, rel=1e-9)
-        assert e["discretisation"] == pytest.approx(2 * abs(a1 - a2), rel=1e-9, abs=1e-12 * abs(a2))
-        assert e["discretisation"] < plain[q]["discretisation"]  # the finer pair's estimate is smaller here
+        assert e["discretisation"] == pytest.approx(_disc(values[q], a1, a2), rel=1e-9, abs=1e-12 * abs(a2))
+        assert e["discretisation"] <= plain[q]["discretisation"] * (1 + 1e-12)
         assert e["model_form_relative"] == plain[q]["model_form_relative"]
         fix = e["corrections"]
         assert fix["mesh_levels"] == pytest.approx([values[q], a1, a2], rel=1e-9)
@@ -114,7 +120,7 @@ def test_refined_torque_keeps_its_nonlinearity_correction(base):
     e = _step(d, an, values, nl={T: nl}, targets={**NEVER, T: t})[T]
     a1, a2 = levels["h/2"][T], levels["h/4"][T]
     assert e["value"] == pytest.approx(a2 * f, rel=1e-9)
-    assert e["discretisation"] == pytest.approx(2 * abs(a1 - a2) * f, rel=1e-9)
+    assert e["discretisation"] == pytest.approx(_disc(values[T], a1, a2) * f, rel=1e-9)
     fix = e["corrections"]
     assert fix["uncorrected"] == values[T] and fix["geometric_nonlinearity"] == pytest.approx(nl.delta)
     assert fix["mesh_refinement"] == pytest.approx(a2 / values[T] - 1, rel=1e-9)
@@ -140,3 +146,18 @@ def test_analyze_reports_the_refined_answers(base, monkeypatch):
     assert a.slip_rpm == an.slip_rpm
     assert "mesh refined once more" in corrections_text(a.errors[T])
     assert math.isclose(a.errors[T]["value"], a.torque_at_max_engine_torque_Nm)
+
+
+def test_non_monotone_levels_keep_the_larger_estimate():
+    """The rule itself (no FE): monotone levels give 2 |a_h/2 - a_h/4| x the correction
+    factor; levels whose changes switch sign keep 2 max(|a_h - a_h/2|, |a_h/2 - a_h/4|)."""
+
+    class Level:
+        elements, time_s = 7000, 3.0
+
+    r = refinement_module.refine_answer(T, "N m", (0.536, 0.538, 0.539), 0.997, 0.01, Level())
+    assert r["value"] == pytest.approx(0.539 * 0.997) and r["discretisation"] == pytest.approx(2 * 0.001 * 0.997)
+    assert "Richardson, p = 1" in r["note"] and r["correction"]["mesh_refinement"] == pytest.approx(0.539 / 0.536 - 1)
+    r = refinement_module.refine_answer(T, "N m", (0.536, 0.538, 0.5375), 1.0, 0.01, Level())
+    assert r["value"] == 0.5375 and r["discretisation"] == pytest.approx(2 * 0.002)
+    assert "not trusted" in r["note"]
