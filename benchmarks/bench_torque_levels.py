@@ -15,6 +15,8 @@ Run (from a source snapshot; ~1 min a design with --eighth, idle):
 
     PYTHONPATH=src OPENBLAS_NUM_THREADS=1 python benchmarks/bench_torque_levels.py \
         --eighth --only concept1-lhs10,concept1,concept4,concept1-lhs01,concept1-lhs02,concept4-lhs02
+    PYTHONPATH=src OPENBLAS_NUM_THREADS=1 python benchmarks/bench_torque_levels.py --cost \
+        --only concept1-lhs10,concept1,concept4     # analyze's cost: from each snapshot of an A/B
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ import clutchfem as cf
 from clutchfem.accuracy import refined_design
 from clutchfem.analysis import slip_step
 from clutchfem.analysis.torque import GRID_RPM_SENSITIVITY, FETorque
+from clutchfem.core import tune_malloc
 
 KEYS = {"eng": "engagement_rpm", "slip": "slip_rpm", "T": "torque_at_max_engine_torque_Nm"}
 
@@ -107,13 +110,36 @@ def rows(label: str, m: dict, ref: dict | None) -> list[str]:
     return out
 
 
+def cost(only: list[str], repeat: int) -> None:
+    """analyze's cost on the best path with its error step (the default): CPU and wall minima
+    over ``repeat`` runs after one warm-up, and the main answers and bands (for an A/B of two
+    source snapshots: run this from each)."""
+    tune_malloc()
+    by_label = {lab: (c, v) for lab, c, v in designs("all")}
+    for label in only:
+        concept, vals = by_label[label]
+        an = cf.analyze(cf.Design.from_concept(concept, fidelity="best", **vals))
+        wall = cpu = math.inf
+        for _ in range(repeat):
+            t0, c0 = time.perf_counter(), time.process_time()
+            an = cf.analyze(cf.Design.from_concept(concept, fidelity="best", **vals))
+            wall, cpu = min(wall, time.perf_counter() - t0), min(cpu, time.process_time() - c0)
+        print(label, json.dumps({"wall": wall, "cpu": cpu, **{q: an.errors[q]["value"] for q in KEYS.values()},
+                                 "bands": {q: an.errors[q]["total"] for q in KEYS.values()}}), flush=True)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("--only", default="concept1-lhs10,concept1,concept4,concept1-lhs01,concept1-lhs02,concept4-lhs02")
     ap.add_argument("--out", default="", help="append each design's measurement (JSON lines) here")
     ap.add_argument("--eighth", action="store_true", help="also h/8 (the check of the h/4 level's estimate)")
+    ap.add_argument("--cost", action="store_true", help="analyze's cost (best, errors on) instead of the levels")
+    ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args(argv)
     only = [x for x in args.only.split(",") if x]
+    if args.cost:
+        cost(only, args.repeat)
+        return 0
     refs = load()
     table = ["| design | answer | h | h/2 | h/4 | h/8 | changes between levels | p | monotone | "
              "estimate 2 |a_h/2 - a_h/4| | a_h/4's disc. error (bounded) | a_h/4 - ref / new band (holds) |",

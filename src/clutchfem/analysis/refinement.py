@@ -8,17 +8,19 @@ answer's band exceeds its target (:data:`ACCURACY_TARGET`, relative) *and* its m
 terms alone fit in it (so the mesh is what puts it over), the design is meshed once more,
 h/4 = ``refined_design`` of the h/2 design (shared by every answer that needs it; only the
 answers that need it are computed there), and the answer is reported from that finest level
-with discretisation 2 |a_h/2 - a_h/4| (the same rule, p = 1).  Never more than that one
+with discretisation 2 |a_h/2 - a_h/4| (the same rule, p = 1; 2 max(|a_h - a_h/2|, |a_h/2 -
+a_h/4|) where the three levels do not converge monotonically).  Never more than that one
 extra level, so the extra cost is bounded by one load case on a mesh ~4.5x the design's
-elements (measured 3-4 s on concepts 1 and 4, ``benchmarks/bench_torque_levels.py``,
-BENCHMARKS.md section 13 "Accuracy targets"); if the target is still not met, the band is
-reported as it is, with a note saying so.  An answer within its target costs nothing and is
+elements (measured 3.2-4.5 s on six designs of concepts 1 and 4, ~50 k unknowns; h/8 would
+take 25-50 s: ``benchmarks/bench_torque_levels.py``, BENCHMARKS.md section 13, stop 32); if
+the target is still not met, the band is reported as it is, with a note saying so.  An answer within its target costs nothing and is
 not touched (bit-identical).
 
-Why p = 1 on the finer pair too: the orders observed over h, h/2, h/4 scatter from 0.5 to 3
-(engagement 1.3-3.1, slip -0.6-8, torque at 8000 rpm 0.8-2.8 on six designs) and the
-reference's own in-plane refinement moves the torque as slowly, so no higher order is
-assumed.  Measured on concept1-lhs10 (engages at 7501 rpm, so its torque at 8000 rpm carries
+Why p = 1 on the finer pair too: the orders observed over h, h/2, h/4 scatter (engagement
+1.2-3.1, torque at 8000 rpm 0.8-2.8 on six designs; slip and torque also move by 0.01-0.04 %
+per level with either sign, the contact discretisation's noise floor, 15-50x below where
+this rule acts) and the reference's own in-plane refinement moves the torque as slowly, so
+no higher order is assumed.  Measured on concept1-lhs10 (engages at 7501 rpm, so its torque at 8000 rpm carries
 the engagement's mesh error amplified ~14x by w^2 - w0^2): torque 0.53636 / 0.53821 /
 0.53891 N m on h / h/2 / h/4 (p = 1.4, monotone), band 1.01 % -> 0.58 % with the finest
 level -0.36 % from the reference.
