@@ -7,7 +7,8 @@ Modules, one job each: :mod:`.pipeline` (:func:`analyze`: the steps in order),
 FE sweep, engagement, character, mu sensitivity), :mod:`.coupling` (the analytical shoe
 model next to the FE torque, the answer's curves), :mod:`.strength` (stress and fatigue),
 :mod:`.requirements` (the designer's factors, crankshaft whirl), :mod:`.error_band` (the error of
-the main answers), :mod:`.messages` (warnings and notes), :mod:`.slip_heat` (the slip test's
+the main answers), :mod:`.refinement` (their accuracy targets: one more mesh level where the
+discretisation puts a band over its target), :mod:`.messages` (warnings and notes), :mod:`.slip_heat` (the slip test's
 temperatures)."""
 
 from ..mesh import mesh_mass_properties  # (its home is clutchfem.mesh; exported here as before)
@@ -27,6 +28,7 @@ from .coupling import answer_curves, coupling_step, torque_models
 from .error_band import error_step
 from .messages import SELF_ENERGISING_WARN, design_notes, design_warnings
 from .pipeline import analyze
+from .refinement import ACCURACY_TARGET
 from .requirements import DEFAULT_IDLE_RPM, WHIRL_MARGIN, idle_speed, requirements_step, whirl_step
 from .slip_heat import SlipHeatRun, slip_heat
 from .strength import fatigue_cycles, fatigue_step, stress_step
@@ -48,7 +50,7 @@ from .torque import (
     slip_step,
 )
 
-__all__ = ["SlipHeatRun", "slip_heat", "DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "CONTACT_SPEED_OF", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
+__all__ = ["ACCURACY_TARGET", "SlipHeatRun", "slip_heat", "DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "CONTACT_SPEED_OF", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
            "WHIRL_MARGIN", "Analysis", "CharacterAnswer", "EngagementAnswer", "FETorque", "FatigueAnswer",
            "MuSensitivity", "Requirements", "SlipAnswer", "StressAnswer", "analyze", "answer_curves", "bracket_grid",
            "character_step", "check_speeds", "contact_sets_step", "coupling_step", "design_notes", "design_warnings", "engagement_step",

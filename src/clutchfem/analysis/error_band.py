@@ -15,6 +15,11 @@ geometric non-linearity of the softening model, rigid vs 2 mm steel drum), relat
 total band of an answer is the sum of the magnitudes.  Sensitivities (not in the band): the
 answers with the drum wall -+ 0.5 mm (:func:`~.sensitivity.drum_sensitivity_step`) and with
 mu x 0.7 / x 1.3 (:func:`~.torque.mu_sensitivity_step`).
+
+Accuracy targets (:mod:`.refinement`): an answer (engagement, slip, torque) whose band exceeds
+its target (:data:`~.refinement.ACCURACY_TARGET`) while its model form alone fits is computed
+once more on a mesh four times as fine (one level, shared) and reported from there with
+discretisation 2 |a_h/2 - a_h/4|; a note says so, and whether the target is then met.
 """
 
 from __future__ import annotations
@@ -36,6 +41,7 @@ from ..accuracy import (
 )
 from ..clutch import EngineCurve
 from ..fe import peak_disc
+from .refinement import ACCURACY_TARGET, REFINABLE, FinerLevel, needs_refinement, refine_answer
 from .torque import GRID_RPM_SENSITIVITY, FETorque, slip_step
 
 #: a sweep's relative equilibrium residual at an answer's speed from which it is a term of
@@ -53,7 +59,7 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
                slip_rpm_value: float | None, drum: dict | None = None, mu: dict | None = None,
                peak_at: tuple[float, float] | None = None,
                nl: dict[str, AnswerNonlinearity] | None = None, residual=None,
-               peak_exact: bool = False) -> dict:
+               peak_exact: bool = False, targets: dict | None = None) -> dict:
     """The error of the main answers ``values`` (module docstring): per answer its value,
     discretisation, model-form terms, total and sensitivities.  ``w0_rpm``: the engagement
     speed and ``slip_rpm_value``: the slip speed, which the thickness term of the slip speed
@@ -71,7 +77,10 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
     :data:`~clutchfem.loadcase.checks.RESIDUAL_FAIL_RITZ`), it is a model-form term of that
     answer, ``softening_residual``.  ``peak_exact``: the peak stress was re-solved at its speed
     with the per-speed factorisation (:func:`~.strength.peak_sweep`): so is the finer mesh's,
-    and the peak has no such term."""
+    and the peak has no such term.  ``targets`` (default
+    :data:`~.refinement.ACCURACY_TARGET`): an answer whose band exceeds its relative target
+    because of its discretisation is computed once more on a mesh four times as fine and
+    reported from there (:mod:`.refinement`; its ``corrections`` say so)."""
     lo, hi = engine.rpm_range
 
     def answers(d):
@@ -85,6 +94,7 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
 
     three_d = design.op.model_formulation == "3d"
     nl = nl or {}
+    finer = None  # the h/4 level, built only if an answer needs it (.refinement)
     cd = refined_design(design, peak_at=peak_at if "max_von_mises_Pa" in nl else None)
     coarse = answers(cd) if cd is not None else {}
     disc3 = discretisation_3d(design, lambda d: values if d is design else answers(d)) if three_d else {}
@@ -110,6 +120,12 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
             v, d, fix = (corrected_peak(design, v, d, coarse, peak_at, nl[q]) if q == "max_von_mises_Pa"
                          else corrected_answer(v, d, nl[q]))
             notes = notes + (fix["note"],)
+        if not three_d and cd is not None and q in REFINABLE and v is not None:
+            mf = abs(v) * sum(abs(x) for x in terms.values())
+            if needs_refinement(q, v, d, mf, targets):
+                finer = finer or FinerLevel(cd, engine)
+                v, d, fix, more = target_step(q, unit, v, coarse.get(q), fix, mf / abs(v), finer, targets)
+                notes = notes + more
         if three_d and q in disc3:
             d = disc3[q][0]
             notes = notes + (disc3[q][3],)
@@ -140,6 +156,33 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
                      + "); total = sum of magnitudes; sensitivities to the assumed inputs (drum wall, mu) apart, "
                      "not in the total")
     return out
+
+
+def target_step(q: str, unit: str, v: float, a1: float | None, fix: dict | None, mf_rel: float, finer: FinerLevel,
+                targets: dict | None = None):
+    """(value, discretisation, corrections, notes) of answer ``q`` (value ``v``, its h/2 value
+    ``a1`` as computed, its corrections ``fix`` so far) reported from the h/4 level ``finer``
+    (:func:`~.refinement.refine_answer`), with a note where its band (model form ``mf_rel``,
+    relative) still exceeds the target; the h-level answer, noted, if that level failed."""
+    t = (ACCURACY_TARGET if targets is None else targets)[q]
+    a0 = fix["uncorrected"] if fix is not None else v
+    f = v / a0 if fix is not None else 1.0
+    a2 = finer.get(q)
+    d = None
+    notes: tuple = ()
+    if a1 is not None and a2 is not None and math.isfinite(a2):
+        r = refine_answer(q, unit, (a0, a1, a2), f, t, finer)
+        v, d = r["value"], r["discretisation"]
+        fix = {**(fix or {"uncorrected": a0}), **r["correction"]}
+        notes = (r["note"],)
+    else:
+        d = 2.0 * abs(a0 - a1) * abs(f) if a1 is not None else None
+        notes = (f"the mesh four times as fine has no answer ({finer.error or 'none found'}): reported from the design "
+                 f"mesh",)
+    band = (d or 0.0) + mf_rel * abs(v)
+    if band > t * abs(v):
+        notes = notes + (f"accuracy target {100 * t:g} % not met: band {100 * band / abs(v):.2f} %",)
+    return v, d, fix, notes
 
 
 def corrected_answer(a0: float, disc: float | None, nl: AnswerNonlinearity):

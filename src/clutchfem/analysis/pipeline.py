@@ -31,7 +31,10 @@ factorisation for everything below):
    at the engine's maximum speed and the rpm of its maximum torque) and the peak's
    discretisation (the finer mesh also refines the disc at the peak; Richardson's
    extrapolation from the two levels); the peak, safety factor, torque and torque margin
-   reported are the corrected ones (the curves stay the linear model's);
+   reported are the corrected ones (the curves stay the linear model's).  An answer whose
+   band exceeds its accuracy target because of its discretisation is computed once more on
+   a mesh four times as fine and reported from there (:mod:`.refinement`; engagement and slip
+   so refined also replace the analysis's, and the requirement checks are redone);
 10. :func:`~.requirements.whirl_step`: the crankshaft's first critical speed with this
     clutch on its overhang (:mod:`clutchfem.clutch.crankshaft`) against the engine's
     maximum speed;
@@ -49,6 +52,7 @@ contact states the earlier ones solved (memoised per load case).
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -142,6 +146,29 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
         return an
 
 
+def refined_answers(err: dict, t_nom, eng, slip, checks, check):
+    """(torque, engagement, slip, requirement checks) with the answers the error step refined
+    once more to meet their accuracy target (:mod:`.refinement`: ``corrections`` holding
+    ``mesh_refinement``) taken from it; the engagement with ripple moves by the same ratio as
+    the static one (it is computed from it), and the checks are redone (``check(eng, slip)``)."""
+    def refined(q):
+        e = err.get(q) or {}
+        return e.get("value") if "mesh_refinement" in (e.get("corrections") or {}) else None
+
+    t = refined("torque_at_max_engine_torque_Nm")
+    w0, ws = refined("engagement_rpm"), refined("slip_rpm")
+    if w0 is not None and eng.static_rpm:
+        r = w0 / eng.static_rpm
+        eng = replace(eng, static_rpm=w0, with_ripple_rpm=None if eng.with_ripple_rpm is None else eng.with_ripple_rpm * r,
+                      with_ripple_typical_rpm=None if eng.with_ripple_typical_rpm is None
+                      else eng.with_ripple_typical_rpm * r)
+    if ws is not None:
+        slip = replace(slip, rpm=ws)
+    if w0 is not None or ws is not None:
+        checks = check(eng, slip)
+    return (t_nom if t is None else t), eng, slip, checks
+
+
 def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, fatigue_params) -> Analysis:
     """The steps of :func:`analyze` on checked inputs."""
     idle_rpm, idle_assumed = idle_speed(engine, idle_rpm)
@@ -189,7 +216,11 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
     if nl is not None:  # the best estimate's peak and torque: corrected in the error step
         st = st.corrected(err["max_von_mises_Pa"]["value"])
         t_nom = err["torque_at_max_engine_torque_Nm"]["value"]
+    # the contact sets of the design mesh's own states (before an answer is refined on a finer mesh)
     sets = contact_sets_step(case, {"slip": slip.rpm, "torque": t_rpm, "peak": float(hi)})
+    t_nom, eng, slip, checks = refined_answers(err, t_nom, eng, slip, checks,
+                                               lambda e, s: requirements_step(req, idle_rpm, engine, e, s, in_range))
+    slip_power = None if slip.rpm is None else float(engine.torque_at(slip.rpm) * rpm_to_rad_s(slip.rpm))
     wh = whirl_step(design, hi)
     fat = fatigue_step(design, res, engine, loads=fatigue_loads, params=fatigue_params, ripple_model=ripple_model)
     warnings = design_warnings(res=res, material=material, mu=op.mu, slip=slip, eng=eng, ch=ch, character=character,

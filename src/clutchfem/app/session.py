@@ -24,7 +24,7 @@ from typing import Any, Literal, get_args, get_origin
 
 import numpy as np
 
-from ..analysis import Analysis, Requirements, analyze, error_step
+from ..analysis import ACCURACY_TARGET, Analysis, Requirements, analyze, error_step
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, ParameterError, format_quantity
 from ..geometry import MeshSettings, concepts, get_concept
@@ -261,7 +261,10 @@ class DesignSession:
         values = {"engagement_rpm": an.engagement_rpm, "slip_rpm": an.slip_rpm,
                   "torque_at_max_engine_torque_Nm": an.torque_at_max_engine_torque_Nm,
                   "max_von_mises_Pa": an.max_von_mises_Pa}
-        return error_step(outcome.design, self.engine, values, an.engagement_rpm, an.slip_rpm)
+        # the bands of the values shown (the design mesh's): no answer is re-computed on a finer
+        # mesh to meet its accuracy target here, as analyze does (clutchfem.analysis.refinement)
+        return error_step(outcome.design, self.engine, values, an.engagement_rpm, an.slip_rpm,
+                          targets={q: math.inf for q in ACCURACY_TARGET})
 
     def field(self, outcome: Outcome, rpm: float):
         """The state at ``rpm`` (a one-speed sweep of the outcome's design, the same load case)."""

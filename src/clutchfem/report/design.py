@@ -45,10 +45,12 @@ def _err(an, key: str, scale: float = 1.0, unit: str | None = None, fmt: str = "
 
 def corrections_text(e: dict) -> str:
     """'corrected: non-linearity +1.1 %, mesh extrapolation +1.5 %' for an answer the best path
-    corrected (its ``corrections``), else ''."""
+    corrected (its ``corrections``; 'mesh refined once more': reported from a mesh four times
+    as fine to meet its accuracy target, :mod:`clutchfem.analysis.refinement`), else ''."""
     fix = e.get("corrections") or {}
     how = [f"{lab} {100 * fix[k]:+.1f} %" for k, lab in (("geometric_nonlinearity", "non-linearity"),
-                                                         ("discretisation_extrapolation", "mesh extrapolation"))
+                                                         ("discretisation_extrapolation", "mesh extrapolation"),
+                                                         ("mesh_refinement", "mesh refined once more"))
            if fix.get(k) is not None and (k != "discretisation_extrapolation" or fix.get("extrapolated"))]
     return f"corrected: {', '.join(how)}" if how else ""
 
@@ -111,10 +113,13 @@ def summary_rows(an) -> list[tuple[str, str]]:
     if len(an.slip_crossings_rpm) > 1:
         rows.append(("clutch/engine torque crossings",
                      ", ".join(f"{c['rpm']:.0f} rpm ({c['direction']})" for c in an.slip_crossings_rpm)))
+    # (a band below 0.05 N m, e.g. a design engaging just below the rpm of max torque, shows 3 decimals)
+    t_band = ((getattr(an, "errors", None) or {}).get("torque_at_max_engine_torque_Nm") or {}).get("total")
+    t_fmt = ".3f" if t_band is not None and t_band < 0.05 else ".2f"
     rows += [
         (f"clutch torque at {an.rpm_max_engine_torque:.0f} rpm (max engine torque "
-         f"{an.max_engine_torque_Nm:.2f} N m)", _fmt(an.torque_at_max_engine_torque_Nm, ".2f", "N m")
-         + _err(an, "torque_at_max_engine_torque_Nm", fmt=".2f")),
+         f"{an.max_engine_torque_Nm:.2f} N m)", _fmt(an.torque_at_max_engine_torque_Nm, t_fmt, "N m")
+         + _err(an, "torque_at_max_engine_torque_Nm", fmt=t_fmt)),
         ("torque margin over max engine torque", _fmt(an.torque_margin_Nm, "+.2f", "N m")),
         ("slip power (heat) at slip speed", _fmt(an.slip_power_W, ".0f", "W") if an.slip_power_W is not None
          else f"- ({an.slip_status})"),
@@ -235,7 +240,10 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
     engagement and slip markers, requirement bands."""
     c = an.curves
     fig, ax = figure(figsize=(8.5, 6.6), layout="constrained")
-    ax.plot(c["rpm"], c["fe_torque_Nm"], "k-", lw=2, label="FE (contact + friction)")
+    e = (getattr(an, "errors", None) or {}).get("torque_at_max_engine_torque_Nm") or {}
+    fix = e.get("corrections") or {}
+    ax.plot(c["rpm"], c["fe_torque_Nm"], "k-", lw=2, label="FE (contact + friction" +
+            (";\nthe design mesh's linear model: the point is corrected)" if fix else ")"))
     if getattr(an, "analytical_available", True):
         ax.plot(c["rpm"], c["analytic_fe_arc_Nm"], "b--", label="analytical, FE contact arc")
         ax.plot(c["rpm"], c["analytic_nominal_arc_Nm"], "r:", lw=2, label="analytical, nominal full arc (thesis)")
@@ -254,6 +262,12 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
                 label=f"slip {an.slip_rpm:.0f} rpm")
     else:
         ax.text(0.98, 0.5, an.slip_status.upper(), transform=ax.transAxes, ha="right", color="k", fontsize=12)
+    t = an.torque_at_max_engine_torque_Nm
+    if fix and t is not None and math.isfinite(t):  # the reported answer, where it is not the curve's point
+        f = ".3f" if e.get("total") is not None and e["total"] < 0.05 else ".2f"
+        band = f" +- {e['total']:{f}} N m" if e.get("total") is not None else ""
+        ax.plot([an.rpm_max_engine_torque], [t], "ks", mfc="none", ms=7, mew=1.5,
+                label=f"torque {t:{f}} N m{band} at {an.rpm_max_engine_torque:.0f} rpm\n({corrections_text(e)})")
     _requirement_bands(ax, an.requirements, c["rpm"].max())
     finite = c[["fe_torque_Nm", "analytic_fe_arc_Nm"]].replace([np.inf], np.nan).max().max()
     ax.set_ylim(0, max(8.0, min(1.3 * float(finite or 8.0), 60)))
