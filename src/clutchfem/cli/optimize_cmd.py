@@ -142,9 +142,11 @@ def optimize(
                       scheduler=scheduler, method=method or "auto", log=lambda m: err.print(escape(m)))
         final = None
         if out is not None or not json_:  # the final design analysed again, with its error estimate
-            d = Design.from_concept(s.concept, s.params(res.best["params"]), s.operating_point(), s.mesh_settings())
-            final = analyze(d, engine=s.engine(), requirements=Requirements(a=s.a, b=s.b), idle_rpm=s.idle_rpm,
-                            errors=True)
+            final = res.best_analysis  # (the optimiser's own check did it)
+            if final is None:
+                d = Design.from_concept(s.concept, s.params(res.best["params"]), s.operating_point(), s.mesh_settings())
+                final = analyze(d, engine=s.engine(), requirements=Requirements(a=s.a, b=s.b), idle_rpm=s.idle_rpm,
+                                errors=True)
         if out is not None:
             wrote(optimization_report(res, final, out))
         if json_:

@@ -40,7 +40,7 @@ _NAMES: dict[str, str | None] = {
     "COLUMNS": "point",
     "compensate": "compensation",
     "Compensation": "compensation",
-    "default_free": "optimization",
+    "default_free": "search_space",
     "default_out": "rerun",
     "finished_summary": "rerun",
     "fingerprint": "rerun",

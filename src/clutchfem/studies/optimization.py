@@ -67,10 +67,11 @@ import numpy as np
 from scipy.stats import qmc
 
 from ..core import InputError, ParameterError, clean
-from ..geometry import ConceptParams
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
+from .best_check import check_optimum, start_targets
 from .gradient import gradient_search
+from .search_space import default_free, make_space
 from .targets import Targets
 
 #: an objective improvement smaller than this share is noise, not success
@@ -94,87 +95,6 @@ def better(a: dict, b: dict | None) -> bool:
 
 
 @dataclass
-class Space:
-    """Free parameters with their search ranges, mapped to [0, 1]."""
-
-    P: type
-    names: list[str]
-    lo: np.ndarray
-    hi: np.ndarray
-
-    def to_point(self, x: np.ndarray) -> tuple[dict, np.ndarray]:
-        """(point texts, snapped x) of normalised x."""
-        texts, xs = {}, np.empty(len(self.names))
-        for k, n in enumerate(self.names):
-            v = self.lo[k] + float(np.clip(x[k], 0.0, 1.0)) * (self.hi[k] - self.lo[k])
-            val, txt = V.snap(self.P, n, v)
-            texts[n] = txt
-            xs[k] = (val - self.lo[k]) / (self.hi[k] - self.lo[k])
-        return texts, xs
-
-    def from_params(self, p) -> np.ndarray:
-        return np.array([(getattr(p, n) - self.lo[k]) / (self.hi[k] - self.lo[k]) for k, n in enumerate(self.names)])
-
-    @property
-    def min_step(self) -> np.ndarray:
-        """Each parameter's snapping resolution in normalised units."""
-        return np.array([V.resolution(self.P, n) / (self.hi[k] - self.lo[k]) for k, n in enumerate(self.names)])
-
-
-def make_space(P, free: list[str], ranges: dict | None = None, start=None) -> Space:
-    """The search space of the free parameters (floats with a declared range)."""
-    lo, hi = [], []
-    for n in sorted(set(ranges or {}) - set(free)):
-        raise ParameterError(n, ":".join(V.to_text(P, n, x) for x in ranges[n]), f"a range of a free parameter: {n} "
-                             f"is not free in this search (free: "
-                             f"{', '.join(free)}); add it to --free, or drop its --range", "--range")
-    for n in free:
-        if n not in P.model_fields:
-            raise ParameterError(n, None, "a parameter of the concept; known: " + ", ".join(P.model_fields), "--free")
-        f = P.model_fields[n]
-        if f.annotation is not float:
-            raise ParameterError(n, None, "a real-valued parameter with a range (choices and counts are set with "
-                                          "--set)", "--free")
-        a, b = V.param_bounds(P, n)
-        if ranges and n in ranges:
-            lo_d, hi_d = a, b
-            a, b = ranges[n]
-            text = f"{V.to_text(P, n, a)}:{V.to_text(P, n, b)}"
-            if not a < b:
-                raise ParameterError(n, text, "LO:HI with LO < HI", "--range")
-            if (lo_d is not None and a < lo_d) or (hi_d is not None and b > hi_d):
-                raise ParameterError(n, text, f"a range within the declared range [{V.to_text(P, n, lo_d)}, "
-                                     f"{V.to_text(P, n, hi_d)}]", "--range")
-        if a is None or b is None or not a < b:
-            raise ParameterError(n, None, "a parameter with a finite range to search", "--free")
-        if start is not None and not (a <= getattr(start, n) <= b):
-            raise ParameterError(n, getattr(start, n), f"a start value inside the search range "
-                                 f"[{V.to_text(P, n, a)}, {V.to_text(P, n, b)}]", "--range")
-        lo.append(float(a))
-        hi.append(float(b))
-    return Space(P, list(free), np.array(lo), np.array(hi))
-
-
-def default_free(P) -> list[str]:
-    """The concept's own real-valued parameters (those its parameter class adds to the
-    common ones: the shape of hub, flexure and shoe), the fillet radius and the shoe-drum
-    clearance.  The axial thickness (the envelope: ~10-12 mm, ASSUMED), the drum, the bore,
-    the profile and the number of shoes are kept unless freed with ``--free``.
-
-    Why the clearance is free: after contact the flexure's stress at the engine's maximum
-    speed grows with the deflection it took to close the gap, so the clearance is the
-    strongest lever on the safety factor; on concept 4 the shape parameters alone reached a
-    safety factor of 1.14 at best (300 analysed designs) against the 1.5 asked, with the clearance free
-    the targets are met (docs/design_to_targets.md)."""
-    common = set(ConceptParams.model_fields)
-    own = [n for n, f in P.model_fields.items() if n not in common and f.annotation is float]
-    for extra in ("fillet_radius", "clearance"):
-        if extra in P.model_fields and extra not in own:
-            own.append(extra)
-    return own
-
-
-@dataclass
 class OptimizationResult:
     concept: str
     targets: Targets
@@ -191,6 +111,10 @@ class OptimizationResult:
     message: str
     at_bounds: list[str] = field(default_factory=list)
     settings: EvalSettings | None = None
+    #: the final design checked with analyze and its error step (:mod:`.best_check`), and that
+    #: Analysis (not in the JSON)
+    best_estimate: dict | None = None
+    best_analysis: object = field(default=None, repr=False)
 
     def to_json(self) -> dict:
         a = self.best.get("assessment", {})
@@ -213,6 +137,7 @@ class OptimizationResult:
                         "safety_factor_min": self.targets.safety_factor_min,
                         "fatigue_min": self.targets.fatigue_min},
             "units": {"rpm": "1/min", "stress": "Pa", "mass": "kg", "torque": "N m", "seconds": "s"},
+            "best_estimate": self.best_estimate,
             "path": [{k: v for k, v in r.items() if k != "warnings"} for r in self.path],
         })
 
@@ -220,7 +145,7 @@ class OptimizationResult:
 def optimize(design, targets: Targets | None = None, free: list[str] | None = None, *,
              engine=None, requirements=None, ranges: dict | None = None, sample: int = 32, max_evals: int = 300,
              workers: int | None = None, scheduler: str | None = None, seed: int = 0, min_step: float = 1.0 / 256,
-             method: str = "auto", log=None) -> OptimizationResult:
+             method: str = "auto", check: bool = True, log=None) -> OptimizationResult:
     """Find the design that meets the targets at least part mass (or largest torque margin).
 
     A space-filling (Sobol) sample, then a pattern search (module docstring), from the base
@@ -251,6 +176,13 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
         morphed meshes (:mod:`.gradient`; ``max_evals`` then counts every design, refusals
         included, and ``sample``/``min_step`` are not used); ``auto``: the gradient method,
         then the pattern search with the budget left if it found no feasible design.
+    check : bool
+        Analyse the final design with the error step, as ``analyze`` reports it (the search's
+        rows carry the design mesh's uncorrected answers), and where that misses a target,
+        search on with the targets moved by the ratio (:mod:`.best_check`: the targets are
+        first moved by analyze's corrections at the start design; up to two more rounds, each
+        with half of ``max_evals``); the result's ``best_estimate`` says what analyze gives.
+        Default on.
 
     Returns
     -------
@@ -282,9 +214,17 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
     if method not in METHODS:
         raise ParameterError("method", method, "one of " + ", ".join(METHODS), "optimize")
     with cluster(workers, scheduler):
-        if method == "pattern":
-            return _optimize(settings, targets, free, ranges, sample, max_evals, seed, min_step, log)
-        return _gradient(settings, targets, free, ranges, sample, max_evals, seed, min_step, log, method)
+        def search(s, t, budget=max_evals, first=sample):
+            if method == "pattern":
+                return _optimize(s, t, free, ranges, first, budget, seed, min_step, log)
+            return _gradient(s, t, free, ranges, first, budget, seed, min_step, log, method)
+
+        if not check:
+            return search(settings, targets)
+        aim, _ = start_targets(settings, targets)
+        res = search(settings, aim)
+        more = max(6 * len(res.free), max_evals // 2)  # each further round's budget
+        return check_optimum(res, settings, targets, lambda s, t: search(s, t, more, 0), log, searched=aim)
 
 
 #: the search methods of :func:`optimize`

@@ -36,12 +36,10 @@ import time
 from dataclasses import dataclass, field
 from statistics import NormalDist
 
-from ..analysis import analyze
 from ..core import ParameterError, clean
 from ..geometry import get_concept
-from ..loadcase import Design
-from ..mesh import mesh_concept
 from .batch import EvalSettings
+from .best_check import best_estimate
 from .optimization import METHODS, OptimizationResult, optimize
 from .sensitivity import sensitivities
 from .targets import Targets
@@ -124,10 +122,7 @@ def spreads(settings: EvalSettings, targets: Targets, tolerances: dict, dist: st
 def model_bands(settings: EvalSettings) -> dict:
     """The model-error band of each constrained answer at the design (analyze with errors:
     its ``total`` band, in the answer's unit; the safety factor's from its stress's)."""
-    p = settings.params()
-    cm = mesh_concept(get_concept(settings.concept), p, settings.mesh_settings())
-    d = Design(cm, settings.operating_point(), params=p, name=settings.concept, concept=get_concept(settings.concept))
-    a = analyze(d, engine=settings.engine(), idle_rpm=settings.idle_rpm, errors=True)
+    a = best_estimate(settings)
     out = {}
     for key, bk in BAND_KEY.items():
         e = (a.errors or {}).get(bk) if bk else None
@@ -145,15 +140,8 @@ def model_bands(settings: EvalSettings) -> dict:
 
 
 def shifted(targets: Targets, margins: dict) -> Targets:
-    """``targets`` with every limit moved inward by its margin."""
-    m = margins
-    return dataclasses.replace(
-        targets,
-        engage_rpm_lo=None if targets.engage_rpm_lo is None else targets.engage_rpm_lo + m.get("engagement_rpm_with_ripple", 0.0),
-        engage_rpm_hi=None if targets.engage_rpm_hi is None else targets.engage_rpm_hi - m.get("engagement_rpm_with_ripple", 0.0),
-        slip_rpm_max=None if targets.slip_rpm_max is None else targets.slip_rpm_max - m.get("slip_rpm", 0.0),
-        safety_factor_min=None if targets.safety_factor_min is None else targets.safety_factor_min + m.get("safety_factor", 0.0),
-        fatigue_min=None if targets.fatigue_min is None else targets.fatigue_min + m.get("fatigue_safety_factor", 0.0))
+    """``targets`` with every limit moved inward by its margin (:meth:`Targets.moved_inward`)."""
+    return targets.moved_inward(margins)
 
 
 def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dist: str = "normal",

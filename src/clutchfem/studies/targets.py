@@ -15,7 +15,7 @@ speed ripple (:func:`clutchfem.clutch.effective_engagement_rpm`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..analysis import DEFAULT_IDLE_RPM
 from ..core import ParameterError
@@ -87,6 +87,18 @@ class Targets:
         eng = settings.engine()
         idle = settings.idle_rpm or eng.idle_rpm or DEFAULT_IDLE_RPM
         return cls(settings.a * idle, None, settings.b * float(eng.rpm_max_torque), safety_factor_min, objective)
+
+    def moved_inward(self, margins: dict) -> "Targets":
+        """These targets with every limit moved inward by its margin (answer key -> margin in
+        the answer's unit, >= 0; missing: 0)."""
+        m = margins
+        return replace(
+            self,
+            engage_rpm_lo=None if self.engage_rpm_lo is None else self.engage_rpm_lo + m.get("engagement_rpm_with_ripple", 0.0),
+            engage_rpm_hi=None if self.engage_rpm_hi is None else self.engage_rpm_hi - m.get("engagement_rpm_with_ripple", 0.0),
+            slip_rpm_max=None if self.slip_rpm_max is None else self.slip_rpm_max - m.get("slip_rpm", 0.0),
+            safety_factor_min=None if self.safety_factor_min is None else self.safety_factor_min + m.get("safety_factor", 0.0),
+            fatigue_min=None if self.fatigue_min is None else self.fatigue_min + m.get("fatigue_safety_factor", 0.0))
 
     def constraints(self) -> list[tuple[str, str, float, str]]:
         """(name, answer key, limit, sense '>=' or '<=')."""

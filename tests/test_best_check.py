@@ -1,0 +1,95 @@
+"""The optimum checked against analyze (studies/best_check.py): a search's rows carry the
+design mesh's uncorrected answers; analyze's error step corrects them on the best path.  The
+check moves a missed target inward by the ratio and searches on, and says what analyze gives."""
+
+import dataclasses
+from types import SimpleNamespace
+
+import pytest
+
+import clutchfem as cf
+from clutchfem.studies import EvalSettings, Targets
+from clutchfem.studies import best_check as bc
+
+COARSE = cf.MeshSettings(size="3mm")
+
+
+def test_targets_move_inward_by_the_ratio_never_outward():
+    t = Targets(3510.0, None, 8000.0, 1.5)
+    row = {"engagement_rpm_with_ripple": 3600.0, "slip_rpm": 7900.0, "safety_factor": 1.55}
+    ans = {"engagement_rpm_with_ripple": 3600.0 * 1.01, "slip_rpm": 7900.0 * 1.02, "safety_factor": 1.55 * 0.96}
+    moved, r = bc.moved_targets(t, row, ans)
+    assert r["safety_factor"] == pytest.approx(0.96)
+    assert moved.safety_factor_min == pytest.approx(1.5 / 0.96)  # analyze reads 4 % lower: ask 4 % more
+    assert moved.slip_rpm_max == pytest.approx(8000.0 / 1.02)  # analyze reads 2 % higher: ask 2 % less
+    assert moved.engage_rpm_lo == pytest.approx(3510.0)  # analyze reads higher: a lower limit is not loosened
+    assert bc.confirmed(t, ans) == ["slip speed <= max", "safety factor at engine max >= min"]  # 8058 rpm, 1.488
+    assert bc.confirmed(t, row) == []  # the row itself met them
+    assert bc.confirmed(moved, row) == ["slip speed <= max", "safety factor at engine max >= min"]
+
+
+def test_optimize_reports_what_analyze_gives_for_its_design():
+    d = cf.Design.from_concept("concept4", mesh=COARSE)
+    r = cf.optimize(d, free=["flexure_thickness"], sample=0, max_evals=4, workers=0)
+    be = r.best_estimate
+    a = bc.best_estimate(EvalSettings.from_design(d), r.best["params"])
+    assert be["answers"]["safety_factor"] == pytest.approx(a.safety_factor, rel=1e-9)
+    assert be["answers"]["slip_rpm"] == pytest.approx(a.slip_rpm, rel=1e-9)
+    assert "analyze" in r.message and "best_estimate" in r.to_json()
+    off = cf.optimize(d, free=["flexure_thickness"], sample=0, max_evals=4, workers=0, check=False)
+    assert off.best_estimate is None
+
+
+def test_a_target_analyze_misses_is_moved_and_searched_again(monkeypatch):
+    """analyze made to read the safety factor 5 % below the rows: the check moves the target
+    to 1.5 / 0.95 and searches on from the design, until analyze confirms it or says it misses."""
+    d = cf.Design.from_concept("concept4", mesh=COARSE)
+    real = bc.best_estimate
+
+    def low(settings, point=None):
+        a = real(settings, point)
+        return dataclasses.replace(a, safety_factor=a.safety_factor * 0.95)
+
+    monkeypatch.setattr(bc, "best_estimate", low)
+    t = Targets(None, None, None, 1.5)
+    r = cf.optimize(d, t, free=["flexure_thickness", "clearance"], sample=0, max_evals=12, workers=0,
+                    method="pattern")
+    be = r.best_estimate
+    if r.feasible and be["confirmed"]:
+        assert be["rounds"] >= 1 or r.best["safety_factor"] * 0.95 >= 1.5
+        assert be["answers"]["safety_factor"] >= 1.5
+        assert r.best["safety_factor"] >= 1.5 / 0.95 - 1e-9 or be["rounds"] == 0
+    else:
+        assert "MISSES" in r.message or not r.feasible
+    if be["rounds"]:
+        assert be["targets_searched"]["safety_factor_min"] == pytest.approx(1.5 / 0.95, rel=1e-6)
+    assert r.targets.safety_factor_min == 1.5  # the result states the user's targets
+
+
+def test_correction_ratios_read_the_error_steps_corrections():
+    """The peak corrected +4 % reads as a safety factor ratio 1/1.04; a refined slip speed as
+    its own ratio; an answer without corrections (the fast path) gives none."""
+    an = SimpleNamespace(errors={
+        "max_von_mises_Pa": {"value": 2.08e9, "corrections": {"uncorrected": 2.0e9}},
+        "slip_rpm": {"value": 8080.0, "corrections": {"uncorrected": 8000.0}},
+        "engagement_rpm": {"value": 4000.0}})
+    r = bc.correction_ratios(an)
+    assert r == {"safety_factor": pytest.approx(1 / 1.04), "slip_rpm": pytest.approx(1.01)}
+    moved, _ = bc.moved_targets(Targets(3510.0, None, 8000.0, 1.5), {k: 1.0 for k in r}, r)
+    assert moved.safety_factor_min == pytest.approx(1.56) and moved.slip_rpm_max == pytest.approx(8000.0 / 1.01)
+    assert bc.correction_ratios(SimpleNamespace(errors={})) == {}
+
+
+def test_tolerance_on_the_best_path_reads_the_answers_analyze_reports():
+    """The Monte Carlo's parts are analysed without the error step; on the best path their
+    constrained answers get the nominal design's corrections, so the nominal part reads the
+    safety factor analyze reports for it (not the uncorrected one)."""
+    d = cf.Design.from_concept("concept4", mesh=COARSE, fidelity="best")
+    r = cf.tolerance(d, {"flexure_thickness": "0.02mm"}, n=8, shifts=False, workers=0)
+    a = bc.best_estimate(EvalSettings.from_design(d))  # analyze with errors on the study's mesh
+    assert r.corrections["safety_factor"] < 1.0  # the peak is corrected upwards on the best path
+    assert r.nominal["safety_factor"] == pytest.approx(a.safety_factor, rel=1e-6)
+    assert any("corrected as analyze corrects" in n for n in r.notes)
+    fast = cf.tolerance(cf.Design.from_concept("concept4", mesh=COARSE), {"flexure_thickness": "0.02mm"}, n=8,
+                        shifts=False, workers=0)
+    assert fast.corrections == {}
