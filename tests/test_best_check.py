@@ -93,3 +93,19 @@ def test_tolerance_on_the_best_path_reads_the_answers_analyze_reports():
     fast = cf.tolerance(cf.Design.from_concept("concept4", mesh=COARSE), {"flexure_thickness": "0.02mm"}, n=8,
                         shifts=False, workers=0)
     assert fast.corrections == {}
+
+
+def test_a_moved_target_no_design_meets_keeps_the_checked_design(monkeypatch):
+    """analyze made to read half the safety factor: no design of the small search meets the
+    moved target, so the result is the design analyze checked, said to miss, not the failed
+    search's design."""
+    d = cf.Design.from_concept("concept4", mesh=COARSE)
+    real = bc.best_estimate
+    monkeypatch.setattr(bc, "best_estimate", lambda s, p=None: dataclasses.replace(real(s, p), safety_factor=0.5))
+    r = cf.optimize(d, Targets(None, None, None, 0.6), free=["flexure_thickness"], sample=0, max_evals=4, workers=0,
+                    method="pattern")
+    be = r.best_estimate
+    assert not r.feasible and not be["confirmed"] and "MISSES" in r.message
+    assert "no design met the moved targets" in be["history"][0]["next_round"]
+    assert be["answers"]["safety_factor"] == 0.5
+    assert r.best["assessment_searched"]["h"] == 0.0  # the checked design met the targets in the search

@@ -141,16 +141,21 @@ def check_optimum(result, settings, targets: Targets, search: Callable, log=None
                 + ", ".join(f"{k} {v:.4f}" for k, v in ratios.items()) + "): the search goes on with the targets moved")
         base = result.set_args
         nxt = search(dataclasses.replace(settings, base=tuple(base)), moved)
-        nxt.path = result.path + nxt.path
-        for k, v in result.evaluations.items():
-            nxt.evaluations[k] = nxt.evaluations.get(k, 0) + v
+        result.path = result.path + nxt.path
+        for k, v in nxt.evaluations.items():
+            result.evaluations[k] = result.evaluations.get(k, 0) + v
+        if not nxt.feasible:  # the moved targets were not met: keep the design analyze was checked on
+            history[-1]["next_round"] = f"no design met the moved targets ({nxt.message})"
+            result.seconds += nxt.seconds
+            break
+        nxt.path, nxt.evaluations = result.path, result.evaluations
         nxt.seconds += result.seconds
         nxt.start_texts = result.start_texts
         result, used = nxt, moved
     ok = result.feasible and not missed
     # the final design as analyze reports it, against the user's targets (the search's own
     # assessment, against the targets it searched with, is kept)
-    row = result.best
+    row, searched_ok = result.best, result.feasible
     result.best = {**row, "assessment": targets.assess({**row, **{k: v for k, v in answers.items() if v is not None}}),
                    "assessment_searched": row["assessment"], "analyze": answers}
     result.feasible = ok
@@ -162,7 +167,7 @@ def check_optimum(result, settings, targets: Targets, search: Callable, log=None
         "seconds": time.perf_counter() - t0, "history": history}
     sf = answers.get("safety_factor")
     said = f"safety factor {sf:.3f}" if sf is not None else "no safety factor"
-    if result.feasible:
+    if searched_ok:
         result.message += ("; analyze (with its error step) confirms every target" if ok else
                            "; analyze (with its error step) MISSES " + ", ".join(missed)) + f" ({said}" + (
             f", after {rounds} round(s) with the targets moved inward by analyze / search ratios)" if rounds else ")")
