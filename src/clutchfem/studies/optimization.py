@@ -223,7 +223,7 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
             return search(settings, targets)
         aim, _ = start_targets(settings, targets)
         res = search(settings, aim)
-        more = max(6 * len(res.free), max_evals // 2)  # each further round's budget
+        more = max(2 * len(res.free) + 2, max_evals // 2)  # each further round's budget: half, at least one poll
         return check_optimum(res, settings, targets, lambda s, t: search(s, t, more, 0), log, searched=aim)
 
 
