@@ -66,7 +66,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import qmc
 
-from ..core import InputError, ParameterError, clean
+from ..core import InputError, ParameterError, as_bool, clean
 from . import values as V
 from .batch import EvalSettings, cluster, evaluate_many
 from .best_check import check_optimum, start_targets
@@ -213,6 +213,7 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
                              "its lowest speed", "optimize")
     if method not in METHODS:
         raise ParameterError("method", method, "one of " + ", ".join(METHODS), "optimize")
+    check = as_bool(check, "check")
     with cluster(workers, scheduler):
         def search(s, t, budget=max_evals, first=sample):
             if method == "pattern":
