@@ -8,6 +8,7 @@ from types import SimpleNamespace
 import pytest
 
 import clutchfem as cf
+from clutchfem.core import SolverError
 from clutchfem.studies import EvalSettings, Targets
 from clutchfem.studies import best_check as bc
 
@@ -109,3 +110,15 @@ def test_a_moved_target_no_design_meets_keeps_the_checked_design(monkeypatch):
     assert "no design met the moved targets" in be["history"][0]["next_round"]
     assert be["answers"]["safety_factor"] == 0.5
     assert r.best["assessment_searched"]["h"] == 0.0  # the checked design met the targets in the search
+
+
+def test_an_optimum_analyze_cannot_check_is_said_not_hidden(monkeypatch):
+    d = cf.Design.from_concept("concept4", mesh=COARSE)
+
+    def fails(settings, point=None):
+        raise SolverError("the finer mesh has no solution")
+
+    monkeypatch.setattr(bc, "best_estimate", fails)
+    r = cf.optimize(d, free=["flexure_thickness"], sample=0, max_evals=4, workers=0, method="pattern")
+    assert "NOT CHECKED with analyze" in r.message and r.best_estimate["confirmed"] is False
+    assert "no solution" in r.best_estimate["error"]

@@ -31,6 +31,7 @@ import time
 from collections.abc import Callable
 
 from ..analysis import Requirements, analyze
+from ..core import ClutchfemError
 from ..geometry import get_concept
 from ..loadcase import Design
 from ..mesh import mesh_concept
@@ -88,7 +89,10 @@ def start_targets(settings, targets: Targets) -> tuple[Targets, dict]:
     """(``targets`` moved inward by the corrections analyze makes at the start design, the
     ratios): the search then aims at what analyze will report, and the final check rarely
     needs another round."""
-    ratios = correction_ratios(best_estimate(settings))
+    try:
+        ratios = correction_ratios(best_estimate(settings))
+    except ClutchfemError:  # the start has no analysis with the error step: the search finds out why
+        return targets, {}
     rows = {k: 1.0 for k in ratios}
     return moved_targets(targets, rows, ratios)[0], ratios
 
@@ -127,12 +131,24 @@ def check_optimum(result, settings, targets: Targets, search: Callable, log=None
     ``best_analysis`` the Analysis itself."""
     t0 = time.perf_counter()
     used, rounds, history = searched or targets, 0, []
+    checked = None  # (result, analysis, answers, missed, ratios, targets used) of the last design checked
     while True:
-        an = best_estimate(settings, result.best.get("params") or {})
+        try:
+            an = best_estimate(settings, result.best.get("params") or {})
+        except ClutchfemError as exc:  # said, not hidden: the search's own answers stand
+            if checked is None:
+                result.best_estimate = {"confirmed": False, "error": f"{type(exc).__name__}: {exc}", "rounds": 0}
+                result.message += f"; NOT CHECKED with analyze: its error step failed ({exc})"
+                return result
+            # a later round's design: keep the last design analyze checked, and say why
+            history[-1]["next_round"] = f"its design could not be analysed with the error step ({exc})"
+            result, an, answers, missed, ratios, used = checked
+            break
         answers = analysed_answers(an)
         missed = confirmed(targets, answers) if result.feasible else []
         moved, ratios = moved_targets(targets, result.best, answers)
         history.append({"round": rounds, "answers": answers, "ratios": ratios, "missed": missed})
+        checked = (result, an, answers, missed, ratios, used)
         if not result.feasible or not missed or rounds >= CHECK_ROUNDS or moved == used:
             break
         rounds += 1
