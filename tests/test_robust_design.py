@@ -79,3 +79,13 @@ def test_cli_refuses_bad_robust_options_without_a_traceback(args, needle):
                        capture_output=True, text=True, timeout=600)
     assert r.returncode != 0
     assert needle in r.stderr + r.stdout and "Traceback" not in r.stderr
+
+
+def test_robust_rounds_start_with_the_deterministic_optimum(design):
+    """SORA's first cycle: the deterministic optimum (round 0), then the shifted rounds; the
+    evaluations of every round are counted."""
+    r = cf.robust_optimize(design, {"clearance": "0.02mm"}, max_evals=6, rounds=1, workers=0,
+                           free=["flexure_thickness", "clearance"])
+    assert r.rounds[0]["round"] == 0 and r.rounds[0]["deterministic"] is True
+    assert r.rounds[1]["round"] == 1 and "margins" in r.rounds[1]
+    assert r.evaluations == r.rounds[0]["evaluations"] + r.rounds[1]["evaluations"]
