@@ -41,8 +41,7 @@ from ..accuracy import (
 )
 from ..clutch import EngineCurve
 from ..fe import peak_disc
-from .refinement import ACCURACY_TARGET, REFINABLE, FinerLevel, needs_refinement, refine_answer
-from .torque import GRID_RPM_SENSITIVITY, FETorque, slip_step
+from .refinement import ACCURACY_TARGET, REFINABLE, FinerLevel, level_answer, needs_refinement, refine_answer
 
 #: a sweep's relative equilibrium residual at an answer's speed from which it is a term of
 #: that answer's band (below, < 0.01 %: negligible against the bands, >= 0.3 %)
@@ -87,8 +86,8 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
         case = d.case()
         eng = case.engagement_rpm  # (first: a per-speed re-solve's engagement search starts from it)
         row = (d.with_softening("prestress-exact") if peak_exact else d).sweep([hi]).curve.iloc[0]
-        return {"engagement_rpm": eng, "slip_rpm": slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm,
-                "torque_at_max_engine_torque_Nm": float(FETorque(case)(float(engine.rpm_max_torque))[0]),
+        return {"engagement_rpm": eng, "slip_rpm": level_answer(case, engine, "slip_rpm"),
+                "torque_at_max_engine_torque_Nm": level_answer(case, engine, "torque_at_max_engine_torque_Nm"),
                 "max_von_mises_Pa": float(row["max_von_mises_Pa"]),
                 "peak_at": (float(row["max_vm_x_m"]), float(row["max_vm_y_m"]))}
 

@@ -198,7 +198,6 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
     # 7: stress at the engine's maximum speed
     res_peak, peak_exact = peak_sweep(design, res, hi)
     st = stress_step(res_peak, hi, material)
-    slip_power = None if slip.rpm is None else float(engine.torque_at(slip.rpm) * rpm_to_rad_s(slip.rpm))
     curves = answer_curves(res, curves, coupling, engine)
     # 8-11: requirements, error of the main answers, crankshaft whirl, fatigue
     checks = requirements_step(req, idle_rpm, engine, eng, slip, in_range)

@@ -63,6 +63,18 @@ def needs_refinement(q: str, value: float | None, disc: float | None, model_form
     return disc + model_form_abs > lim >= model_form_abs
 
 
+def level_answer(case, engine: EngineCurve, q: str) -> float | None:
+    """Answer ``q`` (engagement, slip or torque at the rpm of maximum engine torque) of a
+    mesh level's load case ``case``, as the error step computes it on every level: the
+    engagement in closed form, the slip crossings bracketed every
+    :data:`~.torque.GRID_RPM_SENSITIVITY` rpm and refined, the exact FE torque."""
+    if q == "engagement_rpm":
+        return case.engagement_rpm
+    if q == "slip_rpm":
+        return slip_step(case, engine, GRID_RPM_SENSITIVITY).rpm
+    return float(FETorque(case)(float(engine.rpm_max_torque))[0])
+
+
 class FinerLevel:
     """The h/4 level of a design, built on first use from the error step's h/2 design
     ``fine`` and computed lazily per answer (engagement, slip, torque at the rpm of maximum
@@ -85,14 +97,7 @@ class FinerLevel:
             if self._case is None:
                 self.design = refined_design(self.fine)
                 self._case = self.design.case()
-            case = self._case
-            if q == "engagement_rpm":
-                v = case.engagement_rpm
-            elif q == "slip_rpm":
-                v = slip_step(case, self.engine, GRID_RPM_SENSITIVITY).rpm
-            else:
-                v = float(FETorque(case)(float(self.engine.rpm_max_torque))[0])
-            self.values[q] = v
+            self.values[q] = level_answer(self._case, self.engine, q)
         except ClutchfemError as exc:
             self.error = f"{type(exc).__name__}: {exc}"
         self.time_s += time.perf_counter() - t0

@@ -95,11 +95,9 @@ def optimize(
 ):
     """Find a design that meets the targets at least part mass (or largest torque margin);
     with --tol, one whose targets hold for the --yield share of made parts."""
-    from ..analysis import Requirements, analyze
     from ..core import dumps
-    from ..loadcase import Design
     from ..report import optimization_report
-    from ..studies import Targets
+    from ..studies import Targets, best_estimate
     from ..studies import optimize as run
 
     try:
@@ -144,9 +142,7 @@ def optimize(
         if out is not None or not json_:  # the final design analysed again, with its error estimate
             final = res.best_analysis  # (the optimiser's own check did it)
             if final is None:
-                d = Design.from_concept(s.concept, s.params(res.best["params"]), s.operating_point(), s.mesh_settings())
-                final = analyze(d, engine=s.engine(), requirements=Requirements(a=s.a, b=s.b), idle_rpm=s.idle_rpm,
-                                errors=True)
+                final = best_estimate(s, res.best["params"])
         if out is not None:
             wrote(optimization_report(res, final, out))
         if json_:

@@ -34,6 +34,7 @@ from ..core import lazy_names
 _NAMES: dict[str, str | None] = {
     "allocate_linear": "tolerance_algebra",
     "allocate_tolerances": "allocation",
+    "best_estimate": "best_check",
     "Allocation": "allocation",
     "check_address": "cluster",
     "ClusterError": "cluster",

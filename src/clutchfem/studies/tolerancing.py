@@ -185,10 +185,6 @@ class ToleranceResult:
                                             "bootstrap intervals (1000 resamples)"}})
 
 
-def ok_rows_of(rows: list[dict]) -> list[dict]:
-    return [r for r in rows if r["status"] == "ok"]
-
-
 def _strip(r: dict) -> dict:
     return {k: v for k, v in r.items() if k not in ("warnings",)}
 
@@ -307,15 +303,14 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
     tg = targets or Targets(nom["engagement_limit_rpm"], None, nom["slip_limit_rpm"], 1.5)
     spec = tg.constraints()
     ratios = correction_ratios(best_estimate(settings)) if settings.operating_point().fidelity == "best" else {}
-    if ratios:  # the parts' answers as analyze reports them (module docstring, "Spec")
-        for r in ok_rows_of([nom] + rows):
-            for key, f in ratios.items():
-                if r.get(key) is not None:
-                    r[key] = r[key] * f
+    ok_rows = [r for r in rows if r["status"] == "ok"]
+    for r in [nom] + ok_rows:  # the parts' answers as analyze reports them (module docstring, "Spec")
+        for key, f in ratios.items():
+            if r.get(key) is not None:
+                r[key] = r[key] * f
     statuses: dict = {}
     for r in rows:
         statuses[r["status"]] = statuses.get(r["status"], 0) + 1
-    ok_rows = [r for r in rows if r["status"] == "ok"]
     bad = n - len(ok_rows)
     out: dict = {}
     checks = [_in_spec(r, spec) for r in ok_rows]
