@@ -122,3 +122,22 @@ def test_an_optimum_analyze_cannot_check_is_said_not_hidden(monkeypatch):
     r = cf.optimize(d, free=["flexure_thickness"], sample=0, max_evals=4, workers=0, method="pattern")
     assert "NOT CHECKED with analyze" in r.message and r.best_estimate["confirmed"] is False
     assert "no solution" in r.best_estimate["error"]
+
+
+def test_best_estimate_of_the_same_design_is_analysed_once(monkeypatch):
+    """A robust run asks for the same design's best estimate in a round's check, as the next
+    round's start and for its model bands: the second ask is answered from memory; another
+    design, another operating point (the fidelity of the environment) is analysed anew."""
+    from clutchfem.studies import EvalSettings
+    from clutchfem.studies import best_check as B
+    calls = []
+    monkeypatch.setattr(B, "_best_estimate", lambda s, p: calls.append((s, p)) or object())
+    monkeypatch.setattr(B, "_RECENT", type(B._RECENT)())
+    s = EvalSettings(concept="concept4", base=("clearance=0.3mm",))
+    a = B.best_estimate(s)
+    assert B.best_estimate(EvalSettings(concept="concept4"), {"clearance": "0.3mm"}) is a and len(calls) == 1
+    B.best_estimate(s, {"clearance": "0.31mm"})
+    assert len(calls) == 2
+    monkeypatch.setenv("CLUTCHFEM_FIDELITY", "best" if s.operating_point().fidelity == "fast" else "fast")
+    B.best_estimate(s)
+    assert len(calls) == 3

@@ -89,3 +89,87 @@ def test_robust_rounds_start_with_the_deterministic_optimum(design):
     assert r.rounds[0]["round"] == 0 and r.rounds[0]["deterministic"] is True
     assert r.rounds[1]["round"] == 1 and "margins" in r.rounds[1]
     assert r.evaluations == r.rounds[0]["evaluations"] + r.rounds[1]["evaluations"]
+
+
+#: a concept-4 design whose flexure length sits on the rule "the beam ends below the shoe"
+ON_RULE = ("hub_radius=9.04mm", "shoe_arc=101.4deg", "shoe_thickness=5.07mm", "flexure_length=16.92mm",
+           "flexure_thickness=3.23mm", "flexure_taper=0.879", "flexure_angle=55.8deg", "fillet_radius=3.99mm",
+           "clearance=0.33mm")
+
+
+def test_tolerance_box_refuses_a_design_whose_tolerance_corner_cannot_be_built():
+    """The nominal design is admitted; with its tolerance box, the corner that lengthens the
+    beam past the shoe is refused, naming the rule's parameter and the corner; a design
+    further from the rule is admitted with the same box."""
+    from clutchfem.studies import EvalSettings
+    plain = EvalSettings(concept="concept4", base=ON_RULE)
+    plain.params()
+    boxed = EvalSettings(concept="concept4", base=ON_RULE, tolerance_box=(("flexure_thickness", 5e-5),
+                                                                          ("clearance", 2e-5)))
+    with pytest.raises(ParameterError, match="tolerance corner flexure_thickness \\+0.05mm") as e:
+        boxed.params()
+    assert e.value.name == "flexure_length"
+    boxed.params({"flexure_length": "16.8mm"})
+    # the corners of the box really are refused without it
+    with pytest.raises(ParameterError):
+        plain.params({"flexure_thickness": "3.28mm", "clearance": "0.35mm"})
+
+
+def _row(mass, eng, slip, sf, **params):
+    return {"status": "ok", "params": params, "mass_kg": mass, "engagement_rpm_with_ripple": eng,
+            "slip_rpm": slip, "safety_factor": sf}
+
+
+def test_archive_start_picks_the_lightest_design_meeting_the_shifted_targets():
+    from clutchfem.studies import EvalSettings
+    from clutchfem.studies.robust import archive_start
+    s = EvalSettings(concept="concept4")
+    aim = Targets(3600.0, None, 7900.0, 1.6)
+    here = EvalSettings(concept="concept4", base=("clearance=0.3mm",))
+    rows = [_row(0.090, 3550.0, 8000.0, 1.7, clearance="0.25mm"),      # light, misses the window
+            _row(0.120, 3700.0, 7800.0, 1.8, clearance="0.26mm"),      # meets it
+            _row(0.110, 3650.0, 7850.0, 1.65, clearance="0.27mm"),     # meets it, lighter: chosen
+            {"status": "refused", "params": {"clearance": "9mm"}}]
+    start, what = archive_start(s, rows, aim, here)
+    assert start.base == ("clearance=0.27mm",) and "110.0 g" in what and "meets" in what
+    # nothing meets it: the least violating one
+    start, what = archive_start(s, rows[:1] + [_row(0.1, 3500.0, 8100.0, 1.7, clearance="0.28mm")], aim, here)
+    assert start.base == ("clearance=0.25mm",) and "nearest" in what
+    # a row whose tolerance box cannot be built is moved until it can: the shorter way, just inside
+    boxed = EvalSettings(concept="concept4", base=ON_RULE, tolerance_box=(("flexure_thickness", 5e-5),
+                                                                          ("clearance", 2e-5)))
+    start, what = archive_start(boxed, [_row(0.10, 3700.0, 7800.0, 1.8, flexure_length="16.92mm"),
+                                        _row(0.11, 3700.0, 7800.0, 1.8, flexure_length="16.8mm")], aim, here)
+    assert "flexure_length=16.84mm" in start.base and "100.0 g" in what and "16.92mm -> 16.84mm" in what
+    start.params()
+    with pytest.raises(ParameterError):
+        start.params({"flexure_length": "16.83mm", "flexure_thickness": "3.24mm"})
+    # no row at all: the previous design
+    assert archive_start(s, [], aim, here) == (here, "the previous design")
+
+
+def test_check_share_counts_unbuildable_parts_out_of_spec():
+    from types import SimpleNamespace
+
+    from clutchfem.studies.robust import RobustResult
+    chk = SimpleNamespace(out_of_spec={"any": {"k": 1, "n": 724, "share": 1 / 724, "ci95": [0.0002, 0.0078]},
+                                       "any_counting_unbuildable": {"k": 277, "n": 1000, "share": 0.277,
+                                                                    "ci95": [0.25, 0.31]}})
+    r = RobustResult(result=None, targets=None, tolerances={}, dist="normal", yield_target=0.99, margins={},
+                     sigma={}, predicted_yield=1.0, check=chk)
+    share, lo, hi = r.check_share_in_spec
+    assert share == pytest.approx(0.723) and lo == pytest.approx(0.69) and hi == pytest.approx(0.75)
+
+
+def test_buildable_point_moves_only_what_a_rule_refuses_and_refuses_the_impossible():
+    from clutchfem.studies import EvalSettings
+    from clutchfem.studies.robust import buildable_point
+    pt = dict(a.split("=") for a in ON_RULE)
+    boxed = EvalSettings(concept="concept4", tolerance_box=(("flexure_thickness", 5e-5), ("clearance", 2e-5)))
+    q = buildable_point(boxed, pt)
+    assert {n for n in pt if q[n] != pt[n]} == {"flexure_length"} and q["flexure_length"] == "16.84mm"
+    assert buildable_point(boxed, q) == q                                 # admitted: unchanged
+    # a refusal on a parameter that is not in the point cannot be mended by moving it
+    wide = EvalSettings(concept="concept4", base=("flexure_length=16.92mm",),
+                        tolerance_box=(("flexure_thickness", 5e-5), ("clearance", 2e-5)))
+    assert buildable_point(wide, {n: v for n, v in pt.items() if n != "flexure_length"}) is None

@@ -185,6 +185,10 @@ def _print_robust(r):
     for k, m in r.margins.items():
         u = units.get(k, "")
         console.print(f"  {escape(k)}: margin {m:.3g} {u} (sigma {r.sigma.get(k, 0.0):.3g} {u})")
+    console.print("the concept's rules hold at every corner of the tolerance box (every part within the drawing's "
+                  "tolerances can be built)" if r.box_buildable else
+                  "[yellow]the concept's rules do NOT hold at every corner of the tolerance box: some parts within "
+                  "the drawing's tolerances cannot be built (see --check)[/yellow]")
     console.print(f"yield asked {r.yield_target:.2%}, predicted {r.predicted_yield:.2%} (linearised, constraints "
                   f"independent); {r.evaluations} designs in {len(r.rounds)} round(s), {r.seconds:.0f} s")
     if not r.converged:
@@ -192,8 +196,11 @@ def _print_robust(r):
                       "rounds): run more rounds or check with --check[/yellow]")
     c = r.check_share_in_spec
     if c is not None:
+        bad = r.check.n - r.check.out_of_spec["any"]["n"]
         console.print(f"Monte Carlo check ({r.check.n} remeshed parts): {c[0]:.2%} in spec "
-                      f"(95 % Wilson interval {c[1]:.2%} .. {c[2]:.2%})")
+                      f"(95 % Wilson interval {c[1]:.2%} .. {c[2]:.2%})"
+                      + (f"; {bad} part(s) the concept's rules refuse or whose analysis failed counted out of spec"
+                         if bad else ""))
 
 
 def _print_optimization(res, final):

@@ -31,6 +31,7 @@ resume).  Without an output folder the store is a temporary file.
 from __future__ import annotations
 
 import contextlib
+import itertools
 import json
 import logging
 import math
@@ -47,7 +48,7 @@ from .hashing import design_hash
 from .point import COLUMNS, Settings, model_version
 from .runner import run_points
 from .store import ResultStore
-from .values import changed_texts
+from .values import changed_texts, exact_text
 
 #: the answers a row carries (name -> unit), in table order
 ANSWERS = {
@@ -84,6 +85,10 @@ class EvalSettings:
     morph: tuple | None = None
     #: the mesh settings as an object (the API; a guideline study's): wins over ``mesh_size``
     mesh: MeshSettings | None = None
+    #: ((name, half-width SI), ...): a design is admitted only if the concept's rules also
+    #: hold at every corner of this tolerance box around it (robust design: every part a
+    #: drawing's tolerances allow can be built, :func:`.robust.robust_optimize`)
+    tolerance_box: tuple | None = None
 
     @classmethod
     def from_design(cls, design, *, engine=None, idle_rpm: float | None = None, requirements=None,
@@ -119,7 +124,11 @@ class EvalSettings:
     def params(self, point: dict | None = None):
         """The concept's parameter set for ``point`` on the base (raises ParameterError)."""
         P = get_concept(self.concept).Params
-        return P(**self.values(point))
+        vals = self.values(point)
+        p = P(**vals)
+        if self.tolerance_box:
+            box_corners(P, dict(vals, **{n: getattr(p, n) for n, _ in self.tolerance_box}), self.tolerance_box)
+        return p
 
     def values(self, point: dict | None = None) -> dict:
         """Parameter values (SI) of the base plus the point, as the parser reads the texts."""
@@ -158,6 +167,23 @@ class EvalSettings:
         return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
                         engine=self.engine() if (self.engine_csv or self.curve is not None) else None, idle_rpm=self.idle_rpm, a=self.a,
                         b=self.b, min_safety_factor=self.min_safety_factor, morph=self.morph)
+
+
+def box_corners(P, values: dict, box) -> None:
+    """Raise the concept's ParameterError, prefixed by the corner, where its rules refuse a
+    corner of the tolerance ``box`` ((name, half-width), ...) around ``values`` (SI): for a
+    rule linear in the toleranced dimensions the box is admissible iff its corners are."""
+    for signs in itertools.product((1.0, -1.0), repeat=len(box)):
+        corner = dict(values)
+        for (n, t), sg in zip(box, signs):
+            corner[n] = values[n] + sg * t
+        try:
+            P(**corner)
+        except ParameterError as exc:
+            at = ", ".join(f"{n} {'+' if sg > 0 else '-'}{exact_text(P, n, t)}" for (n, t), sg in zip(box, signs))
+            raise ParameterError(exc.name, exc.value, f"{exc.allowed} -- at the tolerance corner {at}: a part "
+                                 "within the drawing's tolerances could not be built", exc.context,
+                                 shown=exc.shown) from None
 
 
 @contextlib.contextmanager
