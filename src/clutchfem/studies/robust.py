@@ -57,7 +57,7 @@ from ..geometry import get_concept
 from . import values as V
 from .batch import EvalSettings
 from .best_check import best_estimate
-from .optimization import METHODS, OptimizationResult, better, optimize
+from .optimization import METHODS, OptimizationResult, optimize
 from .sensitivity import sensitivities
 from .targets import Targets
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
