@@ -149,12 +149,17 @@ def test_archive_start_picks_the_lightest_design_meeting_the_shifted_targets():
 
 
 def test_check_share_counts_unbuildable_parts_out_of_spec():
+    """A sample the concept's rules refuse is a part that cannot be built as drawn: the share
+    in spec a robust result (and the report, the allocation check) gives counts it out."""
     from types import SimpleNamespace
 
     from clutchfem.studies.robust import RobustResult
-    chk = SimpleNamespace(out_of_spec={"any": {"k": 1, "n": 724, "share": 1 / 724, "ci95": [0.0002, 0.0078]},
-                                       "any_counting_unbuildable": {"k": 277, "n": 1000, "share": 0.277,
-                                                                    "ci95": [0.25, 0.31]}})
+    from clutchfem.studies.tolerancing import ToleranceResult
+    oos = {"any": {"k": 1, "n": 724, "share": 1 / 724, "ci95": [0.0002, 0.0078]},
+           "any_counting_unbuildable": {"k": 277, "n": 1000, "share": 0.277, "ci95": [0.25, 0.31]}}
+    assert ToleranceResult.out_any.fget(SimpleNamespace(out_of_spec=oos))["k"] == 277
+    assert ToleranceResult.out_any.fget(SimpleNamespace(out_of_spec={"any": oos["any"]}))["k"] == 1
+    chk = SimpleNamespace(out_of_spec=oos, out_any=ToleranceResult.out_any.fget(SimpleNamespace(out_of_spec=oos)))
     r = RobustResult(result=None, targets=None, tolerances={}, dist="normal", yield_target=0.99, margins={},
                      sigma={}, predicted_yield=1.0, check=chk)
     share, lo, hi = r.check_share_in_spec

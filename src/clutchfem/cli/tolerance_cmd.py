@@ -193,7 +193,7 @@ def _allocate(s, base, set_, tols, targets, y, dist, model_error, cost, n, seed,
                   scheduler=scheduler, log=lambda m: err.print(escape(m)))
     doc = {"design": {"label": base.name, "set": list(set_)}, **a.to_json()}
     if chk is not None:
-        o = chk.out_of_spec["any"]
+        o = chk.out_any
         doc["check"] = {"n": o["n"], "in_spec": o["n"] - o["k"], "share_in_spec": 1 - o["share"],
                         "ci95_in_spec": [1 - o["ci95"][1], 1 - o["ci95"][0]], "seed": seed,
                         "widths_si": dict(chk.tolerances), "model_error_in_check": False}

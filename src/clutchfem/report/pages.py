@@ -239,8 +239,9 @@ def tolerance_page(res, folder: Path, inputs: dict) -> Page:
     folder = Path(folder)
     hist = charts.tolerance_histograms(res, folder / "tolerance_histograms.png")
     rank = charts.tolerance_ranking(res, folder / "tolerance_ranking.png")
-    oos = res.out_of_spec["any"]
-    verdicts = [[f"out of spec: {100 * oos['share']:.1f} % of parts", oos["k"] == 0,
+    oos = res.out_any  # (a part the concept's rules refuse counted out of spec)
+    verdicts = [[f"out of spec: {100 * oos['share']:.1f} % of parts" + (
+                     " (unbuildable or failed ones included)" if oos is not res.out_of_spec["any"] else ""), oos["k"] == 0,
                  f"95 % CI {100 * oos['ci95'][0]:.1f}-{100 * oos['ci95'][1]:.1f} % (Wilson, n = {oos['n']})"]]
     head = []
     for name, *_ in res.spec:

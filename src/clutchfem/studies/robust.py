@@ -101,8 +101,7 @@ class RobustResult:
         """(share in spec, lower, upper Wilson bound) of the Monte Carlo check."""
         if self.check is None:
             return None
-        # a sample the concept's rules refuse is a part that cannot be built as drawn: out of spec
-        o = self.check.out_of_spec.get("any_counting_unbuildable") or self.check.out_of_spec["any"]
+        o = self.check.out_any  # a part that cannot be built as drawn is out of spec
         lo, hi = o["ci95"]
         return 1.0 - o["share"], 1.0 - hi, 1.0 - lo
 
@@ -290,10 +289,12 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
     seed, log
         The check's seed; a progress callback.
     method : {"pattern", "auto", "gradient"}
-        The search of each round (:func:`optimize`).  Default ``pattern``: the configuration
-        whose robust design was checked by Monte Carlo (BENCHMARKS.md, "Robust design"); with
-        ``auto`` the rounds reached 106.3 g but missed the shifted limits by 0.03-1.5 % within
-        the budget (measured once, section 21), so it is not the default yet.
+        The search of each shifted round (:func:`optimize`; round 0 is always ``auto``).
+        Default ``pattern``: the configuration whose robust designs were checked by Monte
+        Carlo on both paths (BENCHMARKS.md sections 18 and 21: on the default best path from
+        concept 4's defaults 100.4 g, 998 of 1000 remeshed parts in spec); with ``auto`` the
+        rounds of an earlier version missed the shifted limits by 0.03-1.5 % within the
+        budget (measured once, section 21), so it is not the default.
 
     Returns
     -------

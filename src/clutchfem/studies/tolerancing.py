@@ -171,6 +171,12 @@ class ToleranceResult:
     #: path), applied to every part's answer before the spec check ({}: none)
     corrections: dict = field(default_factory=dict)
 
+    @property
+    def out_any(self) -> dict:
+        """The share of parts out of spec on any target, a part the concept's rules refuse
+        (it cannot be built as drawn) or whose analysis failed counted as out of spec."""
+        return self.out_of_spec.get("any_counting_unbuildable") or self.out_of_spec["any"]
+
     def to_json(self) -> dict:
         return clean({"concept": self.concept, "tolerances_si": self.tolerances, "distribution": self.dist,
                       "n": self.n, "seed": self.seed, "nominal": _strip(self.nominal),
