@@ -178,3 +178,14 @@ def test_buildable_point_moves_only_what_a_rule_refuses_and_refuses_the_impossib
     wide = EvalSettings(concept="concept4", base=("flexure_length=16.92mm",),
                         tolerance_box=(("flexure_thickness", 5e-5), ("clearance", 2e-5)))
     assert buildable_point(wide, {n: v for n, v in pt.items() if n != "flexure_length"}) is None
+
+
+def test_tolerances_that_close_the_window_are_refused_naming_them():
+    """Margins that move the engagement minimum above the slip maximum leave no design: the
+    refusal names --tol, its values with units and the way out, not the internal target."""
+    from clutchfem.studies.robust import window
+    with pytest.raises(ParameterError, match="tol") as e:
+        window(Targets(3510.0, None, 8000.0, 1.5), {"engagement_rpm_with_ripple": 2744.0, "slip_rpm": 1945.0},
+               "flexure_length=+-4mm", 0.99)
+    assert "flexure_length=+-4mm" in str(e.value) and "lower --yield" in str(e.value)
+    assert window(Targets(3510.0, None, 8000.0, 1.5), {"slip_rpm": 100.0}, "x", 0.99).slip_rpm_max == 7900.0

@@ -255,6 +255,18 @@ def buildable_point(settings: EvalSettings, params: dict) -> dict | None:
     return None
 
 
+def window(nominal: Targets, margins: dict, tol_txt: str, yield_target: float) -> Targets:
+    """:func:`shifted`, or a refusal naming the tolerances where the margins close the window
+    between the limits (e.g. an engagement minimum moved above the moved slip maximum)."""
+    try:
+        return shifted(nominal, margins)
+    except ParameterError as exc:
+        raise ParameterError("tol", tol_txt, f"tolerances whose spreads leave a window between the limits at yield "
+                             f"{yield_target:g}: they move the limits inward by " + ", ".join(
+                                 f"{k} {v:.4g}" for k, v in margins.items()) + f", and then {exc.allowed}; tighten "
+                             "the tolerances or lower --yield", "optimize") from None
+
+
 def shifted(targets: Targets, margins: dict) -> Targets:
     """``targets`` with every limit moved inward by its margin (:meth:`Targets.moved_inward`)."""
     return targets.moved_inward(margins)
@@ -356,7 +368,8 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         margins = new
         if res is not None and res.feasible and moved < CONVERGED:
             break
-        aim = shifted(nominal, margins)
+        aim = window(nominal, margins, ", ".join(f"{n}=+-{V.exact_text(P, n, t)}" for n, t in tols.items()),
+                     yield_target)
         start, picked = archive_start(boxed, archive, aim, dataclasses.replace(here, tolerance_box=boxed.tolerance_box))
         prev = dataclasses.replace(here, tolerance_box=boxed.tolerance_box)
         try:
