@@ -189,3 +189,24 @@ def test_tolerances_that_close_the_window_are_refused_naming_them():
                "flexure_length=+-4mm", 0.99)
     assert "flexure_length=+-4mm" in str(e.value) and "lower --yield" in str(e.value)
     assert window(Targets(3510.0, None, 8000.0, 1.5), {"slip_rpm": 100.0}, "x", 0.99).slip_rpm_max == 7900.0
+
+
+@pytest.mark.parametrize("extra", [["--dist", "uniform", "--no-model-error"]])
+def test_cli_robust_optimize_runs_end_to_end_with_its_check(extra):
+    """`optimize --tol ... --yield ... --check N` to its end with the non-default options (the
+    defaults, normal and model error in, run through the API in the tests above; a second CLI
+    run would add ~40 s to the suite for the same code path): the JSON carries the margins, the rounds, the tolerance
+    box and the Monte Carlo check, whose share counts every part asked for."""
+    import json
+    r = subprocess.run(CLI + ["optimize", "concept4", "--mesh-size", "3mm", "--workers", "0", "--fidelity", "fast",
+                              "--free", "flexure_thickness,clearance", "--max-evals", "6", "--tol",
+                              "clearance=+-0.02mm", "--yield", "0.9", "--check", "8", "--json", *extra],
+                       capture_output=True, text=True, timeout=900)
+    assert r.returncode == 0, r.stderr[-2000:]
+    doc = json.loads(r.stdout)
+    rb = doc["robust"]
+    assert rb["distribution"] == extra[1] and rb["model_error_included"] == (extra[2] == "--model-error")
+    assert rb["margins"]["slip_rpm"] > 0 and rb["rounds"][0]["deterministic"] is True
+    assert rb["tolerance_box_buildable"] is True
+    share, lo, hi = rb["check_share_in_spec"]
+    assert 0.0 <= lo <= share <= hi <= 1.0

@@ -185,12 +185,14 @@ def _print_robust(r):
     for k, m in r.margins.items():
         u = units.get(k, "")
         console.print(f"  {escape(k)}: margin {m:.3g} {u} (sigma {r.sigma.get(k, 0.0):.3g} {u})")
+    shifted_rounds = sum(1 for h in r.rounds if isinstance(h.get("round"), int) and h["round"] > 0)
     console.print("the concept's rules hold at every corner of the tolerance box (every part within the drawing's "
                   "tolerances can be built)" if r.box_buildable else
                   "[yellow]the concept's rules do NOT hold at every corner of the tolerance box: some parts within "
                   "the drawing's tolerances cannot be built (see --check)[/yellow]")
     console.print(f"yield asked {r.yield_target:.2%}, predicted {r.predicted_yield:.2%} (linearised, constraints "
-                  f"independent); {r.evaluations} designs in {len(r.rounds)} round(s), {r.seconds:.0f} s")
+                  f"independent); {r.evaluations} designs in the deterministic optimum and {shifted_rounds} shifted "
+                  f"round(s), {r.seconds:.0f} s")
     if not r.converged:
         console.print("[yellow]the final design needs larger margins than it was optimised with (see --json "
                       "rounds): run more rounds or check with --check[/yellow]")
