@@ -57,6 +57,7 @@ def main() -> None:
                     "(default: --n)")
     ap.add_argument("--method", default="pattern", help="optimize's method inside the robust rounds")
     ap.add_argument("--max-evals", type=int, default=300, help="each round's optimisation budget (designs)")
+    ap.add_argument("--rounds", type=int, default=None, help="shifted rounds at most (default: robust_optimize's)")
     args = ap.parse_args()
     say(f"machine: {platform.machine()}, python {platform.python_version()}, {args.workers} workers; "
         f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")
@@ -65,6 +66,7 @@ def main() -> None:
         t = time.perf_counter()
         r = cf.robust_optimize(d, TOLS, yield_target=0.99, model_error=model_error, workers=args.workers,
                                method=args.method, max_evals=args.max_evals,
+                               **({"rounds": args.rounds} if args.rounds else {}),
                                log=lambda s: say("   ", s) if s.startswith("round") else None)
         res = r.result
         say(f"robust (model error {'in' if model_error else 'out'}): feasible {res.feasible}, mass "

@@ -61,7 +61,8 @@ def test_shifted_targets_move_every_limit_inward():
 
 
 def test_robust_optimize_refuses_bad_yield_distribution_and_no_tolerance(design):
-    for kw, name in (({"yield_target": 1.2}, "yield"), ({"dist": "gauss"}, "dist")):
+    for kw, name in (({"yield_target": 1.2}, "yield"), ({"dist": "gauss"}, "dist"), ({"rounds": 0}, "rounds"),
+                     ({"rounds": 11}, "rounds"), ({"rounds": 2.5}, "rounds"), ({"rounds": True}, "rounds")):
         with pytest.raises(ParameterError, match=name):
             cf.robust_optimize(design, {"clearance": "0.02mm"}, workers=0, **kw)
     with pytest.raises(ParameterError, match="tol"):
@@ -73,6 +74,7 @@ def test_robust_optimize_refuses_bad_yield_distribution_and_no_tolerance(design)
 @pytest.mark.parametrize("args, needle", [
     (["--tol", "flexure_thickness=+-0.05mm", "--yield", "1.5"], "--yield"),
     (["--tol", "flexure_thickness=0.05mm"], "--tol"),
+    (["--tol", "flexure_thickness=+-0.05mm", "--rounds", "0"], "rounds"),
 ])
 def test_cli_refuses_bad_robust_options_without_a_traceback(args, needle):
     r = subprocess.run(CLI + ["optimize", "concept4", "--mesh-size", "3mm", "--workers", "0", *args],
@@ -200,7 +202,7 @@ def test_cli_robust_optimize_runs_end_to_end_with_its_check(extra):
     import json
     r = subprocess.run(CLI + ["optimize", "concept4", "--mesh-size", "3mm", "--workers", "0", "--fidelity", "fast",
                               "--free", "flexure_thickness,clearance", "--max-evals", "6", "--tol",
-                              "clearance=+-0.02mm", "--yield", "0.9", "--check", "8", "--json", *extra],
+                              "clearance=+-0.02mm", "--yield", "0.9", "--check", "8", "--rounds", "2", "--json", *extra],
                        capture_output=True, text=True, timeout=900)
     assert r.returncode == 0, r.stderr[-2000:]
     doc = json.loads(r.stdout)
@@ -208,5 +210,6 @@ def test_cli_robust_optimize_runs_end_to_end_with_its_check(extra):
     assert rb["distribution"] == extra[1] and rb["model_error_included"] == (extra[2] == "--model-error")
     assert rb["margins"]["slip_rpm"] > 0 and rb["rounds"][0]["deterministic"] is True
     assert rb["tolerance_box_buildable"] is True
+    assert 2 <= len([h for h in rb["rounds"] if isinstance(h["round"], int)]) <= 3  # round 0 and at most 2 more
     share, lo, hi = rb["check_share_in_spec"]
     assert 0.0 <= lo <= share <= hi <= 1.0

@@ -88,6 +88,9 @@ def optimize(
                                      "band (as +-2 sigma) to its spread", rich_help_panel="Robust design"),
     check: int = typer.Option(0, "--check", help="Monte Carlo parts through remeshed designs to check the robust "
                               "design's yield (0: none)", rich_help_panel="Robust design"),
+    rounds: Optional[int] = typer.Option(None, "--rounds", help="shifted-limit rounds at most after the deterministic "
+                               "optimum (default 5; they stop earlier once feasible with converged margins)",
+                               rich_help_panel="Robust design"),
     workers: O.Workers = None,
     scheduler: O.Scheduler = None,
     out: O.Out = None,
@@ -133,7 +136,7 @@ def optimize(
         robust = None
         if tol:
             robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, workers,
-                             method or "pattern")
+                             method or "pattern", rounds)
             res = robust.result
         else:
             res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
@@ -158,7 +161,7 @@ def optimize(
         fail(exc)
 
 
-def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_evals, workers, method):
+def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_evals, workers, method, rounds):
     """The robust optimisation of ``optimize --tol`` (clutchfem.studies.robust)."""
     from ..studies import robust_optimize
 
@@ -172,6 +175,7 @@ def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_eva
         raise ParameterError("check", check, "0 (no check) or 8 to 100000 parts", "option --check")
     return robust_optimize(s, tols, yield_target=y, dist=dist, model_error=model_error, targets=targets, free=names,
                            max_evals=max_evals, check=check, workers=workers, method=method,
+                           **({} if rounds is None else {"rounds": rounds}),
                            log=lambda m: err.print(escape(m)))
 
 
@@ -195,7 +199,7 @@ def _print_robust(r):
                   f"round(s), {r.seconds:.0f} s")
     if not r.converged:
         console.print("[yellow]the final design needs larger margins than it was optimised with (see --json "
-                      "rounds): run more rounds or check with --check[/yellow]")
+                      "rounds): raise --rounds or check with --check[/yellow]")
     c = r.check_share_in_spec
     if c is not None:
         bad = r.check.n - r.check.out_of_spec["any"]["n"]

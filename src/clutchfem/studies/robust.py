@@ -68,6 +68,8 @@ from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 #: this mapping the engagement band was silently left out of every robust margin)
 BAND_KEY = {"engagement_rpm_with_ripple": "engagement_rpm", "slip_rpm": "slip_rpm",
             "safety_factor": "max_von_mises_Pa", "fatigue_safety_factor": None}
+#: shifted rounds at most (each is one optimisation of up to max_evals designs)
+MAX_ROUNDS = 10
 #: margins that move less than this share between rounds have converged
 CONVERGED = 0.05
 
@@ -274,7 +276,7 @@ def shifted(targets: Targets, margins: dict) -> Targets:
 
 def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dist: str = "normal",
                     model_error: bool = True, targets: Targets | None = None, free: list[str] | None = None,
-                    engine=None, requirements=None, max_evals: int = 300, rounds: int = 3, check: int = 0,
+                    engine=None, requirements=None, max_evals: int = 300, rounds: int = 5, check: int = 0,
                     workers: int | None = None, seed: int = 1, method: str = "pattern", log=None) -> RobustResult:
     """The lightest design that meets every target for ``yield_target`` of made parts.
 
@@ -295,7 +297,9 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
     free, engine, requirements, max_evals, workers
         As :func:`optimize` (per round).
     rounds : int
-        Optimisations at most (module docstring).
+        Shifted-limit optimisations at most, 1 to 10 (module docstring; they go on while a
+        round is infeasible).  Default 5: on the fast path concept 4 from its defaults was still
+        infeasible after 3, its violation falling 0.27, 0.10, 0.015 (BENCHMARKS.md section 21).
     check : int
         Monte Carlo parts through remeshed designs at the result (0: no check).
     seed, log
@@ -330,6 +334,8 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         raise ParameterError("method", method, "one of " + ", ".join(METHODS), "optimize")
     if not tolerances:
         raise ParameterError("tol", None, "at least one tolerance name=+-value", "optimize")
+    if isinstance(rounds, bool) or not isinstance(rounds, int) or not 1 <= rounds <= MAX_ROUNDS:
+        raise ParameterError("rounds", rounds, f"an integer from 1 to {MAX_ROUNDS} (shifted-limit rounds)", "optimize")
     settings = design if isinstance(design, EvalSettings) else EvalSettings.from_design(
         design, engine=engine, requirements=requirements)
     P = get_concept(settings.concept).Params
@@ -361,7 +367,7 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
     archive = list(det.path)  # every design analysed so far: the starts of the shifted rounds
     # the shifted rounds admit a design only if every part within its tolerance box can be built
     boxed = dataclasses.replace(settings, tolerance_box=tuple(tols.items()))
-    for k in range(max(1, rounds)):
+    for k in range(rounds):
         sigma, _ = spreads(here, nominal, tols, dist, model_error, workers)
         new = {key: z * s for key, s in sigma.items()}
         moved = max((abs(new[q] - margins[q]) / max(abs(new[q]), 1e-12) for q in new), default=0.0)
