@@ -210,8 +210,9 @@ def buildable_point(settings: EvalSettings, params: dict) -> dict | None:
     refuses moved, the shorter way, until the rules admit the design (with ``settings``'
     tolerance box: at every corner): the nearest admitted value on either side (steps of the
     parameter's resolution doubling outward, then bisection of the rule check alone, no
-    analysis); every value on its resolution (the grid of the pattern search).  None where a refusal names a parameter not in ``params``
-    or no value of it within its range is admitted."""
+    analysis); every value on its resolution (the grid of the pattern search).  None where a
+    refusal names a parameter not in ``params`` or no value of it within its range is
+    admitted."""
     P = get_concept(settings.concept).Params
     # on the values' resolution first, the grid of the pattern search (its snapped start must be admitted too)
     pt = {n: V.snap(P, n, V.from_text(P, n, t))[1] for n, t in params.items()}
@@ -376,8 +377,8 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
             break
         aim = window(nominal, margins, ", ".join(f"{n}=+-{V.exact_text(P, n, t)}" for n, t in tols.items()),
                      yield_target)
-        start, picked = archive_start(boxed, archive, aim, dataclasses.replace(here, tolerance_box=boxed.tolerance_box))
         prev = dataclasses.replace(here, tolerance_box=boxed.tolerance_box)
+        start, picked = archive_start(boxed, archive, aim, prev)
         try:
             res = optimize(start, aim, free, max_evals=max_evals, workers=workers, method=method, log=log)
         except InputError as exc:  # the chosen start and its sample cannot be evaluated: from the previous design
