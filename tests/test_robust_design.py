@@ -148,6 +148,9 @@ def test_archive_start_picks_the_lightest_design_meeting_the_shifted_targets():
         start.params({"flexure_length": "16.83mm", "flexure_thickness": "3.24mm"})
     # no row at all: the previous design
     assert archive_start(s, [], aim, here) == (here, "the previous design")
+    # a start whose round ended infeasible is passed over: the next best one
+    start, what = archive_start(s, rows, aim, here, frozenset({("clearance=0.27mm",)}))
+    assert start.base == ("clearance=0.26mm",) and "120.0 g" in what
 
 
 def test_check_share_counts_unbuildable_parts_out_of_spec():

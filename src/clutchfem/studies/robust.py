@@ -161,8 +161,8 @@ def model_bands(settings: EvalSettings) -> dict:
     return out
 
 
-def archive_start(settings: EvalSettings, archive: list[dict], aim: Targets, here: EvalSettings
-                  ) -> tuple[EvalSettings, str]:
+def archive_start(settings: EvalSettings, archive: list[dict], aim: Targets, here: EvalSettings,
+                  skip: frozenset = frozenset()) -> tuple[EvalSettings, str]:
     """(start design, what it is) of a shifted round: of every design analysed so far (the
     deterministic search's path and every round's), the lightest that meets the shifted
     targets ``aim``, else the one that violates them least -- or ``here`` (the previous
@@ -174,7 +174,8 @@ def archive_start(settings: EvalSettings, archive: list[dict], aim: Targets, her
     out of that corner.  The rows' answers are the design mesh's, as the search's own.  With
     a tolerance box in ``settings``, a design whose box the concept's rules refuse is moved
     until they admit it (:func:`buildable_point`: the optimum hugs a rule it learned, so the
-    designs near it usually need it) and its row's answers stand for it."""
+    designs near it usually need it) and its row's answers stand for it.  Starts in ``skip``
+    (their ``base``: rounds from them ended infeasible) are passed over."""
     ranked = []
     for row in archive:
         if row.get("status") != "ok" or not row.get("params"):
@@ -189,6 +190,8 @@ def archive_start(settings: EvalSettings, archive: list[dict], aim: Targets, her
         if pt is None:
             continue
         base = tuple(settings.set_args(pt))
+        if base in skip:
+            continue
         if base == tuple(here.base):
             return here, "the previous design"
         moved = {n: f"{row['params'][n]} -> {t}" for n, t in pt.items()
@@ -299,8 +302,10 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         As :func:`optimize` (per round).
     rounds : int
         Shifted-limit optimisations at most, 1 to 10 (module docstring; they go on while a
-        round is infeasible).  Default 5: on the fast path concept 4 from its defaults was still
-        infeasible after 3, its violation falling 0.27, 0.10, 0.015 (BENCHMARKS.md section 21).
+        round is infeasible, each from a start no earlier infeasible round used).  Default 5:
+        on the fast path concept 4 from its defaults was still infeasible after 3, its
+        violation falling 0.27, 0.10, 0.015 (it stayed at 0.02-0.03 in rounds 4 and 5:
+        BENCHMARKS.md section 21).
     check : int
         Monte Carlo parts through remeshed designs at the result (0: no check).
     seed, log
@@ -368,6 +373,7 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
     archive = list(det.path)  # every design analysed so far: the starts of the shifted rounds
     # the shifted rounds admit a design only if every part within its tolerance box can be built
     boxed = dataclasses.replace(settings, tolerance_box=tuple(tols.items()))
+    tried: set = set()  # the starts of rounds that ended infeasible
     for k in range(rounds):
         sigma, _ = spreads(here, nominal, tols, dist, model_error, workers)
         new = {key: z * s for key, s in sigma.items()}
@@ -378,7 +384,11 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         aim = window(nominal, margins, ", ".join(f"{n}=+-{V.exact_text(P, n, t)}" for n, t in tols.items()),
                      yield_target)
         prev = dataclasses.replace(here, tolerance_box=boxed.tolerance_box)
-        start, picked = archive_start(boxed, archive, aim, prev)
+        start, picked = archive_start(boxed, archive, aim, prev, frozenset(tried))
+        if tuple(start.base) in tried:  # every start left has ended infeasible: another round would repeat one
+            if log:
+                log(f"round {k + 1}: no start left that has not ended infeasible; stopping")
+            break
         try:
             res = optimize(start, aim, free, max_evals=max_evals, workers=workers, method=method, log=log)
         except InputError as exc:  # the chosen start and its sample cannot be evaluated: from the previous design
@@ -390,6 +400,8 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
             res = optimize(start, aim, free, max_evals=max_evals, workers=workers, method=method, log=log)
         evals += sum(res.evaluations.values())
         archive += res.path
+        if not res.feasible:
+            tried.add(tuple(start.base))
         history.append({"round": k + 1, "margins": dict(margins), "sigma": dict(sigma), "start": picked,
                         "feasible": res.feasible, "mass_kg": res.best.get("mass_kg"),
                         "evaluations": sum(res.evaluations.values())})
