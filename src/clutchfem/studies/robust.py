@@ -58,6 +58,7 @@ from . import values as V
 from .batch import EvalSettings
 from .best_check import best_estimate
 from .optimization import METHODS, OptimizationResult, optimize
+from .rules import bisect
 from .sensitivity import sensitivities
 from .targets import Targets
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
@@ -245,11 +246,8 @@ def buildable_point(settings: EvalSettings, params: dict) -> dict | None:
                 if (hi is not None and trial > hi) or (lo is not None and trial < lo):
                     break
                 if admitted(name, trial):
-                    a_, b_ = bad, trial  # refused, admitted
-                    for _ in range(30):
-                        mid = 0.5 * (a_ + b_)
-                        a_, b_ = (a_, mid) if admitted(name, mid) else (mid, b_)
-                    snapped = V.round12(round(b_ / res) * res)
+                    first = bisect(lambda u: admitted(name, u), trial, bad, 30)  # the admitted value nearest v
+                    snapped = V.round12(round(first / res) * res)
                     if not admitted(name, snapped):
                         snapped = V.round12(snapped + sgn * res)
                     found.append(snapped)

@@ -40,19 +40,13 @@ def admissible_step(ev, g, J, c, B, x, delta, rho, rules: dict) -> tuple[np.ndar
                 break
             key = (k, sign)
             if key in rules:  # the rule is curved: a cut linearised where the step crosses it
-                a_, b_ = 0.0, 1.0
-                for _ in range(30):
-                    t = 0.5 * (a_ + b_)
-                    a_, b_ = (t, b_) if ev.refused(x + t * d) is None else (a_, t)
+                a_ = bisect(lambda t: ev.refused(x + t * d) is None, 0.0, 1.0, 30)
                 ev.rule_checks += 30
                 rules[key] = rule(ev, x, *key, at=x + a_ * d)
             else:
                 rules[key] = rule(ev, x, *key)
         delta *= 0.5
-    a_, b_ = 0.0, 1.0  # the share of the last step the rules admit
-    for _ in range(30):
-        t = 0.5 * (a_ + b_)
-        a_, b_ = (t, b_) if ev.refused(x + t * d) is None else (a_, t)
+    a_ = bisect(lambda t: ev.refused(x + t * d) is None, 0.0, 1.0, 30)  # the share of the last step admitted
     ev.rule_checks += 30
     return 0.98 * a_ * d, lam
 
@@ -115,7 +109,13 @@ def end(ev, p: np.ndarray, k: int, sign: float) -> float | None:
         if a is None:
             return None
         b = p[k]
-    for _ in range(25):
-        m = 0.5 * (a + b)
-        a, b = (m, b) if admitted(m) else (a, m)
-    return a
+    return bisect(admitted, a, b, 25)
+
+
+def bisect(admitted, ok: float, bad: float, steps: int) -> float:
+    """The admitted end of [ok, bad] after ``steps`` halvings, ``admitted(ok)`` true and
+    ``admitted(bad)`` false (a rule check of the concept: no analysis)."""
+    for _ in range(steps):
+        m = 0.5 * (ok + bad)
+        ok, bad = (m, bad) if admitted(m) else (ok, m)
+    return ok
