@@ -93,7 +93,7 @@ def union_check(rob, args):
 
 
 def cf_joint(a, w):
-    from clutchfem.studies import joint_yield
+    from clutchfem.tolerances import joint_yield
 
     return joint_yield(a.linearisation, w)
 

@@ -39,7 +39,7 @@ import numpy as np
 import clutchfem as cf
 from clutchfem.core import rpm_to_rad_s
 from clutchfem.studies import values as V
-from clutchfem.studies.batch import EvalSettings, cluster, evaluate_many
+from clutchfem.studies.batch import EvalSettings, evaluate_many, shared_cluster
 
 # the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
 # "best": the shipped default is the best estimate since issue 20
@@ -115,7 +115,7 @@ def main() -> None:
     print("\n| model | answer | contact events (0.01 mm steps) | largest kink at an event | largest kink elsewhere "
           "| dA/dx at h = 0.001 / 0.01 / 0.1 mm | scatter | value noise | time |")
     print("|---|---|---:|---:|---:|---|---:|---:|---:|")
-    with cluster(args.workers, None):
+    with shared_cluster(args.workers, None):
         for label, (op, ms) in models(base).items():
             if args.only and args.only != label:
                 continue

@@ -65,7 +65,8 @@ def main(argv=None):
         x0, clearance = getattr(p0, name), p0.clearance
         d_mm = [d for d in shifts_mm if both_ways or d >= 0]
         values = [float(f"{x0 + d * 1e-3:.9g}") for d in d_mm]
-        df = cf.run_grid(concept, {name: values}, mesh_size=size, store=store, workers=workers)
+        df = cf.run_grid(cf.Design.from_concept(concept, mesh=cf.MeshSettings(size=size)), {name: values}, store=store,
+                         workers=workers).frame
         for d, (_, r) in zip(d_mm, df.iterrows()):
             if r["status"] != "ok":
                 print(f"  {label}: shift {d:+.1f} mm: {r['status']} ({r['message']})")

@@ -53,7 +53,8 @@ def main(argv=None):
         values = [float(f"{v:.6g}") for v in values]
         c = cf.get_concept(concept)
         clearance = c.Params().clearance
-        df = cf.run_grid(concept, {"flexure_thickness": values}, mesh_size=size, store=store, workers=workers)
+        df = cf.run_grid(cf.Design.from_concept(concept, mesh=cf.MeshSettings(size=size)), {"flexure_thickness": values}, store=store,
+                         workers=workers).frame
         for _, r in df[df["status"] != "ok"].iterrows():
             print(f"  {concept}: flexure_thickness = {r['flexure_thickness'] * 1e3:g} mm: {r['status']} "
                   f"({r['message']})")

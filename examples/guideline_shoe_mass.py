@@ -62,7 +62,8 @@ def main(argv=None):
     ax_e, ax_s = fig.subplots(1, 2)
     lines = []
     for k, (label, concept, name, values) in enumerate(series):
-        df = cf.run_grid(concept, {name: values}, mesh_size=size, store=store, workers=workers)
+        df = cf.run_grid(cf.Design.from_concept(concept, mesh=cf.MeshSettings(size=size)), {name: values}, store=store,
+                         workers=workers).frame
         ok = df[df["status"] == "ok"]
         for _, r in df[df["status"] != "ok"].iterrows():
             print(f"  {label}: {name} = {r[name]:g}: {r['status']} ({r['message']})")

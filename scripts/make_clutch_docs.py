@@ -33,8 +33,8 @@ from clutchfem.geometry import MeshSettings, get_concept  # noqa: E402
 from clutchfem.loadcase import Design  # noqa: E402
 from clutchfem.mesh import mesh_concept  # noqa: E402
 from clutchfem.report import (
-    comparison_plot,
     summary_rows,  # noqa: E402
+    torque_speed_plot,
 )
 
 # the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
@@ -142,7 +142,7 @@ def main(argv=None):
     plus, _, _ = run("concept1", arrangement="plus")
     three_curves_figure(ans, engine, img / "clutch_three_curves.png")
     arc_figure(ans, img / "clutch_contact_arc.png")
-    comparison_plot(ans, engine, img / "clutch_torque_comparison.png")
+    torque_speed_plot(ans, engine, img / "clutch_torque_comparison.png")
 
     L = []
     w = L.append

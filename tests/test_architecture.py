@@ -146,3 +146,118 @@ def inspect_ismodule(obj) -> bool:
     import inspect
 
     return inspect.ismodule(obj)
+
+
+# ---------------------------------------------------------------------------------------
+# one vocabulary (issue 35): public names, serialisers, results, the command line's API
+# ---------------------------------------------------------------------------------------
+#: public functions whose answer is a plain JSON record, with the reason
+PLAIN_RECORDS = {
+    "finished_summary": "the stored summary.json itself, read with the standard library only (a rerun of a "
+                        "finished study loads no FE stack: studies/rerun.py)",
+    "sweep_errors": "one AnswerError record per answer, the same form as Analysis.errors",
+}
+#: method names of other serialisers (one name: to_json)
+OTHER_SERIALISERS = {"as_dict", "as_json", "to_dict", "asdict", "json", "serialize", "serialise"}
+
+
+def _public():
+    import clutchfem as cf
+
+    return cf, [n for n in cf.__all__ if n != "__version__"]
+
+
+def test_public_names_are_the_names_where_they_are_defined():
+    """``cf.X`` is the object defined as ``X`` in the package ``_API`` names (no renames)."""
+    import inspect
+
+    cf, names = _public()
+    bad = []
+    for n in names:
+        obj = getattr(cf, n)
+        defined = getattr(obj, "__name__", n)
+        module = getattr(obj, "__module__", "") or ""
+        if (inspect.isclass(obj) or inspect.isfunction(obj) or callable(obj)) and defined != n:
+            bad.append(f"{n} is defined as {defined}")
+        if module.startswith("clutchfem") and not module.startswith(cf._API[n]):
+            bad.append(f"{n} lives in {module}, _API says {cf._API[n]}")
+    assert not bad, bad
+
+
+def test_type_checking_block_lists_the_public_names():
+    """The TYPE_CHECKING imports of ``clutchfem/__init__.py`` (for IDEs) are exactly ``_API``."""
+    import clutchfem as cf
+
+    tree = ast.parse((SRC / "__init__.py").read_text())
+    block = next(n for n in tree.body if isinstance(n, ast.If) and ast.unparse(n.test) == "TYPE_CHECKING")
+    seen = {}
+    for node in ast.walk(block):
+        if isinstance(node, ast.ImportFrom):
+            for a in node.names:
+                assert a.asname is None, f"a renamed import in the TYPE_CHECKING block: {a.name} as {a.asname}"
+                seen[a.name] = "clutchfem" + "." * 0 + f".{node.module}"
+    assert seen == dict(cf._API)
+
+
+def test_one_serialiser_name():
+    """Every class that serialises itself does it as ``to_json`` (no as_dict / as_json ...)."""
+    bad = []
+    for rel, f in _modules():
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.ClassDef):
+                bad += [f"{rel}: {node.name}.{m.name}" for m in node.body
+                        if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef)) and m.name in OTHER_SERIALISERS]
+    assert not bad, bad
+
+
+def test_public_functions_return_typed_results():
+    """Every public function states what it returns, and no answer is an untyped dict, list of
+    dicts or data frame (except the records of :data:`PLAIN_RECORDS`, with their reason)."""
+    import inspect
+
+    cf, names = _public()
+    bad = []
+    for n in names:
+        obj = getattr(cf, n)
+        if inspect.isclass(obj) or not callable(obj):
+            continue
+        ann = inspect.signature(obj).return_annotation
+        text = ann if isinstance(ann, str) else getattr(ann, "__name__", str(ann))
+        if ann is inspect.Signature.empty:
+            bad.append(f"{n}: no return annotation")
+        elif n not in PLAIN_RECORDS and text.replace(" ", "") in ("dict", "list[dict]", "DataFrame", "pd.DataFrame",
+                                                                  "dict|None", "list"):
+            bad.append(f"{n} -> {text}")
+    assert not bad, bad
+
+
+def test_public_results_serialise_as_to_json():
+    """The result classes of the public API serialise with ``to_json`` (a JSON-ready dict)."""
+    import inspect
+
+    cf, names = _public()
+    results = [n for n in names if inspect.isclass(getattr(cf, n)) and n.endswith(("Result", "Run", "Front"))]
+    assert results, "no result classes found"
+    missing = [n for n in results if not callable(getattr(getattr(cf, n), "to_json", None))]
+    assert not missing, missing
+
+
+def test_the_command_line_stands_on_the_public_api():
+    """``cli/`` imports from clutchfem only public names (``from .. import X``, X in
+    ``clutchfem.__all__``) and its own modules: the API covers what its own face needs, and no
+    command borrows another command's helpers (shared ones live in cli/common.py, options.py)."""
+    cf, names = _public()
+    public = set(names) | {"__version__"}
+    bad = []
+    for f in sorted((SRC / "cli").glob("*.py")):
+        rel = f"cli/{f.name}"
+        for node in ast.walk(ast.parse(f.read_text())):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            if node.level == 2 and node.module is None:
+                bad += [f"{rel}:{node.lineno} {a.name} is not public" for a in node.names if a.name not in public]
+            elif node.level >= 2 or (node.module or "").startswith("clutchfem"):
+                bad.append(f"{rel}:{node.lineno} {ast.unparse(node)}")
+            elif node.level == 1 and node.module and node.module.endswith("_cmd") and f.stem != "__init__":
+                bad.append(f"{rel}:{node.lineno} borrows from another command: {ast.unparse(node)}")
+    assert not bad, "\n".join(bad)

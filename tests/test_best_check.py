@@ -9,8 +9,9 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import SolverError
-from clutchfem.studies import EvalSettings, Targets
-from clutchfem.studies import best_check as bc
+from clutchfem.studies import EvalSettings
+from clutchfem.targets import Targets
+from clutchfem.targets import best_check as bc
 
 COARSE = cf.MeshSettings(size="3mm")
 
@@ -129,7 +130,7 @@ def test_best_estimate_of_the_same_design_is_analysed_once(monkeypatch):
     round's start and for its model bands: the second ask is answered from memory; another
     design, another operating point (the fidelity of the environment) is analysed anew."""
     from clutchfem.studies import EvalSettings
-    from clutchfem.studies import best_check as B
+    from clutchfem.targets import best_check as B
     calls = []
     monkeypatch.setattr(B, "_best_estimate", lambda s, p: calls.append((s, p)) or object())
     monkeypatch.setattr(B, "_RECENT", type(B._RECENT)())

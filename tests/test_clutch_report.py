@@ -167,12 +167,12 @@ def test_comparison_chart_with_baseline(c4, tmp_path):
     import pandas as pd
 
     from clutchfem.analysis import Analysis
-    from clutchfem.report import comparison_plot
+    from clutchfem.report import torque_speed_plot
 
     d, _ = c4
     fields = {f.name for f in dataclasses.fields(Analysis)}
     an = Analysis(**{k: v for k, v in d.items() if k in fields and k != "curves"}, curves=pd.DataFrame(d["curves"]))
-    p = comparison_plot({"concept4": an}, EngineCurve.default(), tmp_path / "fig25.png")
+    p = torque_speed_plot({"concept4": an}, EngineCurve.default(), tmp_path / "fig25.png")
     assert p.read_bytes()[:4] == b"\x89PNG" and p.stat().st_size > 10000
 
 

@@ -155,7 +155,7 @@ def test_whirl_answer(answer4):
     """What the validation records of the whirl carried (clutch mass and inertias, drum and
     sprocket, overhang, three critical speeds, margin over the lowest), now fields of the
     design analysis's frozen answer."""
-    d = answer4.as_dict()
+    d = answer4.to_json()
     assert {"clutch_mass_kg", "clutch_polar_inertia_kg_m2", "clutch_diametral_inertia_kg_m2",
             "drum_sprocket_mass_kg", "drum_sprocket_polar_inertia_kg_m2", "overhang_m",
             "rpm_crit_engaged", "rpm_crit_drum_held", "rpm_crit_no_gyro", "margin"} <= set(d)

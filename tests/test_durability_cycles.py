@@ -109,7 +109,7 @@ def test_annulus_fatigue_step_names_the_worst_point(annulus):
     assert fa.location and "r = " in fa.location
     # the hoop stress of a spinning ring peaks at the bore
     assert fa.details["location_detail"]["boundary"] == "bore"
-    json.dumps(fa.as_dict(), allow_nan=True)
+    json.dumps(fa.to_json(), allow_nan=True)
 
 
 # ---------------------------------------------------------------------------------------

@@ -42,15 +42,15 @@ def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components():
 @pytest.mark.parametrize("formulation", ["3d", "thick", "plane-strain"])
 def test_a_study_runs_every_formulation(tmp_path, formulation):
     op = cf.OperatingPoint(formulation=formulation, layers=1)
-    df = cf.run_grid("concept4", {"flexure_thickness": [1.75e-3]}, op=op, mesh_size=6e-3, store=tmp_path / "s.sqlite",
-                     workers=0)
+    d = cf.Design.from_concept("concept4", operating=op, mesh=cf.MeshSettings(size="6mm"))
+    df = cf.run_grid(d, {"flexure_thickness": [1.75e-3]}, store=tmp_path / "s.sqlite", workers=0).frame
     assert list(df["status"]) == ["ok"], df["message"].tolist()
 
 
 def test_a_study_runs_the_exact_prestress_and_the_smoothed_contact(tmp_path):
     op = cf.OperatingPoint(softening="prestress-exact", contact_smoothing="1um")
-    df = cf.run_grid("concept4", {"flexure_thickness": [1.75e-3]}, op=op, mesh_size=6e-3, store=tmp_path / "s.sqlite",
-                     workers=0)
+    d = cf.Design.from_concept("concept4", operating=op, mesh=cf.MeshSettings(size="6mm"))
+    df = cf.run_grid(d, {"flexure_thickness": [1.75e-3]}, store=tmp_path / "s.sqlite", workers=0).frame
     assert list(df["status"]) == ["ok"], df["message"].tolist()
 
 

@@ -462,7 +462,8 @@ def test_outline_detects_self_intersection():
 
 
 def test_drawings_are_written(tmp_path):
-    from clutchfem.geometry import draw_concept, draw_mesh
+    from clutchfem.geometry import draw_concept
+    from clutchfem.mesh import draw_mesh
 
     c = get_concept("concept4")
     p = c.params(arrangement="plus", profile="linear", clearance_tip=1.0e-3)

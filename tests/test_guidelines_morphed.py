@@ -14,7 +14,7 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import ParameterError
-from clutchfem.studies.guidelines import SENSITIVITY_KEY, GuidelineSettings
+from clutchfem.guidelines.elasticity import SENSITIVITY_KEY, GuidelineSettings
 
 MESH = cf.MeshSettings(size="3mm")
 
@@ -30,8 +30,7 @@ def sens(design):
 
 
 def test_guideline_elasticity_is_the_sensitivities_and_says_its_method(design, sens, tmp_path):
-    g = cf.guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["mu"], workers=0, progress=False,
-                      charts=False)
+    g = cf.run_guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["mu"], workers=0, progress=False)
     doc = json.loads((tmp_path / "guidelines.json").read_text())
     assert doc["ranking"] == ["flexure_thickness"] and doc["operating_inputs"] == ["mu"]
     assert doc["methods"] == {"flexure_thickness": "central difference on morphed meshes",
@@ -74,10 +73,10 @@ def test_operating_inputs_refused_as_a_user_would_hear_it(design, tmp_path):
     with pytest.raises(ParameterError, match="drum_wall"):  # the fast path's drum is rigid: no wall
         cf.sensitivities(design, ["drum_wall"], workers=0)
     with pytest.raises(ParameterError, match="rigid"):
-        cf.guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["drum_wall"], workers=0,
-                      progress=False, charts=False)
+        cf.run_guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["drum_wall"], workers=0,
+                      progress=False)
     with pytest.raises(ParameterError, match="operating inputs among"):
-        cf.guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["rpm"], workers=0, progress=False)
+        cf.run_guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["rpm"], workers=0, progress=False)
 
 
 def test_drum_wall_derivative_on_an_elastic_drum():
@@ -96,6 +95,6 @@ def test_an_operating_input_at_zero_is_not_studied_and_said(tmp_path):
     """(x / A) dA/dx is 0 at x = 0 whatever the derivative: mu = 0 gets a note, not a row."""
     d = cf.Design.from_concept("concept4", mesh=MESH, mu=0.0)
     gs = GuidelineSettings.from_design(d, ["clearance"], points=3, inputs=["mu"])
-    g = cf.guidelines(gs, tmp_path, workers=0, progress=False, charts=False)
+    g = cf.run_guidelines(gs, tmp_path, workers=0, progress=False)
     assert g.inputs == [] and not any(r["parameter"] == "mu" for r in g.table)
     assert any(n.startswith("operating inputs not studied") and n.endswith("mu") for n in g.notes)

@@ -31,7 +31,7 @@ from clutchfem.studies import (
     ClusterError,
     ResultStore,
     StoreLocked,
-    check_address,
+    check_scheduler,
     parse_spec,
     run_points,
     workers_machine_holds,
@@ -66,7 +66,7 @@ def flat(text: str) -> str:
 ])
 def test_bad_scheduler_addresses_are_refused_naming_what_is_wrong(address, words):
     with pytest.raises(InputError) as e:
-        check_address(address)
+        check_scheduler(address)
     assert words in str(e.value)
 
 
@@ -76,7 +76,7 @@ def test_bad_scheduler_addresses_are_refused_naming_what_is_wrong(address, words
                                            ("TCP://localhost:9000/", "tcp://localhost:9000"),
                                            ("tls://[::1]:8786", "tls://[::1]:8786")])
 def test_good_addresses_in_daskss_form(address, form):
-    assert check_address(address) == form
+    assert check_scheduler(address) == form
 
 
 @pytest.fixture

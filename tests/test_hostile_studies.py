@@ -21,8 +21,10 @@ from clutchfem.core import InputError, ParameterError
 from clutchfem.geometry import MeshSettings, get_concept
 from clutchfem.geometry.registry import search_path
 from clutchfem.loadcase import Design
-from clutchfem.studies import SpecError, Targets, geometry_dirs, parse_spec, parse_tolerance, tolerance
-from clutchfem.studies.optimization import make_space
+from clutchfem.studies import SpecError, geometry_dirs, parse_spec
+from clutchfem.targets import Targets
+from clutchfem.targets.optimization import make_space
+from clutchfem.tolerances import parse_tolerance, tolerance
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE = """
@@ -99,7 +101,7 @@ def test_api_refusals_of_seeds_tolerances_and_engine_targets(c4):
         tolerance(c4, {"flexure_thickness": "0.05mm"}, seed=-1, workers=0)
     with pytest.raises(ParameterError, match="snapped to"):
         tolerance(c4, {"flexure_thickness": 1e-7}, workers=0)
-    from clutchfem.studies import optimize
+    from clutchfem.targets import optimize
 
     with pytest.raises(ParameterError, match="top speed 14000 rpm"):
         optimize(c4, Targets(15000, None, 16000, 1.5), workers=0)

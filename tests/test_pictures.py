@@ -14,9 +14,10 @@ import pandas as pd
 import pytest
 
 import clutchfem as cf
-from clutchfem.report import arc_stress_plot, comparison_plot, field_picture, slip_heat_files, torque_plot
-from clutchfem.studies import GuidelineSettings, parse_spec
-from clutchfem.studies.guidelines import ANSWERS
+from clutchfem.guidelines import GuidelineSettings
+from clutchfem.guidelines.elasticity import ANSWERS
+from clutchfem.report import arc_stress_plot, field_picture, slip_heat_files, torque_plot, torque_speed_plot
+from clutchfem.studies import parse_spec
 from support.pictures import agrees, number, rule, texts
 
 SIZE = "2.5mm"
@@ -63,7 +64,7 @@ def test_arc_stress_plot(c4, tmp_path):
 
 def test_comparison_plot(c4, tmp_path):
     _, an = c4
-    rec = rule(comparison_plot({"concept4": an}, cf.EngineCurve.default(), tmp_path / "c.png"))
+    rec = rule(torque_speed_plot({"concept4": an}, cf.EngineCurve.default(), tmp_path / "c.png"))
     agrees(rec, r"concept4 engagement", an.engagement_rpm)
     agrees(rec, r"concept4 slip", an.slip_rpm)
 
@@ -103,7 +104,7 @@ method = "grid"
 [vary.params]
 flexure_thickness = {{values = ["1.6mm", "1.8mm", "2.2mm"]}}
 ''')
-    s = cf.run_study(spec, tmp_path, workers=0, progress=False)
+    s = cf.draw_study_charts(cf.run_study(spec, tmp_path, workers=0, progress=False)).to_json()
     frame = pd.read_csv(tmp_path / "results.csv")
     ok = frame[frame["status"] == "ok"]
     assert len(ok) == 2 and s["refused"] + s["failed"] == 1
@@ -125,7 +126,7 @@ def test_guideline_charts(tmp_path):
     are the JSON's; the inactive profile controls are not studied, and the chart says so."""
     d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size=SIZE))
     gs = GuidelineSettings.from_design(d, params=["flexure_thickness", "clearance"], points=3)
-    g = cf.guidelines(gs, tmp_path, workers=0, progress=False)
+    g = cf.draw_guideline_charts(cf.run_guidelines(gs, tmp_path, workers=0, progress=False))
     doc = json.loads((tmp_path / "guidelines.json").read_text())
     assert not any(r["parameter"].startswith("table_c") for r in doc["elasticities"])
     assert any("table_c0..table_c16" in n for n in doc["notes"])

@@ -9,8 +9,8 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import ParameterError
-from clutchfem.studies import Targets
-from clutchfem.studies.robust import shifted
+from clutchfem.targets import Targets
+from clutchfem.tolerances.robust import shifted
 
 COARSE = cf.MeshSettings(size="3mm")
 CLI = [sys.executable, "-m", "clutchfem.cli"]
@@ -124,7 +124,7 @@ def _row(mass, eng, slip, sf, **params):
 
 def test_archive_start_picks_the_lightest_design_meeting_the_shifted_targets():
     from clutchfem.studies import EvalSettings
-    from clutchfem.studies.robust import archive_start
+    from clutchfem.tolerances.robust import archive_start
     s = EvalSettings(concept="concept4")
     aim = Targets(3600.0, None, 7900.0, 1.6)
     here = EvalSettings(concept="concept4", base=("clearance=0.3mm",))
@@ -158,8 +158,8 @@ def test_check_share_counts_unbuildable_parts_out_of_spec():
     in spec a robust result (and the report, the allocation check) gives counts it out."""
     from types import SimpleNamespace
 
-    from clutchfem.studies.robust import RobustResult
-    from clutchfem.studies.tolerancing import ToleranceResult
+    from clutchfem.tolerances.robust import RobustResult
+    from clutchfem.tolerances.tolerancing import ToleranceResult
     oos = {"any": {"k": 1, "n": 724, "share": 1 / 724, "ci95": [0.0002, 0.0078]},
            "any_counting_unbuildable": {"k": 277, "n": 1000, "share": 0.277, "ci95": [0.25, 0.31]}}
     assert ToleranceResult.out_any.fget(SimpleNamespace(out_of_spec=oos))["k"] == 277
@@ -173,7 +173,7 @@ def test_check_share_counts_unbuildable_parts_out_of_spec():
 
 def test_buildable_point_moves_only_what_a_rule_refuses_and_refuses_the_impossible():
     from clutchfem.studies import EvalSettings
-    from clutchfem.studies.robust import buildable_point
+    from clutchfem.tolerances.robust import buildable_point
     pt = dict(a.split("=") for a in ON_RULE)
     boxed = EvalSettings(concept="concept4", tolerance_box=(("flexure_thickness", 5e-5), ("clearance", 2e-5)))
     q = buildable_point(boxed, pt)
@@ -188,7 +188,7 @@ def test_buildable_point_moves_only_what_a_rule_refuses_and_refuses_the_impossib
 def test_tolerances_that_close_the_window_are_refused_naming_them():
     """Margins that move the engagement minimum above the slip maximum leave no design: the
     refusal names --tol, its values with units and the way out, not the internal target."""
-    from clutchfem.studies.robust import window
+    from clutchfem.tolerances.robust import window
     with pytest.raises(ParameterError, match="tol") as e:
         window(Targets(3510.0, None, 8000.0, 1.5), {"engagement_rpm_with_ripple": 2744.0, "slip_rpm": 1945.0},
                "flexure_length=+-4mm", 0.99)

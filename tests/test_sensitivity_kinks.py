@@ -8,7 +8,7 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.analysis import CONTACT_SPEED_OF
-from clutchfem.studies.guidelines import morphed_elasticity
+from clutchfem.guidelines.elasticity import morphed_elasticity
 from clutchfem.studies.sensitivity import Sensitivities, _kinks
 
 COARSE = cf.MeshSettings(size="3mm")

@@ -25,8 +25,8 @@ import pytest
 
 from clutchfem.analysis import analyze
 from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.guidelines.elasticity import elasticity, fd_values
 from clutchfem.loadcase import Design
-from clutchfem.studies.guidelines import elasticity, fd_values
 
 ROOT = Path(__file__).resolve().parents[1]
 

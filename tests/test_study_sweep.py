@@ -161,7 +161,7 @@ method = "list"
 crash = {values = [0, 1, 0, 0]}
 flexure_thickness = {values = ["1.7mm", "1.75mm", "1.8mm", "1.85mm"]}
 """)
-    summary = run_study(spec, tmp_path / "out", workers=2, progress=False, charts=False)
+    summary = run_study(spec, tmp_path / "out", workers=2, progress=False).to_json()
     assert (summary["points"], summary["done"], summary["ok"], summary["failed"]) == (4, 4, 3, 1)
     with sqlite3.connect(summary["store"]) as db:
         (msg,) = db.execute("SELECT message FROM results WHERE status = 'failed'").fetchone()
@@ -243,7 +243,7 @@ def test_remote_scheduler_and_worker_processes(tmp_path):
                                    "--no-dashboard", "--host", "127.0.0.1"], env=env, stdout=log_w, stderr=log_w,
                                   start_new_session=True)
         spec = parse_spec(SMALL.replace("steps = 4", "steps = 2").replace("[80, 85, 90]", "[90]"))
-        summary = run_study(spec, tmp_path / "out", scheduler=address, progress=False, charts=False)
+        summary = run_study(spec, tmp_path / "out", scheduler=address, progress=False).to_json()
         assert (summary["points"], summary["done"], summary["ok"]) == (2, 2, 2)
         assert summary["scheduler"] == address and summary["workers"] == 1
         with sqlite3.connect(summary["store"]) as db:
@@ -321,11 +321,11 @@ method = "grid"
 [vary.params]
 mu = {values = [0.12, 0.2]}
 """)
-    from clutchfem.studies import load_spec
+    from clutchfem.studies import load_study
 
-    spec = load_spec(spec_file)
+    spec = load_study(spec_file)
     assert spec.design == "part.msh" and spec.settings.mesh_bytes == part.read_bytes()
-    summary = run_study(spec, tmp_path / "out", workers=0, progress=False, charts=False)
+    summary = run_study(spec, tmp_path / "out", workers=0, progress=False).to_json()
     assert (summary["points"], summary["ok"]) == (2, 2)
     with sqlite3.connect(summary["store"]) as db:
         rows = db.execute("SELECT point_json, torque_at_max_engine_torque_Nm, part_mass_g FROM results").fetchall()

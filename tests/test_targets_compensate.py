@@ -11,9 +11,9 @@ from clutchfem.core import rpm_to_rad_s
 from clutchfem.geometry import MeshSettings, get_concept
 from clutchfem.geometry import table_cardinal as cardinal
 from clutchfem.loadcase import Design
-from clutchfem.studies import compensate
-from clutchfem.studies.compensation import evenness, shoe_state
-from clutchfem.studies.target_charts import compensation_profile
+from clutchfem.report.target_charts import compensation_profile
+from clutchfem.targets import compensate
+from clutchfem.targets.compensation import evenness, shoe_state
 from support.pictures import agrees, rule
 
 SIZE = 2.4e-3

@@ -5,7 +5,7 @@ import pytest
 
 from clutchfem.core import ParameterError
 from clutchfem.studies import EvalSettings, evaluate_many
-from clutchfem.studies.batch import cluster
+from clutchfem.studies.batch import shared_cluster
 
 SIZE = 2.4e-3
 
@@ -39,7 +39,7 @@ def test_rows_in_order_with_refusals_in_process(tmp_path):
 
 def test_on_a_local_dask_cluster():
     s = EvalSettings("concept4", mesh_size=SIZE)
-    with cluster(1) as address:
+    with shared_cluster(1) as address:
         assert str(address).startswith("tcp://")
         rows = evaluate_many([{"hub_radius": "12.5mm"}, {"hub_radius": "11.5mm"}], s)
     assert [r["status"] for r in rows] == ["ok", "ok"]
@@ -50,5 +50,5 @@ def test_workers_are_checked():
     with pytest.raises(ParameterError):
         evaluate_many([], EvalSettings("concept4"), workers=-1)
     with pytest.raises(ParameterError):
-        with cluster(2, "tcp://127.0.0.1:1"):
+        with shared_cluster(2, "tcp://127.0.0.1:1"):
             pass

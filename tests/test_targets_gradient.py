@@ -1,4 +1,4 @@
-"""The gradient method of design to targets (clutchfem.studies.gradient): its model pieces on
+"""The gradient method of design to targets (clutchfem.targets.gradient): its model pieces on
 closed-form problems, and one short search on a coarse concept-4 mesh against the pattern
 search."""
 
@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import clutchfem as cf
-from clutchfem.studies import Targets, optimize
-from clutchfem.studies import gradient as G
-from clutchfem.studies import sqp as S
+from clutchfem.targets import Targets, optimize
+from clutchfem.targets import gradient as G
+from clutchfem.targets import sqp as S
 
 
 def test_subproblem_solves_a_known_qp():

@@ -9,8 +9,8 @@ import sys
 import pytest
 
 from clutchfem.core import ParameterError
-from clutchfem.studies import Targets, default_free
-from clutchfem.studies.optimization import better, make_space
+from clutchfem.targets import Targets, default_free
+from clutchfem.targets.optimization import better, make_space
 from support.pictures import agrees, rule
 
 CLI = [sys.executable, "-m", "clutchfem.cli"]

@@ -18,15 +18,15 @@ def run(*args, ok=True):
 
 
 @pytest.fixture(scope="module")
-def design_report(tmp_path_factory):
+def write_report(tmp_path_factory):
     out = tmp_path_factory.mktemp("report")
     run("report", "concept4", "--set", "flexure_thickness=1.8mm", "--mesh-size", "2.4mm",
         "--no-errors", "--out", str(out))
     return out
 
 
-def test_html_is_self_contained_with_answers_units_images_inputs(design_report):
-    html = (design_report / "report.html").read_text()
+def test_html_is_self_contained_with_answers_units_images_inputs(write_report):
+    html = (write_report / "report.html").read_text()
     assert html.startswith("<!DOCTYPE html>")
     assert not re.search(r"""<(img|script|link)[^>]+(src|href)=['"](?!data:)""", html)  # nothing external
     assert html.count("data:image/png;base64,") >= 3  # torque chart, arc/stress chart, drawing
@@ -36,14 +36,14 @@ def test_html_is_self_contained_with_answers_units_images_inputs(design_report):
     assert "PASS" in html or "FAIL" in html
     assert "Young&#x27;s modulus" in html or "Young's modulus" in html
     assert "flexure_thickness" in html and "1.8 mm" in html
-    inputs = json.loads((design_report / "inputs.json").read_text())
+    inputs = json.loads((write_report / "inputs.json").read_text())
     assert inputs["params"]["flexure_thickness"] == pytest.approx(1.8e-3)
     assert inputs["concept"] == "concept4" and "mesh_settings" in inputs and "operating_point" in inputs
 
 
-def test_markdown_has_the_same_answers(design_report):
-    md = (design_report / "report.md").read_text()
-    html = (design_report / "report.html").read_text()
+def test_markdown_has_the_same_answers(write_report):
+    md = (write_report / "report.md").read_text()
+    html = (write_report / "report.html").read_text()
     rows = re.findall(r"^\| ([^|]+) \| ([^|]+) \|$", md, flags=re.M)
     answers = [(q.strip(), v.strip()) for q, v in rows if q.strip() not in ("answer", "---")]
     assert len(answers) >= 10
@@ -52,19 +52,19 @@ def test_markdown_has_the_same_answers(design_report):
     for q, v in answers[:12]:
         assert h.escape(q) in html and h.escape(v) in html
     for img in re.findall(r"!\[[^]]*\]\(([^)]+)\)", md):
-        assert (design_report / img).exists()
+        assert (write_report / img).exists()
 
 
-def test_run_folder_renders_again(design_report, tmp_path):
+def test_run_folder_renders_again(write_report, tmp_path):
     import pandas as pd
 
     pd.DataFrame({"rpm": [1000, 2000], "torque_Nm": [0.0, 1.5]}).to_csv(tmp_path / "sweep.csv", index=False)
-    (tmp_path / "torque.png").write_bytes((design_report / "torque_rpm.png").read_bytes())
+    (tmp_path / "torque.png").write_bytes((write_report / "torque_rpm.png").read_bytes())
     run("report", "--run", str(tmp_path))
     html = (tmp_path / "report.html").read_text()
     assert "sweep.csv" in html and "data:image/png;base64," in html and "torque_Nm" in html
     out = tmp_path / "again"
-    run("report", "--run", str(design_report), "--out", str(out))
+    run("report", "--run", str(write_report), "--out", str(out))
     assert "engagement speed" in (out / "report.html").read_text()
 
 

@@ -7,9 +7,10 @@ import pytest
 
 from clutchfem.core import ParameterError
 from clutchfem.geometry import get_concept
-from clutchfem.studies import EvalSettings, parse_tolerance, tolerance
-from clutchfem.studies.target_charts import tolerance_histograms, tolerance_ranking
-from clutchfem.studies.tolerancing import bootstrap_src, src, wilson
+from clutchfem.report.target_charts import tolerance_histograms, tolerance_ranking
+from clutchfem.studies import EvalSettings
+from clutchfem.tolerances import parse_tolerance, tolerance
+from clutchfem.tolerances.tolerancing import bootstrap_src, src, wilson
 from support.pictures import agrees, rule
 
 

@@ -13,8 +13,10 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import ParameterError
-from clutchfem.studies import EvalSettings, Targets, allocate_linear, joint_yield
-from clutchfem.studies.robust import spreads
+from clutchfem.studies import EvalSettings
+from clutchfem.targets import Targets
+from clutchfem.tolerances import allocate_linear, joint_yield
+from clutchfem.tolerances.robust import spreads
 
 CLI = [sys.executable, "-m", "clutchfem.cli"]
 PHI = NormalDist()

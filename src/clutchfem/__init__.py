@@ -26,52 +26,118 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-__version__ = "0.2.0"
+from ._version import __version__
 
-#: public name -> (module it lives in, its name there)
-_API: dict[str, tuple[str, str]] = {
-    "concepts": ("clutchfem.geometry", "concepts"),
-    "get_concept": ("clutchfem.geometry", "get_concept"),
-    "MeshSettings": ("clutchfem.geometry", "MeshSettings"),
-    "Design": ("clutchfem.loadcase", "Design"),
-    "OperatingPoint": ("clutchfem.loadcase", "OperatingPoint"),
-    "morph": ("clutchfem.loadcase", "morph"),
-    "SweepResult": ("clutchfem.loadcase", "SweepResult"),
-    "Material": ("clutchfem.core", "Material"),
-    "get_material": ("clutchfem.core", "get_material"),
-    "EngineCurve": ("clutchfem.clutch", "EngineCurve"),
-    "Requirements": ("clutchfem.analysis", "Requirements"),
-    "Analysis": ("clutchfem.analysis", "Analysis"),
-    "analyze": ("clutchfem.analysis", "analyze"),
-    "StudySpec": ("clutchfem.studies", "StudySpec"),
-    "load_study": ("clutchfem.studies", "load_spec"),
-    "run_study": ("clutchfem.studies", "run_study"),
-    "guidelines": ("clutchfem.studies", "run_guidelines"),
-    "Targets": ("clutchfem.studies", "Targets"),
-    "optimize": ("clutchfem.studies", "optimize"),
-    "tolerance": ("clutchfem.studies", "tolerance"),
-    "sensitivities": ("clutchfem.studies", "sensitivities"),
-    "robust_optimize": ("clutchfem.studies", "robust_optimize"),
-    "allocate_tolerances": ("clutchfem.studies", "allocate_tolerances"),
-    "yield_front": ("clutchfem.studies", "yield_front"),
-    "compensate": ("clutchfem.studies", "compensate"),
-    "SlipScenario": ("clutchfem.durability", "SlipScenario"),
-    "slip_heat": ("clutchfem.analysis", "slip_heat"),
-    "write_report": ("clutchfem.report", "design_report"),
-    "torque_speed_plot": ("clutchfem.report", "comparison_plot"),
-    "run_grid": ("clutchfem.studies", "run_grid"),
-    "export": ("clutchfem.cutting", "export"),
-    "ProcessRules": ("clutchfem.cutting", "ProcessRules"),
-    "CuttingError": ("clutchfem.cutting", "CuttingError"),
-    "validate": ("clutchfem.validation", "validate"),
-    "serve_app": ("clutchfem.app", "serve"),
-    "ClutchfemError": ("clutchfem.core", "ClutchfemError"),
-    "ParameterError": ("clutchfem.core", "ParameterError"),
-    "InputError": ("clutchfem.core", "InputError"),
-    "GeometryError": ("clutchfem.core", "GeometryError"),
-    "MeshError": ("clutchfem.core", "MeshError"),
-    "SolverError": ("clutchfem.core", "SolverError"),
+#: public name -> the package it is defined in (under the same name: a public name is the
+#: name where it is defined), grouped as the documentation groups them
+_API: dict[str, str] = {
+    # designs
+    "concepts": "clutchfem.geometry",
+    "get_concept": "clutchfem.geometry",
+    "broken_concepts": "clutchfem.geometry",
+    "draw_concept": "clutchfem.geometry",
+    "MeshSettings": "clutchfem.geometry",
+    "Design": "clutchfem.loadcase",
+    "OperatingPoint": "clutchfem.loadcase",
+    "parse_rpm": "clutchfem.loadcase",
+    "morph": "clutchfem.loadcase",
+    "Material": "clutchfem.core",
+    "get_material": "clutchfem.core",
+    # answers
+    "SweepResult": "clutchfem.loadcase",
+    "model_warnings": "clutchfem.loadcase",
+    "sweep_errors": "clutchfem.accuracy",
+    "EngineCurve": "clutchfem.clutch",
+    "Requirements": "clutchfem.analysis",
+    "Analysis": "clutchfem.analysis",
+    "analyze": "clutchfem.analysis",
+    "check_speeds": "clutchfem.analysis",
+    "FatigueLoads": "clutchfem.durability",
+    "FatigueParams": "clutchfem.durability",
+    # durability
+    "SlipScenario": "clutchfem.durability",
+    "ThermalEnvironment": "clutchfem.durability",
+    "ThermalMaterial": "clutchfem.durability",
+    "DrumThermal": "clutchfem.durability",
+    "slip_heat": "clutchfem.analysis",
+    "SlipHeatRun": "clutchfem.analysis",
+    # studies (the study engine)
+    "StudySpec": "clutchfem.studies",
+    "load_study": "clutchfem.studies",
+    "example_study": "clutchfem.studies",
+    "run_study": "clutchfem.studies",
+    "StudyResult": "clutchfem.studies",
+    "StudyInterrupted": "clutchfem.studies",
+    "finished_summary": "clutchfem.studies",
+    "run_grid": "clutchfem.studies",
+    "GridResult": "clutchfem.studies",
+    "EvalSettings": "clutchfem.studies",
+    "check_scheduler": "clutchfem.studies",
+    "sensitivities": "clutchfem.studies",
+    "Sensitivities": "clutchfem.studies",
+    # design guidelines
+    "GuidelineSettings": "clutchfem.guidelines",
+    "run_guidelines": "clutchfem.guidelines",
+    "GuidelineResult": "clutchfem.guidelines",
+    # design to targets
+    "Targets": "clutchfem.targets",
+    "optimize": "clutchfem.targets",
+    "OptimizationResult": "clutchfem.targets",
+    "best_estimate": "clutchfem.targets",
+    "compensate": "clutchfem.targets",
+    "Compensation": "clutchfem.targets",
+    # tolerances
+    "parse_tolerance": "clutchfem.tolerances",
+    "tolerance": "clutchfem.tolerances",
+    "ToleranceResult": "clutchfem.tolerances",
+    "robust_optimize": "clutchfem.tolerances",
+    "RobustResult": "clutchfem.tolerances",
+    "allocate_tolerances": "clutchfem.tolerances",
+    "Allocation": "clutchfem.tolerances",
+    "yield_front": "clutchfem.tolerances",
+    "YieldFront": "clutchfem.tolerances",
+    # output
+    "write_report": "clutchfem.report",
+    "summary_rows": "clutchfem.report",
+    "torque_speed_plot": "clutchfem.report",
+    "default_design_report": "clutchfem.report",
+    "draw_study_charts": "clutchfem.report",
+    "draw_guideline_charts": "clutchfem.report",
+    "guideline_table": "clutchfem.report",
+    "field_picture": "clutchfem.report",
+    "write_vtk": "clutchfem.fe",
+    "dumps": "clutchfem.core",
+    # cutting
+    "export": "clutchfem.cutting",
+    "design_from_run": "clutchfem.cutting",
+    "design_from_study": "clutchfem.cutting",
+    "ExportResult": "clutchfem.cutting",
+    "ProcessRules": "clutchfem.cutting",
+    "CuttingError": "clutchfem.cutting",
+    # checks, the app and the machine
+    "validate": "clutchfem.validation",
+    "ValidationRun": "clutchfem.validation",
+    "serve_app": "clutchfem.app",
+    "cache_dir": "clutchfem.mesh",
+    "cache_entries": "clutchfem.mesh",
+    "cache_limit": "clutchfem.mesh",
+    "clear_cache": "clutchfem.mesh",
+    "tune_malloc": "clutchfem.core",
+    # units
+    "parse_quantity": "clutchfem.core",
+    "format_quantity": "clutchfem.core",
+    # errors
+    "ClutchfemError": "clutchfem.core",
+    "ParameterError": "clutchfem.core",
+    "InputError": "clutchfem.core",
+    "UnitError": "clutchfem.core",
+    "GeometryError": "clutchfem.core",
+    "MeshError": "clutchfem.core",
+    "SolverError": "clutchfem.core",
 }
+
+#: names of earlier releases -> the name now (0.3: a public name is the name where it is defined)
+_RENAMED = {"guidelines": "run_guidelines"}  # the other renamed names kept their public name
 
 __all__ = ["__version__", *_API]
 
@@ -79,10 +145,11 @@ __all__ = ["__version__", *_API]
 def __getattr__(name: str) -> Any:
     """Import a public name on first use (PEP 562) and keep it."""
     try:
-        module, attr = _API[name]
+        module = _API[name]
     except KeyError:
-        raise AttributeError(f"module 'clutchfem' has no attribute {name!r}") from None
-    value = getattr(importlib.import_module(module), attr)
+        hint = f" (renamed to {_RENAMED[name]!r} in clutchfem 0.3)" if name in _RENAMED else ""
+        raise AttributeError(f"module 'clutchfem' has no attribute {name!r}{hint}") from None
+    value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
 
@@ -91,9 +158,10 @@ def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_API))
 
 
-if TYPE_CHECKING:  # the same names for type checkers and IDEs
-    from .analysis import Analysis, Requirements, analyze, slip_heat
-    from .app import serve as serve_app
+if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds them equal to _API)
+    from .accuracy import sweep_errors
+    from .analysis import Analysis, Requirements, SlipHeatRun, analyze, check_speeds, slip_heat
+    from .app import serve_app
     from .clutch import EngineCurve
     from .core import (
         ClutchfemError,
@@ -103,27 +171,62 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs
         MeshError,
         ParameterError,
         SolverError,
+        UnitError,
+        dumps,
+        format_quantity,
         get_material,
+        parse_quantity,
+        tune_malloc,
     )
-    from .cutting import CuttingError, ProcessRules, export
-    from .durability import SlipScenario
-    from .geometry import MeshSettings, concepts, get_concept
-    from .loadcase import Design, OperatingPoint, SweepResult, morph
-    from .report import comparison_plot as torque_speed_plot
-    from .report import design_report as write_report
+    from .cutting import CuttingError, ExportResult, ProcessRules, design_from_run, design_from_study, export
+    from .durability import (
+        DrumThermal,
+        FatigueLoads,
+        FatigueParams,
+        SlipScenario,
+        ThermalEnvironment,
+        ThermalMaterial,
+    )
+    from .fe import write_vtk
+    from .geometry import MeshSettings, broken_concepts, concepts, draw_concept, get_concept
+    from .guidelines import GuidelineResult, GuidelineSettings, run_guidelines
+    from .loadcase import Design, OperatingPoint, SweepResult, model_warnings, morph, parse_rpm
+    from .mesh import cache_dir, cache_entries, cache_limit, clear_cache
+    from .report import (
+        default_design_report,
+        draw_guideline_charts,
+        draw_study_charts,
+        field_picture,
+        guideline_table,
+        summary_rows,
+        torque_speed_plot,
+        write_report,
+    )
     from .studies import (
+        EvalSettings,
+        GridResult,
+        Sensitivities,
+        StudyInterrupted,
+        StudyResult,
         StudySpec,
-        Targets,
-        allocate_tolerances,
-        compensate,
-        optimize,
-        robust_optimize,
+        check_scheduler,
+        example_study,
+        finished_summary,
+        load_study,
         run_grid,
         run_study,
         sensitivities,
+    )
+    from .targets import Compensation, OptimizationResult, Targets, best_estimate, compensate, optimize
+    from .tolerances import (
+        Allocation,
+        RobustResult,
+        ToleranceResult,
+        YieldFront,
+        allocate_tolerances,
+        parse_tolerance,
+        robust_optimize,
         tolerance,
         yield_front,
     )
-    from .studies import load_spec as load_study
-    from .studies import run_guidelines as guidelines
-    from .validation import validate
+    from .validation import ValidationRun, validate

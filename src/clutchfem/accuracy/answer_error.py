@@ -100,7 +100,7 @@ class AnswerError:
         d = self.discretisation or 0.0
         return d + self.model_form_abs
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         return {"value": self.value, "unit": self.unit, "discretisation": self.discretisation,
                 "model_form_relative": dict(self.model_form), "model_form": self.model_form_abs,
                 "total": self.total, "notes": list(self.notes), "sensitivities": dict(self.sensitivities)}
@@ -338,7 +338,7 @@ def sweep_errors(design, res) -> dict:
             notes = notes + (disc3[q][3],)
         elif fine is None:
             notes = notes + (NOT_ESTIMATED[three_d],)
-        out[q] = AnswerError(q, v, units[q], d, terms, notes).as_dict()
+        out[q] = AnswerError(q, v, units[q], d, terms, notes).to_json()
         if q in disc3:
             out[q]["discretisation_layers"], out[q]["discretisation_in_plane"] = disc3[q][1:3]
     out["at_rpm"] = rpm_top

@@ -82,7 +82,7 @@ class AnswerNonlinearity:
         """d_NL = nonlinear / linear - 1."""
         return self.nonlinear / self.linear - 1.0
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         return {**asdict(self), "delta": self.delta}
 
 

@@ -110,7 +110,7 @@ class MuSensitivity:
     #: side case that fails never takes the main answers with it
     not_available: dict | None = None
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         d = {"rpm": self.rpm, "mu": self.mu, "torque_Nm": dict(self.torque_Nm), "slip_rpm": dict(self.slip_rpm),
              "not_available": dict(self.not_available or {})}
         if self.torque_change_pct is not None:
@@ -150,7 +150,7 @@ class FatigueAnswer:
     governing_cycle: str | None
     details: dict
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         return {"safety_factor": self.safety_factor, "location": self.location,
                 "governing_cycle": self.governing_cycle, **self.details}
 
@@ -229,14 +229,14 @@ class Analysis:
     #: file-name stem that tells this design apart from others in one folder
     inputs: dict = field(default_factory=dict)
     label: str = ""
-    #: crankshaft whirl with this clutch on the overhang (clutchfem.clutch.crankshaft.WhirlAnswer.as_dict)
+    #: crankshaft whirl with this clutch on the overhang (clutchfem.clutch.crankshaft.WhirlAnswer.to_json)
     whirl: dict = field(default_factory=dict)
     #: error estimate of the main answers (clutchfem.accuracy): per answer the discretisation
     #: (two mesh levels), the model-form terms and their total band
     errors: dict = field(default_factory=dict)
     #: fatigue (fatigue_step): load multiplier at which Miner's sum reaches 1 at the worst point
     #: (None: not available, see ``fatigue['reason']``), where that point is, which cycle
-    #: type governs there, and the details (:meth:`FatigueAnswer.as_dict`)
+    #: type governs there, and the details (:meth:`FatigueAnswer.to_json`)
     fatigue_safety_factor: float | None = None
     fatigue_location: str | None = None
     fatigue_governing_cycle: str | None = None

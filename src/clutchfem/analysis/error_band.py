@@ -63,7 +63,7 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
     discretisation, model-form terms, total and sensitivities.  ``w0_rpm``: the engagement
     speed and ``slip_rpm_value``: the slip speed, which the thickness term of the slip speed
     scales with (that of the torque with the rpm of maximum engine torque); ``drum``: the
-    drum-wall sensitivity step's answers, ``mu``: the mu sensitivity's (``MuSensitivity.as_dict``).
+    drum-wall sensitivity step's answers, ``mu``: the mu sensitivity's (``MuSensitivity.to_json``).
     ``nl`` (best-estimate path): the geometric non-linearity of the peak stress and the
     torque (:func:`~clutchfem.accuracy.answer_nonlinearity`), corrected here; the peak
     together with its discretisation (the refined mesh also refines the disc at ``peak_at``
@@ -136,7 +136,7 @@ def error_step(design, engine: EngineCurve, values: dict, w0_rpm: float | None,
             sens = {k: [None if x is None else x * f for x in vals] for k, vals in sens.items()}
             notes = notes + ("sensitivities scaled by the same correction (its dependence on the drum wall "
                              "and mu is not computed)",)
-        out[q] = AnswerError(q, v, unit, d, terms, notes, sens).as_dict()
+        out[q] = AnswerError(q, v, unit, d, terms, notes, sens).to_json()
         if fix is not None:
             out[q]["corrections"] = {k: x for k, x in fix.items() if k != "note"}
         if three_d and q in disc3:

@@ -207,7 +207,7 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
     err = error_step(design, engine, {"engagement_rpm": eng.static_rpm, "slip_rpm": slip.rpm,
                                       "torque_at_max_engine_torque_Nm": t_nom,
                                       "max_von_mises_Pa": st.max_von_mises_Pa},
-                     eng.static_rpm, slip.rpm, drum=drum, mu=sens.as_dict(),
+                     eng.static_rpm, slip.rpm, drum=drum, mu=sens.to_json(),
                      peak_at=st.location_m, nl=nl, peak_exact=peak_exact,
                      # (the pre-stress check's residual is the displacement error; another's is a force)
                      residual=(res.rpm, res.curve["residual"].to_numpy())
@@ -241,12 +241,12 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
                     max_engine_rpm=float(hi), max_von_mises_Pa=st.max_von_mises_Pa, safety_factor=st.safety_factor,
                     max_stress_rpm=st.rpm, max_stress_location_m=list(st.location_m),
                     yield_strength_Pa=st.yield_strength_Pa, slip_power_W=slip_power, shoe_character=character,
-                    shoe_character_per_shoe=list(ch.per_shoe), mu=float(op.mu), mu_sensitivity=sens.as_dict(),
+                    shoe_character_per_shoe=list(ch.per_shoe), mu=float(op.mu), mu_sensitivity=sens.to_json(),
                     torque_models_at_max_engine_torque_Nm=models, contact_arc_at_max_engine_torque_deg=arc_probe,
                     requirements=checks, engine=eng_info, coupling=coupling, curves=curves,
                     first_touch=res.first_touch, warnings=warnings, notes=notes, part=part,
                     analytical_available=bool(coupling.get("kind")), first_touch_angle_deg=res.first_touch_angle_deg,
                     inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
-                    label=design_label(design), whirl=wh.as_dict(), fatigue_safety_factor=fat.safety_factor,
+                    label=design_label(design), whirl=wh.to_json(), fatigue_safety_factor=fat.safety_factor,
                     fatigue_location=fat.location, fatigue_governing_cycle=fat.governing_cycle,
-                    fatigue=fat.as_dict(), errors=err, contact_sets=sets)
+                    fatigue=fat.to_json(), errors=err, contact_sets=sets)

@@ -5,10 +5,10 @@ speed, compare, studies and downloads, on the same public API as the command lin
 * :mod:`.session` -- one tab's design, its values and refusals, the two-pass analysis;
 * :mod:`.figures` -- the part picture and the charts' options;
 * :mod:`.page` -- the NiceGUI page and its handlers;
-* :mod:`.server` -- :func:`serve`.
+* :mod:`.server` -- :func:`serve_app`.
 """
 
-from .server import serve
+from .server import serve_app
 from .session import Control, DesignSession, Outcome
 
-__all__ = ["Control", "DesignSession", "Outcome", "serve"]
+__all__ = ["Control", "DesignSession", "Outcome", "serve_app"]

@@ -4,7 +4,6 @@ mixin of :class:`~clutchfem.app.page.DesignPage`)."""
 
 from __future__ import annotations
 
-import shutil
 import zipfile
 
 from nicegui import run, ui
@@ -13,8 +12,7 @@ from ..core import ClutchfemError, dumps
 from ..cutting import export
 from ..fe import write_vtk
 from ..loadcase import design_inputs
-from ..mesh import groups_msh_path
-from ..report import design_report
+from ..report import write_report
 
 __all__ = ["Downloads"]
 
@@ -34,7 +32,7 @@ class Downloads:
         if not self._ready():
             return
         out = self.dir / f"{self.outcome.label}-report"
-        files = await run.io_bound(lambda: design_report(self.outcome.design, out, engine=self.s.engine,
+        files = await run.io_bound(lambda: write_report(self.outcome.design, out, engine=self.s.engine,
                                                          requirements=self.s.requirements, errors=False,
                                                          analysis=self.outcome.analysis))
         if files:
@@ -52,7 +50,7 @@ class Downloads:
             ui.notify("this mesh has no .msh file")
             return
         target = self.dir / f"{self.outcome.label}.msh"
-        shutil.copyfile(groups_msh_path(cm.msh_path), target)
+        cm.write_msh(target)
         ui.download(target, target.name)
 
     async def dl_vtu(self) -> None:

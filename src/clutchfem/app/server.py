@@ -12,10 +12,10 @@ from nicegui import ui
 from ..core import InputError
 from .page import build_page
 
-__all__ = ["serve"]
+__all__ = ["serve_app"]
 
 
-def serve(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool = True, out: str | Path | None = None,
+def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool = True, out: str | Path | None = None,
           title: str = "clutchfem") -> None:
     """Run the live design app until interrupted.
 
@@ -39,7 +39,7 @@ def serve(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool = Tru
     --------
     >>> import clutchfem as cf
     >>> cf.serve_app  # doctest: +ELLIPSIS
-    <function serve at ...>
+    <function serve_app at ...>
     """
     if not (isinstance(port, int) and 1 <= port <= 65535):
         raise InputError(f"port {port!r}: a TCP port in 1..65535")

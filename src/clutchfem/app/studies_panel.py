@@ -10,7 +10,10 @@ from pathlib import Path
 from nicegui import run, ui
 
 from ..core import ClutchfemError
-from ..studies import optimize, run_guidelines, tolerance
+from ..guidelines import run_guidelines
+from ..report import draw_guideline_charts
+from ..targets import optimize
+from ..tolerances import tolerance
 
 __all__ = ["StudiesPanel"]
 
@@ -46,9 +49,9 @@ class StudiesPanel:
         d = self.outcome.design if self.outcome else None
         names = [n for n in ("flexure_thickness", "shoe_thickness", "clearance") if d is not None
                  and n in type(d.params).model_fields]
-        res = await self._study("guidelines", lambda log: run_guidelines(
+        res = await self._study("guidelines", lambda log: draw_guideline_charts(run_guidelines(
             d, self.dir / "guidelines", params=names, engine=self.s.engine, requirements=self.s.requirements,
-            workers=0, progress=False, charts=True))
+            workers=0, progress=False)))
         if res is None:
             return
         self.study_out.clear()

@@ -91,7 +91,7 @@ def main() -> None:
         raise SystemExit(130)
 
     signal.signal(signal.SIGINT, interrupted)
-    from ..core import tune_malloc
+    from .. import tune_malloc
 
     tune_malloc()  # this process is clutchfem's: freed arrays stay for the next design
     try:

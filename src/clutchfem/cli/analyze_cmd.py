@@ -8,19 +8,19 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError, ParameterError
+from .. import ClutchfemError, ParameterError
 from . import options as O
 from .common import (
     build_params,
     check_out_dir,
     console,
-    describe_groups,
     design_from,
     engine_from,
     fail,
     grouped_assignments,
     material_from,
     operating_point,
+    print_settings,
     requirements_from,
     working,
     wrote,
@@ -29,19 +29,9 @@ from .common import (
 
 def fatigue_groups() -> dict:
     """The parameter sets --fatigue writes into: service loads and fatigue strength."""
-    from ..durability import FatigueLoads, FatigueParams
+    from .. import FatigueLoads, FatigueParams
 
     return {"loads": FatigueLoads, "strength": FatigueParams}
-
-
-def print_settings(groups, option: str) -> None:
-    """The table of a grouped option's settings (``--list-fatigue``, ``--list-thermal``)."""
-    t = Table(title=f"{option} settings (name=value with its unit; ASSUMED defaults, sources in the docs)")
-    for col in ("name", "unit", "default", "allowed: meaning"):
-        t.add_column(col)
-    for row in describe_groups(groups):
-        t.add_row(*(escape(x) for x in row))
-    console.print(t)
 
 
 def analyze(
@@ -77,10 +67,8 @@ def analyze(
 ):
     """Engagement (static, with ripple), slip speed, torque margin, stresses, fatigue,
     plus/minus character, crankshaft whirl and the requirement checks, each with its error."""
-    from ..analysis import analyze as run
-    from ..analysis import check_speeds
-    from ..core import dumps
-    from ..report import summary_rows, write_analysis
+    from .. import analyze as run
+    from .. import check_speeds, dumps, summary_rows, write_report
 
     try:
         if list_fatigue:
@@ -122,7 +110,7 @@ def analyze(
             an = run(design, engine=eng, requirements=req, idle_rpm=idle, fatigue_loads=fat_loads,
                      fatigue_params=fat_params)
         if out is not None:
-            wrote(write_analysis(an, eng, out, an.label))
+            wrote(write_report(an, out, engine=eng))
         if json_:
             print(dumps(an.to_json()))
             return

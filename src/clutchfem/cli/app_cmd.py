@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from ..core import ClutchfemError
+from .. import ClutchfemError
 from .common import err, fail
 
 
@@ -22,13 +22,13 @@ def app(
     """Live design in the browser: every parameter a slider, the answers with their bands,
     the torque-speed chart and the part at a speed, after each change; compare, studies and
     downloads."""
-    from ..app import serve
+    from .. import serve_app
 
     try:
         if host not in ("127.0.0.1", "localhost", "::1"):
             err.print(f"[yellow]listening on {host}:{port}: anyone who can reach this address can run analyses "
                       "and download their files[/]")
         err.print(f"clutchfem app on http://{host if host != '0.0.0.0' else '127.0.0.1'}:{port} (Ctrl-C stops it)")
-        serve(host, port, open_browser=not no_browser, out=out)
+        serve_app(host, port, open_browser=not no_browser, out=out)
     except ClutchfemError as exc:
         fail(exc)

@@ -8,7 +8,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError
+from .. import ClutchfemError
 from . import options as O
 from .common import console, err, fail
 
@@ -20,8 +20,7 @@ def cache(
     """The mesh cache: its folder ($CLUTCHFEM_CACHE, else the platform's cache folder, e.g.
     ~/.cache/clutchfem or $XDG_CACHE_HOME/clutchfem), entries, size and bound
     ($CLUTCHFEM_CACHE_SIZE, default 1 GB; the least recently used meshes are evicted)."""
-    from ..core import dumps
-    from ..mesh import cache_dir, cache_entries, cache_limit, clear_cache
+    from .. import cache_dir, cache_entries, cache_limit, clear_cache, dumps
 
     try:
         d = cache_dir()

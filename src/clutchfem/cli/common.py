@@ -8,8 +8,10 @@ option then answer in a fraction of a second instead of loading the FE stack (~3
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import sys
+import time
 from pathlib import Path
 from typing import Optional
 
@@ -17,8 +19,9 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn  # 0.04 s
+from rich.table import Table
 
-from ..core import InputError, ParameterError, UnitError, expected_text, parse_quantity
+from .. import InputError, ParameterError, UnitError, parse_quantity
 
 # Written to a file or a pipe, a message is one line however long (a script reads whole
 # lines: a refusal or a WARNING wrapped at 80 columns lost its end); tables keep their width.
@@ -46,7 +49,7 @@ def working(what: str):
         yield lambda text: bar.update(task, description=escape(f"{what}: {text}"), refresh=True)
 
 __all__ = ["working", "check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
-           "operating_point", "quantity", "requirements_from", "wrote"]
+           "operating_point", "quantity", "requirements_from", "build_geometry", "geometry_table", "print_settings", "study_settings", "wrote"]
 
 
 def fail(exc: Exception) -> None:
@@ -93,9 +96,9 @@ def check_cluster(workers: Optional[int], scheduler: Optional[str]) -> Optional[
         raise ParameterError("workers", workers, "an integer >= 0 (0: in this process, no Dask)", "option --workers")
     if scheduler is None:
         return None
-    from ..studies import check_address
+    from .. import check_scheduler
 
-    return check_address(scheduler)
+    return check_scheduler(scheduler)
 
 
 def quantity(option: str, raw: Optional[str], unit: str, lo: float | None = None, hi: float | None = None,
@@ -107,8 +110,8 @@ def quantity(option: str, raw: Optional[str], unit: str, lo: float | None = None
     name = option.lstrip("-").replace("-", "_")
     try:
         v = parse_quantity(raw, unit)
-    except UnitError:
-        raise ParameterError(name, raw, expected_text(unit), f"option {option}") from None
+    except UnitError as exc:
+        raise ParameterError(name, raw, exc.expected, f"option {option}") from None
     rng = None
     if lo is not None and hi is not None:
         rng = f"in [{lo:g}, {hi:g}]"
@@ -124,7 +127,7 @@ def quantity(option: str, raw: Optional[str], unit: str, lo: float | None = None
 def operating_point(base=None, **given):
     """An :class:`~clutchfem.OperatingPoint` from option strings (None: not given), each read
     with its unit and checked against its range; ``base``: the point to change."""
-    from ..loadcase import OperatingPoint
+    from .. import OperatingPoint
 
     base = base if base is not None else OperatingPoint()
     if isinstance(given.get("drum_wall"), str) and given["drum_wall"].strip().lower() == "rigid":
@@ -143,7 +146,7 @@ def operating_point(base=None, **given):
 def material_from(name: Optional[str], E: Optional[str] = None, nu: Optional[str] = None,
                   rho: Optional[str] = None):
     """The material of ``--material`` with ``--E``/``--nu``/``--rho`` overrides (units read)."""
-    from ..core import Material, get_material
+    from .. import Material, get_material
 
     base = get_material(name or "51CrV4")
     if E is None and nu is None and rho is None:
@@ -164,7 +167,7 @@ def material_from(name: Optional[str], E: Optional[str] = None, nu: Optional[str
 def engine_from(path: Optional[Path], idle_rpm: Optional[str] = None):
     """(engine curve, idle speed [rpm] or None): ``--engine`` (default: the built-in curve)
     and ``--idle-rpm`` (read with its unit; it must lie below the curve's top speed)."""
-    from ..clutch import EngineCurve
+    from .. import EngineCurve
 
     idle = quantity("--idle-rpm", idle_rpm, "rpm", above=0.0)
     eng = EngineCurve.from_csv(path) if path is not None else EngineCurve.default()
@@ -177,7 +180,7 @@ def engine_from(path: Optional[Path], idle_rpm: Optional[str] = None):
 
 def requirements_from(a: Optional[str], b: Optional[str]):
     """The requirement factors of ``--a``/``--b`` (defaults 1.3 and 1.0, ASSUMED)."""
-    from ..analysis import Requirements
+    from .. import Requirements
 
     kw = {k: quantity(f"--{k}", v, "-") for k, v in (("a", a), ("b", b)) if v is not None}
     return Requirements(**kw)
@@ -205,8 +208,7 @@ def design_from(concept: Optional[str], set_: list[str], mesh: Optional[Path], *
     """The design of the options: ``CONCEPT [--set ...]`` or ``--mesh FILE``.  A concept's
     drum radius and thickness are geometry parameters (``--set drum_radius=...``);
     ``--drum-radius``/``--thickness`` are a mesh part's operating point."""
-    from ..geometry import MeshSettings, get_concept
-    from ..loadcase import Design, OperatingPoint
+    from .. import Design, MeshSettings, OperatingPoint, get_concept
 
     if concept is not None and mesh is not None:
         raise InputError("give exactly one of CONCEPT or --mesh FILE, not both")
@@ -294,7 +296,7 @@ def build_params(cls, values: dict, option: str):
 def describe_groups(groups: dict) -> list[tuple[str, str, str, str]]:
     """(name as typed, unit, default in its display unit, allowed and meaning) of every
     parameter of ``groups``."""
-    from ..core import format_quantity
+    from .. import format_quantity
 
     owners: dict[str, int] = {}
     for cls in groups.values():
@@ -309,10 +311,20 @@ def describe_groups(groups: dict) -> list[tuple[str, str, str, str]]:
     return rows
 
 
+def print_settings(groups, option: str) -> None:
+    """The table of a grouped option's settings (``--list-fatigue``, ``--list-thermal``)."""
+    t = Table(title=f"{option} settings (name=value with its unit; ASSUMED defaults, sources in the docs)")
+    for col in ("name", "unit", "default", "allowed: meaning"):
+        t.add_column(col)
+    for row in describe_groups(groups):
+        t.add_row(*(escape(x) for x in row))
+    console.print(t)
+
+
 def tolerances_from(P, items) -> dict:
     """``--tol name=+-value`` items -> {name: half-width in SI} for parameter class ``P``
     (each dimension once)."""
-    from ..studies import parse_tolerance
+    from .. import parse_tolerance
 
     tols: dict = {}
     for item in items:
@@ -321,3 +333,67 @@ def tolerances_from(P, items) -> dict:
             raise ParameterError(name, item, "one tolerance per dimension (given twice)", "option --tol")
         tols[name] = half
     return tols
+
+
+def study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf: float = 1.5, fidelity=None):
+    """(EvalSettings, base Design) of a design-to-targets command: the base design (meshed, so
+    a bad --set is refused before any study work) with its engine, idle speed, requirement
+    factors and the store in ``out``."""
+    from .. import EvalSettings
+
+    req = requirements_from(a, b)
+    eng, idle = engine_from(engine, idle_rpm)
+    design = design_from(concept, set_, None, op=operating_point(mu=mu, fidelity=fidelity), mesh_size=mesh_size,
+                         mesh_allowed=False)
+    s = EvalSettings.from_design(design, engine=engine if engine is not None else None, idle_rpm=idle,
+                                 requirements=req, min_safety_factor=sf, out=out)
+    return s, design
+
+
+def build_geometry(c, set_, out: Path, mesh_size, model: str, drawing: bool) -> dict:
+    """Mesh one concept (its ``--set`` texts) and write its files into ``out``, named after the
+    design's label; returns a summary row with the files."""
+    from .. import draw_concept, dumps
+
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    with working(f"geometry {c.name}") as stage:
+        stage("building and meshing")
+        design = design_from(c.name, list(set_), None, mesh_size=mesh_size, model=model)
+    wall = time.perf_counter() - t0
+    cm, p = design.cm, design.params
+    label = design.label
+    msh = cm.write_msh(out / f"{label}.msh")  # not with_suffix: 'concept3.1' would lose its '.1'
+    files = [msh]
+    if drawing:
+        files += draw_concept(c, p, out / label, cm)
+    rho, h = design.op.material.rho, p.thickness
+    shoe = cm.mass.get("shoe_0", {})
+    info = {"concept": c.name, "label": label, "elements": cm.n_elements, "nodes": cm.n_nodes,
+            "material": design.op.material.name, "density_kg_m3": rho,
+            "shoe_mass_kg": shoe.get("area", math.nan) * rho * h, "R_Tp_m": shoe.get("radius", math.nan),
+            "part_mass_kg": cm.mass["solid"]["area"] * rho * h * (cm.n_shoes_total if cm.sector_angle else 1),
+            "mesh_time_s": cm.mesh_time_s, "cached": cm.cached, "wall_time_s": wall}
+    summary = out / f"{label}.json"
+    files.append(summary)
+    info["files"] = [str(f) for f in files]
+    summary.write_text(dumps({**info, "params": p.model_dump(), "mass": cm.mass}, indent=2))
+    return info
+
+
+def geometry_table(rows: list[dict]) -> None:
+    """The summary table of built concepts (an error row says why a concept failed)."""
+    t = Table(title="concept geometries (51CrV4 steel, rho = 7850 kg/m^3)")
+    for col in ("concept", "elements", "nodes", "shoe mass [g]", "R_Tp [mm]", "part mass [g]", "mesh time [s]"):
+        # escaped: rich would eat '[g]' as markup; names never wrap ('concept3.1')
+        t.add_column(escape(col), justify="right", no_wrap=col == "concept", min_width=10 if col == "concept" else None)
+    for r in rows:
+        if "error" in r:
+            t.add_row(r["concept"], "-", "-", "-", "-", "-", f"[red]{escape(r['error'][:60])}[/]")
+            continue
+        t.add_row(r["concept"], str(r["elements"]), str(r["nodes"]), f"{r['shoe_mass_kg'] * 1e3:.2f}",
+                  f"{r['R_Tp_m'] * 1e3:.2f}", f"{r['part_mass_kg'] * 1e3:.1f}",
+                  f"{r['mesh_time_s']:.2f}" + ("*" if r.get("cached") else ""))
+    if any(r.get("cached") for r in rows):
+        t.caption = "* mesh read from the cache; the time is that of its original meshing"
+    console.print(t)

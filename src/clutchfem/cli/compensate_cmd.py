@@ -9,7 +9,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError
+from .. import ClutchfemError
 from . import options as O
 from .common import (
     check_out_dir,
@@ -48,11 +48,8 @@ def compensate(
     json_: O.Json = False,
 ):
     """Shoe profile (a table of clearances) that spreads the contact pressure evenly at --rpm."""
-    from ..analysis import analyze
-    from ..core import dumps
-    from ..loadcase import Design
-    from ..report import compare_rows, compensation_json, compensation_report
-    from ..studies import compensate as run
+    from .. import Design, analyze, dumps, write_report
+    from .. import compensate as run
 
     try:
         check_out_dir(out)
@@ -73,11 +70,11 @@ def compensate(
             before = analyze(design, engine=eng, errors=False)
             after = analyze(Design.from_concept(design.concept, res.after, design.op, _mesh(ms, design.op.fidelity)), engine=eng,
                             errors=False)
-        rows = compare_rows(res, before, after)
+        rows = res.compare(before, after)
         if out is not None:
-            wrote(compensation_report(res, before, after, rows, eng, out))
+            wrote(write_report(res, out, before=before, after=after, engine=eng))
         if json_:
-            print(dumps(compensation_json(res, rows)))
+            print(dumps(res.to_json(before, after)))
             return
         t = Table(title=escape(f"{res.concept}: profile compensated at {res.rpm:.0f} rpm over "
                                f"{100 * res.target_arc:.0f} % of the shoe arc"))
@@ -98,6 +95,6 @@ def compensate(
 
 
 def _mesh(ms: dict, fidelity: str = "fast"):
-    from ..geometry import MeshSettings
+    from .. import MeshSettings
 
     return MeshSettings(**ms) if ms else MeshSettings.preset(fidelity)

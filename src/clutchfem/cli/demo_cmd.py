@@ -7,17 +7,14 @@ from pathlib import Path
 
 import typer
 
-from ..core import ClutchfemError
-from ..core import write as write_json
-from .common import check_out_dir, fail, working, wrote
-from .geometry_cmd import build_geometry, geometry_table
+from .. import ClutchfemError
+from .common import build_geometry, check_out_dir, fail, geometry_table, working, wrote
 
 
 def demo(out: Path = typer.Option(Path("out/demo"), "--out", help="output folder")):
     """Build every concept at its defaults, then analyse the default designs of concepts 1 and
     4 and plot torque vs rpm against the engine and today's spring clutch."""
-    from ..geometry import concepts
-    from ..report import default_design_report
+    from .. import concepts, default_design_report, dumps
 
     try:
         check_out_dir(out)
@@ -30,7 +27,8 @@ def demo(out: Path = typer.Option(Path("out/demo"), "--out", help="output folder
         except ClutchfemError as exc:  # record and go on
             rows.append({"concept": name, "error": str(exc)})
     geometry_table(rows)
-    summary = write_json(out / "geometry" / "summary.json", rows, indent=2)
+    summary = out / "geometry" / "summary.json"
+    summary.write_text(dumps(rows, indent=2))
     wrote([f for r in rows for f in r.get("files", [])] + [summary])
     try:
         with working("demo: the design report of concepts 1-4") as stage:

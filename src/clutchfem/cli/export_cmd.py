@@ -10,7 +10,7 @@ from typing import Optional
 import typer
 from rich.markup import escape
 
-from ..core import ClutchfemError, InputError, ParameterError
+from .. import ClutchfemError, InputError, ParameterError
 from . import options as O
 from .common import check_out_dir, console, design_from, engine_from, err, fail, quantity, working, wrote
 
@@ -60,10 +60,8 @@ def export(
     json_: O.Json = False,
 ):
     """DXF and STEP of the whole part, the manufacturability check, the drawing sheet."""
-    from ..core import dumps
-    from ..cutting import ProcessRules, design_from_run, design_from_study
-    from ..cutting import export as run
-    from ..geometry import MeshSettings
+    from .. import MeshSettings, ProcessRules, design_from_run, design_from_study, dumps
+    from .. import export as run
 
     try:
         check_out_dir(out)

@@ -10,38 +10,19 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError, ParameterError
+from .. import ClutchfemError, ParameterError
 from . import options as O
 from .common import (
     check_cluster,
     check_out_dir,
     console,
-    design_from,
-    engine_from,
     err,
     fail,
-    operating_point,
     quantity,
-    requirements_from,
+    study_settings,
     tolerances_from,
     wrote,
 )
-
-
-def study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf: float = 1.5, fidelity=None):
-    """(EvalSettings, base Design) of a design-to-targets command: the base design (meshed, so
-    a bad --set is refused before any study work) with its engine, idle speed, requirement
-    factors and the store in ``out``."""
-    from ..studies import STORE_NAME, EvalSettings
-
-    req = requirements_from(a, b)
-    eng, idle = engine_from(engine, idle_rpm)
-    design = design_from(concept, set_, None, op=operating_point(mu=mu, fidelity=fidelity), mesh_size=mesh_size,
-                         mesh_allowed=False)
-    store = str(out / STORE_NAME) if out is not None else None
-    s = EvalSettings.from_design(design, engine=engine if engine is not None else None, idle_rpm=idle,
-                                 requirements=req, min_safety_factor=sf, store=store)
-    return s, design
 
 
 def optimize(
@@ -98,10 +79,8 @@ def optimize(
 ):
     """Find a design that meets the targets at least part mass (or largest torque margin);
     with --tol, one whose targets hold for the --yield share of made parts."""
-    from ..core import dumps
-    from ..report import optimization_report
-    from ..studies import Targets, best_estimate
-    from ..studies import optimize as run
+    from .. import Targets, dumps, write_report
+    from .. import optimize as run
 
     try:
         scheduler = check_cluster(workers, scheduler)
@@ -143,11 +122,9 @@ def optimize(
                       scheduler=scheduler, method=method or "auto", log=lambda m: err.print(escape(m)))
         final = None
         if out is not None or not json_:  # the final design analysed again, with its error estimate
-            final = res.best_analysis  # (the optimiser's own check did it)
-            if final is None:
-                final = best_estimate(s, res.best["params"])
+            final = res.final_analysis()  # (the optimiser's own check did it, else a new best estimate)
         if out is not None:
-            wrote(optimization_report(res, final, out))
+            wrote(write_report(res, out, final=final))
         if json_:
             d = res.to_json() if robust is None else robust.to_json()
             d.pop("path")
@@ -162,8 +139,8 @@ def optimize(
 
 
 def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_evals, workers, method, rounds):
-    """The robust optimisation of ``optimize --tol`` (clutchfem.studies.robust)."""
-    from ..studies import robust_optimize
+    """The robust optimisation of ``optimize --tol`` (clutchfem.tolerances.robust)."""
+    from .. import robust_optimize
 
     tols = tolerances_from(P, tol)
     y = quantity("--yield", yield_, "-", above=0.0)
@@ -210,8 +187,6 @@ def _print_robust(r):
 
 
 def _print_optimization(res, final):
-    from ..studies import DIMENSIONLESS, fatigue_note
-
     a = res.best["assessment"]
     t = Table(title=escape(f"{res.concept}: {res.message}"))
     t.add_column("target")
@@ -219,7 +194,7 @@ def _print_optimization(res, final):
     t.add_column("limit", justify="right")
     t.add_column("binds")
     for c in a["constraints"]:
-        sf = c["key"] in DIMENSIONLESS
+        sf = c["unit"] == "-"
         v = c["value"]
         vs = "none" if v is None else (f"{v:.2f}" if sf else f"{v:.0f} rpm")
         err_txt = ""
@@ -246,7 +221,7 @@ def _print_optimization(res, final):
            else f"torque margin {res.best['torque_margin_Nm']:+.2f} N m")
     console.print(f"objective: {obj}; evaluations: {sum(res.evaluations.values())} "
                   f"({', '.join(f'{k} {v}' for k, v in res.evaluations.items() if v)}); time {res.seconds:.0f} s")
-    fnote = fatigue_note(res)
+    fnote = res.fatigue_note
     if fnote:
         console.print(f"[yellow]{escape(fnote)}[/yellow]")
     console.print("verify: clutchfem analyze " + escape(res.concept) + " "

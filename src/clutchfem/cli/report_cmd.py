@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 from typing import Optional
 
 import typer
 
-from ..core import ClutchfemError, InputError
+from .. import ClutchfemError, InputError
 from . import options as O
 from .common import check_out_dir, design_from, engine_from, fail, requirements_from, working, wrote
 
@@ -31,7 +30,7 @@ def report(
 ):
     """One-page report (self-contained HTML + Markdown) of a design (CONCEPT or --mesh) or of a
     run folder (--run)."""
-    from ..report import design_report, folder_page, write_page
+    from .. import write_report
 
     try:
         if run_dir is not None:
@@ -39,12 +38,7 @@ def report(
                 raise InputError("give exactly one of a design (CONCEPT or --mesh FILE) or --run DIR")
             if not Path(run_dir).is_dir():
                 raise InputError(f"--run {run_dir}: not a folder")
-            target = check_out_dir(out) or Path(run_dir)
-            page = folder_page(Path(run_dir))
-            if target != Path(run_dir):  # figures travel with the page
-                for f in Path(run_dir).glob("*.png"):
-                    shutil.copy2(f, target / f.name)
-            wrote(write_page(page, target))
+            wrote(write_report(Path(run_dir), check_out_dir(out) or Path(run_dir)))
             return
         if out is None:
             raise InputError("--out DIR is required: the folder for report.html, report.md, the images and inputs.json")
@@ -58,7 +52,7 @@ def report(
             design = design_from(concept, set_, mesh, mesh_size=mesh_size, drum_radius=drum_radius,
                                  thickness=thickness)
             stage("analysis, charts and pictures")
-            files = design_report(design, out, engine=eng, requirements=req, errors=errors)
+            files = write_report(design, out, engine=eng, requirements=req, errors=errors)
         wrote(files)
     except ClutchfemError as exc:
         fail(exc)

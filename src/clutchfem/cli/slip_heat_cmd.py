@@ -10,9 +10,8 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError, InputError, ParameterError
+from .. import ClutchfemError, InputError, ParameterError
 from . import options as O
-from .analyze_cmd import print_settings
 from .common import (
     build_params,
     check_out_dir,
@@ -23,6 +22,7 @@ from .common import (
     fail,
     grouped_assignments,
     operating_point,
+    print_settings,
     quantity,
     working,
     wrote,
@@ -31,7 +31,7 @@ from .common import (
 
 def thermal_groups() -> dict:
     """The parameter sets --thermal writes into (prefix -> ParamSet class)."""
-    from ..durability import DrumThermal, SlipScenario, ThermalEnvironment, ThermalMaterial
+    from .. import DrumThermal, SlipScenario, ThermalEnvironment, ThermalMaterial
 
     return {"part": ThermalMaterial, "drum": DrumThermal, "env": ThermalEnvironment, "scenario": SlipScenario}
 
@@ -68,9 +68,8 @@ def slip_heat(
 ):
     """Slip heat with the drum held at full throttle: temperatures of flexure, shoe face and
     hub against time, time to the limit (tempering) temperature, yield strength left."""
-    from ..analysis import slip_heat as run
-    from ..core import dumps
-    from ..report import slip_heat_files
+    from .. import dumps, write_report
+    from .. import slip_heat as run
 
     try:
         groups = thermal_groups()
@@ -108,7 +107,7 @@ def slip_heat(
             stage("slip speed, contact forces and the heat transient")
             result = run(design, eng, part=part, drum=drum, env=env, scenario=scenario, heat_fraction=fraction)
         if out is not None:
-            wrote(slip_heat_files(result, out))
+            wrote(write_report(result, out))
         if json_:
             print(dumps(result.doc))
             return

@@ -11,7 +11,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError
+from .. import ClutchfemError
 from . import options as O
 from .common import check_out_dir, console, design_from, fail, material_from, operating_point, working, wrote
 
@@ -52,11 +52,7 @@ def solve(
 ):
     """Speed sweep of a design: engagement, contact forces and arc, friction torque (drum
     held), stresses, each speed solved exactly (the answers do not depend on the grid)."""
-    from ..accuracy import sweep_errors
-    from ..core import dumps, write
-    from ..fe import write_vtk
-    from ..loadcase import design_inputs, design_label, model_warnings, parse_rpm
-    from ..report import field_picture
+    from .. import dumps, field_picture, model_warnings, parse_rpm, sweep_errors, write_vtk
 
     try:
         check_out_dir(out)
@@ -77,8 +73,8 @@ def solve(
             warns = list(res.warnings) + model_warnings(res, design.model.material.yield_strength)
             stage("discretisation and model-form errors")
             errs = sweep_errors(design, res) if not no_errors and res.contact is not None else {}
-        label = design_label(design)
-        doc = {**res.to_json(), "label": label, "warnings": warns, "errors": errs, "inputs": design_inputs(design)}
+        label = design.label
+        doc = {**res.to_json(), "label": label, "warnings": warns, "errors": errs, "inputs": design.inputs()}
         files, notes = [], []
         if out is not None:
             res.curve.to_csv(out / f"{label}_curve.csv", index=False)
@@ -86,7 +82,8 @@ def solve(
             if not res.shoes.empty:
                 res.shoes.to_csv(out / f"{label}_shoes.csv", index=False)
                 files.append(out / f"{label}_shoes.csv")
-            files.append(write(out / f"{label}_result.json", doc, indent=2))
+            (out / f"{label}_result.json").write_text(dumps(doc, indent=2))
+            files.append(out / f"{label}_result.json")
         if vtk:
             target = check_out_dir(out or Path("out/solve"))
             files += write_vtk(res, which, target, stem=label, cm=design.cm)

@@ -14,7 +14,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError, ParameterError
+from .. import ClutchfemError, ParameterError
 from . import options as O
 from .common import (
     check_cluster,
@@ -65,56 +65,58 @@ def study(
     """Parameter study: every point of SPEC through the full analysis, on Dask, stored as it
     finishes (rerun to resume).  Status per point: ok, refused (input refused, with its
     message) or failed (no answer: solver refusal, error, crashed worker)."""
-    from ..studies import default_out, finished_summary
+    from .. import finished_summary
 
     try:
         if example:
             if spec is not None:
                 raise _usage("--example prints a spec; give either --example or SPEC")
-            from ..studies import EXAMPLE_SPEC
+            from .. import example_study
 
-            sys.stdout.write(EXAMPLE_SPEC)
+            sys.stdout.write(example_study())
             return
         if spec is None:
             raise _usage("give a study spec (TOML), or --example to print one")
         scheduler = check_cluster(workers, scheduler)
-        out = check_out_dir(out if out is not None else default_out(str(spec)))
+        out = check_out_dir(out if out is not None else Path(f"{Path(spec).stem}-study"))
         # a finished study: its summary, without loading the FE stack (studies.rerun)
         done = finished_summary(spec, out, retry_failed=retry_failed, charts=charts)
         if done is not None:
             if json_:
-                from ..core import dumps
+                from .. import dumps
 
                 print(dumps(done))
             else:
                 _print_summary(done)
             return
-        from ..studies import StudyInterrupted, load_spec, run_study
+        from .. import StudyInterrupted, draw_study_charts, load_study, run_study
 
-        sp = load_spec(spec)
+        sp = load_study(spec)
         try:
             with _ctrl_c_as_keyboard_interrupt():
-                summary = run_study(sp, out, workers=workers, scheduler=scheduler, retry_failed=retry_failed,
-                                    progress=True, charts=charts)
+                res = run_study(sp, out, workers=workers, scheduler=scheduler, retry_failed=retry_failed,
+                                progress=True)
+            if charts:
+                res = draw_study_charts(res)
         except StudyInterrupted as exc:
             err.print(f"[yellow]{escape(str(exc))}[/]")
             if json_:
-                from ..core import dumps
+                from .. import dumps
 
-                print(dumps(exc.result.as_dict()))
+                print(dumps(exc.result.to_json()))
             raise typer.Exit(code=130) from None
         if json_:
-            from ..core import dumps
+            from .. import dumps
 
-            print(dumps(summary))
+            print(dumps(res.to_json()))
             return
-        _print_summary(summary)
+        _print_summary(res.to_json())
     except ClutchfemError as exc:
         fail(exc)
 
 
 def _usage(msg: str):
-    from ..core import InputError
+    from .. import InputError
 
     return InputError(msg)
 
@@ -185,7 +187,7 @@ def guidelines(
     the method named per row), the same for the operating inputs (mu, drum wall, idle speed)
     on the design's own mesh, and a one-at-a-time sweep of each parameter over its range;
     ranked table and small-multiple charts."""
-    from ..studies import GuidelineSettings, StudyInterrupted, run_guidelines, summary_table
+    from .. import GuidelineSettings, StudyInterrupted, draw_guideline_charts, guideline_table, run_guidelines
 
     try:
         scheduler = check_cluster(workers, scheduler)
@@ -208,12 +210,13 @@ def guidelines(
         except StudyInterrupted as exc:
             err.print(f"[yellow]{escape(str(exc))}[/]")
             raise typer.Exit(code=130) from None
+        res = draw_guideline_charts(res)
         if json_:
-            from ..core import dumps
+            from .. import dumps
 
-            print(dumps(res.as_json()))
+            print(dumps(res.to_json()))
             return
-        console.print(summary_table(res))
+        console.print(guideline_table(res))
         for n in res.notes:
             console.print(f"[dim]note: {escape(n)}[/]")
         wrote(res.files)

@@ -10,10 +10,9 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from ..core import ClutchfemError, ParameterError
+from .. import ClutchfemError, ParameterError
 from . import options as O
-from .common import check_cluster, check_out_dir, console, err, fail, quantity, tolerances_from, wrote
-from .optimize_cmd import study_settings
+from .common import check_cluster, check_out_dir, console, err, fail, quantity, study_settings, tolerances_from, wrote
 
 
 def tolerance(
@@ -58,11 +57,8 @@ def tolerance(
     json_: O.Json = False,
 ):
     """Monte Carlo of manufacturing tolerances: spread, share out of spec, ranking of dimensions."""
-    from ..analysis import Requirements
-    from ..core import dumps
-    from ..report import tolerance_report
-    from ..studies import Targets
-    from ..studies import tolerance as run
+    from .. import Requirements, Targets, dumps, write_report
+    from .. import tolerance as run
 
     try:
         scheduler = check_cluster(workers, scheduler)
@@ -91,8 +87,8 @@ def tolerance(
         res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf),
                   shifts=shifts, workers=workers, scheduler=scheduler, log=lambda m: err.print(escape(m)))
         if out is not None:
-            wrote(tolerance_report(res, out, base, {"tolerances_si": tols, "n": n, "dist": dist, "seed": seed},
-                                   engine=s.engine_csv or "", requirements=Requirements(a=s.a, b=s.b)))
+            wrote(write_report(res, out, design=base, run={"tolerances_si": tols, "n": n, "dist": dist, "seed": seed},
+                               engine=s.engine_csv or "", requirements=Requirements(a=s.a, b=s.b)))
         if json_:
             d = res.to_json()
             d.pop("samples")
@@ -159,11 +155,10 @@ def _yield(raw):
 
 
 def _allocate(s, base, set_, tols, targets, y, dist, model_error, cost, n, seed, workers, scheduler, out, json_):
-    """``tolerance --allocate``: the allocation (clutchfem.studies.allocation) and, with --n,
+    """``tolerance --allocate``: the allocation (clutchfem.tolerances.allocation) and, with --n,
     a Monte Carlo check of the allocated widths."""
-    from ..core import dumps, write
-    from ..studies import allocate_tolerances, parse_tolerance
-    from ..studies import tolerance as run
+    from .. import allocate_tolerances, dumps, parse_tolerance
+    from .. import tolerance as run
 
     if dist not in ("normal", "uniform"):
         raise ParameterError("dist", dist, "normal or uniform", "option --dist")
@@ -198,16 +193,30 @@ def _allocate(s, base, set_, tols, targets, y, dist, model_error, cost, n, seed,
                         "ci95_in_spec": [1 - o["ci95"][1], 1 - o["ci95"][0]], "seed": seed,
                         "widths_si": dict(chk.tolerances), "model_error_in_check": False}
     if out is not None:
-        wrote([write(Path(out) / "allocation.json", doc, indent=1)])
+        path = Path(out) / "allocation.json"
+        path.write_text(dumps(doc, indent=1))
+        wrote([path])
     if json_:
         print(dumps(doc))
         return
     _print_allocation(a, doc.get("check"))
 
 
-def _print_allocation(a, check):
-    from ..studies import shown
+#: lengths and angles in the units a drawing shows them in
+SHOWN = {"m": (1e3, "mm"), "deg": (1.0, "deg")}
 
+
+def shown(unit: str, value: float | None, digits: int = 4) -> str:
+    """``value`` (SI, parameter ``unit``) as a text with its shown unit: '0.0512 mm'."""
+    if value is None:
+        return "none"
+    if value == float("inf"):
+        return "unlimited"
+    sc, u = SHOWN.get(unit, (1.0, "(-)"))
+    return f"{value * sc:.{digits}g} {u}"
+
+
+def _print_allocation(a, check):
     t = Table(title=escape(f"{a.concept}: tolerance allocation for {a.yield_target:.4g} of parts in spec ({a.dist}, "
                            + ("model-error bands included" if a.model_error else "model error left out") + ")"))
     for c in ("dimension", "given +-", "allocated +-", "x given", "binds", "widest alone +-", "variance share",

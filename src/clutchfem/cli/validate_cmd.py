@@ -9,7 +9,7 @@ from typing import Optional
 
 import typer
 
-from ..core import ClutchfemError, InputError, dumps
+from .. import ClutchfemError, InputError
 from .common import check_out_dir, console, err, fail, working
 
 
@@ -21,7 +21,8 @@ def validate(
 ):
     """Reproduce the source papers' numbers (spring clutch, chain impact, overhung-disc shaft,
     thesis): every module of clutchfem.validation that defines records()."""
-    from ..validation import runner  # noqa: F401 (the module, as before)
+    from .. import dumps
+    from .. import validate as run_validation
 
     t0 = time.perf_counter()
     try:
@@ -33,15 +34,13 @@ def validate(
             check_out_dir(docs.parent, "--docs")
         with working("validate") as stage:
             stage("every validation case (analytic, thesis, CalculiX where installed)")
-            run = runner.collect()  # every module runs once
-        if docs is not None:
-            runner.report_run(run, out, docs)
+            run = run_validation(out=out if docs is not None else None, docs=docs)  # every module runs once
         if json_:
             print(dumps([r.to_json() for r in run.records]))
         else:
-            console.print(runner.rich_table(run.records))
+            console.print(run.table())
         for w in run.warnings:
-            warnings.warn(w, runner.ValidationModuleWarning, stacklevel=1)
+            warnings.warn(w, UserWarning, stacklevel=1)
             err.print(f"[yellow]warning:[/] {w}")
         if not json_:
             where = f"; report {docs}, figures in {out}" if docs is not None else ""

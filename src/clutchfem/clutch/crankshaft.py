@@ -377,7 +377,7 @@ class WhirlAnswer:
                 return r
         raise ParameterError("gyroscopic", gyroscopic, "'engaged', 'drum_held' or 'none'")
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         """Plain JSON-ready numbers and texts (no rotor, no per-reading objects)."""
         skip = ("rotor", "readings")
         return {k: getattr(self, k) for k in self.__dataclass_fields__ if k not in skip}

@@ -52,7 +52,7 @@ class AsCutRow:
     slip_status: str
     mass_kg: float
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         return dict(self.__dict__)
 
 
@@ -93,7 +93,7 @@ def as_cut(outline, design: Design, *, kerf_error: float, taper: float = 0.0, me
         dd, eng, slip = analyse_outline(loops, outline.thickness, design, engine, h, label=name)
         mass = mesh_mass_properties(dd.cm, dd.model.material.rho, dd.thickness)["mass_kg"]
         rows.append(AsCutRow(name, err, d, eng, slip.rpm, slip.status, float(mass)))
-    result = {"mesh_size_m": h, "rows": [r.as_dict() for r in rows], "kerf_error_m": kerf_error, "taper_m": taper,
+    result = {"mesh_size_m": h, "rows": [r.to_json() for r in rows], "kerf_error_m": kerf_error, "taper_m": taper,
               "band": None, "notes": [
                   "every variant meshed from its STEP like a user part (uniform P2 mesh): differences are the kerf's",
                   "kerf error: the cut wider (+) or narrower (-) than the tool path's compensation; walls move by "

@@ -27,7 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .. import __version__
+from .._version import __version__
 from ..analysis import analyze
 from ..clutch import EngineCurve
 from ..core import InputError, ParameterError, clean, write
@@ -73,7 +73,7 @@ class ExportResult:
             "mass_kg": self.mass_kg, "outer_radius_m": self.outer_radius_m,
             "process": None if self.rules is None else {**self.rules.model_dump(), "sources": self.rules.sources(),
                                                         "limits_m": self.rules.limits(self.thickness_m)},
-            "features": {k: [f.as_dict() for f in v] for k, v in self.features.items()},
+            "features": {k: [f.to_json() for f in v] for k, v in self.features.items()},
             "violations": self.violations, "as_cut": self.as_cut,
             "answers": None if self.analysis is None else {
                 "engagement_rpm": self.analysis.engagement_rpm, "slip_rpm": self.analysis.slip_rpm,

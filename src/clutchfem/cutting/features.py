@@ -88,7 +88,7 @@ class Feature:
             s += f" x{self.count}"
         return s
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         return {"kind": self.kind, "size_m": self.size, "where": self.where, "at_m": list(self.at),
                 "count": self.count, "parameter": self.parameter, "text": self.text()}
 

@@ -25,7 +25,7 @@ from pathlib import Path
 
 import gmsh
 
-from .. import __version__
+from .._version import __version__
 from ..core import GeometryError
 from ..geometry import gmsh_session
 from ..mesh import Loop, import_planar, loops_to_occ

@@ -91,7 +91,7 @@ class PeakStress:
         """The peak [Pa] at ``rpm`` of free spin (for the default ``evaluate`` only)."""
         return self.peak * (rpm * math.pi / 30.0) ** 2
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         return asdict(self)
 
 

@@ -1,4 +1,4 @@
-"""Labelled drawings of concepts (PNG + SVG, matplotlib Agg) and quick mesh pictures.
+"""Labelled drawings of concepts (PNG + SVG, matplotlib Agg).
 
 :func:`draw_concept` rebuilds the concept's OCC model (full 360 degrees) in a private gmsh
 session with :func:`~clutchfem.geometry.build.build_model`, samples every curve with
@@ -12,7 +12,6 @@ arrangement, like the mesh):
   mirrored here for minus);
 * the direction of rotation (ccw) with the arrangement, and a parameter table.
 
-:func:`draw_mesh` plots a :class:`~clutchfem.mesh.ClutchMesh` with its named boundaries.
 """
 
 from __future__ import annotations
@@ -20,7 +19,6 @@ from __future__ import annotations
 import math
 import textwrap
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import gmsh
 import numpy as np
@@ -29,9 +27,6 @@ from ..core import figure
 from .build import build_model
 from .concept import Annotation, Concept, ConceptParams, MeshSettings
 from .session import gmsh_session
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ..mesh import ClutchMesh
 
 _ZONE_STYLE = {
     "shoe": dict(facecolor="#f4a582", edgecolor="#b2182b", hatch="///"),
@@ -222,10 +217,12 @@ def _place_labels(fig, ax, anns, flip, R_mm: float, lim: float, n: int) -> None:
 
 
 def draw_concept(concept: Concept, params: ConceptParams, out_stem: Path,
-                 mesh: "ClutchMesh | None" = None, dpi: int = 110) -> list[Path]:
+                 mesh=None, dpi: int = 110) -> list[Path]:
     """Draw ``concept`` with ``params``; write ``<out_stem>.png`` and ``<out_stem>.svg``.
 
-    ``mesh`` (optional) is overlaid faintly and its size is quoted in the title."""
+    ``mesh`` (optional, a :class:`clutchfem.mesh.ClutchMesh`: the stage above this one, so
+    read only through its ``mesh``, ``n_elements`` and ``mesh_settings``) is overlaid faintly
+    and its size is quoted in the title."""
     from matplotlib.patches import FancyArrowPatch, PathPatch
     from matplotlib.path import Path as MPath
 
@@ -330,38 +327,3 @@ def draw_concept(concept: Concept, params: ConceptParams, out_stem: Path,
     fig.savefig(png, dpi=dpi)
     fig.savefig(svg)
     return [png, svg]
-
-
-def draw_mesh(cm: "ClutchMesh", path: Path, dpi: int = 120) -> Path:
-    """Quick picture of a mesh with its named boundary groups."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    m = cm.mesh
-    mm = 1e3
-    fig, ax = figure(figsize=(8.0, 8.0))
-    ax.triplot(m.p[0] * mm, m.p[1] * mm, m.t[:3].T, lw=0.25, color="0.35")
-    colours = {"bore": "#2c7bb6", "cut_a": "#1a9641", "cut_b": "#a6611a"}
-    seen = set()
-    for name, fac in sorted((m.boundaries or {}).items()):
-        if name == "contact":
-            continue
-        col = colours.get(name, "#d7191c")
-        label = "contact_i" if name.startswith("contact_") else name
-        segs = m.p[:, m.facets[:, fac]] * mm  # 2 x 2 x k
-        for k in range(segs.shape[2]):
-            ax.plot(segs[0, :, k], segs[1, :, k], color=col, lw=1.8,
-                    label=label if label not in seen else None)
-            seen.add(label)
-    if cm.drum_radius:
-        th = np.linspace(0, 2 * np.pi, 721)
-        ax.plot(cm.drum_radius * mm * np.cos(th), cm.drum_radius * mm * np.sin(th), "--", color="0.4", lw=0.8,
-                label="drum")
-    ax.set_aspect("equal")
-    ax.legend(fontsize=8, loc="upper right")
-    ax.set_title(f"{cm.source}: {cm.n_elements} elements, {cm.n_nodes} nodes"
-                 + (f", sector of {cm.n_shoes_total}" if cm.sector_angle else ""), fontsize=10)
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    fig.tight_layout()
-    fig.savefig(path, dpi=dpi)
-    return path

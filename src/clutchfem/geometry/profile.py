@@ -20,7 +20,7 @@ Profile = Literal["concentric", "eccentric", "linear", "table"]
 #: number of clearance control values of the ``table`` profile (equally spaced along the shoe;
 #: 17: the contact pressure on a rigid drum moves by MPa per micrometre of profile, and 9
 #: values left a 0.3-10 um misfit near the ends of an 80 % target arc, 17 values 0.2-2 nm;
-#: see clutchfem.studies.compensation)
+#: see clutchfem.targets.compensation)
 TABLE_N = 17
 #: names of the table profile's control values, root (s = 0) to tip (s = 1)
 TABLE_FIELDS = tuple(f"table_c{k}" for k in range(TABLE_N))

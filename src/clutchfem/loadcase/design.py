@@ -25,6 +25,7 @@ from ..mesh import ClutchMesh, load_user_geometry, mesh_concept
 from ..softening import get_softening
 from .case import LoadCase, sweep
 from .operating import OperatingPoint
+from .record import design_hash, design_inputs, design_label
 
 #: axial thickness of a user mesh when none is given [m] (ASSUMED: the thesis's 10-12 mm)
 USER_THICKNESS = 11e-3
@@ -296,6 +297,24 @@ class Design:
         """Sweep the speeds ``rpm`` (default: the operating point's, else 0:14000:250)."""
         speeds = self.op.speeds() if rpm is None else rpm
         return sweep(self.case(mu, softening), speeds, stresses=as_bool(stresses, "stresses"))
+
+    @property
+    def label(self) -> str:
+        """The design's file-name stem: the concept name at its defaults, else the name plus
+        :attr:`hash` (every file a command writes for this design carries it)."""
+        return design_label(self)
+
+    @property
+    def hash(self) -> str:
+        """12 hex digits of SHA-256 over the inputs that define the answers (:meth:`inputs`,
+        versions included; not the file's path)."""
+        return design_hash(self)
+
+    def inputs(self) -> dict:
+        """The inputs that define this design's answers, JSON-ready: the concept and every
+        parameter (or the mesh file and its SHA-256), the mesh settings and size, the
+        operating point (material included) and the software versions."""
+        return design_inputs(self)
 
     @property
     def scale(self) -> float:

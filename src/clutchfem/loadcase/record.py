@@ -18,7 +18,7 @@ from pathlib import Path
 import gmsh
 import skfem
 
-from .. import __version__
+from .._version import __version__
 from ..core import clean
 from ..geometry import MeshSettings
 

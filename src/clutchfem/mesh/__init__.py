@@ -15,7 +15,8 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.morph` -- a design's mesh moved from a reference design's (mesh morphing);
 * :mod:`.quality` -- element quality, and of a moved mesh against its reference;
 * :mod:`.highorder` -- the guard against nearly degenerate curved elements after meshing;
-* :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone).
+* :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone);
+* :mod:`.picture` -- a quick picture of a mesh with its named boundary groups.
 """
 
 from .cache import CacheEntry, cache_dir, cache_entries, cache_limit, clear_cache, evict
@@ -36,6 +37,7 @@ from .morph import (
                        reference_key,
 )
 from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
+from .picture import draw_mesh
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
 from .quality import MAX_DISTORTION, MIN_SCALED_JACOBIAN, MorphQuality, assess, distortion, scaled_jacobian
 from .topology import (
@@ -52,7 +54,7 @@ from .topology import (
 from .user import load_user_geometry
 from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_length_unit
 
-__all__ = ["GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
+__all__ = ["draw_mesh", "GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
            "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
            "bore_centre", "cache_entries", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",

@@ -8,6 +8,7 @@ one-sector model of ``n_shoes_total`` identical shoes carries the boundary group
 
 from __future__ import annotations
 
+import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -15,6 +16,11 @@ import numpy as np
 from skfem import MeshTri2
 
 from ..core import MeshError
+
+
+def groups_msh_path(msh: Path) -> Path:
+    """The ``.msh`` with named physical groups that sits beside a cached mesh."""
+    return msh.with_name(msh.stem + ".groups.msh")
 
 
 @dataclass
@@ -60,6 +66,18 @@ class ClutchMesh:
     @property
     def n_nodes(self) -> int:
         return int(self.mesh.doflocs.shape[1])
+
+    def write_msh(self, path) -> Path:
+        """Write the mesh with its named physical groups (``contact``, ``bore``, the cut lines,
+        the zones) to ``path``: a ``.msh`` that gmsh opens and ``clutchfem ... --mesh`` reads.
+        Only a mesh made by clutchfem (it keeps that file beside its cache entry) has one."""
+        src = groups_msh_path(self.msh_path) if self.msh_path is not None else None
+        if src is None or not src.is_file():
+            raise MeshError(f"the mesh from {self.source} has no .msh with named groups (only a concept's mesh, "
+                            "made by clutchfem, keeps one)")
+        path = Path(path)
+        shutil.copyfile(src, path)
+        return path
 
     def boundary(self, name: str) -> np.ndarray:
         b = self.mesh.boundaries or {}

@@ -33,7 +33,7 @@ from pathlib import Path
 import gmsh
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from ..core import GeometryError, MeshError
 from ..geometry import (
     BuiltModel,
@@ -46,7 +46,7 @@ from ..geometry import (
     source_files,
 )
 from .cache import cache_dir, evict, touch
-from .clutch_mesh import ClutchMesh
+from .clutch_mesh import ClutchMesh, groups_msh_path
 from .convert import meshio_to_skfem, read_msh
 from .highorder import guard_high_order, optimise_high_order
 
@@ -198,11 +198,6 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
         gmsh.option.setNumber("Mesh.SaveAll", 1)
         _atomic_write(msh)
     return built
-
-
-def groups_msh_path(msh: Path) -> Path:
-    """The ``.msh`` with named physical groups that sits beside a cached mesh."""
-    return msh.with_name(msh.stem + ".groups.msh")
 
 
 def _atomic_write(path: Path) -> None:

@@ -208,7 +208,7 @@ def morph_to(ref: MorphReference, p: ConceptParams) -> ClutchMesh:
     q = assess(ref.cm.mesh, mesh, ref.ref_sj)
     if not q.ok:
         raise MorphRefused(f"{ref.concept.name}: {q.reason}")
-    info = {"morphed": True, "reference": ref.params.model_dump(mode="json"), "quality": q.as_dict(),
+    info = {"morphed": True, "reference": ref.params.model_dump(mode="json"), "quality": q.to_json(),
             "max_node_move_m": float(np.max(np.hypot(*(x - x0)))), "seconds": time.perf_counter() - t0}
     return dataclasses.replace(ref.cm, mesh=mesh, n_shoes_total=built.n_shoes_total,
                                n_shoes_model=built.n_shoes_model, sector_angle=built.sector_angle,

@@ -75,7 +75,7 @@ class MorphQuality:
     ok: bool
     reason: str
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
         return asdict(self)
 
 

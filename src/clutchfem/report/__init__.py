@@ -5,18 +5,18 @@ a solved state (:mod:`.fields`)."""
 
 from .design import (
                      arc_stress_plot,
-                     comparison_plot,
                      default_design_report,
                      fatigue_rows,
                      markdown_summary,
                      summary_rows,
                      torque_plot,
+                     torque_speed_plot,
                      write_analysis,
 )
 from .fields import field_picture
+from .guideline_charts import draw_guideline_charts, elasticity_chart, guideline_table, oat_chart, short_method
 from .html import Figure, Page, Table, Text, folder_page, render_html, render_md, write_page
 from .pages import (
-                     compare_rows,
                      compensation_page,
                      design_page,
                      design_verdicts,
@@ -24,16 +24,23 @@ from .pages import (
                      param_table,
                      tolerance_page,
 )
-from .runs import (
-                     compensation_json,
-                     compensation_report,
-                     design_report,
-                     optimization_report,
-                     slip_heat_files,
-                     tolerance_report,
+from .runs import compensation_report, optimization_report, slip_heat_files, tolerance_report, write_report
+from .study_charts import answers_vs_inputs, draw_study_charts, parallel_coordinates, shortfall
+from .target_charts import (
+                     compensation_convergence,
+                     compensation_profile,
+                     compensation_torque,
+                     optimization_path,
+                     tolerance_histograms,
+                     tolerance_ranking,
+                     tolerance_text,
 )
 
-__all__ = ["compensation_json", "compensation_report", "design_report", "optimization_report", "slip_heat_files", "tolerance_report", "Figure", "Page", "Table", "Text", "arc_stress_plot", "compare_rows", "comparison_plot",
-           "compensation_page", "default_design_report", "design_page", "design_verdicts", "fatigue_rows", "field_picture",
-           "folder_page", "markdown_summary", "optimization_page", "param_table", "render_html", "render_md",
-           "summary_rows", "tolerance_page", "torque_plot", "write_analysis", "write_page"]
+__all__ = ["Figure", "Page", "Table", "Text", "answers_vs_inputs", "arc_stress_plot", "compensation_convergence",
+           "compensation_page", "compensation_profile", "compensation_report", "compensation_torque",
+           "default_design_report", "design_page", "design_verdicts", "draw_guideline_charts", "draw_study_charts",
+           "elasticity_chart", "fatigue_rows", "field_picture", "folder_page", "guideline_table", "markdown_summary",
+           "oat_chart", "optimization_page", "optimization_path", "optimization_report", "parallel_coordinates",
+           "param_table", "render_html", "render_md", "short_method", "shortfall", "slip_heat_files",
+           "summary_rows", "tolerance_histograms", "tolerance_page", "tolerance_ranking", "tolerance_report",
+           "tolerance_text", "torque_plot", "torque_speed_plot", "write_analysis", "write_page", "write_report"]

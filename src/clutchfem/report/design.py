@@ -18,7 +18,7 @@ from ..core import write as write_json
 from ..geometry import MeshSettings, concepts
 from ..loadcase import Design, OperatingPoint
 
-__all__ = ["summary_rows", "torque_plot", "arc_stress_plot", "comparison_plot", "write_analysis",
+__all__ = ["summary_rows", "torque_plot", "arc_stress_plot", "torque_speed_plot", "write_analysis",
            "markdown_summary", "default_design_report"]
 
 _COLORS = {"concept1": "tab:blue", "concept4": "tab:red", "concept2": "tab:purple",
@@ -346,7 +346,7 @@ def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
     return save_figure(fig, path)
 
 
-def comparison_plot(analyses: dict, engine, path: Path, title: str | None = None,
+def torque_speed_plot(analyses: dict, engine, path: Path, title: str | None = None,
                     baseline: bool = True) -> Path:
     """The thesis's figure 25: FE torque vs rpm of several designs and today's spring clutch
     (new and worn shoes) against the engine curve, with engagement and slip markers and the
@@ -466,7 +466,7 @@ def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None
         an = analyze(Design.from_concept(name, operating=op, mesh=ms), engine=engine)
         analyses[name] = an
         files += write_analysis(an, engine, out, name)
-    fig25 = comparison_plot(analyses, engine, out / "clutch_torque_comparison.png")
+    fig25 = torque_speed_plot(analyses, engine, out / "clutch_torque_comparison.png")
     files.insert(0, fig25)
     figs = {"torque comparison (cf. thesis fig. 25)": fig25.name}
     for name in analyses:

@@ -10,9 +10,10 @@ from dataclasses import asdict
 from pathlib import Path
 
 from ..analysis import WHIRL_MARGIN
-from ..geometry import draw_concept, draw_mesh, fmt_param_value, get_concept
-from ..studies import DIMENSIONLESS, fatigue_note
-from ..studies import target_charts as charts
+from ..geometry import draw_concept, fmt_param_value, get_concept
+from ..mesh import draw_mesh
+from ..targets import DIMENSIONLESS, fatigue_note
+from . import target_charts as charts
 from .design import arc_stress_plot, summary_rows, torque_plot
 from .html import Figure, Page, Table, Text
 
@@ -307,7 +308,7 @@ def compensation_page(comp, before, after, engine, folder: Path, inputs: dict) -
                                       math.degrees(abs(tip - root)))
     conv = charts.compensation_convergence(comp, folder / "compensation_convergence.png")
     b, a = comp.state_before, comp.state_after
-    rows = compare_rows(comp, before, after)
+    rows = comp.compare(before, after)
     head = [[q, f"{x} -> {y}"] for q, x, y in rows]
     verdicts = [[f"contact at {comp.rpm:.0f} rpm", None, f"{100 * b.contact_share:.1f} % -> {100 * a.contact_share:.1f} % "
                                                       "of the nominal arc"],
@@ -338,28 +339,3 @@ def compensation_page(comp, before, after, engine, folder: Path, inputs: dict) -
                          f"(s = {comp.arc[0]:.3f}..{comp.arc[1]:.3f})", verdicts=verdicts, headline=head,
                 hero=[Figure("clearance and contact pressure along the shoe", prof.name)], sections=sections,
                 inputs=inputs, kind="compensate")
-
-
-def compare_rows(comp, before, after) -> list[tuple[str, str, str]]:
-    b, a = comp.state_before, comp.state_after
-    out = [(f"contact arc at {comp.rpm:.0f} rpm (share of the nominal arc)",
-            f"{100 * b.contact_share:.1f} %", f"{100 * a.contact_share:.1f} %"),
-           (f"nodes in contact at {comp.rpm:.0f} rpm (share of the arc)", f"{100 * b.touching_share:.1f} %",
-            f"{100 * a.touching_share:.1f} %"),
-           (f"peak contact pressure at {comp.rpm:.0f} rpm", f"{max(b.pressure_Pa) / 1e6:.1f} MPa",
-            f"{max(a.pressure_Pa) / 1e6:.2f} MPa"),
-           (f"torque at {comp.rpm:.0f} rpm", f"{b.torque_Nm:.2f} N m", f"{a.torque_Nm:.2f} N m "
-            f"({100 * (a.torque_Nm / b.torque_Nm - 1):+.0f} %)" if b.torque_Nm > 0 else f"{a.torque_Nm:.2f} N m")]
-    if before is not None and after is not None:
-        out += [("engagement speed (static)", _f(before.engagement_rpm, ".0f", "rpm"), _f(after.engagement_rpm, ".0f", "rpm")),
-                ("engagement speed with ripple", _f(before.engagement_rpm_with_ripple, ".0f", "rpm"),
-                 _f(after.engagement_rpm_with_ripple, ".0f", "rpm")),
-                ("slip speed", _f(before.slip_rpm, ".0f", "rpm"), _f(after.slip_rpm, ".0f", "rpm")),
-                (f"torque at {before.rpm_max_engine_torque:.0f} rpm (max engine torque {before.max_engine_torque_Nm:.2f} N m)",
-                 _f(before.torque_at_max_engine_torque_Nm, ".2f", "N m"), _f(after.torque_at_max_engine_torque_Nm, ".2f", "N m")),
-                (f"peak von Mises at {before.max_engine_rpm:.0f} rpm", _f(before.max_von_mises_Pa / 1e6, ".0f", "MPa"),
-                 _f(after.max_von_mises_Pa / 1e6, ".0f", "MPa")),
-                ("safety factor", _f(before.safety_factor, ".2f"), _f(after.safety_factor, ".2f")),
-                ("part mass", _f(before.part.get("mass_kg", math.nan) * 1e3, ".1f", "g"),
-                 _f(after.part.get("mass_kg", math.nan) * 1e3, ".1f", "g"))]
-    return out

@@ -1,27 +1,32 @@
-"""Run folders: every file of a design's report, an optimisation, a tolerance study or a
-profile compensation written into one folder, with its page (``report.html``,
-``report.md``, ``page.json``) and ``inputs.json`` (the design, its hash, the clutchfem
-version).  The command line and the Python API write the same folders through these
-functions; each returns the paths it wrote."""
+"""Run folders: every file of a design's report, an analysis, an optimisation, a tolerance
+study, a profile compensation or a slip-heat run written into one folder, with its page
+(``report.html``, ``report.md``, ``page.json``) and ``inputs.json`` (the design, its hash,
+the clutchfem version).  One public function, :func:`write_report`, dispatches on what it is
+given; the command line and the Python API write the same folders through it.  Each writer
+returns the paths it wrote."""
 
 from __future__ import annotations
 
 import math
 import os
 import shutil
+from functools import singledispatch
 from pathlib import Path
 
 import pandas as pd
 
-from ..analysis import Requirements, analyze
+from ..analysis import Analysis, Requirements, SlipHeatRun, analyze
 from ..clutch import EngineCurve
-from ..core import InputError, as_path, clean, write
+from ..core import InputError, as_path, write
 from ..durability import render_png, write_series, write_vtu
 from ..loadcase import Design, design_inputs
-from .html import write_page
+from ..targets import Compensation, OptimizationResult
+from ..tolerances import ToleranceResult
+from .design import write_analysis
+from .html import folder_page, write_page
 from .pages import compensation_page, design_page, optimization_page, tolerance_page
 
-__all__ = ["compensation_json", "slip_heat_files", "compensation_report", "design_report", "optimization_report", "tolerance_report"]
+__all__ = ["write_report"]
 
 
 def _page(out: Path, page, files: list[Path]) -> list[Path]:
@@ -29,27 +34,40 @@ def _page(out: Path, page, files: list[Path]) -> list[Path]:
     return files + [h, m, out / "inputs.json", out / "page.json"]
 
 
-def design_report(design: Design, out, *, engine: EngineCurve | None = None,
-                  requirements: Requirements | None = None, errors: bool = True, analysis=None) -> list[Path]:
-    """The one-page report of a design: ``report.html`` (self-contained), ``report.md``, the
-    answers (``analysis.json``), the curves (``curves.csv``), the torque-speed and contact
-    arc/stress charts, the drawing and ``inputs.json``.
+@singledispatch
+def write_report(result, out, **context) -> list[Path]:
+    """Write the run folder of a design or of any answer: its files and its one-page report
+    (``report.html``, self-contained, and ``report.md``) where it has one.
+
+    What is written depends on what ``result`` is (one function for every answer):
+
+    * a :class:`~clutchfem.Design`: analysed (``engine``, ``requirements``, ``errors``; or
+      its ``analysis`` if done), then the answers (``analysis.json``), the curves
+      (``curves.csv``), the torque-speed and contact arc/stress charts, the drawing,
+      ``inputs.json`` and the page;
+    * an :class:`~clutchfem.Analysis`: ``<label>_analysis.json``, ``<label>_curves.csv`` and
+      the torque-speed and arc/stress charts (``engine``: the curve it was analysed against);
+    * an :class:`~clutchfem.OptimizationResult`: ``optimization.json``, the path (CSV and
+      chart) and the page (``final``: the final design's analysis; default: the one the
+      optimiser's check made, else a new best estimate);
+    * a :class:`~clutchfem.ToleranceResult`: ``tolerance.json``, the samples, histograms,
+      ranking and the page (``design``: the nominal design; ``run``: the run's settings as a
+      dict; ``engine``: the curve's file name; ``requirements``);
+    * a :class:`~clutchfem.Compensation`: ``compensation.json``, the pressure along the shoe
+      before and after (CSV), the profile, torque and convergence charts and the page
+      (``before``, ``after``: the two designs' analyses; ``engine``);
+    * a :class:`~clutchfem.SlipHeatRun`: its ``.vtu``, ``.pvd`` series, picture and JSON;
+    * a folder (``str`` or ``Path``) of an earlier run: its page rendered again from the
+      files there (its pictures copied along when ``out`` is another folder).
 
     Parameters
     ----------
-    design : Design
-        The design (a concept's or a user mesh's).
+    result : Design, Analysis, OptimizationResult, ToleranceResult, Compensation, SlipHeatRun or path
+        What to report.
     out : path
         The folder to write (created if missing).
-    engine : EngineCurve, optional
-        The engine's full-throttle torque curve (default: the built-in 56.5 cc saw curve,
-        its shape ASSUMED).
-    requirements : Requirements, optional
-        The requirement factors a and b (default: 1.3 and 1.0, ASSUMED).
-    errors : bool
-        Estimate the error of the main answers (a mesh twice as fine: ~3x the time).
-    analysis : Analysis, optional
-        The design's analysis if it is already done (it is not repeated).
+    **context
+        What the kind of ``result`` needs besides itself (see above).
 
     Returns
     -------
@@ -63,7 +81,68 @@ def design_report(design: Design, out, *, engine: EngineCurve | None = None,
     >>> files = cf.write_report(d, tempfile.mkdtemp(), errors=False)
     >>> sorted(p.name for p in files if p.suffix in (".html", ".md"))
     ['report.html', 'report.md']
+    >>> a = cf.analyze(d, errors=False)
+    >>> sorted(p.suffix for p in cf.write_report(a, tempfile.mkdtemp()))
+    ['.csv', '.json', '.png', '.png']
     """
+    raise InputError(f"write_report: a Design, Analysis, OptimizationResult, ToleranceResult, Compensation, "
+                     f"SlipHeatRun or a run folder, not {type(result).__name__}")
+
+
+@write_report.register
+def _(design: Design, out, *, engine: EngineCurve | None = None, requirements: Requirements | None = None,
+      errors: bool = True, analysis=None) -> list[Path]:
+    return _design_report(design, out, engine=engine, requirements=requirements, errors=errors, analysis=analysis)
+
+
+@write_report.register
+def _(analysis: Analysis, out, *, engine: EngineCurve | None = None, label: str | None = None) -> list[Path]:
+    out = as_path(out, "out", "the folder to write")
+    return write_analysis(analysis, EngineCurve.of(engine), out, label or analysis.label)
+
+
+@write_report.register
+def _(res: OptimizationResult, out, *, final=None) -> list[Path]:
+    if final is None:
+        final = res.final_analysis()
+    return optimization_report(res, final, out)
+
+
+@write_report.register
+def _(res: ToleranceResult, out, *, design: Design, run: dict | None = None, engine: str = "",
+      requirements: Requirements | None = None) -> list[Path]:
+    return tolerance_report(res, out, design, run or {}, engine=engine, requirements=requirements)
+
+
+@write_report.register
+def _(res: Compensation, out, *, before, after, engine: EngineCurve | None = None) -> list[Path]:
+    return compensation_report(res, before, after, EngineCurve.of(engine), out)
+
+
+@write_report.register
+def _(run: SlipHeatRun, out) -> list[Path]:
+    return slip_heat_files(run, out)
+
+
+@write_report.register(str)
+@write_report.register(Path)
+def _(folder, out=None) -> list[Path]:
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise InputError(f"write_report: {folder} is not a folder (a run folder: analyze/optimize/tolerance/"
+                         "compensate --out)")
+    target = Path(out) if out is not None else folder
+    target.mkdir(parents=True, exist_ok=True)
+    page = folder_page(folder)
+    if target.resolve() != folder.resolve():  # figures travel with the page
+        for f in folder.glob("*.png"):
+            shutil.copy2(f, target / f.name)
+    return list(write_page(page, target))
+
+
+def _design_report(design: Design, out, *, engine: EngineCurve | None = None,
+                  requirements: Requirements | None = None, errors: bool = True, analysis=None) -> list[Path]:
+    """The one-page report of a design (:func:`write_report`)."""
     if not isinstance(design, Design):
         raise InputError(f"report: design must be a clutchfem Design (Design.from_concept or Design.from_mesh), "
                          f"not {type(design).__name__}")
@@ -119,27 +198,12 @@ def tolerance_report(res, out, nominal_design: Design, run: dict, *, engine: str
     return _page(out, page, files)
 
 
-def compensation_json(res, rows) -> dict:
-    """The JSON document of a profile compensation (``compensation.json``, ``--json``)."""
-    return clean({
-        "concept": res.concept, "rpm": res.rpm, "target_arc": res.target_arc, "arc": list(res.arc),
-        "mean_clearance_m": res.mean_clearance_m, "converged": res.converged, "seconds": res.seconds,
-        "params": res.after_texts, "set": [f"{k}={v}" for k, v in res.after_texts.items()],
-        "before_after": [{"answer": q, "before": x, "after": y} for q, x, y in rows],
-        "contact_share_before": res.state_before.contact_share, "contact_share_after": res.state_after.contact_share,
-        "torque_at_rpm_before_Nm": res.state_before.torque_Nm, "torque_at_rpm_after_Nm": res.state_after.torque_Nm,
-        "steps": [dict(s.__dict__) for s in res.steps], "notes": res.notes,
-        "run": {"rpm": res.rpm, "target_arc": res.target_arc, "arc": list(res.arc),
-                "mean_clearance_m": res.mean_clearance_m},
-        "units": {"rpm": "1/min", "lengths": "m", "pressure": "Pa", "torque": "N m", "share": "-"}})
-
-
-def compensation_report(res, before, after, rows, engine: EngineCurve, out) -> list[Path]:
+def compensation_report(res, before, after, engine: EngineCurve, out) -> list[Path]:
     """The folder of a profile compensation: ``compensation.json``, the pressure along the
     shoe before and after (CSV), the profile, torque and convergence charts, the page."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    doc = compensation_json(res, rows)
+    doc = res.to_json(before, after)
     files = [write(out / "compensation.json", doc, indent=1)]
     for tag, st in (("before", res.state_before), ("after", res.state_after)):
         pd.DataFrame({"s": st.s, "clearance_m": st.clearance_m, "free_displacement_m": st.free_m,

@@ -1,25 +1,21 @@
-"""Studies over many designs, all on one study engine (Dask, local or remote, with a
-resumable SQLite store):
+"""The study engine: many designs through the analysis on Dask (local or remote), each
+finished row committed to a resumable SQLite store.
 
-* parameter studies: :mod:`.spec` (the resolved :class:`StudySpec` and its points),
+* a parameter study: :mod:`.spec` (the resolved :class:`StudySpec` and its points),
   :mod:`.schema` (the raw TOML structure and its errors), :mod:`.resolve` (a TOML spec ->
   a validated :class:`StudySpec`), :mod:`.sampling` (Latin hypercube, Sobol),
-  :mod:`.point` (one point -> one row: the only module that calls the analysis),
-  :mod:`.hashing`, :mod:`.store`, :mod:`.runner` (scheduling, resume, progress, summary),
-  :mod:`.cluster` (the Dask side: addresses, worker counts, faults),
-  :mod:`.charts`;
-* design guidelines: :mod:`.guidelines` (elasticities with a step-stability check,
-  one-at-a-time sweeps), :mod:`.guideline_study` (running one), :mod:`.guideline_charts`;
-* design to targets: :mod:`.batch` (batches of designs), :mod:`.optimization` (targets, the
-  search and its pattern-search method), :mod:`.gradient` (the gradient method on morphed
-  meshes, with :mod:`.sqp` its model pieces and :mod:`.rules` the concept's rules as linear
-  constraints), :mod:`.tolerancing` (Monte Carlo of manufacturing
-  tolerances), :mod:`.compensation` (shoe-profile compensation), :mod:`.values` (values
-  that survive ``--set``), :mod:`.target_charts`, :mod:`.sensitivity` (derivatives of the
-  answers on morphed meshes), :mod:`.robust` (targets that hold for a share of made parts), :mod:`.allocation`
-  (tolerance allocation for a yield, the mass-yield trade-off) with its algebra
-  :mod:`.tolerance_algebra`;
+  :mod:`.grid` (a grid study without a TOML file);
+* one point -> one row: :mod:`.point` (the only module that calls the analysis),
+  :mod:`.values` (values that survive ``--set``), :mod:`.hashing`;
+* running points: :mod:`.store`, :mod:`.runner` (scheduling, resume, progress, summary),
+  :mod:`.cluster` (the Dask side: addresses, worker counts, faults), :mod:`.batch`
+  (batches of designs for the layers above: design to targets, tolerances, guidelines);
+* :mod:`.sensitivity`: derivatives of the answers on morphed meshes (a batch of designs);
 * a finished study recognised without loading the FE stack: :mod:`.rerun`.
+
+The layers above run on this engine: design to targets (:mod:`clutchfem.targets`),
+tolerances (:mod:`clutchfem.tolerances`), design guidelines (:mod:`clutchfem.guidelines`);
+the charts of a study are the report stage's (:mod:`clutchfem.report`), drawn by the faces.
 
 The names are imported on first use (PEP 562, as :mod:`clutchfem` does): a command that
 only needs the store or a finished study's summary does not load the analysis stack
@@ -32,63 +28,48 @@ from ..core import lazy_names
 
 #: public name -> the module of this package it lives in (None: the module itself)
 _NAMES: dict[str, str | None] = {
-    "allocate_linear": "tolerance_algebra",
-    "allocate_tolerances": "allocation",
-    "best_estimate": "best_check",
-    "Allocation": "allocation",
-    "check_address": "cluster",
+    "ANSWERS": "point",
+    "check_scheduler": "cluster",
     "ClusterError": "cluster",
     "COLUMNS": "point",
-    "compensate": "compensation",
-    "Compensation": "compensation",
-    "default_free": "search_space",
+    "changed_texts": "values",
     "default_out": "rerun",
-    "finished_summary": "rerun",
-    "fingerprint": "rerun",
-    "geometry_dirs": "rerun",
     "design_hash": "hashing",
-    "DIMENSIONLESS": "optimization",
+    "display_value": "spec",
+    "ERROR_COLUMNS": "runner",
     "EvalSettings": "batch",
     "evaluate": "point",
     "evaluate_many": "batch",
     "EXAMPLE_SPEC": "spec",
-    "fatigue_note": "optimization",
-    "GuidelineResult": "guidelines",
-    "GuidelineSettings": "guidelines",
-    "joint_scale": "tolerance_algebra",
-    "joint_yield": "tolerance_algebra",
-    "load_spec": "resolve",
+    "example_study": "spec",
+    "finished_summary": "rerun",
+    "fingerprint": "rerun",
+    "geometry_dirs": "rerun",
+    "GridResult": "grid",
+    "load_study": "resolve",
     "model_version": "point",
-    "OptimizationResult": "optimization",
-    "optimize": "optimization",
+    "operating_inputs": "sensitivity",
     "param_bounds": "values",
     "parse_spec": "resolve",
-    "parse_tolerance": "tolerancing",
     "resolution": "values",
     "ResultStore": "store",
-    "RobustResult": "robust",
-    "robust_optimize": "robust",
+    "round12": "values",
     "run_grid": "grid",
-    "run_guidelines": "guideline_study",
     "run_points": "runner",
     "run_study": "runner",
     "RunResult": "runner",
     "Sensitivities": "sensitivity",
     "sensitivities": "sensitivity",
     "Settings": "point",
-    "shown": "allocation",
+    "shared_cluster": "batch",
     "SpecError": "schema",
+    "step_for": "sensitivity",
     "STORE_NAME": "store",
     "StoreLocked": "store",
     "StudyInterrupted": "runner",
+    "StudyResult": "runner",
     "StudySpec": "spec",
-    "summary_table": "guideline_charts",
-    "target_charts": None,
-    "Targets": "targets",
-    "tolerance": "tolerancing",
-    "ToleranceResult": "tolerancing",
-    "why_no_answer": "guideline_study",
-    "yield_front": "allocation",
+    "values": None,
     "workers_machine_holds": "cluster",
 }
 

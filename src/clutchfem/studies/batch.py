@@ -20,7 +20,7 @@ worker process died, e.g. gmsh aborting on a high-order mesh fix-up).
 Scheduling: :func:`clutchfem.studies.runner.run_points` -- a ``dask.distributed`` cluster of
 process workers with one thread each (or an existing cluster at ``scheduler``, or this
 process with ``workers=0``), each finished row committed to a SQLite store as it arrives.
-An optimisation sends many small batches (one per poll), so :func:`cluster` keeps one local
+An optimisation sends many small batches (one per poll), so :func:`shared_cluster` keeps one local
 cluster for the whole run instead of one per batch (measured: starting a 2-worker cluster
 and warming it up costs ~3 s, a poll of concept 4 ~10-20 s).  The store of a run with an
 output folder is ``<out>/results.sqlite``: every design evaluated is kept with its full
@@ -43,11 +43,11 @@ from ..clutch import EngineCurve
 from ..core import InputError, ParameterError
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import Design, OperatingPoint
-from .cluster import check_address, local_cluster, workers_machine_holds
+from .cluster import check_scheduler, local_cluster, workers_machine_holds
 from .hashing import design_hash
 from .point import COLUMNS, Settings, model_version
 from .runner import run_points
-from .store import ResultStore
+from .store import STORE_NAME, ResultStore
 from .values import changed_texts, exact_text
 
 #: the answers a row carries (name -> unit), in table order
@@ -92,12 +92,16 @@ class EvalSettings:
 
     @classmethod
     def from_design(cls, design, *, engine=None, idle_rpm: float | None = None, requirements=None,
-                    min_safety_factor: float = 1.5, store: str | None = None) -> "EvalSettings":
+                    min_safety_factor: float = 1.5, store: str | None = None,
+                    out: str | Path | None = None) -> "EvalSettings":
         """The settings whose base design is ``design`` (a concept's :class:`~clutchfem.Design`:
         its parameters as exact ``--set`` texts, its operating point and mesh size), with the
         engine (an :class:`~clutchfem.EngineCurve` or the path of its CSV; default: the
         built-in curve), the idle speed and the requirement factors of ``requirements``
-        (default: a = 1.3, b = 1.0)."""
+        (default: a = 1.3, b = 1.0); the store: ``store``, or ``out/results.sqlite`` in a run's
+        output folder ``out`` (None: a temporary store per batch)."""
+        if store is None and out is not None:
+            store = str(Path(out) / STORE_NAME)
         if not isinstance(design, Design):
             raise InputError(f"a design study needs a clutchfem Design (Design.from_concept), not "
                              f"{type(design).__name__}")
@@ -187,14 +191,14 @@ def box_corners(P, values: dict, box) -> None:
 
 
 @contextlib.contextmanager
-def cluster(workers: int | None = None, scheduler: str | None = None):
+def shared_cluster(workers: int | None = None, scheduler: str | None = None):
     """Keep one ``dask.distributed`` local cluster (``workers`` process workers, one thread
     each, as the study engine starts its own) for every :func:`evaluate_many` inside the
     block; ``scheduler``: use an existing cluster instead; ``workers=0``: this process."""
     if scheduler is not None and workers is not None:
         raise ParameterError("workers", workers, "no --workers with --scheduler (the cluster has its own)")
     if scheduler is not None:
-        scheduler = check_address(scheduler)  # before any work: a typo is said at once
+        scheduler = check_scheduler(scheduler)  # before any work: a typo is said at once
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise ParameterError("workers", workers, "an integer >= 0 (0: in this process, no Dask)")
     prev = dict(_ACTIVE)
@@ -260,7 +264,7 @@ def from_study_row(r: dict, point: dict) -> dict:
 def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | None = None, on_row=None,
                   progress: bool = False) -> list[dict]:
     """Evaluate ``points`` on the study engine (module docstring); rows in the order of the
-    points, each with its index ``i``.  Inside :func:`cluster` its cluster is used, else
+    points, each with its index ``i``.  Inside :func:`shared_cluster` its cluster is used, else
     ``workers`` (None: one per core; 0: this process) as the study engine starts them;
     ``on_row(row)`` is called for every row once the batch is done; ``progress``: the study
     engine's progress bar on stderr."""

@@ -92,7 +92,7 @@ def workers_machine_holds(requested: int | None, points: int | None = None) -> t
     return n, (f"--workers {why}" if why and requested is not None else why)
 
 
-def check_address(address, option: str = "--scheduler") -> str:
+def check_scheduler(address, option: str = "--scheduler") -> str:
     """The scheduler's address in Dask's form (``tcp://HOST:PORT``), or an
     :class:`~clutchfem.core.InputError` naming what is wrong with it (module docstring)."""
     if not isinstance(address, str) or not address.strip():
@@ -166,7 +166,7 @@ def connect(scheduler: str | None, n_workers: int, concept: str | None, version:
 
     cluster = None
     if scheduler is not None:
-        address = check_address(scheduler)
+        address = check_scheduler(scheduler)
         probe_scheduler(address)
         try:
             client = Client(address, timeout=f"{CONNECT_TIMEOUT_S:g}s")

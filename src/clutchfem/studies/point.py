@@ -47,7 +47,7 @@ from typing import Any
 import gmsh
 import skfem
 
-from .. import __version__
+from .._version import __version__
 from ..analysis import Requirements, analyze
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, GeometryError, InputError, MeshError, ParameterError, dumps, tune_malloc

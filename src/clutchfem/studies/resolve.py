@@ -45,7 +45,7 @@ _OP_EXCLUDED = ("rpm",)
 _EXTRA_SETTINGS = ("engine", "idle_rpm", "mesh_size", "mesh_model")
 
 
-def load_spec(path: str | Path) -> StudySpec:
+def load_study(path: str | Path) -> StudySpec:
     """Read and validate a study spec file (relative paths inside it are relative to its
     folder).
 

@@ -50,7 +50,7 @@ import json
 import logging
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -58,12 +58,11 @@ import pandas as pd
 from tqdm import tqdm
 
 from ..core import ClutchfemError, InputError, write
-from .charts import answers_vs_inputs, parallel_coordinates
-from .cluster import check_address, rows_on_dask, workers_machine_holds
+from .cluster import check_scheduler, rows_on_dask, workers_machine_holds
 from .hashing import design_hash
 from .point import COLUMNS, Settings, evaluate, failed_row, model_version
 from .rerun import fingerprint
-from .spec import display_value
+from .spec import StudySpec, display_value
 from .store import STORE_NAME, ResultStore, StoreLocked
 
 log = logging.getLogger("clutchfem")
@@ -107,7 +106,8 @@ class RunResult:
         """Designs computed per minute (start-up excluded), or None if none were computed."""
         return 60.0 * self.computed / self.compute_s if self.computed and self.compute_s > 0 else None
 
-    def as_dict(self) -> dict:
+    def to_json(self) -> dict:
+        """The counts and times as a JSON-ready dict."""
         return {"points": self.points, "listed": self.listed if self.listed is not None else self.points,
                 "done": self.done, "ok": self.ok, "refused": self.refused,
                 "failed": self.failed, "computed": self.computed, "skipped": self.skipped,
@@ -145,7 +145,7 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 0):
         raise InputError(f"workers = {workers!r} is not allowed: an integer >= 0 (0: in this process, no Dask)")
     if scheduler is not None:
-        scheduler = check_address(scheduler)  # before any work: a typo is said at once
+        scheduler = check_scheduler(scheduler)  # before any work: a typo is said at once
     version = model_version(settings.concept)
     keys, tasks, hashes = [], {}, []
     for p in points:
@@ -247,10 +247,80 @@ def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=fr
 
 
 # ---------------------------------------------------------------------------------------
-# a whole study: run, export, charts, summary
+# a whole study: run, export, summary (its charts are the report stage's, drawn by the faces)
 # ---------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class StudyResult:
+    """A parameter study run into its folder (:func:`run_study`): the counts of the run, this
+    spec's rows and the files written; :meth:`to_json` is ``summary.json``.
+
+    Attributes
+    ----------
+    spec : StudySpec
+        The study that ran.
+    run : RunResult
+        What the study engine did (points, ok, refused, failed, computed, skipped, times).
+    frame : pandas.DataFrame
+        This spec's rows in point order, the varied inputs first in the charts' units
+        (``flexure_thickness [mm]``), then every answer in SI (``results.csv``).
+    out : Path
+        The study's folder (store, ``results.csv``, ``summary.json``, charts).
+    files : tuple of Path
+        The files written, ``summary.json`` last.
+    errors : dict
+        The error of the sampled designs' answers (:func:`error_summary`).
+    charts : bool
+        True once the charts are drawn into ``out/charts`` (:meth:`with_files`).
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile
+    >>> from clutchfem.studies import EXAMPLE_SPEC, parse_spec
+    >>> spec = parse_spec(EXAMPLE_SPEC)
+    >>> spec.method, len(spec.points())            # run_study(spec, out) runs them
+    ('grid', 12)
+    """
+
+    spec: StudySpec
+    run: RunResult
+    frame: pd.DataFrame = field(repr=False)
+    out: Path
+    fingerprint: str | None
+    errors: dict = field(repr=False, default_factory=dict)
+    files: tuple[Path, ...] = ()
+    charts: bool = False
+
+    @property
+    def feasible(self) -> int:
+        """Designs that meet every requirement of the spec."""
+        return int(self.frame["feasible"].fillna(0).astype(int).sum()) if len(self.frame) else 0
+
+    @property
+    def summary_path(self) -> Path:
+        return self.out / "summary.json"
+
+    def to_json(self) -> dict:
+        """The summary (``summary.json``): the run's counts and times, the design, method and
+        spec, the feasible count, the error summary and the files."""
+        s = self.run.to_json()
+        s["errors"] = self.errors
+        s.update(design=self.spec.design, method=self.spec.method, spec=self.spec.source, out=str(self.out),
+                 feasible=self.feasible,
+                 files=[str(f) for f in self.files], charts=self.charts, keys=list(self.run.keys),
+                 fingerprint=self.fingerprint)
+        return s
+
+    def with_files(self, files, *, charts: bool = False) -> "StudyResult":
+        """This result with ``files`` (the charts a face drew into its folder) added to its
+        record, and ``summary.json`` written again with them."""
+        done = tuple(f for f in self.files if f != self.summary_path)
+        new = replace(self, files=(*done, *map(Path, files), self.summary_path), charts=self.charts or charts)
+        write(new.summary_path, new.to_json(), indent=1)
+        return new
+
+
 def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: str | None = None,
-              retry_failed: bool = False, progress: bool = True, charts: bool = True) -> dict:
+              retry_failed: bool = False, progress: bool = True) -> StudyResult:
     """Run a parameter study into a folder, resumably: every point through the full
     analysis on the study engine (Dask: local process workers, or the cluster at
     ``scheduler``), each finished row committed to the store as it arrives.
@@ -261,18 +331,20 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
         From :func:`~clutchfem.load_study`.
     out : path
         The store (``results.sqlite``), ``results.csv`` (this spec's rows, inputs in
-        designers' units), the charts and ``summary.json``.
+        designers' units) and ``summary.json``.  The charts are drawn by the faces
+        (:func:`clutchfem.report.study_charts`).
     workers, scheduler
         Local workers (``0``: in this process) or an existing scheduler's address.
     retry_failed : bool
         Recompute the points stored as failed (finished points are otherwise skipped).
-    progress, charts : bool
+    progress : bool
+        A progress bar on standard error.
 
     Returns
     -------
-    dict
-        The summary (also on :class:`StudyInterrupted`, via its ``result``): points, done,
-        ok, refused, failed, feasible, time, the files written.
+    StudyResult
+        The counts (also on :class:`StudyInterrupted`, via its ``result``), the rows, the
+        error summary and the files written.
 
     Examples
     --------
@@ -290,31 +362,22 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     ... [vary.params]
     ... flexure_thickness = {values = ["2.0mm", "2.4mm"]}
     ... ''')
-    >>> s = cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False, charts=False)
-    >>> s["points"], s["ok"]
-    (2, 2)"""
+    >>> s = cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False)
+    >>> s.run.points, s.run.ok, list(s.frame["flexure_thickness [mm]"])
+    (2, 2, [2.0, 2.4])"""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     points = spec.points()
     res = run_points(points, spec.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
                      retry_failed=retry_failed, progress=progress, source=spec.source, spec_text=spec.text,
                      error_points=spec.error_points(len(points)))
-    summary = res.as_dict()
     frame = table(spec, res)
-    summary["errors"] = error_summary(frame)
     csv = out / "results.csv"
     frame.to_csv(csv, index=False)
-    files = [csv]
-    if charts:
-        files += answers_vs_inputs(frame, spec, out / "charts")
-        files.append(parallel_coordinates(frame, spec, out / "charts" / "parallel_coordinates.png"))
-    summary.update(design=spec.design, method=spec.method, spec=spec.source, out=str(out),
-                   feasible=int(frame["feasible"].fillna(0).astype(int).sum()) if len(frame) else 0,
-                   files=[str(f) for f in files], charts=bool(charts), keys=list(res.keys),
-                   fingerprint=fingerprint(spec.source, spec.text))
-    write(out / "summary.json", summary, indent=1)
-    summary["files"].append(str(out / "summary.json"))
-    return summary
+    result = StudyResult(spec=spec, run=res, frame=frame, out=out, fingerprint=fingerprint(spec.source, spec.text), errors=error_summary(frame),
+                         files=(csv, out / "summary.json"))
+    write(result.summary_path, result.to_json(), indent=1)
+    return result
 
 
 #: error columns of a row: (answer, total band, discretisation part, unit)

@@ -67,7 +67,7 @@ from ..analysis import CONTACT_SPEED_OF, idle_speed
 from ..core import ParameterError
 from ..loadcase import Design
 from . import values as V
-from .batch import EvalSettings, cluster, evaluate_many
+from .batch import EvalSettings, evaluate_many, shared_cluster
 
 #: (row key, unit) of the differentiated answers
 ANSWERS: tuple[tuple[str, str], ...] = (
@@ -137,7 +137,7 @@ class Sensitivities:
             lines.append(f"{n} /{unit}".ljust(22) + cells + f"   ({self.methods[n]}{kink})")
         return "\n".join(lines)
 
-    def as_json(self) -> dict:
+    def to_json(self) -> dict:
         return dataclasses.asdict(self)
 
 
@@ -265,7 +265,7 @@ def sensitivities(design, names: list[str] | None = None, *, engine=None, requir
             continue
         plan.append((n, x, h, len(points), len(points) + 1))
         points += [{n: V.exact_text(P, n, lo)}, {n: V.exact_text(P, n, hi)}]
-    with cluster(workers, scheduler):
+    with shared_cluster(workers, scheduler):
         rows = evaluate_many(points, es)
         for n, x, h, lo, hi in ops:  # one batch per value: each is another operating point
             plan.append((n, x, h, len(rows), len(rows) + 1))

@@ -42,7 +42,7 @@ the measured model-form terms, :mod:`clutchfem.accuracy`); every other point is 
 without (the error estimate triples a design's time).  The sample is not part of a
 design's hash: changing it recomputes only the newly sampled points.
 
-A spec file is read and validated by :func:`~.resolve.load_spec` /
+A spec file is read and validated by :func:`~.resolve.load_study` /
 :func:`~.resolve.parse_spec` (:mod:`.schema`: the raw TOML structure; :mod:`.resolve`: the
 values, against the concept's parameter set), before any worker starts.  This module holds
 what they produce: the frozen :class:`StudySpec` with its varied :class:`Axis` es and its
@@ -66,6 +66,26 @@ from .sampling import from_unit, unit_samples
 
 #: the example spec (``clutchfem study --example``): 12 designs of concept 4, runs as it is
 EXAMPLE_SPEC = resources.files(__package__).joinpath("example_study.toml").read_text(encoding="utf-8")
+
+
+def example_study() -> str:
+    """The text of a commented example study spec (TOML): 12 designs of concept 4 on a grid,
+    every section explained; it runs as it is (``clutchfem study --example``).
+
+    Returns
+    -------
+    str
+        The spec's text, to write to a file and edit.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.studies import parse_spec
+    >>> text = cf.example_study()
+    >>> parse_spec(text).design, len(parse_spec(text).points())
+    ('concept4', 12)
+    """
+    return EXAMPLE_SPEC
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ own parser (:meth:`clutchfem.core.ParamSet.parse_value`); the design that is eva
 is the one built from that text.
 
 Resolutions (ASSUMED, a drawing's usual precision): lengths 0.01 mm (clearances 0.001 mm;
-the table profile's clearances 1 nm, a model input: see :mod:`clutchfem.studies.compensation`
+the table profile's clearances 1 nm, a model input: see :mod:`clutchfem.targets.compensation`
 for why), angles 0.1 deg, dimensionless 0.001.
 
 Also here, for every study: a parameter's declared range (:func:`param_bounds`) and the
@@ -28,7 +28,7 @@ RESOLUTION = {"m": 1e-5, "deg": 0.1, "-": 1e-3, "": 1e-3}
 #: finer resolution for these parameters
 FINE = {"m": 1e-6}
 #: the table profile's clearances: 1 nm (the contact pressure on a rigid drum moves by
-#: ~7 MPa per um of profile error on concept 4: see clutchfem.studies.compensation)
+#: ~7 MPa per um of profile error on concept 4: see clutchfem.targets.compensation)
 TABLE = 1e-9
 
 

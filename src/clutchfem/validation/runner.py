@@ -65,12 +65,38 @@ class ValidationModuleWarning(UserWarning):
 
 @dataclass
 class ValidationRun:
-    """Outcome of :func:`collect`: all records, warnings, seconds per module."""
+    """What :func:`validate` reproduced: every record, the warnings, the seconds per module.
+
+    Attributes
+    ----------
+    records : list of ValidationRecord
+        One per paper number: its value, the reproduced one, the tolerance, the status and
+        the reason of a difference.
+    warnings : list of str
+        Modules skipped or failed (never silent).
+    seconds : dict
+        Module name -> seconds.
+
+    Examples
+    --------
+    >>> from clutchfem.validation import ValidationRun
+    >>> ValidationRun().to_json()
+    {'records': [], 'warnings': [], 'seconds': {}}
+    """
 
     records: list[ValidationRecord] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     seconds: dict[str, float] = field(default_factory=dict)
     modules: dict[str, ModuleType] = field(default_factory=dict)
+
+    def to_json(self) -> dict:
+        """The records, warnings and seconds as a JSON-ready dict."""
+        return {"records": [r.to_json() for r in self.records], "warnings": list(self.warnings),
+                "seconds": dict(self.seconds)}
+
+    def table(self):
+        """The records as rich tables, one per module (:func:`render_table`)."""
+        return render_table(self.records)
 
 
 def load_module(name: str, *, strict: bool = False) -> tuple[ModuleType | None, str | None]:
@@ -347,9 +373,6 @@ def render_table(records: Sequence[ValidationRecord], *, title: str = "clutchfem
                       f"differs, {c['computed']} computed", style="bold"))
     return Group(*parts)
 
-
-#: Name used by ``clutchfem validate`` (cli.py).
-rich_table = render_table
 
 
 def print_table(records: Sequence[ValidationRecord], console=None) -> None:

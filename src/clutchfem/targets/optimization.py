@@ -67,12 +67,12 @@ import numpy as np
 from scipy.stats import qmc
 
 from ..core import InputError, ParameterError, as_bool, clean
-from . import values as V
-from .batch import EvalSettings, cluster, evaluate_many
-from .best_check import check_optimum, start_targets
+from ..studies import EvalSettings, evaluate_many, shared_cluster
+from ..studies import values as V
+from .best_check import best_estimate, check_optimum, start_targets
 from .gradient import gradient_search
 from .search_space import default_free, make_space
-from .targets import Targets
+from .targets import DIMENSIONLESS, Targets
 
 #: an objective improvement smaller than this share is noise, not success
 NOISE_OBJ = 1e-3
@@ -115,6 +115,19 @@ class OptimizationResult:
     #: Analysis (not in the JSON)
     best_estimate: dict | None = None
     best_analysis: object = field(default=None, repr=False)
+
+    def final_analysis(self):
+        """The final design's analysis with its errors: the one the optimiser's check made
+        (:attr:`best_analysis`), else a new best estimate (:func:`best_estimate`)."""
+        if self.best_analysis is not None:
+            return self.best_analysis
+        return best_estimate(self.settings, self.best["params"])
+
+    @property
+    def fatigue_note(self) -> str | None:
+        """A warning when fatigue was not a target and the final design's fatigue safety
+        factor is below 1 (None otherwise): :func:`fatigue_note`."""
+        return fatigue_note(self)
 
     def to_json(self) -> dict:
         a = self.best.get("assessment", {})
@@ -214,7 +227,7 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
     if method not in METHODS:
         raise ParameterError("method", method, "one of " + ", ".join(METHODS), "optimize")
     check = as_bool(check, "check")
-    with cluster(workers, scheduler):
+    with shared_cluster(workers, scheduler):
         def search(s, t, budget=max_evals, first=sample):
             if method == "pattern":
                 return _optimize(s, t, free, ranges, first, budget, seed, min_step, log)
@@ -412,9 +425,6 @@ def fatigue_note(res: "OptimizationResult") -> str | None:
     return (f"note: fatigue was not a target; the final design's fatigue safety factor is {f:.2f} < 1 (ASSUMED "
             "duty, analyze's fatigue step): add --fatigue-min 1 to make it one")
 
-
-#: constraint keys without a unit (printed with two decimals)
-DIMENSIONLESS = ("safety_factor", "fatigue_safety_factor")
 
 
 def _fmtc(c: dict) -> str:

@@ -31,7 +31,7 @@ import math
 import time
 from collections.abc import Callable
 
-from ..analysis import Requirements, analyze
+from ..analysis import Analysis, Requirements, analyze
 from ..core import ClutchfemError
 from ..geometry import get_concept
 from ..loadcase import Design
@@ -52,7 +52,7 @@ _RECENT: collections.OrderedDict = collections.OrderedDict()
 RECENT_SIZE = 4
 
 
-def best_estimate(settings, point: dict | None = None):
+def best_estimate(settings, point: dict | None = None) -> Analysis:
     """``analyze`` with the error step of the design of ``settings`` (an
     :class:`~clutchfem.studies.EvalSettings`) with ``point``'s parameter texts, meshed from
     scratch: the answers a user gets from ``clutchfem analyze CONCEPT --set ...``.  The same

@@ -24,9 +24,19 @@ import pandas as pd
 from ..core import InputError, ParameterError, write
 from ..geometry import get_concept
 from ..loadcase import Design, OperatingPoint
-from .batch import EvalSettings
-from .guideline_charts import elasticity_chart, oat_chart
-from .guidelines import (
+from ..studies import (
+    COLUMNS,
+    ERROR_COLUMNS,
+    STORE_NAME,
+    EvalSettings,
+    ResultStore,
+    changed_texts,
+    design_hash,
+    operating_inputs,
+    run_points,
+    sensitivities,
+)
+from .elasticity import (
     ANSWERS,
     CHECK_FACTOR,
     SENSITIVITY_KEY,
@@ -36,16 +46,10 @@ from .guidelines import (
     morphed_elasticity,
     plan,
 )
-from .hashing import design_hash
-from .point import COLUMNS
-from .runner import ERROR_COLUMNS, run_points
-from .sensitivity import operating_inputs, sensitivities
-from .store import STORE_NAME, ResultStore
-from .values import changed_texts
 
 
 def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirements=None, workers: int | None = None,
-                   scheduler: str | None = None, progress: bool = True, charts: bool = True, inputs=None,
+                   scheduler: str | None = None, progress: bool = True, inputs=None,
                    remeshed_check: bool = False) -> GuidelineResult:
     """Design guidelines: which parameter moves which answer, and by how much.
 
@@ -53,20 +57,22 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     difference on meshes morphed from the design, checked at ten times the step, its method
     named) and a one-at-a-time sweep over its range; per operating input (mu, the elastic
     drum's wall, the idle speed) the same elasticity on the design's own mesh; run on the
-    study engine into ``out`` (store, tables, charts).
+    study engine into ``out`` (store, tables; the charts are drawn by the faces:
+    :func:`clutchfem.report.guideline_charts`).
 
     Parameters
     ----------
     gs : Design or GuidelineSettings
         The design point (a concept's :class:`~clutchfem.Design`), or full settings.
     out : path
-        The folder of the store, ``guidelines.csv``/``.json`` and the charts.
+        The folder of the store, ``guidelines.csv``, ``one_at_a_time.csv`` and
+        ``guidelines.json``.
     params : list of str, optional
         With a ``design``: the parameters to study (default: every continuous one with a
         non-zero value).
     engine, requirements : optional
         With a ``design``: the engine curve and the requirement factors.
-    workers, scheduler, progress, charts
+    workers, scheduler, progress
         Study engine controls (``workers=0``: in this process).
     inputs : list of str, optional
         With a ``design``: operating inputs to differentiate (default: every one available,
@@ -84,8 +90,8 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     --------
     >>> import clutchfem as cf, tempfile
     >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
-    >>> g = cf.guidelines(d, tempfile.mkdtemp(), params=["flexure_thickness"], workers=0, progress=False,
-    ...                   charts=False, inputs=[])
+    >>> g = cf.run_guidelines(d, tempfile.mkdtemp(), params=["flexure_thickness"], workers=0, progress=False,
+    ...                       inputs=[])
     >>> e = next(r for r in g.table if r["answer"] == "engagement_rpm")
     >>> e["parameter"], e["E"] > 0, e["verdict"]     # a thicker flexure engages later
     ('flexure_thickness', True, 'stable')
@@ -203,16 +209,11 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     oat.to_csv(opath, index=False)
     files += [tpath, opath]
     res = GuidelineResult(concept=gs.concept, base=gs.base, step=gs.step, table=table, ranking=ranking, oat=oat,
-                          files=files, notes=notes, run=run, base_errors=base_errors,
+                          files=(*files, out / "guidelines.json"), notes=notes, run=run, base_errors=base_errors,
                           methods={n: next(t["method"] for t in table if t["parameter"] == n) for n in names},
                           inputs=[n for n in names if sens.kinds[n] == "operating input"],
-                          remeshed=gs.remeshed_check)
-    if charts:
-        files.append(oat_chart(res, out / "one_at_a_time.png"))
-        files.append(elasticity_chart(res, out / "elasticities.png"))
-    jpath = out / "guidelines.json"
-    write(jpath, res.as_json(), indent=1)
-    files.append(jpath)
+                          remeshed=gs.remeshed_check, out=out)
+    write(res.out / "guidelines.json", res.to_json(), indent=1)
     return res
 
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..core import ParameterError
 from ..geometry import ConceptParams
-from . import values as V
+from ..studies import values as V
 
 
 @dataclass

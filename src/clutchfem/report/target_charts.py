@@ -14,7 +14,7 @@ import numpy as np
 
 from ..core import figure, save_figure
 from ..geometry import get_concept
-from .optimization import DIMENSIONLESS, better
+from ..targets import DIMENSIONLESS, better
 
 DPI = 90
 C_BEFORE, C_AFTER = "tab:gray", "tab:red"

@@ -24,7 +24,10 @@ from ..core import ParameterError
 BIND_SHARE = 0.02
 OBJECTIVES = ("mass", "torque-margin")
 
-__all__ = ["BIND_SHARE", "OBJECTIVES", "Targets"]
+__all__ = ["BIND_SHARE", "DIMENSIONLESS", "OBJECTIVES", "Targets"]
+
+#: constraint keys without a unit (the safety factors; the others are speeds in rpm)
+DIMENSIONLESS = ("safety_factor", "fatigue_safety_factor")
 
 
 @dataclass(frozen=True)
@@ -132,7 +135,8 @@ class Targets:
             else:
                 slack = (v - limit) if sense == ">=" else (limit - v)
                 viol = max(0.0, -slack / limit)
-            cons.append({"name": name, "key": key, "limit": limit, "sense": sense, "value": v, "slack": slack,
+            cons.append({"name": name, "key": key, "unit": "-" if key in DIMENSIONLESS else "rpm", "limit": limit,
+                         "sense": sense, "value": v, "slack": slack,
                          "violation": viol, "violated": bool(viol > 0),
                          "binds": bool(math.isfinite(slack) and abs(slack) <= BIND_SHARE * limit)})
             h += viol

@@ -22,32 +22,20 @@ from dataclasses import dataclass, field
 
 from ..core import ParameterError, clean
 from ..geometry import get_concept
-from .batch import EvalSettings
+from ..studies import EvalSettings, Sensitivities, sensitivities
+from ..targets import Targets
+from .algebra import allocate_linear, check_yield, joint_scale
 from .robust import model_bands
-from .sensitivity import Sensitivities, sensitivities
-from .targets import Targets
-from .tolerance_algebra import allocate_linear, check_yield, joint_scale
 from .tolerancing import parse_tolerance
 
 #: the unit each constrained answer is shown in
 ANSWER_UNIT = {"engagement_rpm_with_ripple": "rpm", "slip_rpm": "rpm", "safety_factor": "-",
                "fatigue_safety_factor": "-"}
 #: (scale, unit) each parameter unit is shown in
-SHOWN = {"m": (1e3, "mm"), "deg": (1.0, "deg")}
 #: widths beyond this multiple of the given one are flagged as extrapolated
 FAR = 2.0
 #: the default yields of the trade-off
 FRONT_YIELDS = (0.9, 0.95, 0.99, 0.999)
-
-
-def shown(unit: str, value: float | None, digits: int = 4) -> str:
-    """``value`` (SI, parameter ``unit``) as a text with its shown unit: '0.0512 mm'."""
-    if value is None:
-        return "none"
-    if value == math.inf:
-        return "unlimited"
-    sc, u = SHOWN.get(unit, (1.0, "(-)"))
-    return f"{value * sc:.{digits}g} {u}"
 
 
 @dataclass
@@ -234,9 +222,55 @@ def allocate_tolerances(design, tolerances: dict, *, yield_target: float = 0.99,
                       linearisation=cons, cost=cost)
 
 
+@dataclass(frozen=True)
+class YieldFront:
+    """Part mass against predicted yield over a set of designs (:func:`yield_front`): one
+    row per design, in the order given.
+
+    Attributes
+    ----------
+    rows : tuple of dict
+        Per design: ``concept``, ``set`` (its ``--set`` texts), ``mass_kg``,
+        ``predicted_yield`` (joint normal), ``predicted_yield_independent``,
+        ``predicted_yield_tolerances_only``, ``perfect_part_yield``, ``scale`` and
+        ``scale_joint`` (yield -> allowed common factor on the widths), ``pareto``,
+        ``slack`` and ``sigma_given`` per constraint (answer units).
+    yields : tuple of float
+        The yields whose allowed tolerance scale is reported.
+
+    Examples
+    --------
+    >>> from clutchfem.tolerances import YieldFront
+    >>> f = YieldFront(rows=({"mass_kg": 0.1, "predicted_yield": 0.95, "pareto": True},), yields=(0.9,))
+    >>> [r["mass_kg"] for r in f.pareto], f.to_json()["yields"]
+    ([0.1], [0.9])
+    """
+
+    rows: tuple
+    yields: tuple
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def __getitem__(self, i):
+        return self.rows[i]
+
+    def __iter__(self):
+        return iter(self.rows)
+
+    @property
+    def pareto(self) -> list[dict]:
+        """The rows no other design beats (lighter with at least its yield)."""
+        return [r for r in self.rows if r["pareto"]]
+
+    def to_json(self) -> dict:
+        """The rows and yields as a JSON-ready dict."""
+        return clean({"yields": list(self.yields), "designs": list(self.rows)})
+
+
 def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: str = "normal",
                 model_error: bool = True, targets: Targets | None = None, engine=None, requirements=None,
-                workers: int | None = None) -> list[dict]:
+                workers: int | None = None) -> YieldFront:
     """Part mass against predicted yield (and the tolerance scale each yield allows) over a
     set of designs: the trade-off of the module docstring (not the true Pareto front).
 
@@ -254,8 +288,8 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
 
     Returns
     -------
-    list of dict
-        Per design: ``mass_kg``, ``predicted_yield`` at the given widths (joint normal;
+    YieldFront
+        One row per design (indexable: ``front[0]``): ``mass_kg``, ``predicted_yield`` at the given widths (joint normal;
         ``predicted_yield_independent``: the product over the targets;
         ``predicted_yield_tolerances_only``: the bands left out), ``perfect_part_yield``,
         ``scale`` (yield -> common factor on the given widths by the Bonferroni margins,
@@ -303,4 +337,4 @@ def yield_front(designs: list, tolerances: dict, *, yields=FRONT_YIELDS, dist: s
                               and o["mass_kg"] <= r["mass_kg"] and o["predicted_yield"] >= r["predicted_yield"]
                               and (o["mass_kg"] < r["mass_kg"] or o["predicted_yield"] > r["predicted_yield"])
                               for o in rows)
-    return rows
+    return YieldFront(rows=tuple(rows), yields=tuple(yields))

@@ -52,18 +52,16 @@ by their largest |E| that is not unstable.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal, get_origin
 
 import numpy as np
 
-from ..core import ParameterError, clean
+from ..core import ParameterError, clean, write
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import OperatingPoint
-from .point import Settings
-from .sensitivity import Sensitivities
-from .values import param_bounds, round12
+from ..studies import Sensitivities, Settings, param_bounds, round12
 
 #: answers of the guidelines: (row column, label with unit)
 ANSWERS: tuple[tuple[str, str], ...] = (
@@ -379,7 +377,7 @@ class GuidelineResult:
     table: list[dict]
     ranking: list[str]
     oat: Any
-    files: list[Path] = field(default_factory=list)
+    files: tuple[Path, ...] = ()
     notes: list[str] = field(default_factory=list)
     run: Any = None
     base_errors: dict = field(default_factory=dict)
@@ -389,8 +387,20 @@ class GuidelineResult:
     inputs: list[str] = field(default_factory=list)
     #: True: the rows also carry the remeshed seven-point check (E_remeshed, remeshed_verdict)
     remeshed: bool = False
+    #: the study's folder (store, tables, ``guidelines.json``)
+    out: Path | None = None
 
-    def as_json(self) -> dict:
+    def with_files(self, files) -> "GuidelineResult":
+        """This result with ``files`` (the charts a face drew into its folder) added to its
+        record, ``guidelines.json`` written again with them."""
+        record = self.out / "guidelines.json" if self.out is not None else None
+        done = tuple(f for f in self.files if f != record)
+        new = replace(self, files=(*done, *map(Path, files), *(() if record is None else (record,))))
+        if record is not None:
+            write(record, new.to_json(), indent=1)
+        return new
+
+    def to_json(self) -> dict:
         return clean({"concept": self.concept, "design_point": self.base,
                       "elasticity": "E = (x / A) dA/dx, dA/dx by central differences on meshes morphed from the "
                                     "design (operating inputs: on the design's own mesh); the method per row",
@@ -402,5 +412,5 @@ class GuidelineResult:
                                          if self.remeshed else None),
                       "ranking": self.ranking, "operating_inputs": self.inputs, "elasticities": self.table, "notes": self.notes,
                       "design_point_errors": self.base_errors,
-                      "run": self.run.as_dict() if self.run is not None else None,
+                      "run": self.run.to_json() if self.run is not None else None,
                       "files": [str(f) for f in self.files]})

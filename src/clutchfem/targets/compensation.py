@@ -59,10 +59,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import lsq_linear
 
-from ..core import InputError, ParameterError, SolverError, rpm_to_rad_s, wrap_angle
+from ..core import InputError, ParameterError, SolverError, clean, rpm_to_rad_s, wrap_angle
 from ..geometry import TABLE_FIELDS, TABLE_N, MeshSettings, get_concept, table_cardinal
 from ..loadcase import Design, OperatingPoint, contact_extent
-from . import values as V
+from ..studies import values as V
 
 #: the control values are kept this far inside the table's declared range [m]
 RANGE_MARGIN = 0.01e-3
@@ -127,6 +127,59 @@ class Compensation:
     @property
     def set_args(self) -> list[str]:
         return V.assignments(self.after_texts)
+
+    def compare(self, before=None, after=None) -> list[tuple[str, str, str]]:
+        """(answer, before, after) as text with units: the contact at the compensation's
+        speed, and with the designs' analyses ``before`` and ``after`` (optional,
+        :class:`~clutchfem.Analysis`) engagement, slip, torque, stress, safety factor, mass."""
+        b, a = self.state_before, self.state_after
+        out = [(f"contact arc at {self.rpm:.0f} rpm (share of the nominal arc)",
+                f"{100 * b.contact_share:.1f} %", f"{100 * a.contact_share:.1f} %"),
+               (f"nodes in contact at {self.rpm:.0f} rpm (share of the arc)", f"{100 * b.touching_share:.1f} %",
+                f"{100 * a.touching_share:.1f} %"),
+               (f"peak contact pressure at {self.rpm:.0f} rpm", f"{max(b.pressure_Pa) / 1e6:.1f} MPa",
+                f"{max(a.pressure_Pa) / 1e6:.2f} MPa"),
+               (f"torque at {self.rpm:.0f} rpm", f"{b.torque_Nm:.2f} N m", f"{a.torque_Nm:.2f} N m "
+                f"({100 * (a.torque_Nm / b.torque_Nm - 1):+.0f} %)" if b.torque_Nm > 0 else f"{a.torque_Nm:.2f} N m")]
+        if before is not None and after is not None:
+            out += [("engagement speed (static)", _text(before.engagement_rpm, ".0f", "rpm"),
+                     _text(after.engagement_rpm, ".0f", "rpm")),
+                    ("engagement speed with ripple", _text(before.engagement_rpm_with_ripple, ".0f", "rpm"),
+                     _text(after.engagement_rpm_with_ripple, ".0f", "rpm")),
+                    ("slip speed", _text(before.slip_rpm, ".0f", "rpm"), _text(after.slip_rpm, ".0f", "rpm")),
+                    (f"torque at {before.rpm_max_engine_torque:.0f} rpm (max engine torque "
+                     f"{before.max_engine_torque_Nm:.2f} N m)", _text(before.torque_at_max_engine_torque_Nm, ".2f", "N m"),
+                     _text(after.torque_at_max_engine_torque_Nm, ".2f", "N m")),
+                    (f"peak von Mises at {before.max_engine_rpm:.0f} rpm", _text(before.max_von_mises_Pa / 1e6, ".0f", "MPa"),
+                     _text(after.max_von_mises_Pa / 1e6, ".0f", "MPa")),
+                    ("safety factor", _text(before.safety_factor, ".2f"), _text(after.safety_factor, ".2f")),
+                    ("part mass", _text(before.part.get("mass_kg", math.nan) * 1e3, ".1f", "g"),
+                     _text(after.part.get("mass_kg", math.nan) * 1e3, ".1f", "g"))]
+        return out
+
+    def to_json(self, before=None, after=None) -> dict:
+        """The compensation as a JSON-ready dict (``compensation.json``, ``--json``): the
+        profile's ``--set`` texts, the contact before and after, every rebuild, and
+        :meth:`compare` of the analyses ``before`` and ``after`` where given."""
+        return clean({
+            "concept": self.concept, "rpm": self.rpm, "target_arc": self.target_arc, "arc": list(self.arc),
+            "mean_clearance_m": self.mean_clearance_m, "converged": self.converged, "seconds": self.seconds,
+            "params": self.after_texts, "set": [f"{k}={v}" for k, v in self.after_texts.items()],
+            "before_after": [{"answer": q, "before": x, "after": y} for q, x, y in self.compare(before, after)],
+            "contact_share_before": self.state_before.contact_share,
+            "contact_share_after": self.state_after.contact_share,
+            "torque_at_rpm_before_Nm": self.state_before.torque_Nm, "torque_at_rpm_after_Nm": self.state_after.torque_Nm,
+            "steps": [dict(s.__dict__) for s in self.steps], "notes": self.notes,
+            "run": {"rpm": self.rpm, "target_arc": self.target_arc, "arc": list(self.arc),
+                    "mean_clearance_m": self.mean_clearance_m},
+            "units": {"rpm": "1/min", "lengths": "m", "pressure": "Pa", "torque": "N m", "share": "-"}})
+
+
+def _text(v, fmt: str, unit: str = "") -> str:
+    """``v`` formatted with its unit, ``-`` where there is no value."""
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "-"
+    return f"{v:{fmt}} {unit}".rstrip()
 
 
 def shoe_state(design, omega: float, case=None) -> tuple[ShoeState, dict]:

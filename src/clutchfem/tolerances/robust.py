@@ -54,13 +54,9 @@ from statistics import NormalDist
 
 from ..core import InputError, ParameterError, clean
 from ..geometry import get_concept
-from . import values as V
-from .batch import EvalSettings
-from .best_check import best_estimate
-from .optimization import METHODS, OptimizationResult, optimize
-from .rules import bisect
-from .sensitivity import sensitivities
-from .targets import Targets
+from ..studies import EvalSettings, sensitivities
+from ..studies import values as V
+from ..targets import METHODS, OptimizationResult, Targets, best_estimate, bisect, optimize
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 
 #: the error-band key of each constrained answer (analyze's ``errors``), None: no band.  The

@@ -1,6 +1,6 @@
 """Charts and the terminal table of a guideline study (:mod:`.guidelines`).
 
-* :func:`summary_table`: a rich table, parameters ranked (then the operating inputs), the
+* :func:`guideline_table`: a rich table, parameters ranked (then the operating inputs), the
   elasticity of each answer marked ``~`` (unstable: its check at ten times the step
   differs), ``?`` (unchecked: the wider step has no answer), ``1`` (one-sided: one side
   refused), ``k`` (a contact node enters or leaves inside the step: the answer kinks there;
@@ -29,8 +29,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..core import figure, save_figure
-from .guidelines import ANSWERS, CHECK_FACTOR, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
-from .spec import display_value
+from ..guidelines import ANSWERS, CHECK_FACTOR, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
+from ..studies import display_value
 
 #: unit of each guideline answer (as its label states it)
 UNITS = {"engagement_rpm": "rpm", "slip_rpm": "rpm", "torque_at_max_engine_torque_Nm": "N m",
@@ -46,7 +46,7 @@ def short_method(method: str) -> str:
     return "morphed" if "morphed" in method else method[:24]
 
 
-def summary_table(res: GuidelineResult):
+def guideline_table(res: GuidelineResult) -> Table:
     """A rich table: parameters ranked, then the operating inputs; elasticity of each answer
     (~: unstable derivative) and the method of each row."""
     t = Table(title=escape(f"{res.concept}: elasticities (x / A) dA/dx at the design point"),
@@ -193,3 +193,31 @@ def elasticity_chart(res: GuidelineResult, path: str | Path) -> Path:
     fig.suptitle(f"{res.concept}: elasticities (x / A) dA/dx at the design point (1 % more parameter: E % more answer)"
                  + _footnote(res), fontsize=10)
     return save_figure(fig, path)
+
+
+def draw_guideline_charts(result: GuidelineResult) -> GuidelineResult:
+    """Draw a guideline study's charts into its folder (``one_at_a_time.png``,
+    ``elasticities.png``) and record them in its ``guidelines.json``.
+
+    Parameters
+    ----------
+    result : GuidelineResult
+        From :func:`~clutchfem.run_guidelines`.
+
+    Returns
+    -------
+    GuidelineResult
+        The same result with the chart files added to its record.
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> g = cf.run_guidelines(d, tempfile.mkdtemp(), params=["flexure_thickness"], workers=0, progress=False,
+    ...                       inputs=[])
+    >>> [f.name for f in cf.draw_guideline_charts(g).files if f.suffix == ".png"]
+    ['one_at_a_time.png', 'elasticities.png']
+    """
+    out = result.out
+    return result.with_files([oat_chart(result, out / "one_at_a_time.png"),
+                              elasticity_chart(result, out / "elasticities.png")])

@@ -67,10 +67,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import ParameterError
-from . import values as V
-from .batch import EvalSettings, evaluate_many
+from ..studies import EvalSettings, evaluate_many, step_for
+from ..studies import values as V
 from .rules import admissible_step, rule
-from .sensitivity import step_for
 from .sqp import bfgs, merit, repair_step
 from .targets import Targets
 

@@ -9,7 +9,7 @@ the binomial confidence interval of the out-of-spec share below needs independen
 Values are snapped to 1 um (0.01 deg, 1e-4 dimensionless), far below any tolerance, and
 every sample is exactly what ``analyze --set`` builds from its texts.
 
-Spec (defaults: the requirement checks, as in :mod:`clutchfem.studies.optimization`):
+Spec (defaults: the requirement checks, as in :mod:`clutchfem.targets.optimization`):
 engagement with ripple >= a x idle, slip <= b x rpm of max engine torque, safety factor at
 the engine's maximum speed >= 1.5.  The parts are analysed without the error step (for cost);
 on the best-estimate path ``analyze`` corrects some answers in that step (the peak stress by
@@ -57,10 +57,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import InputError, ParameterError, clean
-from . import values as V
-from .batch import EvalSettings, cluster, evaluate_many
-from .best_check import best_estimate, correction_ratios
-from .targets import Targets
+from ..studies import EvalSettings, evaluate_many, shared_cluster
+from ..studies import values as V
+from ..targets import Targets, best_estimate, correction_ratios
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -299,7 +298,7 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
     batch = [nominal_pt] + points + [pt for _, _, pt in shift_pts]
     if log:
         log(f"{len(batch)} designs: nominal, {n} samples, {len(shift_pts)} shifted")
-    with cluster(workers, scheduler):
+    with shared_cluster(workers, scheduler):
         rows_all = evaluate_many(batch, settings, progress=log is not None)
     nom, rows, srows = rows_all[0], rows_all[1:n + 1], rows_all[n + 1:]
     if nom["status"] != "ok":

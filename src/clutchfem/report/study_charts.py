@@ -27,8 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core import figure, save_figure
-from .point import ANSWERS
-from .spec import display_value
+from ..studies import ANSWERS, StudyResult, display_value
 
 #: panels of the answers-vs-input charts: (columns drawn, title, limit column, limit label)
 PANELS = (
@@ -268,3 +267,43 @@ def shortfall(frame) -> np.ndarray:
         v = np.where(missed & ~np.isfinite(v), 1.0, np.where(missed, np.maximum(v, 0.0), 0.0))
         out = np.maximum(out, v)
     return out
+
+
+def draw_study_charts(result: StudyResult) -> StudyResult:
+    """Draw a parameter study's charts into its folder (``charts/``: every answer against
+    every varied input, and the parallel coordinates) and record them in its
+    ``summary.json``.
+
+    Parameters
+    ----------
+    result : StudyResult
+        From :func:`~clutchfem.run_study`.
+
+    Returns
+    -------
+    StudyResult
+        The same study with the chart files added to its record.
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile
+    >>> from clutchfem.studies import parse_spec
+    >>> spec = parse_spec('''
+    ... [design]
+    ... concept = "concept1"
+    ... [settings]
+    ... mesh_size = "3mm"
+    ... [errors]
+    ... sample = 0
+    ... [vary]
+    ... method = "grid"
+    ... [vary.params]
+    ... flexure_thickness = {values = ["2.0mm", "2.4mm"]}
+    ... ''')
+    >>> s = cf.draw_study_charts(cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False))
+    >>> s.charts, sorted(f.name for f in s.files if f.suffix == ".png")
+    (True, ['flexure_thickness.png', 'parallel_coordinates.png'])
+    """
+    files = answers_vs_inputs(result.frame, result.spec, result.out / "charts")
+    files.append(parallel_coordinates(result.frame, result.spec, result.out / "charts" / "parallel_coordinates.png"))
+    return result.with_files(files, charts=True)
