@@ -187,7 +187,10 @@ def test_rich_table_reads_at_80_columns():
         if r.status == "differs":
             assert f"- {r.id}:" in why
     assert f"{len(recs)} records" in out
-    assert runner.rich_table is runner.render_table  # the name cli.py uses
+    # the table clutchfem validate prints (ValidationRun.table) is this one
+    again = Console(record=True, width=80)
+    again.print(runner.ValidationRun(records=recs).table())
+    assert again.export_text() == out
 
 
 def test_report_run_does_not_run_modules_again(monkeypatch, tmp_path):
@@ -228,7 +231,7 @@ def test_cli_validate_docs_collects_once(monkeypatch, tmp_path):
     res = CliRunner().invoke(app, ["validate", "--docs", str(tmp_path / "v.md"), "--out",
                                    str(tmp_path / "out")])
     assert res.exit_code == 0, res.output
-    assert calls == [{}]
+    assert len(calls) == 1  # the modules ran once, for the table and the report
     assert (tmp_path / "v.md").is_file() and (tmp_path / "out" / "validation.json").is_file()
     res = CliRunner().invoke(app, ["validate", "--json"])
     data = json.loads(res.stdout)

@@ -211,10 +211,11 @@ def draw_guideline_charts(result: GuidelineResult) -> GuidelineResult:
 
     Examples
     --------
-    >>> import clutchfem as cf, tempfile
+    >>> import clutchfem as cf, dataclasses, tempfile
+    >>> from clutchfem.guidelines import GuidelineSettings
     >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
-    >>> g = cf.run_guidelines(d, tempfile.mkdtemp(), params=["flexure_thickness"], workers=0, progress=False,
-    ...                       inputs=[])
+    >>> gs = dataclasses.replace(GuidelineSettings.from_design(d, ["clearance"], points=3, inputs=[]), errors=False)
+    >>> g = cf.run_guidelines(gs, tempfile.mkdtemp(), workers=0, progress=False)
     >>> [f.name for f in cf.draw_guideline_charts(g).files if f.suffix == ".png"]
     ['one_at_a_time.png', 'elasticities.png']
     """

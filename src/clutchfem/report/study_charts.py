@@ -270,7 +270,7 @@ def shortfall(frame) -> np.ndarray:
 
 
 def draw_study_charts(result: StudyResult) -> StudyResult:
-    """Draw a parameter study's charts into its folder (``charts/``: every answer against
+    r"""Draw a parameter study's charts into its folder (``charts/``: every answer against
     every varied input, and the parallel coordinates) and record them in its
     ``summary.json``.
 
@@ -288,21 +288,11 @@ def draw_study_charts(result: StudyResult) -> StudyResult:
     --------
     >>> import clutchfem as cf, tempfile
     >>> from clutchfem.studies import parse_spec
-    >>> spec = parse_spec('''
-    ... [design]
-    ... concept = "concept1"
-    ... [settings]
-    ... mesh_size = "3mm"
-    ... [errors]
-    ... sample = 0
-    ... [vary]
-    ... method = "grid"
-    ... [vary.params]
-    ... flexure_thickness = {values = ["2.0mm", "2.4mm"]}
-    ... ''')
+    >>> spec = parse_spec('[design]\nconcept = "concept1"\n[settings]\nmesh_size = "3mm"\n[errors]\nsample = 0\n'
+    ...                   '[vary]\nmethod = "list"\n[vary.params]\nflexure_thickness = {values = ["2.2mm"]}')
     >>> s = cf.draw_study_charts(cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False))
     >>> s.charts, sorted(f.name for f in s.files if f.suffix == ".png")
-    (True, ['flexure_thickness.png', 'parallel_coordinates.png'])
+    (True, ['answers_vs_flexure_thickness.png', 'parallel_coordinates.png'])
     """
     files = answers_vs_inputs(result.frame, result.spec, result.out / "charts")
     files.append(parallel_coordinates(result.frame, result.spec, result.out / "charts" / "parallel_coordinates.png"))

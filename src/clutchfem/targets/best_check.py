@@ -25,11 +25,12 @@ analyze makes at the start design (:func:`start_targets`: one analyze with the e
 
 from __future__ import annotations
 
-import collections
 import dataclasses
 import math
 import time
 from collections.abc import Callable
+
+from cachetools import LRUCache, cached
 
 from ..analysis import Analysis, Requirements, analyze
 from ..core import ClutchfemError
@@ -46,29 +47,27 @@ ANSWER_ATTR = {"engagement_rpm_with_ripple": "engagement_rpm_with_ripple", "slip
                "safety_factor": "safety_factor", "fatigue_safety_factor": "fatigue_safety_factor"}
 
 
-#: the last few best estimates, by design (a robust run's rounds analyse each round's final
-#: design in its check and again as the next round's start and for its model bands)
-_RECENT: collections.OrderedDict = collections.OrderedDict()
 RECENT_SIZE = 4
 
 
+def _key(settings, point: dict | None = None) -> tuple:
+    """What defines a best estimate: the design's parameter values, mesh, operating point,
+    engine and requirements."""
+    return (settings.concept, tuple(sorted(settings.values(point).items())), repr(settings.mesh_settings()),
+            repr(settings.operating_point()), settings.engine_csv, repr(settings.curve), settings.idle_rpm,
+            settings.a, settings.b)
+
+
+#: the last few best estimates, by design (a robust run's rounds analyse each round's final
+#: design in its check and again as the next round's start and for its model bands)
+@cached(LRUCache(maxsize=RECENT_SIZE), key=_key)
 def best_estimate(settings, point: dict | None = None) -> Analysis:
     """``analyze`` with the error step of the design of ``settings`` (an
     :class:`~clutchfem.studies.EvalSettings`) with ``point``'s parameter texts, meshed from
     scratch: the answers a user gets from ``clutchfem analyze CONCEPT --set ...``.  The same
     design asked again (by its parameter values, mesh, operating point, engine and
     requirements) is answered from the last :data:`RECENT_SIZE` in this process."""
-    key = (settings.concept, tuple(sorted(settings.values(point).items())), repr(settings.mesh_settings()),
-           repr(settings.operating_point()), settings.engine_csv, repr(settings.curve), settings.idle_rpm,
-           settings.a, settings.b)
-    if key in _RECENT:
-        _RECENT.move_to_end(key)
-        return _RECENT[key]
-    an = _best_estimate(settings, point)
-    _RECENT[key] = an
-    while len(_RECENT) > RECENT_SIZE:
-        _RECENT.popitem(last=False)
-    return an
+    return _best_estimate(settings, point)
 
 
 def _best_estimate(settings, point: dict | None):

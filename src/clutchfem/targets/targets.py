@@ -38,7 +38,7 @@ class Targets:
     Parameters
     ----------
     engage_rpm_lo, engage_rpm_hi : float or None
-        Engagement speed with the 2-stroke ripple within [lo, hi] [rpm].
+        Engagement speed with the 2-stroke ripple within lo..hi (rpm).
     slip_rpm_max : float or None
         Slip speed (drum held, full throttle) at most this [rpm].
     safety_factor_min : float or None

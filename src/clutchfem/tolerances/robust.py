@@ -292,8 +292,16 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         Add each answer's model-error band (taken as +-2 sigma) to its spread.
     targets : Targets, optional
         The nominal targets (default: the requirement checks, safety factor >= 1.5).
-    free, engine, requirements, max_evals, workers
-        As :func:`optimize` (per round).
+    free : list of str, optional
+        The parameters to vary, as :func:`optimize`.
+    engine : EngineCurve, optional
+        As :func:`optimize`.
+    requirements : Requirements, optional
+        As :func:`optimize`.
+    max_evals : int
+        The budget of analysed designs per round, as :func:`optimize`.
+    workers : int, optional
+        Local process workers, as :func:`optimize`.
     rounds : int
         Shifted-limit optimisations at most, 1 to 10 (module docstring; they go on while a
         round is infeasible, each from a start no earlier infeasible round used).  Default 5:
@@ -302,8 +310,10 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         BENCHMARKS.md section 21).
     check : int
         Monte Carlo parts through remeshed designs at the result (0: no check).
-    seed, log
-        The check's seed; a progress callback.
+    seed : int
+        The check's seed.
+    log : callable, optional
+        A progress callback (one line of text per step).
     method : {"pattern", "auto", "gradient"}
         The search of each shifted round (:func:`optimize`; round 0 is always ``auto``).
         Default ``pattern``: the configuration whose robust designs were checked by Monte

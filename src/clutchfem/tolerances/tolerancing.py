@@ -52,9 +52,11 @@ from __future__ import annotations
 import math
 import re
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.stats import binomtest, bootstrap
 
 from ..core import InputError, ParameterError, clean
 from ..studies import EvalSettings, evaluate_many, shared_cluster
@@ -76,7 +78,6 @@ SHIFTS = (-0.5e-3, -0.2e-3, 0.2e-3, 0.5e-3)
 RES = {"m": 1e-6, "deg": 0.01, "-": 1e-4, "": 1e-4}
 #: the narrowest tolerance half-width, in resolution steps: +-5 steps give 11 snapped values
 MIN_BANDS = 5
-Z95 = 1.959963984540054
 
 
 def parse_tolerance(P, text: str) -> tuple[str, float]:
@@ -104,17 +105,13 @@ def parse_tolerance(P, text: str) -> tuple[str, float]:
     return name, float(t)
 
 
-def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
-    """Wilson score interval of a binomial share k/n (module docstring)."""
+def wilson(k: int, n: int) -> tuple[float, float]:
+    """The 95 % Wilson score interval of a binomial share k/n (module docstring;
+    :func:`scipy.stats.binomtest`); NaN for n = 0."""
     if n <= 0:
         return (math.nan, math.nan)
-    p = k / n
-    den = 1 + z * z / n
-    centre = (p + z * z / (2 * n)) / den
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / den
-    lo, hi = max(0.0, centre - half), min(1.0, centre + half)
-    # exact ends (k = 0 gives lo = 0, k = n gives hi = 1 in exact arithmetic; rounding may not)
-    return (0.0 if k == 0 else min(lo, p), 1.0 if k == n else max(hi, p))
+    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=0.95, method="wilson")
+    return (float(ci.low), float(ci.high))
 
 
 def src(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
@@ -134,18 +131,26 @@ def src(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
 
 
 def bootstrap_src(X: np.ndarray, y: np.ndarray, B: int = 1000, seed: int = 0):
-    """95 % percentile bootstrap intervals of the SRCs and of R^2: (lo, hi, r2_lo, r2_hi)."""
-    rng = np.random.default_rng(seed)
+    """95 % percentile bootstrap intervals of the SRCs and of R^2: (lo, hi, r2_lo, r2_hi).
+    The parts are resampled in pairs (x, y) by :func:`scipy.stats.bootstrap`; a resample in
+    which a dimension or the answer does not vary has no regression and is left out of the
+    percentiles (NaN in the bootstrap distribution)."""
     n, k = X.shape
-    S = np.full((B, k), np.nan)
-    R = np.full(B, np.nan)
-    for b_ in range(B):
-        idx = rng.integers(0, n, n)
-        if np.any(X[idx].std(axis=0) == 0) or y[idx].std() == 0:
-            continue
-        S[b_], R[b_], _ = src(X[idx], y[idx])
-    lo, hi = np.nanpercentile(S, 2.5, axis=0), np.nanpercentile(S, 97.5, axis=0)
-    return lo, hi, float(np.nanpercentile(R, 2.5)), float(np.nanpercentile(R, 97.5))
+
+    def stat(idx):
+        i = idx.astype(int)
+        if np.any(X[i].std(axis=0) == 0) or y[i].std() == 0:
+            return np.full(k + 1, np.nan)
+        s, r2, _ = src(X[i], y[i])
+        return np.append(s, r2)
+
+    with warnings.catch_warnings():  # NaN resamples: said in the docstring, percentiles taken without them
+        warnings.simplefilter("ignore")
+        res = bootstrap((np.arange(n),), stat, n_resamples=B, vectorized=False, method="percentile",
+                        random_state=np.random.default_rng(seed))
+    dist = res.bootstrap_distribution  # (k + 1, B)
+    lo, hi = np.nanpercentile(dist, 2.5, axis=1), np.nanpercentile(dist, 97.5, axis=1)
+    return lo[:k], hi[:k], float(lo[k]), float(hi[k])
 
 
 @dataclass
