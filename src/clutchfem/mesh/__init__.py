@@ -7,7 +7,8 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.cache` -- the on-disk mesh cache: its folder, bound and eviction;
 * :mod:`.user` -- a user's ``.msh``, STEP or DXF file;
 * :mod:`.user_checks` -- what a user's part must be: axis, unit, one piece, triangles;
-* :mod:`.outline` -- a part's exact 2-D outline (lines, arcs, B-splines) and its OCC face;
+* :mod:`.outline` -- a part's exact 2-D outline (lines, arcs, B-splines), its loops chained
+  from loose segments, and its OCC face;
 * :mod:`.cad` -- a STEP (in its declared unit; a prism along z) or DXF part as planar surfaces;
 * :mod:`.dxf` -- a DXF drawing's outline (what a cutter's file holds) as outline loops;
 * :mod:`.topology` -- P2 nodes, facet nodes and cells, areas and perimeters of element sets;
@@ -35,7 +36,7 @@ from .morph import (
                        quality_of,
                        reference_key,
 )
-from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
+from .outline import Loop, Segment, chain_loops, fit_spline, loops_to_occ, orient_loops
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
 from .quality import MAX_DISTORTION, MIN_SCALED_JACOBIAN, MorphQuality, assess, distortion, scaled_jacobian
 from .topology import (
@@ -55,7 +56,7 @@ from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_len
 __all__ = ["GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
            "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
-           "bore_centre", "cache_entries", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
+           "bore_centre", "cache_entries", "chain_loops", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
            "loops_to_occ", "orient_loops", "step_length_unit", "step_unit", "cache_dir", "cache_key",
            "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
