@@ -21,7 +21,7 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 
 from .cache import CacheEntry, cache_dir, cache_entries, cache_limit, clear_cache, evict
 from .cad import import_planar, step_unit
-from .clutch_mesh import ClutchMesh
+from .clutch_mesh import ClutchMesh, named_boundary
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
@@ -61,5 +61,5 @@ __all__ = ["GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2
            "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
            "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
-           "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem",
+           "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem", "named_boundary",
            "p2_basis", "p2_cells", "p2_nodes", "read_msh", "source_hash"]
