@@ -8,6 +8,7 @@ import sys
 import gmsh
 import numpy as np
 import pytest
+from skfem import Basis, ElementTriP0
 
 from clutchfem import Design, OperatingPoint
 from clutchfem.core import MeshError, get_material
@@ -72,6 +73,11 @@ def test_p2_scaled_jacobian_is_the_mesh_quality_measure():
     m = cm.mesh
     x = np.concatenate([m.p[:, m.t], m.doflocs[:, m.nvertices + m.t2f]], axis=1).transpose(2, 1, 0)
     assert np.allclose(p2_scaled_jacobian(x), scaled_jacobian(m), atol=1e-12)
+    # the one formula against scikit-fem's own isoparametric map of the MeshTri2
+    lattice = np.array([(i / 4, j / 4) for j in range(5) for i in range(5 - j)]).T
+    det = Basis(m, ElementTriP0(), intorder=1).mapping.detDF(lattice)
+    det = det * np.sign(np.median(det, axis=1))[:, None]
+    assert np.allclose(scaled_jacobian(m), det.min(axis=1) / det.max(axis=1), atol=1e-12)
 
 
 def test_concept4_fine_fillets_peak_is_the_notch_not_a_sliver():

@@ -32,7 +32,7 @@ import numpy as np
 
 from ..core import GeometryError
 from ..geometry import MeshSettings, build_model, gmsh_session
-from ..mesh import Loop, Segment, fit_spline, orient_loops
+from ..mesh import Loop, Segment, chain_loops, fit_spline, orient_loops
 
 #: largest deviation [m] of an exported spline from the OCC curve it stands for
 SPLINE_TOL = 1e-9
@@ -104,7 +104,8 @@ def part_outline(concept, params) -> PartOutline:
         occ_area = float(bm.mass["solid"]["area"])
         mirrored = bm.mirrored
     scale = float(params.drum_radius)
-    loops = [Loop(tuple(_merge(lp, scale))) for lp in _chain(segs, scale)]
+    # chained to 1e-7 of the drum radius, OCC's orientation signs not relied on
+    loops = [Loop(tuple(_merge(lp, scale))) for lp in chain_loops(segs, 1e-7 * scale)]
     if mirrored:
         loops = [Loop(tuple(s.mapped(mirror_y=True) for s in lp.segments)).reversed() for lp in loops]
     loops = orient_loops(loops)
@@ -163,31 +164,6 @@ def _spline_of(c: int, lo: float, hi: float, tag: str) -> Segment:
         if dev < SPLINE_TOL:
             return seg
     raise GeometryError(f"curve {c}: no spline within {SPLINE_TOL:g} m of the OCC curve (last {dev:.3g} m)")
-
-
-def _chain(segs: list[Segment], scale: float) -> list[list[Segment]]:
-    """Closed loops from the boundary's segments, chained end to start (a segment is
-    reversed where its other end fits: OCC's orientation signs are not relied on; the loops
-    are oriented by their areas afterwards)."""
-    tol = 1e-7 * scale
-    left = list(segs)
-    loops = []
-    while left:
-        loop = [left.pop(0)]
-        if math.dist(loop[0].start, loop[0].end) < tol:  # a full circle is a loop of its own
-            loops.append(loop)
-            continue
-        while math.dist(loop[-1].end, loop[0].start) > tol:
-            end = loop[-1].end
-            cands = [(math.dist(s.start, end), i, False) for i, s in enumerate(left)]
-            cands += [(math.dist(s.end, end), i, True) for i, s in enumerate(left)]
-            if not cands or min(cands)[0] > tol:
-                raise GeometryError(f"the part's boundary does not close near ({end[0]:.6g}, {end[1]:.6g}) m")
-            _, i, rev = min(cands)
-            s = left.pop(i)
-            loop.append(s.reversed() if rev else s)
-        loops.append(loop)
-    return loops
 
 
 def _merge(loop: list[Segment], scale: float) -> list[Segment]:

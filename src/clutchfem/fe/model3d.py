@@ -76,7 +76,7 @@ import scipy.sparse as sp
 from skfem import Basis, BilinearForm, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet1, MeshTet2, asm
 
 from ..core import Material, MeshError, ParamSet, SolverError, param
-from ..mesh import ClutchMesh, cyclic_pairing, facet_lookup
+from ..mesh import ClutchMesh, cyclic_pairing, facet_lookup, named_boundary
 from .model import ConstrainedOperators
 from .stress import VertexStress3D, von_mises
 
@@ -120,11 +120,8 @@ class ExtrudedMesh:
         return self.cm.sector_angle
 
     def boundary(self, name: str) -> np.ndarray:
-        b = self.mesh.boundaries or {}
-        if name not in b:
-            raise MeshError(f"extruded mesh of {self.cm.source} has no boundary '{name}'; "
-                            f"available: {sorted(b)}")
-        return np.asarray(b[name])
+        """The facets of boundary group ``name`` (:func:`clutchfem.mesh.named_boundary`)."""
+        return named_boundary(self.mesh, name, f"extruded mesh of {self.cm.source}")
 
 
 def _levels(h: float, layers: int, half: bool, grading: float) -> np.ndarray:

@@ -7,7 +7,8 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.cache` -- the on-disk mesh cache: its folder, bound and eviction;
 * :mod:`.user` -- a user's ``.msh``, STEP or DXF file;
 * :mod:`.user_checks` -- what a user's part must be: axis, unit, one piece, triangles;
-* :mod:`.outline` -- a part's exact 2-D outline (lines, arcs, B-splines) and its OCC face;
+* :mod:`.outline` -- a part's exact 2-D outline (lines, arcs, B-splines), its loops chained
+  from loose segments, and its OCC face;
 * :mod:`.cad` -- a STEP (in its declared unit; a prism along z) or DXF part as planar surfaces;
 * :mod:`.dxf` -- a DXF drawing's outline (what a cutter's file holds) as outline loops;
 * :mod:`.topology` -- P2 nodes, facet nodes and cells, areas and perimeters of element sets;
@@ -21,7 +22,7 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 
 from .cache import CacheEntry, cache_dir, cache_entries, cache_limit, clear_cache, evict
 from .cad import import_planar, step_unit
-from .clutch_mesh import ClutchMesh
+from .clutch_mesh import ClutchMesh, named_boundary
 from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
@@ -36,7 +37,7 @@ from .morph import (
                        quality_of,
                        reference_key,
 )
-from .outline import Loop, Segment, fit_spline, loops_to_occ, orient_loops
+from .outline import Loop, Segment, chain_loops, fit_spline, loops_to_occ, orient_loops
 from .picture import draw_mesh
 from .properties import element_moments, mesh_area_properties, mesh_mass_properties
 from .quality import MAX_DISTORTION, MIN_SCALED_JACOBIAN, MorphQuality, assess, distortion, scaled_jacobian
@@ -57,10 +58,10 @@ from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_len
 __all__ = ["draw_mesh", "GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
            "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
-           "bore_centre", "cache_entries", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
+           "bore_centre", "cache_entries", "chain_loops", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
            "loops_to_occ", "orient_loops", "step_length_unit", "step_unit", "cache_dir", "cache_key",
            "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
            "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
-           "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem",
+           "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem", "named_boundary",
            "p2_basis", "p2_cells", "p2_nodes", "read_msh", "source_hash"]

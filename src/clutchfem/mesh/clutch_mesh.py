@@ -80,8 +80,14 @@ class ClutchMesh:
         return path
 
     def boundary(self, name: str) -> np.ndarray:
-        b = self.mesh.boundaries or {}
-        if name not in b:
-            raise MeshError(f"mesh from {self.source} has no boundary group '{name}'; "
-                            f"available: {sorted(b)}")
-        return np.asarray(b[name])
+        """The facets of boundary group ``name`` (:func:`named_boundary`)."""
+        return named_boundary(self.mesh, name, f"mesh from {self.source}")
+
+
+def named_boundary(mesh, name: str, what: str) -> np.ndarray:
+    """The facets of the boundary group ``name`` of a scikit-fem ``mesh`` (2-D or its 3-D
+    extrusion); a missing group is refused naming ``what`` (the mesh) and the groups it has."""
+    b = mesh.boundaries or {}
+    if name not in b:
+        raise MeshError(f"{what} has no boundary group '{name}'; available: {sorted(b)}")
+    return np.asarray(b[name])

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core import MeshError
-from .outline import Loop, Segment, orient_loops
+from .outline import Loop, Segment, chain_loops, orient_loops
 
 #: $INSUNITS code -> metres per unit
 INSUNITS = {1: 0.0254, 2: 0.3048, 4: 1e-3, 5: 1e-2, 6: 1.0, 13: 1e-6, 14: 0.1}
@@ -106,24 +106,14 @@ def _segments(e, s: float, path) -> list[Segment]:
 
 
 def _chain(segs: list[Segment], tol: float, path) -> list[Loop]:
-    left = list(segs)
-    loops = []
-    while left:
-        loop = [left.pop(0)]
-        if math.dist(loop[0].start, loop[0].end) < tol:
-            loops.append(Loop(tuple(loop)))
-            continue
-        while math.dist(loop[-1].end, loop[0].start) > tol:
-            end = loop[-1].end
-            cands = [(math.dist(q.start, end), i, False) for i, q in enumerate(left)]
-            cands += [(math.dist(q.end, end), i, True) for i, q in enumerate(left)]
-            if not cands or min(cands)[0] > tol:
-                raise MeshError(f"{path}: the outline is not closed: a chain of {len(loop)} entities ends at "
-                                f"({end[0] * 1e3:.4g}, {end[1] * 1e3:.4g}) mm with nothing joined to it")
-            _, i, rev = min(cands)
-            q = left.pop(i)
-            loop.append(q.reversed() if rev else q)
-        loops.append(Loop(tuple(loop)))
+    """The entities' closed loops (:func:`~clutchfem.mesh.outline.chain_loops`); an open
+    chain or a loop without area is refused naming the file (an open chain's end in mm)."""
+
+    def refuse(end, n):
+        return MeshError(f"{path}: the outline is not closed: a chain of {n} entities ends at "
+                         f"({end[0] * 1e3:.4g}, {end[1] * 1e3:.4g}) mm with nothing joined to it")
+
+    loops = [Loop(tuple(lp)) for lp in chain_loops(segs, tol, refuse)]
     areas = np.array([abs(lp.area) for lp in loops])
     if np.any(areas <= 0):
         raise MeshError(f"{path}: a closed chain encloses no area")

@@ -46,8 +46,8 @@ import dataclasses
 import json
 import math
 import time
-from collections import OrderedDict
 
+import cachetools
 import numpy as np
 import scipy.sparse.linalg as spla
 from skfem import Basis, BilinearForm, ElementTriP0, ElementTriP2, asm
@@ -64,7 +64,6 @@ from .topology import facet_nodes
 
 #: morph references kept per process (each holds a mesh, its curve map and a factorisation)
 CACHE_SIZE = 4
-_REFERENCES: OrderedDict = OrderedDict()
 
 
 class MorphRefused(MeshError):
@@ -108,12 +107,12 @@ def morph_reference(concept: Concept | str, p: ConceptParams, ms: MeshSettings |
     """The reference design ``p`` of ``concept`` prepared for morphing (meshed through the
     mesh cache; the last :data:`CACHE_SIZE` references are kept in this process)."""
     concept = get_concept(concept) if isinstance(concept, str) else concept
-    ms = ms or MeshSettings()
-    key = reference_key(concept, p, ms)
-    hit = _REFERENCES.get(key)
-    if hit is not None:
-        _REFERENCES.move_to_end(key)
-        return hit
+    return _prepared(concept, p, ms or MeshSettings())
+
+
+# least recently used out; keyed by reference_key (the parameters are compared by value)
+@cachetools.cached(cachetools.LRUCache(maxsize=CACHE_SIZE), key=reference_key)
+def _prepared(concept: Concept, p: ConceptParams, ms: MeshSettings) -> MorphReference:
     t0 = time.perf_counter()
     cm = mesh_concept(concept, p, ms)
     curve_nodes = _curve_nodes(cm)
@@ -129,14 +128,10 @@ def morph_reference(concept: Concept | str, p: ConceptParams, ms: MeshSettings |
         j = cyclic_pairing(x[:, na], x[:, nb], cm.sector_angle, scale=float(np.abs(x).max()),
                            what=f"{concept.name}: the reference's sector cut lines")
         pairs = (na, nb[j])
-    ref = MorphReference(concept=concept, params=p, settings=ms, cm=cm, curve_nodes=curve_nodes,
-                         curve_s=frame.params, signature=frame.signature, pairs=pairs, fixed=fixed, free=free,
-                         solve_free=solve_free, k_free_fixed=k_ff, ref_sj=scaled_jacobian(cm.mesh),
-                         setup_s=time.perf_counter() - t0)
-    _REFERENCES[key] = ref
-    while len(_REFERENCES) > CACHE_SIZE:
-        _REFERENCES.popitem(last=False)
-    return ref
+    return MorphReference(concept=concept, params=p, settings=ms, cm=cm, curve_nodes=curve_nodes,
+                          curve_s=frame.params, signature=frame.signature, pairs=pairs, fixed=fixed, free=free,
+                          solve_free=solve_free, k_free_fixed=k_ff, ref_sj=scaled_jacobian(cm.mesh),
+                          setup_s=time.perf_counter() - t0)
 
 
 def _curve_nodes(cm: ClutchMesh) -> dict:

@@ -8,9 +8,11 @@ Lengths in metres, the part in the x-y plane.
 Conventions: a :class:`Segment` runs from ``start`` to ``end``; an arc turns by ``sweep``
 radians about ``centre`` (ccw > 0; a full circle is one arc of sweep +-2 pi whose start and
 end coincide); a spline is a clamped B-spline of ``degree`` with its full knot vector over
-[0, 1].  A :class:`Loop` is a closed chain of segments; the *outer* loop runs ccw and every
-hole cw, so the material always lies on the left ("material on the left", the orientation
-the offsets of the cutting stage assume).  Areas are exact for lines and arcs (Green's
+[0, 1].  A :class:`Loop` is a closed chain of segments (:func:`chain_loops` chains loose
+segments -- a DXF's entities, an OCC model's boundary curves -- end to start, reversing a
+segment where its other end fits); the *outer* loop runs ccw and every hole cw, so the
+material always lies on the left ("material on the left", the orientation the offsets of
+the cutting stage assume).  Areas are exact for lines and arcs (Green's
 theorem, closed form) and exact to rounding for splines (Gauss-Legendre of the polynomial
 integrand on each knot span).
 """
@@ -26,7 +28,7 @@ from scipy.interpolate import BSpline, make_interp_spline
 
 from ..core import GeometryError
 
-__all__ = ["Loop", "Segment", "fit_spline", "loops_to_occ", "orient_loops"]
+__all__ = ["Loop", "Segment", "chain_loops", "fit_spline", "loops_to_occ", "orient_loops"]
 
 #: relative tolerance (of the part's size) at which two end points are the same point
 JOIN_TOL = 1e-9
@@ -219,6 +221,40 @@ class Loop:
         cond = (y > p[1]) != (y2 > p[1])
         xs = x + (p[1] - y) * (x2 - x) / np.where(y2 != y, y2 - y, 1.0)
         return bool(np.count_nonzero(cond & (p[0] < xs)) % 2)
+
+
+def chain_loops(segs: list[Segment], tol: float, refuse=None) -> list[list[Segment]]:
+    """Closed loops (lists of segments) from unordered segments, chained end to start.
+
+    A segment that closes on itself (a full circle) is a loop of its own.  Otherwise the
+    loop grows by the remaining segment whose start or end lies nearest to the loop's end,
+    reversed where its end fits (the input's orientation is not relied on: the loops are
+    oriented by their areas afterwards, :func:`orient_loops`); it is closed once its end is
+    within ``tol`` [m] of its start.  A chain whose end has no segment within ``tol`` is
+    refused: ``refuse(end, n)`` (the loose end point and the chain's segment count) gives
+    the exception to raise (default: a :class:`~clutchfem.core.GeometryError` naming the
+    point), so each reader names its own input.
+    """
+    left = list(segs)
+    loops = []
+    while left:
+        loop = [left.pop(0)]
+        if math.dist(loop[0].start, loop[0].end) < tol:  # a full circle is a loop of its own
+            loops.append(loop)
+            continue
+        while math.dist(loop[-1].end, loop[0].start) > tol:
+            end = loop[-1].end
+            cands = [(math.dist(s.start, end), i, False) for i, s in enumerate(left)]
+            cands += [(math.dist(s.end, end), i, True) for i, s in enumerate(left)]
+            if not cands or min(cands)[0] > tol:
+                if refuse is None:
+                    raise GeometryError(f"the part's boundary does not close near ({end[0]:.6g}, {end[1]:.6g}) m")
+                raise refuse(end, len(loop))
+            _, i, rev = min(cands)
+            s = left.pop(i)
+            loop.append(s.reversed() if rev else s)
+        loops.append(loop)
+    return loops
 
 
 def orient_loops(loops: list[Loop]) -> list[Loop]:

@@ -5,7 +5,14 @@ moved from: the criterion that decides between a morphed mesh and a new one.
   of the reference triangle (its corners, edge points and interior: det J is a quadratic
   polynomial there, and the 4th-order lattice resolves it), signed by the element's own
   orientation.  1 for a straight-sided triangle, 0 for a degenerate element, < 0 for a
-  folded one.  gmsh's mesher fixes elements below 0.2 (:mod:`.generate`).
+  folded one.  gmsh's mesher fixes elements below 0.2 (:mod:`.generate`).  One
+  computation, :func:`~clutchfem.mesh.highorder.p2_scaled_jacobian`, from the six node
+  positions of each element (x = sum_i N_i(s, t) x_i with the P2 shape functions N_i,
+  J = [dx/ds dx/dt]): the high-order guard measures gmsh's nodes with it before a
+  scikit-fem mesh exists, :func:`scaled_jacobian` a ``MeshTri2``.  It lives with the
+  guard because the guard's source is part of the mesh cache key
+  (:func:`~clutchfem.mesh.generate.source_hash`): a change to the measure must not serve
+  a cached mesh.
 * **Distortion** of a moved element: the corner triangle's affine map F from its reference
   position to the moved one (F = E_new E_ref^-1, E the two edge vectors) and its singular
   values s1 >= s2.  s1 / s2 = 1: the element kept its shape (it may have grown, shrunk or
@@ -21,7 +28,10 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from skfem import Basis, ElementTriP0, MeshTri2
+from skfem import MeshTri2
+
+from .highorder import p2_scaled_jacobian
+from .topology import p2_nodes
 
 #: the largest shape distortion s1/s2 of a moved element (see :mod:`.morph` for the measurements)
 MAX_DISTORTION = 2.5
@@ -29,21 +39,12 @@ MAX_DISTORTION = 2.5
 MIN_SCALED_JACOBIAN = 0.2
 
 
-def _lattice() -> np.ndarray:
-    """The 15 points of the 4th-order lattice of the reference triangle, (2, 15)."""
-    pts = [(i / 4, j / 4) for j in range(5) for i in range(5 - j)]
-    return np.array(pts, dtype=float).T
-
-
 def scaled_jacobian(mesh: MeshTri2) -> np.ndarray:
-    """(nelements,) min det J / max det J of every element (module docstring), signed so that
-    an element with one orientation throughout is positive."""
-    basis = Basis(mesh, ElementTriP0(), intorder=1)
-    det = basis.mapping.detDF(_lattice())
-    sign = np.sign(np.median(det, axis=1))
-    det = det * sign[:, None]
-    big = np.max(det, axis=1)
-    return np.min(det, axis=1) / np.where(big > 0, big, 1.0)
+    """(nelements,) the scaled Jacobian of every element of ``mesh`` (module docstring),
+    signed so that an element with one orientation throughout is positive: its corners and
+    its mid-edge nodes (facets 01, 12, 20: ``mesh.t2f``) into :func:`p2_scaled_jacobian`."""
+    cells = np.vstack([mesh.t, mesh.nvertices + mesh.t2f])  # (6, ne)
+    return p2_scaled_jacobian(p2_nodes(mesh)[:, cells].transpose(2, 1, 0))
 
 
 def distortion(ref: MeshTri2, moved: MeshTri2) -> np.ndarray:

@@ -70,7 +70,23 @@ def hot_yield_ratio(T_C, basis: Literal["proportional", "effective"] = "proporti
 # ---------------------------------------------------------------------------------------
 # parameter sets
 # ---------------------------------------------------------------------------------------
-class ThermalMaterial(ParamSet):
+class _Conducting(ParamSet):
+    """A solid with ``conductivity`` k, ``density`` rho and ``specific_heat`` c (declared by
+    each subclass with its own defaults): its diffusivity and effusivity, one formula each
+    for the part and the drum."""
+
+    @property
+    def diffusivity(self) -> float:
+        """kappa = k / (rho c) [m^2/s]."""
+        return self.conductivity / (self.density * self.specific_heat)
+
+    @property
+    def effusivity(self) -> float:
+        """e = sqrt(k rho c) [W s^0.5 / (m^2 K)]."""
+        return math.sqrt(self.conductivity * self.density * self.specific_heat)
+
+
+class ThermalMaterial(_Conducting):
     """Thermal data of the part (defaults: hardened 51CrV4, ASSUMED, see module docstring)."""
 
     context: ClassVar[str] = "thermal material"
@@ -91,22 +107,12 @@ class ThermalMaterial(ParamSet):
     hot_yield_basis: Literal["proportional", "effective"] = choice(
         "proportional", "EN 1993-1-2 reduction factor used for the hot yield strength: k_p (conservative) or k_y")
 
-    @property
-    def diffusivity(self) -> float:
-        """kappa = k / (rho c) [m^2/s]."""
-        return self.conductivity / (self.density * self.specific_heat)
-
-    @property
-    def effusivity(self) -> float:
-        """e = sqrt(k rho c) [W s^0.5 / (m^2 K)]."""
-        return math.sqrt(self.conductivity * self.density * self.specific_heat)
-
     def yield_ratio(self, T_C) -> float:
         """Hot yield strength / room-temperature yield strength at T_C (see HOT_YIELD_TABLE)."""
         return hot_yield_ratio(T_C, self.hot_yield_basis)
 
 
-class DrumThermal(ParamSet):
+class DrumThermal(_Conducting):
     """The drum as seen by the heat partition: a rim wall heated on its inner face, outer
     face adiabatic (ASSUMED, conservative for the part).  Defaults: steel, 2 mm (ASSUMED)."""
 
@@ -115,14 +121,6 @@ class DrumThermal(ParamSet):
     specific_heat: float = param(460.0, "J/(kg K)", 50.0, 5000.0, "drum specific heat (ASSUMED steel)", "c_d")
     density: float = param(7850.0, "kg/m^3", 100.0, 25000.0, "drum density (ASSUMED steel)", "rho_d")
     wall_thickness: float = param(2.0e-3, "m", 0.2e-3, 50e-3, "drum rim wall thickness (ASSUMED)", "w_d")
-
-    @property
-    def diffusivity(self) -> float:
-        return self.conductivity / (self.density * self.specific_heat)
-
-    @property
-    def effusivity(self) -> float:
-        return math.sqrt(self.conductivity * self.density * self.specific_heat)
 
 
 class ThermalEnvironment(ParamSet):
