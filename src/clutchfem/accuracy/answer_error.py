@@ -305,7 +305,31 @@ def format_error(e: AnswerError, scale: float = 1.0, unit: str | None = None, fm
 
 def sweep_errors(design, res) -> dict:
     """Errors of a sweep's engagement speed and, at its highest speed, torque and peak stress
-    (``clutchfem solve``): the refined mesh solved at that one speed."""
+    (``clutchfem solve``): the refined mesh solved at that one speed.
+
+    Parameters
+    ----------
+    design : Design
+        The design that was swept.
+    res : SweepResult
+        Its sweep (``design.sweep(...)``).
+
+    Returns
+    -------
+    dict
+        ``engagement_rpm``, ``torque_Nm`` and ``max_von_mises_Pa`` (those the sweep answers),
+        each an error record as in :attr:`Analysis.errors <clutchfem.Analysis>` (``value``,
+        ``unit``, ``discretisation``, ``model_form``, ``total``: the band, in the answer's
+        unit), and ``at_rpm``: the speed of the torque and stress [rpm].
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> e = cf.sweep_errors(d, d.sweep("0:14000:7000"))
+    >>> e["at_rpm"], e["engagement_rpm"]["unit"], e["engagement_rpm"]["total"] > 0
+    (14000.0, 'rpm', True)
+    """
     rpm_top = float(res.rpm.max())
     values = {"engagement_rpm": res.engagement_rpm,
               "torque_Nm": float(res.curve["torque_Nm"].iloc[res.index(rpm_top)]),

@@ -36,8 +36,29 @@ __all__ = ["SlipHeatRun", "slip_heat"]
 
 @dataclass(frozen=True)
 class SlipHeatRun:
-    """A slip-heat answer: ``doc`` (JSON-ready), ``result`` (the transient, None without
-    heat) and the ``design``."""
+    """A slip-heat answer (:func:`slip_heat`): ``doc`` (JSON-ready), ``result`` (the
+    transient, None without heat) and the ``design``.
+
+    Attributes
+    ----------
+    doc : dict
+        The answers (``slip_status``, ``slip_note``, ``slip_rpm``, ``slip_power_W``,
+        ``peak_temperature_C``, ``flexure_temperature_C``, ``time_to_limit_s``, ``validity``,
+        ...) with the design's and the thermal inputs; :meth:`to_json` returns it.
+    result : SlipHeatResult or None
+        The transient (temperature fields over time); None when nothing slips or touches.
+    design : Design
+
+    Examples
+    --------
+    An engine curve that ends below the engagement speed: the shoes never touch, no heat.
+
+    >>> import clutchfem as cf
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> run = cf.slip_heat(d, cf.EngineCurve((1000, 2000), (1.0, 1.5)))
+    >>> run.doc["slip_status"], run.result is None, run.to_json()["slip_power_W"]
+    ('never engages', True, 0.0)
+    """
 
     doc: dict
     result: SlipHeatResult | None

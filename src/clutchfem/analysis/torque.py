@@ -83,7 +83,28 @@ def slip_answer(engine: EngineCurve, clutch_torque_at_rpm, engagement_rpm: float
 def check_speeds(rpm, engine: EngineCurve) -> np.ndarray:
     """The output speeds [rpm]: finite, >= 0, within 0..max rpm of the engine curve, sorted,
     and always including the engine's maximum speed (where stresses are reported) and the
-    rpm of its maximum torque (where torque, arc and character are reported)."""
+    rpm of its maximum torque (where torque, arc and character are reported).
+
+    Parameters
+    ----------
+    rpm : sequence of float or None
+        The speeds asked for [rpm] (None: 0 to the engine's maximum in 250 rpm steps).
+    engine : EngineCurve
+        The full-throttle curve; speeds above its last one are refused
+        (:class:`~clutchfem.ParameterError`).
+
+    Returns
+    -------
+    numpy.ndarray
+        The sorted speeds [rpm], the engine's two reporting speeds added.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> e = cf.EngineCurve((2500, 8000, 14000), (1.9, 3.4, 1.0))
+    >>> cf.check_speeds([5000, 0], e).tolist()
+    [0.0, 5000.0, 8000.0, 14000.0]
+    """
     lo, hi = engine.rpm_range
     if rpm is None:
         r = np.arange(0.0, hi + 1e-9, GRID_RPM)

@@ -35,7 +35,27 @@ def clean(x):
 
 
 def dumps(obj, **kw) -> str:
-    """Strict JSON text of ``obj`` (cleaned first)."""
+    """Strict JSON text of ``obj`` (cleaned first: NaN and infinities become ``null``, numpy
+    scalars and arrays plain numbers and lists, paths strings).
+
+    Parameters
+    ----------
+    obj : object
+        Dicts, lists, tuples, numbers (Python or numpy), arrays, strings, paths, None.
+    **kw
+        Passed to :func:`json.dumps` (``indent``, ``sort_keys``, ...).
+
+    Returns
+    -------
+    str
+        JSON that parses in any language (``allow_nan=False``: anything left unclean raises).
+
+    Examples
+    --------
+    >>> import clutchfem as cf, numpy as np
+    >>> cf.dumps({"slip_rpm": float("nan"), "rpm": np.array([0.0, 7000.0]), "n": np.int64(3)})
+    '{"slip_rpm": null, "rpm": [0.0, 7000.0], "n": 3}'
+    """
     return json.dumps(clean(obj), allow_nan=False, **kw)
 
 

@@ -51,8 +51,23 @@ _done: bool | None = None
 
 
 def tune_malloc() -> bool:
-    """Keep freed memory in the heap (glibc only; elsewhere a no-op).  Returns whether the
-    allocator took the settings; idempotent."""
+    """Keep freed memory in the heap (glibc only; elsewhere a no-op; module docstring).  For
+    processes clutchfem owns (a script that analyses design after design), never called on
+    import.
+
+    Returns
+    -------
+    bool
+        Whether the allocator took the settings (False off glibc); the same answer on every
+        call (idempotent: the settings are made once).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> took = cf.tune_malloc()
+    >>> isinstance(took, bool), cf.tune_malloc() is took
+    (True, True)
+    """
     global _done
     if _done is None:
         _done = False

@@ -83,7 +83,24 @@ _NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?inf|na
 
 
 class UnitError(ValueError):
-    """A quantity that cannot be read; ``expected`` says what the field accepts."""
+    """A quantity that cannot be read; ``expected`` says what the field accepts.
+
+    Attributes
+    ----------
+    raw : object
+        What was given.
+    expected : str
+        What the field accepts (its dimension, canonical unit and suffixes).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> try:
+    ...     cf.parse_quantity("80deg", "m")            # an angle where a length is wanted
+    ... except cf.UnitError as e:
+    ...     print(e.raw, "|", e.expected)
+    80deg | a length in m (unit suffix m, cm, mm, um, µm, in)
+    """
 
     def __init__(self, raw, expected: str):
         self.raw = raw
@@ -116,12 +133,26 @@ def parse_quantity(raw, unit: str) -> float:
     no suffix).  Raises :class:`UnitError` (what was given, what is accepted); the caller
     names the parameter.  Non-finite values are returned as they are (ranges refuse them).
 
-    >>> parse_quantity("9mm", "m")
-    0.009
-    >>> parse_quantity("2700 rpm", "rpm")
-    2700.0
-    >>> parse_quantity(" 80deg", "deg")
-    80.0
+    Parameters
+    ----------
+    raw : float or str
+        A number (already in ``unit``) or a text such as ``"9mm"``, ``"200GPa"``, ``"2700 rpm"``.
+    unit : str
+        The field's canonical unit: ``"m"``, ``"deg"``, ``"Pa"``, ``"rpm"``, ``"C"``, ... or
+        ``"-"`` (dimensionless).
+
+    Returns
+    -------
+    float
+        The value in ``unit``, converted exactly (decimal arithmetic).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.parse_quantity("9mm", "m"), cf.parse_quantity("2700 rpm", "rpm"), cf.parse_quantity(" 80deg", "deg")
+    (0.009, 2700.0, 80.0)
+    >>> cf.parse_quantity("200GPa", "Pa"), cf.parse_quantity("673.15K", "C"), cf.parse_quantity(0.3, "-")
+    (200000000000.0, 400.0, 0.3)
     """
     if isinstance(raw, bool):
         raise UnitError(raw, expected_text(unit))
@@ -191,12 +222,28 @@ def format_quantity(value, unit: str, digits: int = 6) -> str:
     """``value`` (canonical ``unit``) as text in its display unit with ``digits`` significant
     digits and no float noise: ``format_quantity(0.019, "m")`` -> ``'19 mm'``.
 
-    >>> format_quantity(0.009000000000000001, "m")
-    '9 mm'
-    >>> format_quantity(1.25e9, "Pa")
-    '1250 MPa'
-    >>> format_quantity(0.3, "-")
-    '0.3'
+    Parameters
+    ----------
+    value : float
+        The value in ``unit`` (anything else is shown as ``str(value)``).
+    unit : str
+        Its canonical unit; lengths are shown in mm and stresses in MPa (:data:`DISPLAY`),
+        other units as they are, ``"-"`` without a unit.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+        The number and its display unit.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.format_quantity(0.009000000000000001, "m"), cf.format_quantity(1.25e9, "Pa")
+    ('9 mm', '1250 MPa')
+    >>> cf.format_quantity(8123.4567, "rpm", digits=4), cf.format_quantity(0.3, "-")
+    ('8123 rpm', '0.3')
     """
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         return str(value)

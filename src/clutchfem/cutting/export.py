@@ -46,7 +46,33 @@ DRAWING_SUFFIXES = (".pdf", ".svg", ".png")
 
 @dataclass
 class ExportResult:
-    """What :func:`export` wrote and measured (lengths in m, areas m^2, volumes m^3)."""
+    """What :func:`export` wrote and measured (lengths in m, areas m^2, volumes m^3);
+    :meth:`to_json` is ``export.json``.
+
+    Attributes
+    ----------
+    label, design_hash : str
+        The design's label (the files' names) and hash.
+    files : list of Path
+    area_m2, thickness_m, volume_m3, mass_kg, outer_radius_m : float
+        The whole part as cut (nominal contour).
+    features : dict
+        The measured inside radii, slots and webs.
+    rules : ProcessRules or None
+        The process checked against (None: unchecked); ``violations``: what failed.
+    analysis : Analysis or None
+        The answers on the drawing.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.cutting import ExportResult
+    >>> r = ExportResult("concept1", "abc123def456", [], area_m2=1.0e-3, thickness_m=0.011, volume_m3=1.1e-5,
+    ...                  mass_kg=0.0864, outer_radius_m=0.0338, features={}, rules=cf.ProcessRules.of("laser"))
+    >>> j = r.to_json()                      # the process's limits at this thickness: slots >= 0.7 t
+    >>> j["process"]["process"], round(j["process"]["limits_m"]["min_slot"] * 1e3, 2), j["answers"]
+    ('laser', 7.7, None)
+    """
 
     label: str
     design_hash: str

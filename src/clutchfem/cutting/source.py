@@ -45,7 +45,32 @@ def _design(record: dict, where: str, mesh: MeshSettings | None) -> Design:
 
 
 def design_from_run(folder, mesh: MeshSettings | None = None) -> Design:
-    """The design recorded in ``folder/inputs.json`` (see module docstring)."""
+    """The design recorded in ``folder/inputs.json`` (see module docstring).
+
+    Parameters
+    ----------
+    folder : path
+        A run folder (``analyze --out``, ``report``, ``optimize``, ``compensate``,
+        ``tolerance``, ``export``) or its ``inputs.json``.
+    mesh : MeshSettings, optional
+        Mesh it with these settings instead of the recorded ones (no hash check then).
+
+    Returns
+    -------
+    Design
+        The very design the run analysed (its hash is checked against the record's).
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> from clutchfem.loadcase import design_hash, design_inputs
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> run = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (run / "inputs.json").write_text(cf.dumps({**design_inputs(d), "design_hash": design_hash(d)}))
+    >>> d2 = cf.design_from_run(run)                   # clutchfem export --from RUN
+    >>> d2.name, design_hash(d2) == design_hash(d)
+    ('concept1', True)
+    """
     folder = Path(folder)
     path = folder / "inputs.json" if folder.is_dir() else folder
     if not path.is_file():
@@ -65,7 +90,36 @@ def design_from_run(folder, mesh: MeshSettings | None = None) -> Design:
 
 
 def design_from_study(folder, row: str, mesh: MeshSettings | None = None) -> Design:
-    """The design of the study row whose design hash starts with ``row``."""
+    """The design of the study row whose design hash starts with ``row``.
+
+    Parameters
+    ----------
+    folder : path
+        A study's folder (its ``results.sqlite``) or the store itself.
+    row : str
+        At least 6 hex digits of the row's ``design_hash``, matching one row.
+    mesh : MeshSettings, optional
+        Mesh it with these settings instead of the study's.
+
+    Returns
+    -------
+    Design
+        The concept, the point's full parameter set and its operating point.
+
+    Examples
+    --------
+    A store with one hand-written row (a study writes them; ``clutchfem export --study DIR --row HASH``):
+
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> from clutchfem.studies import COLUMNS, ResultStore
+    >>> study = pathlib.Path(tempfile.mkdtemp())
+    >>> inputs = {"settings": {"concept": "concept1", "mesh": {"size": 0.003}}, "params": {"flexure_thickness": 0.0022}}
+    >>> with ResultStore(study / "results.sqlite", COLUMNS) as st:
+    ...     st.put({"design_hash": "a1b2c3d4e5f6", "model_version": "v1", "status": "ok", "inputs_json": cf.dumps(inputs)})
+    >>> d = cf.design_from_study(study, "a1b2c3")
+    >>> d.name, d.params.flexure_thickness
+    ('concept1', 0.0022)
+    """
     folder = Path(folder)
     store = folder / STORE_NAME if folder.is_dir() else folder
     if not store.is_file():

@@ -99,7 +99,34 @@ DELTA_CLASSES = ((-math.inf, 0.0, 0.0), (0.0, 1.0, 1.0), (1.0, 2.0, 2.0), (2.0, 
 
 class FatigueLoads(ParamSet):
     """The service loads of the fatigue check (module docstring); ASSUMED values, sources
-    in the descriptions.  ``None``: taken from the engine curve."""
+    in the descriptions.  ``None``: taken from the engine curve.
+
+    Parameters
+    ----------
+    start_stops, revolutions : float
+        Start-stop cycles (default 5e4) and loaded crank revolutions (default 1e7) in the
+        clutch's life.
+    operating_rpm, max_rpm : float or str, optional
+        Cutting speed and the speed each start reaches [rpm] (default: the engine's rpm of
+        maximum torque and its top speed).
+    cutting_torque : float or str, optional
+        Mean cutting torque [N m] (default: the engine's torque at the operating speed).
+    drive_inertia : float or str
+        Drum, sprockets and chain on the clutch axis [kg m^2].
+    samples : int
+        Crank-angle samples per revolution (a multiple of 4).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> f = cf.FatigueLoads(start_stops=1e4, operating_rpm="9000rpm")
+    >>> f.operating_rpm, f.cutting_torque                   # None: from the engine curve
+    (9000.0, None)
+    >>> cf.FatigueLoads(samples=30)
+    Traceback (most recent call last):
+    ...
+    clutchfem.core.errors.ParameterError: fatigue loads: parameter 'samples' = 30 is not allowed: a multiple of 4 ...
+    """
 
     context: ClassVar[str] = "fatigue loads"
     start_stops: float = param(5e4, "-", 1.0, 1e9, "start-stop cycles in the clutch's life (ASSUMED; issue 14: "

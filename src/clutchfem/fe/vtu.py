@@ -62,7 +62,38 @@ def write_vtk(res, rpms, out: Path, stem: str = "", cm=None, full_thickness: boo
     ``cm`` (the design's :class:`~clutchfem.mesh.ClutchMesh`) gives the sector angle and
     the number of copies (without it: the model as solved).  A 3-D result is written as
     tetra10 (:mod:`clutchfem.fe.vtu3d`), mirrored about the mid-plane to the full thickness
-    unless ``full_thickness`` is False.  Returns [pvd, vtu...]."""
+    unless ``full_thickness`` is False.  Returns [pvd, vtu...].
+
+    Parameters
+    ----------
+    res : SweepResult
+        A solved sweep (its stored states are written, nothing is solved again).
+    rpms : sequence of float
+        Speeds of the sweep [rpm], one ``.vtu`` each.
+    out : path
+        The folder (made if needed).
+    stem : str
+        File name prefix: ``<stem>_fields.pvd``, ``<stem>_fields_<rpm>rpm.vtu``.
+    cm : ClutchMesh, optional
+    full_thickness : bool
+
+    Returns
+    -------
+    list of Path
+        The ``.pvd`` first, then the ``.vtu`` files in the order of ``rpms``.
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, meshio
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> r = d.sweep("0:14000:7000")
+    >>> files = cf.write_vtk(r, [7000, 14000], tempfile.mkdtemp(), stem="c1", cm=d.cm)
+    >>> [f.name for f in files]
+    ['c1_fields.pvd', 'c1_fields_7000rpm.vtu', 'c1_fields_14000rpm.vtu']
+    >>> vm = meshio.read(files[2]).point_data["von_mises_max_Pa"]     # its maximum is the table's peak
+    >>> bool(abs(vm.max() / r.curve["max_von_mises_Pa"].iloc[-1] - 1) < 1e-9)
+    True
+    """
     frames = Frames3D(res, cm, full_thickness) if res.fields.fe_basis.mesh.dim() == 3 else Frames2D(res, cm)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)

@@ -218,11 +218,37 @@ def _place_labels(fig, ax, anns, flip, R_mm: float, lim: float, n: int) -> None:
 
 def draw_concept(concept: Concept, params: ConceptParams, out_stem: Path,
                  mesh=None, dpi: int = 110) -> list[Path]:
-    """Draw ``concept`` with ``params``; write ``<out_stem>.png`` and ``<out_stem>.svg``.
+    """Draw ``concept`` with ``params``; write ``<out_stem>.png`` and ``<out_stem>.svg``
+    (``clutchfem geometry``): the part with its zones, contact surfaces, drum circle, shoe
+    centroids and pivots, labelled dimensions and the parameter table with derived masses.
 
-    ``mesh`` (optional, a :class:`clutchfem.mesh.ClutchMesh`: the stage above this one, so
-    read only through its ``mesh``, ``n_elements`` and ``mesh_settings``) is overlaid faintly
-    and its size is quoted in the title."""
+    Parameters
+    ----------
+    concept : Concept
+        The concept (:func:`~clutchfem.get_concept`).
+    params : ConceptParams
+        Its parameter set (``concept.Params(...)`` or ``concept.params(...)``).
+    out_stem : path
+        The files' path without suffix (its folder is made).
+    mesh : ClutchMesh, optional
+        Overlaid faintly, its size quoted in the title (read only through its ``mesh``,
+        ``n_elements`` and ``mesh_settings``: the stage above this one).
+    dpi : int
+        Resolution of the PNG.
+
+    Returns
+    -------
+    list of Path
+        ``[png, svg]``.
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> c = cf.get_concept("concept1")
+    >>> files = cf.draw_concept(c, c.Params(), pathlib.Path(tempfile.mkdtemp()) / "concept1", dpi=40)
+    >>> [f.name for f in files], all(f.stat().st_size > 0 for f in files)
+    (['concept1.png', 'concept1.svg'], True)
+    """
     from matplotlib.patches import FancyArrowPatch, PathPatch
     from matplotlib.path import Path as MPath
 

@@ -94,7 +94,19 @@ class GuidelineSettings:
     """What to study: concept, design point (``--set`` values), parameters, relative step h
     of the remeshed check, one-at-a-time points and span, the shared analysis settings,
     the operating inputs (None: every one :func:`.sensitivity.operating_inputs` offers) and
-    whether to run the remeshed check."""
+    whether to run the remeshed check.  Made (validated) by :meth:`create` (or
+    :meth:`from_design`); :func:`~clutchfem.run_guidelines` runs it.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> gs = cf.GuidelineSettings.create("concept1", {"flexure_thickness": "2.4mm"},
+    ...                                  ["flexure_thickness", "shoe_arc"], points=5)
+    >>> gs.params, gs.points, gs.span                   # span: x0 (1 -+ 0.5) one at a time
+    (('flexure_thickness', 'shoe_arc'), 5, 0.5)
+    >>> gs.notes[0]                                     # the other profiles' controls
+    "not studied (no effect with the 'concentric' profile, elasticity 0): clearance_tip, ..."
+    """
 
     concept: str
     params: tuple[str, ...]
@@ -369,7 +381,30 @@ def elasticity(x0: float, h: float, value_at) -> dict:
 @dataclass(frozen=True)
 class GuidelineResult:
     """Elasticities (one dict per parameter and answer), the ranking, the one-at-a-time
-    table and the files written."""
+    table and the files written (:func:`~clutchfem.run_guidelines`).
+
+    Attributes
+    ----------
+    table : list of dict
+        Per parameter (or operating input) and answer: ``parameter``, ``answer``, ``unit``,
+        ``x0``, the elasticity ``E`` = (x / A) dA/dx, its ``method`` and check ``verdict``.
+    ranking : list of str
+        The parameters, strongest first (the operating inputs in ``inputs``).
+    oat : pandas.DataFrame
+        The one-at-a-time rows.
+    files : tuple of Path
+    out : Path or None
+        The study's folder.
+
+    Examples
+    --------
+    >>> from clutchfem.guidelines import GuidelineResult
+    >>> row = {"parameter": "flexure_thickness", "answer": "engagement_rpm", "unit": "m", "x0": 0.0022, "E": 0.9,
+    ...        "verdict": "stable", "method": "central difference on morphed meshes"}
+    >>> g = GuidelineResult("concept1", {}, 0.02, [row], ["flexure_thickness"], oat=None)
+    >>> [f.name for f in g.with_files(["oat.png"]).files], g.to_json()["elasticities"][0]["E"]
+    (['oat.png'], 0.9)
+    """
 
     concept: str
     base: dict

@@ -185,7 +185,31 @@ def check_numerics(residual: np.ndarray, cond: float, rpm: np.ndarray, precondit
 
 
 def model_warnings(res, yield_strength: float) -> list[str]:
-    """Plain warnings where the model's answer is suspect or the design fails (module doc)."""
+    """Plain warnings where the model's answer is suspect or the design fails (module doc):
+    no drum, peak stress above yield, a node outside the contact group passing the drum,
+    displacements large for the linear model, speeds near the divergence speed.
+
+    Parameters
+    ----------
+    res : SweepResult
+        A solved sweep.
+    yield_strength : float
+        The material's yield strength [Pa].
+
+    Returns
+    -------
+    list of str
+        One sentence per warning (empty: none); the same texts a sweep and ``analyze`` carry.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> r = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm")).sweep("0:14000:7000")
+    >>> cf.model_warnings(r, yield_strength=1250e6)
+    []
+    >>> cf.model_warnings(r, yield_strength=300e6)           # a weaker material
+    ['STRESS ABOVE YIELD: peak von Mises ... MPa at 14000 rpm exceeds the yield strength 300 MPa ...']
+    """
     out = []
     c = res.curve
     if res.contact is None:

@@ -195,7 +195,28 @@ class OperatingPoint(ParamSet):
 def parse_rpm(spec) -> np.ndarray:
     """rpm values from a number, a list/array, or a string '8000', '1000,2000', '0:14000:250'
     (start:stop:step, stop included).  Refuses (InputError naming the spec): an empty list,
-    non-finite or negative speeds, speeds above MAX_RPM, more than MAX_SPEEDS speeds."""
+    non-finite or negative speeds, speeds above MAX_RPM, more than MAX_SPEEDS speeds.
+
+    Parameters
+    ----------
+    spec : float, sequence of float or str
+        Speeds [rpm]: ``8000``, ``[1000, 2000]``, ``"1000,2000"`` or ``"start:stop:step"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The speeds [rpm] in the order given.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.parse_rpm("0:14000:3500").tolist(), cf.parse_rpm("8000, 9000").tolist(), cf.parse_rpm(2700).tolist()
+    ([0.0, 3500.0, 7000.0, 10500.0, 14000.0], [8000.0, 9000.0], [2700.0])
+    >>> cf.parse_rpm("-100")
+    Traceback (most recent call last):
+    ...
+    clutchfem.core.errors.InputError: rpm spec '-100': speeds must be finite and >= 0 rpm
+    """
     if isinstance(spec, bool):
         raise InputError(f"rpm spec {spec!r} is not understood: use 8000, 1000,2000,3000 or 0:14000:250 (rpm)")
     if isinstance(spec, str):

@@ -57,7 +57,21 @@ class CacheEntry:
 
 
 def cache_dir() -> Path:
-    """The mesh cache folder (module docstring), created on first use."""
+    """The mesh cache folder (module docstring), created on first use.
+
+    Returns
+    -------
+    Path
+        ``$CLUTCHFEM_CACHE/meshes``, else the platform's user cache folder plus ``meshes``;
+        an unusable folder is refused naming the variable (:class:`~clutchfem.InputError`).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.cache_dir()
+    >>> d.name, d.is_dir()
+    ('meshes', True)
+    """
     env = os.environ.get("CLUTCHFEM_CACHE")
     root = Path(env) if env else Path(platformdirs.user_cache_dir("clutchfem", appauthor=False))
     where = f"CLUTCHFEM_CACHE={env}" if env else f"the cache folder {root}"
@@ -76,7 +90,26 @@ def cache_dir() -> Path:
 
 
 def cache_limit() -> int:
-    """The cache bound [bytes]: ``$CLUTCHFEM_CACHE_SIZE`` (``"2GB"``) or :data:`DEFAULT_SIZE`."""
+    """The cache bound [bytes]: ``$CLUTCHFEM_CACHE_SIZE`` (``"2GB"``) or :data:`DEFAULT_SIZE`.
+
+    Returns
+    -------
+    int
+        Bytes (decimal ``kB``/``MB``/``GB``/``TB`` or binary ``KiB``/``MiB``/``GiB``); a size
+        that cannot be read is refused naming the variable (:class:`~clutchfem.InputError`).
+
+    Examples
+    --------
+    >>> import clutchfem as cf, os
+    >>> saved = os.environ.pop("CLUTCHFEM_CACHE_SIZE", None)
+    >>> cf.cache_limit()                               # unset: the default bound, 1 GB
+    1000000000
+    >>> os.environ["CLUTCHFEM_CACHE_SIZE"] = "500MB"
+    >>> cf.cache_limit()
+    500000000
+    >>> if saved is None: del os.environ["CLUTCHFEM_CACHE_SIZE"]
+    ... else: os.environ["CLUTCHFEM_CACHE_SIZE"] = saved
+    """
     raw = os.environ.get("CLUTCHFEM_CACHE_SIZE")
     if raw is None or not raw.strip():
         return DEFAULT_SIZE
@@ -87,7 +120,28 @@ def cache_limit() -> int:
 
 
 def cache_entries(d: Path | None = None) -> list[CacheEntry]:
-    """Every entry of the cache, least recently used first."""
+    """Every entry of the cache, least recently used first.
+
+    Parameters
+    ----------
+    d : Path, optional
+        The cache folder (default: :func:`cache_dir`).
+
+    Returns
+    -------
+    list of CacheEntry
+        One per cached mesh: ``name`` (``<concept>-<key>``), ``files``, ``size`` [bytes] and
+        ``used`` (the last use, Unix time).
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> for f in ("concept1-ab12.msh", "concept1-ab12.json", "concept1-ab12.groups.msh"):
+    ...     _ = (d / f).write_text("x" * 10)
+    >>> [(e.name, len(e.files), e.size) for e in cf.cache_entries(d)]
+    [('concept1-ab12', 3, 30)]
+    """
     d = cache_dir() if d is None else d
     groups: dict[str, list] = {}
     for e in os.scandir(d):
@@ -146,7 +200,28 @@ def evict(limit: int | None = None, d: Path | None = None) -> tuple[int, int]:
 
 
 def clear_cache(d: Path | None = None) -> tuple[int, int]:
-    """Delete every entry of the cache; (entries deleted, bytes freed)."""
+    """Delete every entry of the cache (``clutchfem cache --clear``): the next design of each
+    concept is meshed again.
+
+    Parameters
+    ----------
+    d : Path, optional
+        The cache folder (default: :func:`cache_dir`).
+
+    Returns
+    -------
+    tuple of int
+        (entries deleted, bytes freed).
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> for f in ("concept4-cd34.msh", "concept4-cd34.json"):
+    ...     _ = (d / f).write_text("x" * 10)
+    >>> cf.clear_cache(d), cf.cache_entries(d)
+    ((1, 20), [])
+    """
     entries = cache_entries(d)
     for e in entries:
         for f in e.files:

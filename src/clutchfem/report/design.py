@@ -1,8 +1,7 @@
 """Designer-facing plots, the summary table and the one-page report of analysed designs.
 
 Every plot labels its assumptions (engine curve shape, requirement factors a and b) and every
-number in :func:`summary_rows` carries its unit.
-"""
+number in :func:`summary_rows` carries its unit."""
 
 from __future__ import annotations
 
@@ -69,8 +68,7 @@ def model_row(an) -> tuple[str, str] | None:
 
 
 def sensitivity_rows(an) -> list[tuple[str, str]]:
-    """The main answers at the drum wall's low and high value (an ASSUMED input, apart from
-    the error band)."""
+    """The main answers at the drum wall's low and high value (an ASSUMED input, apart from the error band)."""
     errs = getattr(an, "errors", None) or {}
     parts, label = [], None
     for key, name, scale, unit, fmt in (("engagement_rpm", "engagement", 1.0, "rpm", ".0f"),
@@ -88,9 +86,21 @@ def sensitivity_rows(an) -> list[tuple[str, str]]:
 
 
 def summary_rows(an) -> list[tuple[str, str]]:
-    """(quantity, value with unit) rows of the answers for one design (terminal and Markdown);
-    the main answers carry their error estimate (discretisation and model form), the
-    sensitivity to the assumed drum wall follows apart."""
+    """(quantity, value with unit) rows of one design's answers, the main ones with their error band.
+
+    Parameters
+    ----------
+    an : Analysis
+
+    Returns
+    -------
+    list of tuple of str
+
+    Examples
+    --------
+    >>> a = analyze(Design.from_concept("concept1", mesh=MeshSettings(size="3mm")), errors=False)
+    >>> dict(summary_rows(a))["engagement speed (static, FE)"] == f"{a.engagement_rpm:.0f} rpm"
+    True"""
     req = an.requirements
     mrow = model_row(an)
     rows = ([mrow] if mrow else []) + [
@@ -197,8 +207,7 @@ def _arc_err(an, rpm: float) -> str:
 
 
 def fatigue_rows(an) -> list[tuple[str, str]]:
-    """Rows of the fatigue check (analyze step 10): the safety factor with where and what
-    governs, and the cycles counted (every number with its unit)."""
+    """Rows of the fatigue check (analyze step 10): safety factor, where and what governs, cycles counted."""
     f = getattr(an, "fatigue", None) or {}
     if not f:
         return []
@@ -236,8 +245,7 @@ def _engine_line(ax, engine):
 
 
 def torque_plot(an, engine, path: Path, title: str) -> Path:
-    """Torque vs rpm of one design: FE and both analytical curves, engine, baseline,
-    engagement and slip markers, requirement bands."""
+    """Torque vs rpm: FE and both analytical curves, engine, baseline, engagement/slip markers, requirement bands."""
     c = an.curves
     fig, ax = figure(figsize=(8.5, 6.6), layout="constrained")
     e = (getattr(an, "errors", None) or {}).get("torque_at_max_engine_torque_Nm") or {}
@@ -281,11 +289,10 @@ def torque_plot(an, engine, path: Path, title: str) -> Path:
 
 
 def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
-    """Contact arc per shoe vs rpm with its error band (the ends between the nodes:
-    :mod:`clutchfem.contact.arc`), its share of the nominal shoe arc on the right axis and
-    its value at the rpm of maximum engine torque marked; peak von Mises vs rpm with the
-    error band of the peak at the engine's maximum speed (relative, applied to every speed),
-    the yield line and the answer at the engine's maximum speed marked."""
+    """Contact arc per shoe vs rpm with its error band (the ends between the nodes: :mod:`clutchfem.contact.arc`),
+    its share of the nominal shoe arc on the right axis and its value at the rpm of maximum engine torque
+    marked; peak von Mises vs rpm with the error band of the peak at the engine's maximum speed (relative,
+    applied to every speed), the yield line and the answer at the engine's maximum speed marked."""
     c = an.curves
     fig, (a1, a2) = figure(1, 2, figsize=(12, 5.4), layout="constrained")
     nominal = an.coupling.get("phi2_deg", math.nan) - an.coupling.get("phi1_deg", math.nan)
@@ -448,9 +455,24 @@ def markdown_summary(analyses: dict, engine, figures: dict | None = None) -> str
 
 def default_design_report(out: Path, concept_names: tuple[str, ...] | str | None = None,
                           mesh_size: float | None = None) -> list[Path]:
-    """Analyse the built-in default designs (concepts 1 and 4) and write, per design, the torque
-    and arc/stress plots, JSON and CSV, the comparison chart (thesis fig. 25, with today's
-    spring clutch) and a Markdown summary ``report.md``."""
+    """Analyse the default designs (concepts 1 and 4, with error bands, ``mesh_size`` [m] elements), write per
+    design its plots, JSON and CSV, the comparison chart (thesis fig. 25, with today's spring clutch), ``report.md``.
+
+    Parameters
+    ----------
+    out : path
+    concept_names : str or tuple of str, optional
+    mesh_size : float, optional
+
+    Returns
+    -------
+    list of Path
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> [f.name for f in default_design_report(tempfile.mkdtemp(), ())]   # (): today's spring clutch alone
+    ['clutch_torque_comparison.png', 'report.md']"""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     if concept_names is None:

@@ -35,7 +35,35 @@ def _subtriangles(cells: np.ndarray) -> np.ndarray:
 def field_picture(res, rpm: float, path, cm=None, title: str = "") -> Path:
     """PNG of von Mises [MPa] on the whole part at sweep speed ``rpm`` of ``res`` (module
     docstring); ``cm`` (the design's :class:`~clutchfem.mesh.ClutchMesh`) for the sector's
-    copies.  Returns the path."""
+    copies.  Returns the path.
+
+    Parameters
+    ----------
+    res : SweepResult
+        A solved sweep (with stresses).
+    rpm : float
+        One of its speeds [rpm].
+    path : path
+        The PNG to write.
+    cm : ClutchMesh, optional
+        The design's mesh (``design.cm``): the sector drawn as the whole part (without it:
+        the model as solved).
+    title : str, optional
+        Default: ``von Mises at <rpm> rpm``.
+
+    Returns
+    -------
+    Path
+        The PNG written.
+
+    Examples
+    --------
+    >>> import clutchfem as cf, tempfile, pathlib
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> png = cf.field_picture(d.sweep("14000"), 14000, pathlib.Path(tempfile.mkdtemp()) / "vm.png", cm=d.cm)
+    >>> png.name, png.stat().st_size > 10_000
+    ('vm.png', True)
+    """
     from matplotlib.tri import Triangulation
 
     k = res.index(float(rpm))

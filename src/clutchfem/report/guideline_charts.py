@@ -48,7 +48,29 @@ def short_method(method: str) -> str:
 
 def guideline_table(res: GuidelineResult) -> Table:
     """A rich table: parameters ranked, then the operating inputs; elasticity of each answer
-    (~: unstable derivative) and the method of each row."""
+    (~: unstable derivative) and the method of each row.
+
+    Parameters
+    ----------
+    res : GuidelineResult
+        A guideline study's result (:func:`~clutchfem.run_guidelines`).
+
+    Returns
+    -------
+    rich.table.Table
+        One row per parameter: rank, name, design value (mm, deg), the elasticity of each
+        answer with its marks (module docstring) and the method; print it with rich.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.guidelines import ANSWERS, GuidelineResult
+    >>> rows = [{"parameter": "flexure_thickness", "answer": a, "unit": "m", "x0": 0.0022, "E": 0.9,
+    ...          "verdict": "stable", "method": "central difference on morphed meshes"} for a, _ in ANSWERS]
+    >>> t = cf.guideline_table(GuidelineResult("concept1", {}, 0.02, rows, ["flexure_thickness"], oat=None))
+    >>> [list(c.cells) for c in t.columns[:4]]
+    [['1'], ['flexure_thickness'], ['2.2 mm'], ['+0.90']]
+    """
     t = Table(title=escape(f"{res.concept}: elasticities (x / A) dA/dx at the design point"),
               caption=escape(f"engage: engagement rpm; slip: slip rpm; torque: at the rpm of max engine torque; "
                              f"stress: peak von Mises at max rpm; shoe m: shoe mass; arc: contact arc.  "

@@ -66,7 +66,34 @@ class EvalSettings:
     """Everything but the point: the concept, the base design's ``--set`` texts, the mesh
     size, the operating point overrides, the engine and the requirement factors; ``store``:
     the study store file (None: a temporary one per batch); ``min_safety_factor`` enters the
-    study rows' own feasibility flag (and their design hash)."""
+    study rows' own feasibility flag (and their design hash).  Usually made from a design
+    (:meth:`from_design`); optimisation, tolerances and sensitivities take it in place of one.
+
+    Parameters
+    ----------
+    concept : str
+    base : tuple of str
+        The base design's ``name=value`` texts (``"flexure_thickness=2.4mm"``).
+    mesh_size : float, optional
+        Global element size [m] (default: the fidelity's).
+    op : dict
+        Operating point fields that differ from :class:`~clutchfem.OperatingPoint`'s defaults.
+    engine_csv, curve : optional
+        The engine curve (a CSV path, or an :class:`~clutchfem.EngineCurve`; default built-in).
+    idle_rpm : float, optional
+    a, b, min_safety_factor : float
+        Requirement factors and the rows' yield safety factor.
+    store : str, optional
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> es = cf.EvalSettings("concept1", base=("flexure_thickness=2.4mm",), mesh_size=0.003)
+    >>> es.values({"clearance": "0.5mm"}), es.set_args({"clearance": "0.5mm"})
+    ({'flexure_thickness': 0.0024, 'clearance': 0.0005}, ['flexure_thickness=2.4mm', 'clearance=0.5mm'])
+    >>> es.params().flexure_thickness, es.mesh_settings().size
+    (0.0024, 0.003)
+    """
 
     concept: str
     base: tuple[str, ...] = ()

@@ -94,7 +94,31 @@ def workers_machine_holds(requested: int | None, points: int | None = None) -> t
 
 def check_scheduler(address, option: str = "--scheduler") -> str:
     """The scheduler's address in Dask's form (``tcp://HOST:PORT``), or an
-    :class:`~clutchfem.core.InputError` naming what is wrong with it (module docstring)."""
+    :class:`~clutchfem.core.InputError` naming what is wrong with it (module docstring).
+    Nothing is connected to (the host name is only resolved).
+
+    Parameters
+    ----------
+    address : str
+        ``HOST``, ``HOST:PORT`` or ``tcp://`` / ``tls://`` ``HOST:PORT`` (port 8786 when none).
+    option : str
+        The option the messages name.
+
+    Returns
+    -------
+    str
+        ``scheme://HOST:PORT``.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.check_scheduler("127.0.0.1"), cf.check_scheduler("tls://127.0.0.1:9000")
+    ('tcp://127.0.0.1:8786', 'tls://127.0.0.1:9000')
+    >>> cf.check_scheduler("http://127.0.0.1:8787")
+    Traceback (most recent call last):
+    ...
+    clutchfem.core.errors.InputError: --scheduler 'http://127.0.0.1:8787': an http address is a web page (the Dask ...
+    """
     if not isinstance(address, str) or not address.strip():
         raise InputError(f"{option} {address!r}: empty; give the address of a dask scheduler, e.g. "
                          "tcp://10.0.0.5:8786 (the scheduler prints it when it starts)")

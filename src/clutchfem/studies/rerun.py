@@ -93,7 +93,44 @@ def finished_summary(spec_path: str | Path, out: str | Path, *, retry_failed: bo
                      charts: bool = True) -> dict | None:
     """The summary of a finished study in ``out`` when a rerun of ``spec_path`` has nothing
     to compute (module docstring), with this run's counts (computed 0, every point
-    skipped) and wall time; else None."""
+    skipped) and wall time; else None.
+
+    Parameters
+    ----------
+    spec_path : path
+        The study's TOML file.
+    out : path
+        The study's folder (``summary.json``, the store).
+    retry_failed : bool
+        The rerun retries failed points (a summary with failed points is not served).
+    charts : bool
+        The rerun wants the charts (a summary without them is not served).
+
+    Returns
+    -------
+    dict or None
+        ``summary.json``'s record with ``computed`` 0, ``skipped`` every point and this
+        check's ``wall_s``; None: the study has to run (it resumes from its store).
+
+    Examples
+    --------
+    >>> import clutchfem as cf, json, sqlite3, tempfile, pathlib
+    >>> from clutchfem.studies import EXAMPLE_SPEC, fingerprint
+    >>> out = pathlib.Path(tempfile.mkdtemp())
+    >>> spec = out / "study.toml"
+    >>> _ = spec.write_text(EXAMPLE_SPEC)
+    >>> cf.finished_summary(spec, out) is None                 # never run: the study runs
+    True
+    >>> db = sqlite3.connect(out / "results.sqlite", isolation_level=None)  # a finished one's store
+    >>> _ = db.execute("CREATE TABLE results (design_hash TEXT, model_version TEXT)")
+    >>> _ = db.execute("INSERT INTO results VALUES ('a1b2', 'v1')")
+    >>> db.close()
+    >>> _ = (out / "summary.json").write_text(json.dumps({"fingerprint": fingerprint(spec), "keys": ["a1b2"],
+    ...     "model_version": "v1", "points": 1, "done": 1, "charts": True, "store": str(out / "results.sqlite")}))
+    >>> s = cf.finished_summary(spec, out)
+    >>> s["computed"], s["skipped"], s["scheduler"]
+    (0, 1, 'nothing to compute (every point stored; summary.json reused)')
+    """
     t0 = time.perf_counter()
     out = Path(out)
     try:

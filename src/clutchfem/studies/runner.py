@@ -117,7 +117,28 @@ class RunResult:
 
 
 class StudyInterrupted(ClutchfemError):
-    """Ctrl-C during a run: finished rows are stored; ``result`` has the counts."""
+    """Ctrl-C during a run: finished rows are stored; ``result`` has the counts.
+
+    Attributes
+    ----------
+    result : RunResult
+        What the run did until then (``points``, ``done``, ``computed``, ``store``, ...); a
+        rerun of the same study computes only the rest.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.studies import RunResult
+    >>> res = RunResult(points=12, done=5, ok=5, refused=0, failed=0, computed=5, skipped=0,
+    ...                 store="out/results.sqlite", model_version="v1", wall_s=40.0, compute_s=35.0,
+    ...                 workers=2, scheduler="local", interrupted=True)
+    >>> e = cf.StudyInterrupted(res)
+    >>> isinstance(e, cf.ClutchfemError), e.result.done
+    (True, 5)
+    >>> print(e)
+    interrupted (Ctrl-C): 5 of 12 points are finished and stored in out/results.sqlite (5 in this run); run the
+    same command again to compute the rest
+    """
 
     def __init__(self, result: RunResult):
         self.result = result

@@ -91,7 +91,24 @@ class Sensitivities:
     parameter or operating input its value, step, unit, derivative of every answer [answer
     unit / parameter unit, SI], the method used (``central, morphed`` where both sides were
     morphed; ``central, same mesh (operating input)``) and its kind (``parameter`` or
-    ``operating input``)."""
+    ``operating input``).
+
+    Examples
+    --------
+    A hand-made record (:func:`sensitivities` computes one): engagement +1000 rpm per mm of
+    flexure, and a contact event inside the step.
+
+    >>> from clutchfem.studies import Sensitivities
+    >>> s = Sensitivities("concept1", base={"engagement_rpm": 4000.0}, values={"flexure_thickness": 2.2e-3},
+    ...                   steps={"flexure_thickness": 1e-5}, units={"flexure_thickness": "m"},
+    ...                   derivatives={"flexure_thickness": {"engagement_rpm": 1.0e6}},
+    ...                   methods={"flexure_thickness": "central, morphed"},
+    ...                   kinks={"flexure_thickness": {"engagement_rpm": {"left": 0.8e6, "right": 1.3e6}}})
+    >>> round(s.elasticity("flexure_thickness", "engagement_rpm"), 3)     # % per % (x / A dA/dx)
+    0.55
+    >>> s.spread_derivative("flexure_thickness", "engagement_rpm")         # the steeper side
+    1300000.0
+    """
 
     concept: str
     base: dict

@@ -66,7 +66,28 @@ def best_estimate(settings, point: dict | None = None) -> Analysis:
     :class:`~clutchfem.studies.EvalSettings`) with ``point``'s parameter texts, meshed from
     scratch: the answers a user gets from ``clutchfem analyze CONCEPT --set ...``.  The same
     design asked again (by its parameter values, mesh, operating point, engine and
-    requirements) is answered from the last :data:`RECENT_SIZE` in this process."""
+    requirements) is answered from the last :data:`RECENT_SIZE` in this process.
+
+    Parameters
+    ----------
+    settings : EvalSettings
+        The base design, mesh, operating point, engine and requirement factors.
+    point : dict, optional
+        ``name -> value`` changed from the base (texts with units, or SI numbers).
+
+    Returns
+    -------
+    Analysis
+        With ``errors`` (the error step's bands and, on the best path, its corrections).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> es = cf.EvalSettings("concept1", mesh_size=0.003)
+    >>> a = cf.best_estimate(es)                        # analyze with its error step
+    >>> a.errors["engagement_rpm"]["total"] > 0, cf.best_estimate(es) is a     # asked again: kept
+    (True, True)
+    """
     return _best_estimate(settings, point)
 
 

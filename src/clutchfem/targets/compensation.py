@@ -107,7 +107,27 @@ class CompensationStep:
 
 @dataclass(frozen=True)
 class Compensation:
-    """What :func:`compensate` returns."""
+    """What :func:`compensate` returns: the ``table`` profile that evens the contact
+    pressure at ``rpm`` over the ``target_arc`` share of the shoe (``after``, its ``--set``
+    texts ``after_texts``), shoe 0's contact before and after, every rebuild (``steps``) and
+    whether the fixed point ``converged``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from clutchfem.targets import Compensation, ShoeState
+    >>> def state(share, p_max, torque):     # shoe 0's contact at the speed, hand-made here
+    ...     z = np.zeros(2)
+    ...     return ShoeState(z, z, z, np.array([0.0, p_max]), z, z, share, share, 100.0, torque)
+    >>> c = Compensation("concept4", 8000.0, 0.33, (0.5, 0.83), 0.6e-3, None, None, {"table_c0": "0.61mm"}, [],
+    ...                  True, state(0.02, 40e6, 3.1), state(0.33, 6e6, 3.3), 20.0)
+    >>> c.set_args
+    ['table_c0=0.61mm']
+    >>> for row in c.compare()[::2]:
+    ...     print(row)
+    ('contact arc at 8000 rpm (share of the nominal arc)', '2.0 %', '33.0 %')
+    ('peak contact pressure at 8000 rpm', '40.0 MPa', '6.00 MPa')
+    """
 
     concept: str
     rpm: float

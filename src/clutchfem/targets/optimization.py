@@ -96,6 +96,40 @@ def better(a: dict, b: dict | None) -> bool:
 
 @dataclass
 class OptimizationResult:
+    """What :func:`optimize` returns: the best design found and how the search went.
+
+    Attributes
+    ----------
+    best : dict
+        The final design's study row (answers in SI, ``params``; its ``assessment`` against
+        the targets: ``objective``, ``constraints``).
+    feasible : bool
+        The final design meets every target.
+    params_texts, set_args : dict, list of str
+        Its changed parameters as ``--set`` texts (``set_args``: base and final).
+    path : list of dict
+        Every evaluated row in order; ``evaluations``: status -> count.
+    message, at_bounds, seconds, iterations
+        Why the search stopped, the free parameters at a range end, the wall time [s].
+    best_estimate : dict or None
+        The final design checked with ``analyze``'s error step (:mod:`.best_check`).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.targets import OptimizationResult
+    >>> best = {"params": {}, "mass_kg": 0.0512, "fatigue_safety_factor": 0.8,
+    ...         "assessment": {"objective": 0.0512, "constraints": []}}
+    >>> r = OptimizationResult("concept4", cf.Targets(3510, None, 8000, 1.5), ["flexure_thickness"], {}, best, True,
+    ...                        {"flexure_thickness": "1.8mm"}, ["flexure_thickness=1.8mm"], [],
+    ...                        {"ok": 9, "refused": 2}, 12.0, 3, "converged")
+    >>> j = r.to_json()
+    >>> j["objective_value"], j["objective_unit"], j["evaluations_total"], j["set"]
+    (0.0512, 'kg', 11, ['flexure_thickness=1.8mm'])
+    >>> print(r.fatigue_note)                       # fatigue was no target, and the part fails it
+    note: fatigue was not a target; the final design's fatigue safety factor is 0.80 < 1 ...
+    """
+
     concept: str
     targets: Targets
     free: list[str]

@@ -120,7 +120,7 @@ def allocate_linear(constraints: list[dict], tolerances: dict, *, yield_target: 
     --------
     One dimension, one target: the allowed half-width is k slack / (z |dA/dx|).
 
-    >>> from clutchfem.studies import allocate_linear
+    >>> from clutchfem.tolerances import allocate_linear
     >>> a = allocate_linear([{"name": "engagement", "key": "e", "slack": 100.0, "grad": {"t": 2.0e6},
     ...                       "sigma_model": 0.0}], {"t": 5e-5}, yield_target=0.99)
     >>> round(a["dims"][0]["allocated"] * 1e6, 2), round(3 * 100.0 / (a["z"] * 2.0e6) * 1e6, 2)   # um

@@ -75,7 +75,19 @@ CONVERGED = 0.05
 class RobustResult:
     """What :func:`robust_optimize` returns: the final optimisation (with the shifted
     targets), the nominal targets, the margins and spreads per constraint, the predicted
-    yield, the Monte Carlo check (or None) and the rounds."""
+    yield, the Monte Carlo check (or None) and the rounds.
+
+    Examples
+    --------
+    The Monte Carlo check's share in spec, from a hand-made check (:func:`tolerance` makes one):
+
+    >>> from clutchfem.tolerances import RobustResult, ToleranceResult
+    >>> mc = ToleranceResult("concept4", {}, "normal", 64, 1, {}, [], [],
+    ...                      {"any": {"k": 3, "n": 64, "share": 0.05, "ci95": [0.02, 0.13]}}, {}, {}, {})
+    >>> r = RobustResult(None, None, {"flexure_thickness": 5e-5}, "normal", 0.95, {}, {}, 0.97, mc)
+    >>> r.check_share_in_spec                      # (share, lower, upper Wilson bound)
+    (0.95, 0.87, 0.98)
+    """
 
     result: OptimizationResult
     targets: Targets

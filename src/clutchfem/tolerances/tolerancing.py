@@ -81,7 +81,29 @@ MIN_BANDS = 5
 
 
 def parse_tolerance(P, text: str) -> tuple[str, float]:
-    """``name=+-0.05mm`` -> (name, half-width in the parameter's SI unit)."""
+    """``name=+-0.05mm`` -> (name, half-width in the parameter's SI unit).
+
+    Parameters
+    ----------
+    P : type
+        The concept's parameter class (``cf.get_concept(name).Params``).
+    text : str
+        ``name=+-value`` (also ``±``, ``+/-``) with the parameter's unit; a real-valued
+        parameter and a half-width of at least 5 resolution steps (5 um, 0.05 deg), else
+        :class:`~clutchfem.ParameterError` naming ``--tol``.
+
+    Returns
+    -------
+    tuple of (str, float)
+        The parameter's name and the half-width [m, deg or -].
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> P = cf.get_concept("concept1").Params
+    >>> cf.parse_tolerance(P, "flexure_thickness=+-0.05mm"), cf.parse_tolerance(P, "shoe_arc = ±0.5deg")
+    (('flexure_thickness', 5e-05), ('shoe_arc', 0.5))
+    """
     m = re.fullmatch(r"\s*([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(?:\+-|±|\+/-)\s*(\S+)\s*", text)
     if not m:
         raise ParameterError("tol", text, "name=+-value with the parameter's unit, e.g. flexure_thickness=+-0.05mm",
@@ -155,6 +177,33 @@ def bootstrap_src(X: np.ndarray, y: np.ndarray, B: int = 1000, seed: int = 0):
 
 @dataclass
 class ToleranceResult:
+    """What :func:`tolerance` returns: the Monte Carlo parts and what they say.
+
+    Attributes
+    ----------
+    tolerances : dict
+        ``name -> half-width`` [SI]; ``dist``, ``n``, ``seed``: how the parts were drawn.
+    nominal, rows : dict, list of dict
+        The nominal design's row and one row per part (``d``: its deviations).
+    out_of_spec : dict
+        Per target and ``any``: ``k`` of ``n`` parts out, ``share`` and its Wilson ``ci95``
+        (``any_counting_unbuildable``: refused and failed parts counted out: :attr:`out_any`).
+    stats, ranking : dict
+        Per answer: mean, sd, min, max, nominal; the dimensions ranked by standardised
+        regression coefficients with bootstrap intervals.
+    shifts : list of dict
+        Each toleranced length shifted by +-0.2 and +-0.5 mm alone.
+
+    Examples
+    --------
+    >>> from clutchfem.tolerances import ToleranceResult
+    >>> r = ToleranceResult("concept1", {"flexure_thickness": 5e-5}, "normal", 64, 1, {}, [], [],
+    ...                     {"any": {"k": 2, "n": 62, "share": 2 / 62},
+    ...                      "any_counting_unbuildable": {"k": 4, "n": 64, "share": 0.0625}}, {}, {}, {})
+    >>> r.out_any["share"]                          # 2 parts the rules refuse count as out of spec
+    0.0625
+    """
+
     concept: str
     tolerances: dict  # name -> half-width (SI)
     dist: str

@@ -42,7 +42,35 @@ SURFACE_TABLE = {
 
 class FatigueParams(ParamSet):
     """Fatigue strength of the part's material and the rules applied (all ASSUMED,
-    defaults: 51CrV4 at ~45 HRC, laser-cut edges; see module docstring for sources)."""
+    defaults: 51CrV4 at ~45 HRC, laser-cut edges; see module docstring for sources).
+
+    Parameters
+    ----------
+    ultimate_strength, yield_strength, endurance_cap : float or str
+        S_ut, Rp0.2 and the cap of S_e' [Pa] (``"1450MPa"``).
+    endurance_ratio : float
+        S_e' / S_ut of a polished specimen.
+    edge_finish : {"laser", "wire_edm", "machined", "ground", "hot_rolled", "as_forged"}
+        The cut edges' finish (surface factor k_a), unless ``surface_factor`` > 0 sets k_a.
+    size_factor, load_factor, misc_factor : float
+        k_b, k_c, k_f.
+    temperature : float or str
+        Part temperature for k_d [C].
+    reliability : float
+        For k_e.
+    fatigue_fraction, knee_cycles : float
+        Basquin's S-N line: f at 1e3 cycles, the knee N_e.
+    mean_stress_rule : {"goodman", "gerber"}
+    miner : {"elementary", "haibach"}
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.durability import endurance_limit
+    >>> se, k = endurance_limit(cf.FatigueParams(edge_finish="ground"))   # S_e [Pa], Marin factors
+    >>> round(se / 1e6), round(k["k_a"], 2), round(endurance_limit(cf.FatigueParams())[0] / 1e6)
+    (485, 0.85, 177)
+    """
 
     context: ClassVar[str] = "fatigue"
     ultimate_strength: float = param(1450e6, "Pa", 1e8, 3e9, "ultimate tensile strength S_ut (~45 HRC)", "S_ut")

@@ -87,7 +87,28 @@ class _Conducting(ParamSet):
 
 
 class ThermalMaterial(_Conducting):
-    """Thermal data of the part (defaults: hardened 51CrV4, ASSUMED, see module docstring)."""
+    """Thermal data of the part (defaults: hardened 51CrV4, ASSUMED, see module docstring).
+
+    Parameters
+    ----------
+    conductivity, specific_heat, density : float or str
+        k [W/(m K)], c [J/(kg K)], rho [kg/m^3].
+    limit_temperature : float or str
+        Above it the hardness is lost (tempering) [C]; ``"673.15K"`` is read as 400 C.
+    yield_strength : float or str
+        Room-temperature Rp0.2 [Pa].
+    phase_change_temperature, melting_temperature : float or str
+        Where the transient stops [C].
+    hot_yield_basis : {"proportional", "effective"}
+        EN 1993-1-2's k_p (conservative) or k_y for the hot yield strength.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> m = cf.ThermalMaterial(limit_temperature="673.15K")
+    >>> m.limit_temperature, m.yield_ratio(20.0), m.yield_ratio(300.0)   # hot yield / cold yield
+    (400.0, 1.0, 0.613)
+    """
 
     context: ClassVar[str] = "thermal material"
     name: str = "51CrV4 (SS 2230) spring steel, hardened ~45 HRC"
@@ -114,7 +135,22 @@ class ThermalMaterial(_Conducting):
 
 class DrumThermal(_Conducting):
     """The drum as seen by the heat partition: a rim wall heated on its inner face, outer
-    face adiabatic (ASSUMED, conservative for the part).  Defaults: steel, 2 mm (ASSUMED)."""
+    face adiabatic (ASSUMED, conservative for the part).  Defaults: steel, 2 mm (ASSUMED).
+
+    Parameters
+    ----------
+    conductivity, specific_heat, density : float or str
+        The drum's k [W/(m K)], c [J/(kg K)], rho [kg/m^3].
+    wall_thickness : float or str
+        Its rim wall [m].
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.DrumThermal(wall_thickness="3mm")
+    >>> d.wall_thickness, round(d.effusivity)             # sqrt(k rho c) [W s^0.5 / (m^2 K)]
+    (0.003, 12972)
+    """
 
     context: ClassVar[str] = "drum (thermal)"
     conductivity: float = param(46.6, "W/(m K)", 0.1, 500.0, "drum conductivity (ASSUMED steel)", "k_d")
@@ -124,7 +160,28 @@ class DrumThermal(_Conducting):
 
 
 class ThermalEnvironment(ParamSet):
-    """Boundary conditions and initial state (all ASSUMED, see module docstring)."""
+    """Boundary conditions and initial state (all ASSUMED, see module docstring).
+
+    Parameters
+    ----------
+    ambient_temperature, crankshaft_temperature : float or str
+        Air, and the crankshaft at the bore [C].
+    face_htc, edge_htc : float or str
+        Convection of each axial face and of the free edges [W/(m^2 K)].
+    bore_conductance : float or str
+        The bore joint to the crankshaft [W/(m^2 K)].
+    initial : {"steady", "ambient", "uniform"}
+        Initial field: the idling clutch's steady state, ambient, or ``initial_temperature``.
+    initial_temperature : float or str
+        [C], with ``initial="uniform"``.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> e = cf.ThermalEnvironment(face_htc="80 W/m2K", initial="ambient")
+    >>> e.face_htc, e.initial, e.bore_conductance
+    (80.0, 'ambient', 3000.0)
+    """
 
     context: ClassVar[str] = "thermal environment"
     ambient_temperature: float = param(25.0, "C", -60.0, 200.0, "air temperature T_amb", "T_amb")
