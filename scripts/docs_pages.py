@@ -144,6 +144,11 @@ def cli_page() -> str:
     command = typer.main.get_command(app)
     docs = typer.cli.get_docs_for_click(obj=command, ctx=click.Context(command), name="clutchfem",
                                         title="CLI reference")
+    # each command's example (its epilog) as a shell block, the command list linked to the sections
+    docs = re.sub(r"^Example: (clutchfem .*?)(?:  \((.*)\))?$",
+                  lambda m: "**Example**:\n\n```sh\n" + m[1] + (f"   # {m[2]}" if m[2] else "") + "\n```",
+                  docs, flags=re.M)
+    docs = re.sub(r"^\* `([a-z][a-z0-9-]*)`: ", lambda m: f"* [`{m[1]}`](#clutchfem-{m[1]}): ", docs, flags=re.M)
     head, _, rest = docs.partition("\n")
     note = ("\n\nGenerated at build time from the typer app `clutchfem.cli:app` (typer's own Markdown of "
             "the click command tree, as `clutchfem COMMAND --help` shows it): every command with its "
