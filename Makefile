@@ -1,12 +1,14 @@
 # clutchfem: two commands on a fresh Debian machine.
 #   make demo   set up, then build every concept and run the main job on the default design
 #   make test   set up, then run the test suite
+#   make docs   set up, then build the documentation site into site/ (every warning an error)
 #   make pictures  regenerate the README's and docs' study, target, field, report and cutting pictures
 #   make bench-peer  install CalculiX (Debian calculix-ccx, benchmarks only) and run the peer checks
 PYTHON ?= python3.11
 VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
+DOCS_STAMP := $(VENV)/.installed-docs
 OUT ?= out/demo
 # Shared libraries that the gmsh wheel loads (X/GL), OSMesa for off-screen pyvista renders,
 # SuiteSparse headers for the CHOLMOD solver back-end (scikit-sparse builds from source).
@@ -15,7 +17,7 @@ APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 l
 # The peer solver of the benchmarks only (never a runtime or test dependency): CalculiX 2.20.
 BENCH_APT_PKGS := calculix-ccx
 
-.PHONY: setup sysdeps demo test bench bench-peer pictures clean
+.PHONY: setup sysdeps demo test docs bench bench-peer pictures clean
 
 sysdeps:
 	@bash scripts/sysdeps.sh $(APT_PKGS)
@@ -38,6 +40,16 @@ demo: setup
 test: setup
 	$(PY) -m pytest -n 2 -q
 
+# The site: MkDocs (Material) + mkdocstrings; the API, CLI and benchmarks pages are generated
+# at build time (scripts/docs_pages.py).  The two variables only hush the banners that
+# mkdocs-material and properdocs print about MkDocs 2 (not build warnings: --strict sees those).
+$(DOCS_STAMP): pyproject.toml $(STAMP)
+	$(PY) -m pip install --quiet -e '.[docs]'
+	@touch $(DOCS_STAMP)
+
+docs: setup $(DOCS_STAMP)
+	NO_MKDOCS_2_WARNING=1 DISABLE_MKDOCS_2_WARNING=true $(PY) -m mkdocs build --strict --site-dir site
+
 pictures: setup
 	OPENBLAS_NUM_THREADS=1 $(PY) scripts/make_pictures.py
 
@@ -50,4 +62,4 @@ bench-peer: setup
 	$(PY) benchmarks/bench_calculix.py && $(PY) benchmarks/bench_calculix_nl.py
 
 clean:
-	rm -rf out .pytest_cache
+	rm -rf out .pytest_cache site

@@ -1,5 +1,6 @@
 """The README's pictures are drawn by the code, never by hand (issue 25): every image the
-README shows exists and is named by a script in ``scripts/`` that writes it
+README shows, and the site pages that took the README's long content (issue 35: home,
+getting started, the tour), exists and is named by a script in ``scripts/`` that writes it
 (``scripts/make_pictures.py``, run by ``make pictures``, for the study, guideline, target,
 field, report and cutting pictures)."""
 
@@ -13,15 +14,25 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
+#: the README and the site pages that show the README's former pictures, with the folder their
+#: image paths are relative to
+PAGES = {"README.md": ROOT, "docs/index.md": ROOT / "docs", "docs/getting_started.md": ROOT / "docs",
+         "docs/guide.md": ROOT / "docs"}
+
+
 def test_every_readme_picture_is_made_by_a_script():
-    images = re.findall(r"!\[[^\]]*\]\((docs/img/[^)\s]+\.png)\)", (ROOT / "README.md").read_text())
-    assert len(images) >= 5
+    images = []
+    for page, base in PAGES.items():
+        shown = re.findall(r"!\[[^\]]*\]\(((?:docs/)?img/[^)\s]+\.png)\)", (ROOT / page).read_text())
+        assert shown, f"{page} shows no picture"
+        images += [(page, (base / img).relative_to(ROOT).as_posix()) for img in shown]
+    assert len({img for _, img in images}) >= 5
     scripts = {p.name: p.read_text() for p in (ROOT / "scripts").glob("*.py")}
-    for img in images:
-        assert (ROOT / img).is_file(), f"README shows {img}, which does not exist"
+    for page, img in images:
+        assert (ROOT / img).is_file(), f"{page} shows {img}, which does not exist"
         name = Path(img).name
         makers = [s for s, text in scripts.items() if name in text]
-        assert makers, f"README shows {img}, but no script in scripts/ writes it"
+        assert makers, f"{page} shows {img}, but no script in scripts/ writes it"
 
 
 def test_make_pictures_refuses_an_unknown_group(tmp_path):
