@@ -2,11 +2,10 @@
 
 * ``api/``: one page per public name, taken from ``clutchfem.__all__`` at build time (never a
   hand-written list), grouped as the package docstring groups them, plus an overview and the
-  section's navigation (``api/SUMMARY.md``, read by mkdocs-literate-nav).  A page documents
+  section's navigation (``api/SUMMARY.md``, read by mkdocs-literate-nav); the groups are
+  ``clutchfem._GROUPS``, the one table the public names come from.  A page documents
   the object where it is *defined* (its ``__module__`` and ``__qualname__``): the package's
   names are imported lazily (PEP 562), which griffe, reading the source statically, cannot
-  follow.  A name this script's group table does not know goes to "Other": a renamed or new
-  public name never breaks the build.
 * ``cli.md``: every command of the typer app with its arguments and options, from typer's
   own Markdown of the click command tree (what ``typer clutchfem.cli utils docs`` prints).
 * ``benchmarks.md``: ``BENCHMARKS.md`` of the repository root, included as it is.
@@ -26,33 +25,6 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT / "src") not in sys.path:
     sys.path.insert(0, str(ROOT / "src"))  # the checkout's source, as mkdocstrings reads it
 
-#: the groups of the API reference, in the package docstring's order
-GROUPS = ["Designs", "Answers", "Studies", "Design to targets", "Tolerances", "Durability", "Output",
-          "Cutting", "Checks", "Errors", "Other"]
-
-#: public name -> group; today's names and the names they are becoming (issue 35)
-NAME_GROUP = {
-    **dict.fromkeys(["concepts", "get_concept", "Design", "morph", "OperatingPoint", "Material", "get_material",
-                     "MeshSettings"], "Designs"),
-    **dict.fromkeys(["analyze", "Analysis", "SweepResult", "EngineCurve", "Requirements"], "Answers"),
-    **dict.fromkeys(["StudySpec", "load_study", "load_spec", "run_study", "run_grid", "guidelines",
-                     "run_guidelines", "sensitivities"], "Studies"),
-    **dict.fromkeys(["Targets", "optimize", "robust_optimize", "compensate"], "Design to targets"),
-    **dict.fromkeys(["tolerance", "allocate_tolerances", "yield_front"], "Tolerances"),
-    **dict.fromkeys(["SlipScenario", "slip_heat"], "Durability"),
-    **dict.fromkeys(["write_report", "design_report", "torque_speed_plot", "comparison_plot", "serve_app",
-                     "serve"], "Output"),
-    **dict.fromkeys(["export", "ProcessRules", "CuttingError"], "Cutting"),
-    **dict.fromkeys(["validate"], "Checks"),
-}
-
-#: the package a name is defined in -> group, for names the table above does not know
-PACKAGE_GROUP = {"geometry": "Designs", "loadcase": "Designs", "analysis": "Answers", "clutch": "Answers",
-                 "studies": "Studies", "guidelines": "Studies", "targets": "Design to targets",
-                 "tolerances": "Tolerances", "durability": "Durability", "report": "Output", "app": "Output",
-                 "cutting": "Cutting", "validation": "Checks"}
-
-
 def public_names() -> list[str]:
     import clutchfem
 
@@ -68,16 +40,6 @@ def target(name: str) -> tuple[object, str]:
     if isinstance(module, str) and isinstance(qualname, str) and "<" not in qualname:
         return obj, f"{module}.{qualname}"
     return obj, f"clutchfem.{name}"  # a plain value: griffe finds it in the package itself
-
-
-def group(name: str, obj: object, path: str) -> str:
-    if name in NAME_GROUP:
-        return NAME_GROUP[name]
-    if inspect.isclass(obj) and issubclass(obj, BaseException):
-        return "Errors"
-    parts = path.split(".")
-    package = parts[1] if len(parts) > 2 and parts[0] == "clutchfem" else ""
-    return PACKAGE_GROUP.get(package, "Other")
 
 
 ROLE = re.compile(r":(?:py:)?[a-z]+:`~?([^`]+)`")
@@ -96,11 +58,16 @@ def summary(obj: object, limit: int = 160) -> str:
 
 
 def api_pages() -> dict[str, list[tuple[str, object, str]]]:
-    """group -> [(public name, object, defining path)], groups in order, names as listed."""
-    pages: dict[str, list[tuple[str, object, str]]] = {g: [] for g in GROUPS}
+    """group -> [(public name, object, defining path)]: the groups of ``clutchfem._GROUPS`` (the
+    public API by job, where ``clutchfem.__all__`` comes from), in order, names as listed; a
+    public name in no group (none today: a test holds them equal) goes to "Other"."""
+    import clutchfem
+
+    pages: dict[str, list[tuple[str, object, str]]] = {g: [] for g in [*clutchfem._GROUPS, "Other"]}
+    where = {n: g for g, names in clutchfem._GROUPS.items() for n in names}
     for name in public_names():
         obj, path = target(name)
-        pages[group(name, obj, path)].append((name, obj, path))
+        pages[where.get(name, "Other")].append((name, obj, path))
     return {g: entries for g, entries in pages.items() if entries}
 
 

@@ -261,3 +261,13 @@ def test_the_command_line_stands_on_the_public_api():
             elif node.level == 1 and node.module and node.module.endswith("_cmd") and f.stem != "__init__":
                 bad.append(f"{rel}:{node.lineno} borrows from another command: {ast.unparse(node)}")
     assert not bad, "\n".join(bad)
+
+
+def test_every_public_name_has_one_group():
+    """The public API is declared once, by job (``clutchfem._GROUPS``: the documentation's
+    groups); ``_API`` and ``__all__`` follow from it, every name in exactly one group."""
+    import clutchfem as cf
+
+    listed = [n for names in cf._GROUPS.values() for n in names]
+    assert len(listed) == len(set(listed)), "a public name in two groups"
+    assert set(listed) == set(cf._API) == set(cf.__all__) - {"__version__"}
