@@ -13,9 +13,10 @@ from . import options as O
 from .common import console, err, fail
 
 
+@O.takes("json_")
 def cache(
+    o,
     clear: bool = typer.Option(False, "--clear", help="delete every cached mesh (they are rebuilt when needed)"),
-    json_: O.Json = False,
 ):
     """The mesh cache: its folder ($CLUTCHFEM_CACHE, else the platform's cache folder, e.g.
     ~/.cache/clutchfem or $XDG_CACHE_HOME/clutchfem), entries, size and bound
@@ -32,7 +33,7 @@ def cache(
         size = sum(e.size for e in entries)
         info = {"folder": str(d), "entries": len(entries), "size_bytes": size, "limit_bytes": limit,
                 "oldest_use": entries[0].used if entries else None, "newest_use": entries[-1].used if entries else None}
-        if json_:
+        if o.json_:
             print(dumps(info))
             return
         t = Table(title="mesh cache")

@@ -25,9 +25,9 @@ from .common import (
 )
 
 
+@O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "out", "json_")
 def compensate(
-    concept: O.Concept = None,
-    set_: O.Set = [],
+    o,
     rpm: str = typer.Option(..., "--rpm", help="speed at which the pressure should be even, e.g. 8000rpm",
                             rich_help_panel="Compensation"),
     target_arc: str = typer.Option("0.8", "--target-arc", help="share of the nominal shoe arc to load evenly",
@@ -40,40 +40,34 @@ def compensate(
                                                  rich_help_panel="Compensation"),
     max_iter: int = typer.Option(8, "--max-iter", help="most rebuilds of the fixed point",
                                  rich_help_panel="Compensation"),
-    mesh_size: O.MeshSize = None,
-    mu: O.Mu = None,
-    fidelity: O.Fidelity = None,
-    engine: O.Engine = None,
-    out: O.Out = None,
-    json_: O.Json = False,
 ):
     """Shoe profile (a table of clearances) that spreads the contact pressure evenly at --rpm."""
     from .. import Design, analyze, dumps, write_report
     from .. import compensate as run
 
     try:
-        check_out_dir(out)
+        check_out_dir(o.out)
         w = quantity("--rpm", rpm, "rpm", above=0.0)
         share = quantity("--target-arc", target_arc, "-")
         start = quantity("--arc-start", arc_start, "-")
-        eng, _ = engine_from(engine)
-        with working(f"compensate {concept}") as stage:
+        eng, _ = engine_from(o.engine)
+        with working(f"compensate {o.concept}") as stage:
             stage("meshing")
-            design = design_from(concept, set_, None, op=operating_point(mu=mu, fidelity=fidelity), mesh_size=mesh_size,
+            design = design_from(o.concept, o.set_, None, op=operating_point(mu=o.mu, fidelity=o.fidelity), mesh_size=o.mesh_size,
                                  mesh_allowed=False)
         mc = design.params.parse_value("clearance", mean_clearance) if mean_clearance is not None else None
         res = run(design, rpm=w, target_arc=share, arc_start=start, mean_clearance=mc, max_iter=max_iter,
                   log=lambda m: err.print(escape(m)))  # one line per iteration: its own progress
         ms = design.cm.mesh_settings
-        with working(f"compensate {concept}") as stage:
+        with working(f"compensate {o.concept}") as stage:
             stage("analysing the design before and after")
             before = analyze(design, engine=eng, errors=False)
             after = analyze(Design.from_concept(design.concept, res.after, design.op, _mesh(ms, design.op.fidelity)), engine=eng,
                             errors=False)
         rows = res.compare(before, after)
-        if out is not None:
-            wrote(write_report(res, out, before=before, after=after, engine=eng))
-        if json_:
+        if o.out is not None:
+            wrote(write_report(res, o.out, before=before, after=after, engine=eng))
+        if o.json_:
             print(dumps(res.to_json(before, after)))
             return
         t = Table(title=escape(f"{res.concept}: profile compensated at {res.rpm:.0f} rpm over "

@@ -17,9 +17,9 @@ from .common import check_out_dir, console, design_from, engine_from, err, fail,
 PANEL = "Cutting"
 
 
+@O.takes("concept", "set_", "mesh_size", "engine", "out", "json_")
 def export(
-    concept: O.Concept = None,
-    set_: O.Set = [],
+    o,
     from_: Optional[Path] = typer.Option(None, "--from", metavar="DIR", help="the design of a run folder's "
                                          "inputs.json (analyze/report/export --out, optimize --out: the final "
                                          "design, compensate --out: the compensated one)", rich_help_panel=O.DESIGN),
@@ -54,18 +54,14 @@ def export(
                                              "e.g. 0.02mm (default: the process's)", rich_help_panel=PANEL),
     no_analysis: bool = typer.Option(False, "--no-analysis", help="draw the sheet without the predicted answers "
                                      "(faster)", rich_help_panel=PANEL),
-    mesh_size: O.MeshSize = None,
-    engine: O.Engine = None,
-    out: O.Out = None,
-    json_: O.Json = False,
 ):
     """DXF and STEP of the whole part, the manufacturability check, the drawing sheet."""
     from .. import MeshSettings, ProcessRules, design_from_run, design_from_study, dumps
     from .. import export as run
 
     try:
-        check_out_dir(out)
-        if out is None and dxf is None and step is None and drawing is None:
+        check_out_dir(o.out)
+        if o.out is None and dxf is None and step is None and drawing is None:
             raise InputError("nothing to write: give --out DIR and/or --dxf FILE, --step FILE, --drawing FILE")
         if units not in ("mm", "in"):
             raise ParameterError("units", units, "'mm' or 'in'", "option --units")
@@ -82,28 +78,28 @@ def export(
             raise ParameterError(exc.name, exc.value, exc.allowed, f"option --{exc.name.replace('_', '-')}",
                                  shown=exc.shown) from None
         kerr = quantity("--kerf-error", kerf_error, "m", 0.0, 1e-3)
-        eng, _ = engine_from(engine)
-        sources = [x for x in (concept is not None, from_ is not None, study is not None) if x]
+        eng, _ = engine_from(o.engine)
+        sources = [x for x in (o.concept is not None, from_ is not None, study is not None) if x]
         if len(sources) != 1:
             raise InputError("give exactly one design: CONCEPT [--set ...], --from DIR, or --study DIR --row HASH")
         if (study is None) != (row is None):
             raise InputError("--study DIR and --row HASH go together")
-        if set_ and concept is None:
+        if o.set_ and o.concept is None:
             raise InputError("--set changes a CONCEPT's parameters; --from/--study read the whole design")
-        ms = None if mesh_size is None else MeshSettings(size=MeshSettings.parse_value("size", mesh_size))
+        ms = None if o.mesh_size is None else MeshSettings(size=MeshSettings.parse_value("size", o.mesh_size))
         if from_ is not None:
             design = design_from_run(from_, ms)
         elif study is not None:
             design = design_from_study(study, row, ms)
         else:
-            design = design_from(concept, set_, None, mesh_size=mesh_size, mesh_allowed=False)
+            design = design_from(o.concept, o.set_, None, mesh_size=o.mesh_size, mesh_allowed=False)
         err.print(escape(f"{design.name}: outline, features and checks ..."))
         with working(f"export {design.name}") as stage:  # a spinner with the elapsed time (issue 24)
             stage("outline, checks, files" + ("" if no_analysis else " and the analysis"))
-            res = run(design, out, dxf=dxf, step=step, drawing=drawing, process=process, units=units,
+            res = run(design, o.out, dxf=dxf, step=step, drawing=drawing, process=process, units=units,
                       analyze_design=not no_analysis, as_cut=as_cut, kerf_error=kerr, engine=eng, **limits)
         wrote(res.files)
-        if json_:
+        if o.json_:
             print(dumps(res.to_json()))
             return
         _print(res)

@@ -3,8 +3,6 @@ and parameters)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import typer
 from rich.markup import escape
 from rich.table import Table
@@ -14,12 +12,9 @@ from . import options as O
 from .common import build_geometry, check_out_dir, console, err, fail, geometry_table, wrote
 
 
+@O.takes("concept", "set_", "mesh_size", "model", "out")
 def geometry(
-    concept: O.Concept = None,
-    set_: O.Set = [],
-    mesh_size: O.MeshSize = None,
-    model: O.Model = "full",
-    out: O.Out = Path("out/geometry"),
+    o,
     list_: bool = typer.Option(False, "--list", help="print the concept names, one a line"),
     list_params: bool = typer.Option(False, "--list-params", help="show the concept's parameters: name, unit, "
                                      "default, allowed range, meaning"),
@@ -36,9 +31,9 @@ def geometry(
             for path, error in broken_concepts().items():  # on stderr: stdout stays one name a line
                 err.print(escape(f"not loaded: {path}: {error}"), soft_wrap=True)
             return
-        if concept is None:
+        if o.concept is None:
             raise ClutchfemError("give a concept name (see clutchfem geometry --list)")
-        c = get_concept(concept)
+        c = get_concept(o.concept)
         if list_params:
             t = Table(title=f"{c.name}: parameters (lengths in mm, stresses in MPa)")
             for col in ("name", "unit", "default", "allowed", "description"):
@@ -49,8 +44,8 @@ def geometry(
                           escape(row["allowed"]), escape(row["description"]))
             console.print(t)
             return
-        check_out_dir(out)
-        info = build_geometry(c, set_, out, mesh_size, model, not no_drawing)
+        check_out_dir(o.out)
+        info = build_geometry(c, o.set_, o.out, o.mesh_size, o.model, not no_drawing)
         geometry_table([info])
         wrote(info["files"])
     except ClutchfemError as exc:

@@ -25,16 +25,10 @@ from .common import (
 )
 
 
+@O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "idle_rpm", "a", "b", "workers",
+         "scheduler", "out", "json_")
 def optimize(
-    concept: O.Concept = None,
-    set_: O.Set = [],
-    mesh_size: O.MeshSize = None,
-    mu: O.Mu = None,
-    fidelity: O.Fidelity = None,
-    engine: O.Engine = None,
-    idle_rpm: O.IdleRpm = None,
-    a: O.A = None,
-    b: O.B = None,
+    o,
     engage_rpm: Optional[str] = typer.Option(None, "--engage-rpm", help="engagement with ripple LO:HI in rpm "
                                              "(default: LO = a x idle, no HI; 'LO:' or ':HI' for one side)",
                                              rich_help_panel="Targets"),
@@ -72,10 +66,6 @@ def optimize(
     rounds: Optional[int] = typer.Option(None, "--rounds", help="shifted-limit rounds at most after the deterministic "
                                "optimum (default 5; they stop earlier once feasible with converged margins)",
                                rich_help_panel="Robust design"),
-    workers: O.Workers = None,
-    scheduler: O.Scheduler = None,
-    out: O.Out = None,
-    json_: O.Json = False,
 ):
     """Find a design that meets the targets at least part mass (or largest torque margin);
     with --tol, one whose targets hold for the --yield share of made parts."""
@@ -83,10 +73,10 @@ def optimize(
     from .. import optimize as run
 
     try:
-        scheduler = check_cluster(workers, scheduler)
-        check_out_dir(out)
+        o.scheduler = check_cluster(o.workers, o.scheduler)
+        check_out_dir(o.out)
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
-        s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf, fidelity)
+        s, base = study_settings(o.concept, o.set_, o.mesh_size, o.mu, o.engine, o.idle_rpm, o.a, o.b, o.out, sf, o.fidelity)
         t0 = Targets.defaults(s, sf, objective)
         lo, hi = t0.engage_rpm_lo, None
         if engage_rpm is not None:
@@ -114,18 +104,18 @@ def optimize(
             ranges[n] = (P.parse_value(n, lo_s), P.parse_value(n, hi_s))
         robust = None
         if tol:
-            robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, workers,
+            robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, o.workers,
                              method or "pattern", rounds)
             res = robust.result
         else:
-            res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=workers,
-                      scheduler=scheduler, method=method or "auto", log=lambda m: err.print(escape(m)))
+            res = run(s, t, names, ranges=ranges or None, sample=sample, max_evals=max_evals, workers=o.workers,
+                      scheduler=o.scheduler, method=method or "auto", log=lambda m: err.print(escape(m)))
         final = None
-        if out is not None or not json_:  # the final design analysed again, with its error estimate
+        if o.out is not None or not o.json_:  # the final design analysed again, with its error estimate
             final = res.final_analysis()  # (the optimiser's own check did it, else a new best estimate)
-        if out is not None:
-            wrote(write_report(res, out, final=final))
-        if json_:
+        if o.out is not None:
+            wrote(write_report(res, o.out, final=final))
+        if o.json_:
             d = res.to_json() if robust is None else robust.to_json()
             d.pop("path")
             d["path_length"] = len(res.path)

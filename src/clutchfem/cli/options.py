@@ -8,12 +8,16 @@ number with a unit suffix of its dimension (``--drum-radius 34.4mm``, ``--E 200G
 
 from __future__ import annotations
 
+import copy
+import functools
+import inspect
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Annotated, List, Optional
 
 import typer
 
-__all__ = ["DESIGN", "ENGINE", "MODEL", "OPERATING", "OUTPUT", "STUDY"]
+__all__ = ["DESIGN", "ENGINE", "MODEL", "OPERATING", "OUTPUT", "SHARED", "STUDY", "takes"]
 
 DESIGN = "Design"
 OPERATING = "Operating point"
@@ -96,3 +100,45 @@ Scheduler = Annotated[Optional[str], typer.Option(
 Out = Annotated[Optional[Path], typer.Option("--out", metavar="DIR", help="output folder (created if missing)",
                                              rich_help_panel=OUTPUT)]
 Json = Annotated[bool, typer.Option("--json", help="print one JSON document on stdout", rich_help_panel=OUTPUT)]
+
+#: the shared options: parameter name -> (declaration, default); a command names the ones it
+#: takes with :func:`takes` instead of declaring them again
+SHARED: dict[str, tuple] = {
+    "concept": (Concept, None), "set_": (Set, []), "mesh": (Mesh, None), "mesh_size": (MeshSize, None),
+    "model": (Model, "sector"), "drum_radius": (DrumRadius, None), "thickness": (Thickness, None),
+    "mu": (Mu, None), "rotation": (Rotation, None), "material": (MaterialName, None), "E": (E, None),
+    "nu": (Nu, None), "rho": (Rho, None), "drum_wall": (DrumWall, None), "drum_state": (DrumState, None),
+    "softening": (Softening, None), "fidelity": (Fidelity, None), "formulation": (Formulation, None),
+    "layers": (Layers, None), "engine": (Engine, None), "idle_rpm": (IdleRpm, None), "a": (A, None),
+    "b": (B, None), "workers": (Workers, None), "scheduler": (Scheduler, None), "out": (Out, None),
+    "json_": (Json, False),
+}
+
+
+def takes(*names: str):
+    """A command that takes the shared options ``names`` (:data:`SHARED`, in this order) before
+    its own: typer sees them in the command's signature (arguments, ``--help`` panels), and the
+    function receives them as one namespace, its first parameter ``o`` (``o.concept``,
+    ``o.set_``, ...), followed by its own options."""
+    unknown = [n for n in names if n not in SHARED]
+    if unknown:
+        raise KeyError(f"not shared options: {unknown}")
+
+    def decorate(fn):
+        sig = inspect.signature(fn, eval_str=True)
+        own = list(sig.parameters.values())[1:]  # after ``o``
+        shared = [inspect.Parameter(n, inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=SHARED[n][0],
+                                    default=copy.copy(SHARED[n][1])) for n in names]
+        params = shared + own
+
+        @functools.wraps(fn)
+        def command(**given):
+            o = SimpleNamespace(**{n: given.pop(n) for n in names})
+            return fn(o, **given)
+
+        del command.__wrapped__  # typer reads the signature below, not the function's own
+        command.__signature__ = sig.replace(parameters=params)
+        command.__annotations__ = {p.name: p.annotation for p in params}
+        return command
+
+    return decorate

@@ -12,21 +12,13 @@ from . import options as O
 from .common import check_out_dir, design_from, engine_from, fail, requirements_from, working, wrote
 
 
+@O.takes("concept", "set_", "mesh", "mesh_size", "drum_radius", "thickness", "engine", "a", "b", "out")
 def report(
-    concept: O.Concept = None,
-    set_: O.Set = [],
-    mesh: O.Mesh = None,
-    mesh_size: O.MeshSize = None,
-    drum_radius: O.DrumRadius = None,
-    thickness: O.Thickness = None,
-    engine: O.Engine = None,
-    a: O.A = None,
-    b: O.B = None,
+    o,
     run_dir: Optional[Path] = typer.Option(None, "--run", help="render a run folder (optimize / tolerance / "
                                            "compensate / any folder of CSV and PNG) again", rich_help_panel=O.DESIGN),
     errors: bool = typer.Option(True, "--errors/--no-errors", help="estimate the error of the main answers (a mesh "
                                 "twice as fine: ~3x the time)", rich_help_panel=O.MODEL),
-    out: O.Out = None,
 ):
     """One-page report (self-contained HTML + Markdown) of a design (CONCEPT or --mesh) or of a
     run folder (--run)."""
@@ -34,25 +26,25 @@ def report(
 
     try:
         if run_dir is not None:
-            if concept is not None or mesh is not None:
+            if o.concept is not None or o.mesh is not None:
                 raise InputError("give exactly one of a design (CONCEPT or --mesh FILE) or --run DIR")
             if not Path(run_dir).is_dir():
                 raise InputError(f"--run {run_dir}: not a folder")
-            wrote(write_report(Path(run_dir), check_out_dir(out) or Path(run_dir)))
+            wrote(write_report(Path(run_dir), check_out_dir(o.out) or Path(run_dir)))
             return
-        if out is None:
+        if o.out is None:
             raise InputError("--out DIR is required: the folder for report.html, report.md, the images and inputs.json")
-        check_out_dir(out)
-        if mesh is not None and drum_radius is None:
+        check_out_dir(o.out)
+        if o.mesh is not None and o.drum_radius is None:
             raise InputError("report --mesh needs --drum-radius (the drum's inner radius, e.g. 35mm)")
-        eng, _ = engine_from(engine)
-        req = requirements_from(a, b)
-        with working(f"report {concept or mesh}") as stage:
+        eng, _ = engine_from(o.engine)
+        req = requirements_from(o.a, o.b)
+        with working(f"report {o.concept or o.mesh}") as stage:
             stage("meshing")
-            design = design_from(concept, set_, mesh, mesh_size=mesh_size, drum_radius=drum_radius,
-                                 thickness=thickness)
+            design = design_from(o.concept, o.set_, o.mesh, mesh_size=o.mesh_size, drum_radius=o.drum_radius,
+                                 thickness=o.thickness)
             stage("analysis, charts and pictures")
-            files = write_report(design, out, engine=eng, requirements=req, errors=errors)
+            files = write_report(design, o.out, engine=eng, requirements=req, errors=errors)
         wrote(files)
     except ClutchfemError as exc:
         fail(exc)

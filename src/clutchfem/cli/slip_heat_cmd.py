@@ -36,18 +36,10 @@ def thermal_groups() -> dict:
     return {"part": ThermalMaterial, "drum": DrumThermal, "env": ThermalEnvironment, "scenario": SlipScenario}
 
 
+@O.takes("concept", "set_", "mesh", "mesh_size", "model", "drum_radius", "thickness", "mu", "fidelity",
+         "rotation", "engine", "out", "json_")
 def slip_heat(
-    concept: O.Concept = None,
-    set_: O.Set = [],
-    mesh: O.Mesh = None,
-    mesh_size: O.MeshSize = None,
-    model: O.Model = "sector",
-    drum_radius: O.DrumRadius = None,
-    thickness: O.Thickness = None,
-    mu: O.Mu = None,
-    fidelity: O.Fidelity = None,
-    rotation: O.Rotation = None,
-    engine: O.Engine = None,
+    o,
     seconds: Optional[str] = typer.Option(None, "--seconds", help="duration of one slip event, e.g. 10s (default "
                                           "10 s; 0.001..3600 s)", rich_help_panel="Slip test"),
     cycles: Optional[str] = typer.Option(None, "--cycles", help="number of slip events (default 1; 1..1000)",
@@ -63,8 +55,6 @@ def slip_heat(
     heat_fraction: Optional[str] = typer.Option(None, "--heat-fraction", help="share of the friction heat that "
                                                 "enters the part in 0..1 (default: from the shoe/drum partition)",
                                                 rich_help_panel="Slip test"),
-    out: O.Out = None,
-    json_: O.Json = False,
 ):
     """Slip heat with the drum held at full throttle: temperatures of flexure, shoe face and
     hub against time, time to the limit (tempering) temperature, yield strength left."""
@@ -76,7 +66,7 @@ def slip_heat(
         if list_thermal:
             print_settings(groups, "--thermal")
             return
-        check_out_dir(out)
+        check_out_dir(o.out)
         # every input checked before meshing
         th = grouped_assignments(thermal, groups, "--thermal")
         for name, raw in (("seconds", seconds), ("cycles", cycles), ("pause", pause)):
@@ -98,17 +88,17 @@ def slip_heat(
                                      shown=exc.shown) from None
             raise
         fraction = quantity("--heat-fraction", heat_fraction, "-", 0.0, 1.0)
-        eng, _ = engine_from(engine)
-        op = operating_point(mu=mu, rotation=rotation, fidelity=fidelity)
-        with working(f"slip-heat {concept or mesh}") as stage:
+        eng, _ = engine_from(o.engine)
+        op = operating_point(mu=o.mu, rotation=o.rotation, fidelity=o.fidelity)
+        with working(f"slip-heat {o.concept or o.mesh}") as stage:
             stage("meshing")
-            design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model,
-                                 drum_radius=drum_radius, thickness=thickness)
+            design = design_from(o.concept, o.set_, o.mesh, op=op, mesh_size=o.mesh_size, model=o.model,
+                                 drum_radius=o.drum_radius, thickness=o.thickness)
             stage("slip speed, contact forces and the heat transient")
             result = run(design, eng, part=part, drum=drum, env=env, scenario=scenario, heat_fraction=fraction)
-        if out is not None:
-            wrote(write_report(result, out))
-        if json_:
+        if o.out is not None:
+            wrote(write_report(result, o.out))
+        if o.json_:
             print(dumps(result.doc))
             return
         print_table(result.doc)

@@ -16,26 +16,11 @@ from . import options as O
 from .common import check_out_dir, console, design_from, fail, material_from, operating_point, working, wrote
 
 
+@O.takes("concept", "set_", "mesh", "mesh_size", "model", "drum_radius", "thickness", "mu", "rotation",
+         "material", "E", "nu", "rho", "drum_wall", "drum_state", "softening", "fidelity", "formulation",
+         "layers", "out", "json_")
 def solve(
-    concept: O.Concept = None,
-    set_: O.Set = [],
-    mesh: O.Mesh = None,
-    mesh_size: O.MeshSize = None,
-    model: O.Model = "sector",
-    drum_radius: O.DrumRadius = None,
-    thickness: O.Thickness = None,
-    mu: O.Mu = None,
-    rotation: O.Rotation = None,
-    material: O.MaterialName = None,
-    E: O.E = None,
-    nu: O.Nu = None,
-    rho: O.Rho = None,
-    drum_wall: O.DrumWall = None,
-    drum_state: O.DrumState = None,
-    softening: O.Softening = None,
-    fidelity: O.Fidelity = None,
-    formulation: O.Formulation = None,
-    layers: O.Layers = None,
+    o,
     rpm: str = typer.Option("0:14000:250", "--rpm", help="speeds in rpm: 8000 | 1000,2000 | start:stop:step",
                             rich_help_panel=O.OPERATING),
     no_stress: bool = typer.Option(False, "--no-stress", help="skip stress recovery", rich_help_panel=O.MODEL),
@@ -47,27 +32,25 @@ def solve(
                              "of them (plane models)", rich_help_panel=O.OUTPUT),
     vtk_rpm: Optional[str] = typer.Option(None, "--vtk-rpm", help="speeds in rpm of the .pvd series (default: the "
                                           "speeds of --rpm, at most 30 of them: every k-th and the highest)", rich_help_panel=O.OUTPUT),
-    out: O.Out = None,
-    json_: O.Json = False,
 ):
     """Speed sweep of a design: engagement, contact forces and arc, friction torque (drum
     held), stresses, each speed solved exactly (the answers do not depend on the grid)."""
     from .. import dumps, field_picture, model_warnings, parse_rpm, sweep_errors, write_vtk
 
     try:
-        check_out_dir(out)
-        mat = material_from(material, E, nu, rho)
-        op = operating_point(mu=mu, rotation=rotation, softening=softening, fidelity=fidelity,
-                             formulation=formulation, rpm=rpm,
-                             layers=layers, drum_wall=drum_wall, drum_state=drum_state, material=mat)
+        check_out_dir(o.out)
+        mat = material_from(o.material, o.E, o.nu, o.rho)
+        op = operating_point(mu=o.mu, rotation=o.rotation, softening=o.softening, fidelity=o.fidelity,
+                             formulation=o.formulation, rpm=rpm,
+                             layers=o.layers, drum_wall=o.drum_wall, drum_state=o.drum_state, material=mat)
         speeds = op.speeds()
         which = parse_rpm(vtk_rpm) if vtk_rpm else series_speeds(speeds)
         if vtk:
             speeds = np.union1d(speeds, which)
-        with working(f"solve {concept or mesh}") as stage:
+        with working(f"solve {o.concept or o.mesh}") as stage:
             stage("meshing")
-            design = design_from(concept, set_, mesh, op=op, mesh_size=mesh_size, model=model,
-                                 drum_radius=drum_radius, thickness=thickness)
+            design = design_from(o.concept, o.set_, o.mesh, op=op, mesh_size=o.mesh_size, model=o.model,
+                                 drum_radius=o.drum_radius, thickness=o.thickness)
             stage(f"{len(speeds)} speed" + ("s" if len(speeds) != 1 else ""))
             res = design.sweep(speeds, stresses=not no_stress)
             warns = list(res.warnings) + model_warnings(res, design.model.material.yield_strength)
@@ -76,16 +59,16 @@ def solve(
         label = design.label
         doc = {**res.to_json(), "label": label, "warnings": warns, "errors": errs, "inputs": design.inputs()}
         files, notes = [], []
-        if out is not None:
-            res.curve.to_csv(out / f"{label}_curve.csv", index=False)
-            files.append(out / f"{label}_curve.csv")
+        if o.out is not None:
+            res.curve.to_csv(o.out / f"{label}_curve.csv", index=False)
+            files.append(o.out / f"{label}_curve.csv")
             if not res.shoes.empty:
-                res.shoes.to_csv(out / f"{label}_shoes.csv", index=False)
-                files.append(out / f"{label}_shoes.csv")
-            (out / f"{label}_result.json").write_text(dumps(doc, indent=2))
-            files.append(out / f"{label}_result.json")
+                res.shoes.to_csv(o.out / f"{label}_shoes.csv", index=False)
+                files.append(o.out / f"{label}_shoes.csv")
+            (o.out / f"{label}_result.json").write_text(dumps(doc, indent=2))
+            files.append(o.out / f"{label}_result.json")
         if vtk:
-            target = check_out_dir(out or Path("out/solve"))
+            target = check_out_dir(o.out or Path("out/solve"))
             files += write_vtk(res, which, target, stem=label, cm=design.cm)
             top = float(np.max(which))
             if design.model.formulation != "3d":
@@ -95,7 +78,7 @@ def solve(
                 notes.append("--vtk with --formulation 3d: no PNG (the picture draws a plane model); open the .pvd "
                              "in ParaView (quadratic tetrahedra, the whole part mirrored to the full thickness)")
         wrote(files)
-        if json_:
+        if o.json_:
             print(dumps(doc))
             return
         for n in notes:

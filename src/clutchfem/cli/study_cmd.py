@@ -47,12 +47,12 @@ def _ctrl_c_as_keyboard_interrupt():
 
 
 
+@O.takes("workers", "scheduler")
 def study(
+    o,
     spec: Optional[Path] = typer.Argument(None, help="study spec (TOML); see --example"),
     example: bool = typer.Option(False, "--example", help="print a commented example spec (12 designs of "
                                  "concept 4) that runs as it is, and exit"),
-    workers: O.Workers = None,
-    scheduler: O.Scheduler = None,
     out: Optional[Path] = typer.Option(None, "--out", help="output folder: results.sqlite (the store), results.csv, "
                                        "charts/, summary.json (default: ./<spec name>-study)",
                                        rich_help_panel=O.OUTPUT),
@@ -77,7 +77,7 @@ def study(
             return
         if spec is None:
             raise _usage("give a study spec (TOML), or --example to print one")
-        scheduler = check_cluster(workers, scheduler)
+        o.scheduler = check_cluster(o.workers, o.scheduler)
         out = check_out_dir(out if out is not None else Path(f"{Path(spec).stem}-study"))
         # a finished study: its summary, without loading the FE stack (studies.rerun)
         done = finished_summary(spec, out, retry_failed=retry_failed, charts=charts)
@@ -94,7 +94,7 @@ def study(
         sp = load_study(spec)
         try:
             with _ctrl_c_as_keyboard_interrupt():
-                res = run_study(sp, out, workers=workers, scheduler=scheduler, retry_failed=retry_failed,
+                res = run_study(sp, out, workers=o.workers, scheduler=o.scheduler, retry_failed=retry_failed,
                                 progress=True)
             if charts:
                 res = draw_study_charts(res)
@@ -151,14 +151,10 @@ def _print_summary(s: dict) -> None:
     wrote(s.get("files", []))
 
 
+@O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "material", "engine", "workers", "scheduler", "out",
+         "json_")
 def guidelines(
-    concept: O.Concept = None,
-    set_: O.Set = [],
-    mesh_size: O.MeshSize = None,
-    mu: O.Mu = None,
-    fidelity: O.Fidelity = None,
-    material: O.MaterialName = None,
-    engine: O.Engine = None,
+    o,
     params: Optional[str] = typer.Option(None, "--params", help="parameters to study, comma separated (default: "
                                          "every continuous parameter with a non-zero value)",
                                          rich_help_panel="Guidelines"),
@@ -176,10 +172,6 @@ def guidelines(
     points: int = typer.Option(7, "--points", help="points of each one-at-a-time sweep", rich_help_panel="Guidelines"),
     span: float = typer.Option(0.5, "--span", help="one-at-a-time range: design value x (1 -+ span), within the "
                                "parameter's declared range", rich_help_panel="Guidelines"),
-    workers: O.Workers = None,
-    scheduler: O.Scheduler = None,
-    out: O.Out = None,
-    json_: O.Json = False,
 ):
     """Design guidelines: per parameter, elasticities (x / A) dA/dx of engagement, slip rpm,
     torque at max engine torque, peak stress, shoe mass and contact arc at the design point
@@ -190,10 +182,10 @@ def guidelines(
     from .. import GuidelineSettings, StudyInterrupted, draw_guideline_charts, guideline_table, run_guidelines
 
     try:
-        scheduler = check_cluster(workers, scheduler)
-        eng = engine_from(engine)[0] if engine is not None else None
-        design = design_from(concept, set_, None, op=operating_point(mu=mu, material=material_from(material), fidelity=fidelity),
-                             mesh_size=mesh_size, mesh_allowed=False)
+        o.scheduler = check_cluster(o.workers, o.scheduler)
+        eng = engine_from(o.engine)[0] if o.engine is not None else None
+        design = design_from(o.concept, o.set_, None, op=operating_point(mu=o.mu, material=material_from(o.material), fidelity=o.fidelity),
+                             mesh_size=o.mesh_size, mesh_allowed=False)
         names = None if params is None else [x.strip() for x in params.split(",") if x.strip()]
         ins = None if inputs is None else [x.strip() for x in inputs.split(",") if x.strip()]
         if ins is not None and [x.lower() for x in ins] == ["none"]:
@@ -203,15 +195,15 @@ def guidelines(
                                  "or none", "guidelines")
         gs = GuidelineSettings.from_design(design, names, engine=eng, step=step, points=points, span=span,
                                            inputs=ins, remeshed_check=remeshed_check)
-        out = check_out_dir(out if out is not None else Path(f"{gs.concept}-guidelines"))
+        o.out = check_out_dir(o.out if o.out is not None else Path(f"{gs.concept}-guidelines"))
         try:
             with _ctrl_c_as_keyboard_interrupt():
-                res = run_guidelines(gs, out, workers=workers, scheduler=scheduler, progress=True)
+                res = run_guidelines(gs, o.out, workers=o.workers, scheduler=o.scheduler, progress=True)
         except StudyInterrupted as exc:
             err.print(f"[yellow]{escape(str(exc))}[/]")
             raise typer.Exit(code=130) from None
         res = draw_guideline_charts(res)
-        if json_:
+        if o.json_:
             from .. import dumps
 
             print(dumps(res.to_json()))

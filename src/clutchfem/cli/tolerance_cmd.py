@@ -15,9 +15,10 @@ from . import options as O
 from .common import check_cluster, check_out_dir, console, err, fail, quantity, study_settings, tolerances_from, wrote
 
 
+@O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "idle_rpm", "a", "b", "workers",
+         "scheduler", "out", "json_")
 def tolerance(
-    concept: O.Concept = None,
-    set_: O.Set = [],
+    o,
     tol: List[str] = typer.Option(..., "--tol", help="tolerance name=+-value with its unit, e.g. "
                                   "flexure_thickness=+-0.05mm (repeat for each dimension)", rich_help_panel="Tolerances"),
     n: Optional[int] = typer.Option(None, "--n", help="number of Monte Carlo parts (default 64; with --allocate: "
@@ -44,52 +45,41 @@ def tolerance(
     cost: List[str] = typer.Option([], "--cost", help="with --allocate: cost weight name=W of a dimension at its "
                                    "--tol width (default 1 each; reciprocal cost model, ASSUMED)",
                                    rich_help_panel="Allocation"),
-    mesh_size: O.MeshSize = None,
-    mu: O.Mu = None,
-    fidelity: O.Fidelity = None,
-    engine: O.Engine = None,
-    idle_rpm: O.IdleRpm = None,
-    a: O.A = None,
-    b: O.B = None,
-    workers: O.Workers = None,
-    scheduler: O.Scheduler = None,
-    out: O.Out = None,
-    json_: O.Json = False,
 ):
     """Monte Carlo of manufacturing tolerances: spread, share out of spec, ranking of dimensions."""
     from .. import Requirements, Targets, dumps, write_report
     from .. import tolerance as run
 
     try:
-        scheduler = check_cluster(workers, scheduler)
-        check_out_dir(out)
+        o.scheduler = check_cluster(o.workers, o.scheduler)
+        check_out_dir(o.out)
         if seed < 0:
             raise ParameterError("seed", seed, "an integer >= 0 (the same seed draws the same parts)", "option --seed")
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
-        given = [(o, v) for o, v in (("--yield", yield_), ("--cost", " ".join(cost)),
+        given = [(opt, v) for opt, v in (("--yield", yield_), ("--cost", " ".join(cost)),
                                      ("--no-model-error", "given" if not model_error else "")) if v]
         if given and not allocate:
             raise ParameterError(given[0][0].lstrip("-"), given[0][1], "an option of --allocate only (--yield, --cost, "
                                  "--no-model-error): add --allocate", f"option {given[0][0]}")
         y = _yield(yield_) if allocate else None
-        if allocate and scheduler is not None:
-            raise ParameterError("scheduler", scheduler, "no --scheduler with --allocate: its sensitivities run on "
+        if allocate and o.scheduler is not None:
+            raise ParameterError("scheduler", o.scheduler, "no --scheduler with --allocate: its sensitivities run on "
                                  "a local cluster (use --workers N)", "option --scheduler")
-        s, base = study_settings(concept, set_, mesh_size, mu, engine, idle_rpm, a, b, out, sf, fidelity)
+        s, base = study_settings(o.concept, o.set_, o.mesh_size, o.mu, o.engine, o.idle_rpm, o.a, o.b, o.out, sf, o.fidelity)
         P = type(base.params)
         tols = tolerances_from(P, tol)
         t0 = Targets.defaults(s, sf)
         if allocate:
-            _allocate(s, base, set_, tols, Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), y, dist,
-                      model_error, cost, n, seed, workers, scheduler, out, json_)
+            _allocate(s, base, o.set_, tols, Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), y, dist,
+                      model_error, cost, n, seed, o.workers, o.scheduler, o.out, o.json_)
             return
         n = 64 if n is None else n
         res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf),
-                  shifts=shifts, workers=workers, scheduler=scheduler, log=lambda m: err.print(escape(m)))
-        if out is not None:
-            wrote(write_report(res, out, design=base, run={"tolerances_si": tols, "n": n, "dist": dist, "seed": seed},
+                  shifts=shifts, workers=o.workers, scheduler=o.scheduler, log=lambda m: err.print(escape(m)))
+        if o.out is not None:
+            wrote(write_report(res, o.out, design=base, run={"tolerances_si": tols, "n": n, "dist": dist, "seed": seed},
                                engine=s.engine_csv or "", requirements=Requirements(a=s.a, b=s.b)))
-        if json_:
+        if o.json_:
             d = res.to_json()
             d.pop("samples")
             print(dumps(d))
