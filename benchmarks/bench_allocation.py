@@ -17,9 +17,9 @@ import time
 
 import clutchfem as cf
 from clutchfem.core import ParameterError
+from clutchfem.core import values as V
+from clutchfem.evaluation import EvalSettings
 from clutchfem.geometry import get_concept
-from clutchfem.studies import EvalSettings
-from clutchfem.studies import values as V
 
 # the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
 # "best": the shipped default is the best estimate since issue 20

@@ -38,8 +38,8 @@ import numpy as np
 
 import clutchfem as cf
 from clutchfem.core import rpm_to_rad_s
-from clutchfem.studies import values as V
-from clutchfem.studies.batch import EvalSettings, evaluate_many, shared_cluster
+from clutchfem.core import values as V
+from clutchfem.evaluation.batch import EvalSettings, evaluate_many, shared_cluster
 
 # the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
 # "best": the shipped default is the best estimate since issue 20

@@ -16,7 +16,7 @@ import platform
 import time
 
 import clutchfem as cf
-from clutchfem.studies import EvalSettings
+from clutchfem.evaluation import EvalSettings
 
 # the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
 # "best": the shipped default is the best estimate since issue 20

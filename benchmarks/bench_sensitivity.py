@@ -22,7 +22,7 @@ import time
 import numpy as np
 
 import clutchfem as cf
-from clutchfem.studies.sensitivity import ANSWERS
+from clutchfem.evaluation.sensitivity import ANSWERS
 
 # the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
 # "best": the shipped default is the best estimate since issue 20

@@ -71,8 +71,8 @@ def per_step(n: int, size: float) -> dict:
     from threadpoolctl import threadpool_limits
 
     import clutchfem.analysis.pipeline as A
-    from clutchfem.studies import evaluate
-    from clutchfem.studies.hashing import design_hash
+    from clutchfem.evaluation import evaluate
+    from clutchfem.evaluation.hashing import design_hash
 
     spent = {s: 0.0 for s in STEPS}
     originals = {s: getattr(A, s) for s in STEPS}
@@ -107,7 +107,7 @@ def per_step(n: int, size: float) -> dict:
 
 
 def sweep(n: int, size: float, workers: int, cache: str, store_dir: Path) -> dict:
-    from clutchfem.studies import COLUMNS, ResultStore, run_points
+    from clutchfem.evaluation import COLUMNS, ResultStore, run_points
 
     os.environ["CLUTCHFEM_CACHE"] = cache  # inherited by the worker processes
     spec = _spec(n, size)

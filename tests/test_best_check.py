@@ -9,7 +9,7 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import SolverError
-from clutchfem.studies import EvalSettings
+from clutchfem.evaluation import EvalSettings
 from clutchfem.targets import Targets
 from clutchfem.targets import best_check as bc
 
@@ -129,7 +129,7 @@ def test_best_estimate_of_the_same_design_is_analysed_once(monkeypatch):
     """A robust run asks for the same design's best estimate in a round's check, as the next
     round's start and for its model bands: the second ask is answered from memory; another
     design, another operating point (the fidelity of the environment) is analysed anew."""
-    from clutchfem.studies import EvalSettings
+    from clutchfem.evaluation import EvalSettings
     from clutchfem.targets import best_check as B
     calls = []
     monkeypatch.setattr(B, "_best_estimate", lambda s, p: calls.append((s, p)) or object())

@@ -193,7 +193,7 @@ def test_design_of_a_compensate_folder_and_of_a_study_row(tmp_path):
     the row's concept, parameters and operating point (a store written by the study engine's
     own ResultStore)."""
     from clutchfem.cutting import design_from_study
-    from clutchfem.studies import COLUMNS, ResultStore
+    from clutchfem.evaluation import COLUMNS, ResultStore
 
     before = cf.Design.from_concept("concept4", mesh=COARSE)
     after = cf.Design.from_concept("concept4", profile="table", table_c3="0.5mm", mu=0.2, mesh=COARSE)

@@ -26,18 +26,18 @@ from typer.testing import CliRunner
 
 from clutchfem.cli import app
 from clutchfem.core import InputError
-from clutchfem.studies import (
+from clutchfem.evaluation import (
     COLUMNS,
     ClusterError,
     ResultStore,
     StoreLocked,
     check_scheduler,
-    parse_spec,
     run_points,
     workers_machine_holds,
 )
-from clutchfem.studies import cluster as cluster_mod
-from clutchfem.studies import store as store_mod
+from clutchfem.evaluation import cluster as cluster_mod
+from clutchfem.evaluation import store as store_mod
+from clutchfem.studies import parse_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 DASK = Path(sys.executable).with_name("dask")

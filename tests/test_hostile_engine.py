@@ -14,10 +14,10 @@ import pytest
 from clutchfem.analysis import analyze, bracket_grid, idle_speed
 from clutchfem.clutch import MAX_ROWS, EngineCurve
 from clutchfem.core import InputError, ParameterError, header_unit
+from clutchfem.evaluation import Settings, evaluate
 from clutchfem.geometry import MeshSettings
 from clutchfem.guidelines import why_no_answer
 from clutchfem.loadcase import Design, OperatingPoint
-from clutchfem.studies import Settings, evaluate
 
 RPM = (2500, 3000, 4000, 5000, 6000, 7000, 8000, 9000, 10000, 11000, 12000, 13000, 14000)
 NM = (1.90, 2.10, 2.50, 2.85, 3.12, 3.32, 3.40, 3.22, 2.95, 2.60, 2.20, 1.75, 1.30)

@@ -103,7 +103,7 @@ def test_tolerance_box_refuses_a_design_whose_tolerance_corner_cannot_be_built()
     """The nominal design is admitted; with its tolerance box, the corner that lengthens the
     beam past the shoe is refused, naming the rule's parameter and the corner; a design
     further from the rule is admitted with the same box."""
-    from clutchfem.studies import EvalSettings
+    from clutchfem.evaluation import EvalSettings
     plain = EvalSettings(concept="concept4", base=ON_RULE)
     plain.params()
     boxed = EvalSettings(concept="concept4", base=ON_RULE, tolerance_box=(("flexure_thickness", 5e-5),
@@ -123,7 +123,7 @@ def _row(mass, eng, slip, sf, **params):
 
 
 def test_archive_start_picks_the_lightest_design_meeting_the_shifted_targets():
-    from clutchfem.studies import EvalSettings
+    from clutchfem.evaluation import EvalSettings
     from clutchfem.tolerances.robust import archive_start
     s = EvalSettings(concept="concept4")
     aim = Targets(3600.0, None, 7900.0, 1.6)
@@ -172,7 +172,7 @@ def test_check_share_counts_unbuildable_parts_out_of_spec():
 
 
 def test_buildable_point_moves_only_what_a_rule_refuses_and_refuses_the_impossible():
-    from clutchfem.studies import EvalSettings
+    from clutchfem.evaluation import EvalSettings
     from clutchfem.tolerances.robust import buildable_point
     pt = dict(a.split("=") for a in ON_RULE)
     boxed = EvalSettings(concept="concept4", tolerance_box=(("flexure_thickness", 5e-5), ("clearance", 2e-5)))

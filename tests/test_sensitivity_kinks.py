@@ -8,8 +8,8 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.analysis import CONTACT_SPEED_OF
+from clutchfem.evaluation.sensitivity import Sensitivities, _kinks
 from clutchfem.guidelines.elasticity import morphed_elasticity
-from clutchfem.studies.sensitivity import Sensitivities, _kinks
 
 COARSE = cf.MeshSettings(size="3mm")
 

@@ -14,8 +14,9 @@ import numpy as np
 import pytest
 
 from clutchfem.core import InputError
-from clutchfem.studies import COLUMNS, EXAMPLE_SPEC, ResultStore, SpecError, model_version, parse_spec
-from clutchfem.studies.hashing import design_hash
+from clutchfem.evaluation import COLUMNS, ResultStore, model_version
+from clutchfem.evaluation.hashing import design_hash
+from clutchfem.studies import EXAMPLE_SPEC, SpecError, parse_spec
 
 BASE = """
 [design]

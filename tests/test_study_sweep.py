@@ -28,7 +28,8 @@ from pathlib import Path
 
 import pytest
 
-from clutchfem.studies import COLUMNS, ResultStore, parse_spec, run_points, run_study
+from clutchfem.evaluation import COLUMNS, ResultStore, run_points
+from clutchfem.studies import parse_spec, run_study
 
 ROOT = Path(__file__).resolve().parents[1]
 CRASHY = ROOT / "tests" / "data" / "study_geometries"

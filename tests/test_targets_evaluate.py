@@ -4,8 +4,8 @@ the order of the points, the design evaluated is the one `--set` builds from the
 import pytest
 
 from clutchfem.core import ParameterError
-from clutchfem.studies import EvalSettings, evaluate_many
-from clutchfem.studies.batch import shared_cluster
+from clutchfem.evaluation import EvalSettings, evaluate_many
+from clutchfem.evaluation.batch import shared_cluster
 
 SIZE = 2.4e-3
 

@@ -8,10 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from clutchfem.core import ParameterError
+from clutchfem.core import values as V
 from clutchfem.geometry import TABLE_FIELDS, TABLE_N, MeshSettings, get_concept
 from clutchfem.loadcase import Design
 from clutchfem.mesh import cache_key
-from clutchfem.studies import values as V
 
 COARSE = MeshSettings(size=2.4e-3)
 

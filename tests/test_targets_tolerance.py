@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from clutchfem.core import ParameterError
+from clutchfem.evaluation import EvalSettings
 from clutchfem.geometry import get_concept
 from clutchfem.report.target_charts import tolerance_histograms, tolerance_ranking
-from clutchfem.studies import EvalSettings
 from clutchfem.tolerances import parse_tolerance, tolerance
 from clutchfem.tolerances.tolerancing import bootstrap_src, src, wilson
 from support.pictures import agrees, rule

@@ -13,7 +13,7 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import ParameterError
-from clutchfem.studies import EvalSettings
+from clutchfem.evaluation import EvalSettings
 from clutchfem.targets import Targets
 from clutchfem.tolerances import allocate_linear, joint_yield
 from clutchfem.tolerances.robust import spreads

@@ -70,14 +70,14 @@ _GROUPS: dict[str, dict[str, str]] = {
         "example_study": "clutchfem.studies",
         "run_study": "clutchfem.studies",
         "StudyResult": "clutchfem.studies",
-        "StudyInterrupted": "clutchfem.studies",
+        "StudyInterrupted": "clutchfem.evaluation",
         "finished_summary": "clutchfem.studies",
         "run_grid": "clutchfem.studies",
         "GridResult": "clutchfem.studies",
-        "EvalSettings": "clutchfem.studies",
-        "check_scheduler": "clutchfem.studies",
-        "sensitivities": "clutchfem.studies",
-        "Sensitivities": "clutchfem.studies",
+        "EvalSettings": "clutchfem.evaluation",
+        "check_scheduler": "clutchfem.evaluation",
+        "sensitivities": "clutchfem.evaluation",
+        "Sensitivities": "clutchfem.evaluation",
     },
     "Design guidelines": {
         "GuidelineSettings": "clutchfem.guidelines",
@@ -202,6 +202,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         ThermalEnvironment,
         ThermalMaterial,
     )
+    from .evaluation import EvalSettings, Sensitivities, StudyInterrupted, check_scheduler, sensitivities
     from .fe import write_vtk
     from .geometry import MeshSettings, broken_concepts, concepts, draw_concept, get_concept
     from .guidelines import GuidelineResult, GuidelineSettings, run_guidelines
@@ -218,19 +219,14 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         write_report,
     )
     from .studies import (
-        EvalSettings,
         GridResult,
-        Sensitivities,
-        StudyInterrupted,
         StudyResult,
         StudySpec,
-        check_scheduler,
         example_study,
         finished_summary,
         load_study,
         run_grid,
         run_study,
-        sensitivities,
     )
     from .targets import Compensation, OptimizationResult, Targets, best_estimate, compensate, optimize
     from .tolerances import (

@@ -26,10 +26,9 @@ import numpy as np
 
 from ..analysis import ACCURACY_TARGET, Analysis, Requirements, analyze, error_step
 from ..clutch import EngineCurve
-from ..core import ClutchfemError, ParameterError, format_quantity
+from ..core import ClutchfemError, ParameterError, format_quantity, param_bounds, resolution
 from ..geometry import MeshSettings, concepts, get_concept
 from ..loadcase import Design, OperatingPoint, design_label
-from ..studies import param_bounds, resolution
 
 __all__ = ["Control", "DesignSession", "Outcome"]
 

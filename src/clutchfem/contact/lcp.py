@@ -24,7 +24,7 @@ the log-sum-exp smoothing of min(lam_i / s_i, w_i / delta) = 0 (the exact law as
 A node at gap w carries s_i exp(-w/delta) (an exponential pressure-overclosure tail); a node
 pressed with lam keeps a gap delta exp(-lam/s_i).  Its solution is C-infinity in (q, G), so
 answers differ smoothly from design to design; the price is a bias of order delta in the
-gaps, measured per answer where the smoothing is used (:mod:`clutchfem.studies.sensitivity`).
+gaps, measured per answer where the smoothing is used (:mod:`clutchfem.evaluation.sensitivity`).
 """
 
 from __future__ import annotations

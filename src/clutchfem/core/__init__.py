@@ -1,4 +1,5 @@
-"""Base layer: errors, units and quantity parsing, typed parameter sets, materials, strict JSON,
+"""Base layer: errors, units and quantity parsing, typed parameter sets and the parameter values
+that survive ``--set`` (:mod:`.values`), materials, strict JSON,
 pyplot-free figures, root finding and process settings.  Imports nothing else of clutchfem.
 
 The names are imported on first use (PEP 562, as :mod:`clutchfem` does): an error class
@@ -11,7 +12,13 @@ from __future__ import annotations
 from .lazy import lazy_names
 
 #: public name -> the module of this package it lives in
-_NAMES: dict[str, str] = {
+_NAMES: dict[str, str | None] = {
+    "changed_texts": "values",
+    "exact_text": "values",
+    "param_bounds": "values",
+    "resolution": "values",
+    "round12": "values",
+    "values": None,
     "as_bool": "args",
     "as_path": "args",
     "brentq": "roots",

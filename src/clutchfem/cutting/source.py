@@ -17,9 +17,9 @@ import json
 from pathlib import Path
 
 from ..core import InputError, Material
+from ..evaluation import COLUMNS, STORE_NAME, ResultStore
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import Design, OperatingPoint, design_hash
-from ..studies import COLUMNS, STORE_NAME, ResultStore
 
 #: where each run kind keeps its design in inputs.json
 KEYS = ("final_design", "after", "nominal_design")
@@ -111,7 +111,7 @@ def design_from_study(folder, row: str, mesh: MeshSettings | None = None) -> Des
     A store with one hand-written row (a study writes them; ``clutchfem export --study DIR --row HASH``):
 
     >>> import clutchfem as cf, tempfile, pathlib
-    >>> from clutchfem.studies import COLUMNS, ResultStore
+    >>> from clutchfem.evaluation import COLUMNS, ResultStore
     >>> study = pathlib.Path(tempfile.mkdtemp())
     >>> inputs = {"settings": {"concept": "concept1", "mesh": {"size": 0.003}}, "params": {"flexure_thickness": 0.0022}}
     >>> with ResultStore(study / "results.sqlite", COLUMNS) as st:

@@ -9,7 +9,7 @@ von Mises at the engine's maximum speed, shoe mass, contact arc), the **local el
 
 and a **one-at-a-time sweep** of x over x0 (1 -+ span) within its declared range, the other
 parameters at the design point.  Everything runs on the study engine
-(:func:`clutchfem.studies.runner.run_points`: Dask, store, resume): :mod:`.guideline_study`
+(:func:`clutchfem.evaluation.runner.run_points`: Dask, store, resume): :mod:`.guideline_study`
 runs a guideline study and writes its tables, :mod:`.guideline_charts` draws them.  This
 module holds the method: what is studied (:class:`GuidelineSettings`), the designs it takes
 (:func:`plan`), the elasticity and its checks (:func:`morphed_elasticity`,
@@ -58,10 +58,10 @@ from typing import Any, Literal, get_origin
 
 import numpy as np
 
-from ..core import ParameterError, clean, write
+from ..core import ParameterError, clean, param_bounds, round12, write
+from ..evaluation import Sensitivities, Settings
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import OperatingPoint
-from ..studies import Sensitivities, Settings, param_bounds, round12
 
 #: answers of the guidelines: (row column, label with unit)
 ANSWERS: tuple[tuple[str, str], ...] = (

@@ -21,21 +21,20 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..core import InputError, ParameterError, write
-from ..geometry import get_concept
-from ..loadcase import Design, OperatingPoint
-from ..studies import (
+from ..core import InputError, ParameterError, changed_texts, write
+from ..evaluation import (
     COLUMNS,
     ERROR_COLUMNS,
     STORE_NAME,
     EvalSettings,
     ResultStore,
-    changed_texts,
     design_hash,
     operating_inputs,
     run_points,
     sensitivities,
 )
+from ..geometry import get_concept
+from ..loadcase import Design, OperatingPoint
 from .elasticity import (
     ANSWERS,
     CHECK_FACTOR,

@@ -27,7 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from ..core import figure, save_figure
-from ..studies import ANSWERS, StudyResult, display_value
+from ..evaluation import ANSWERS
+from ..studies import StudyResult, display_value
 
 #: panels of the answers-vs-input charts: (columns drawn, title, limit column, limit label)
 PANELS = (

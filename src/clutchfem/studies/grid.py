@@ -11,11 +11,7 @@ from pathlib import Path
 import pandas as pd
 
 from ..core import InputError, clean
-from .batch import EvalSettings
-from .hashing import design_hash
-from .point import COLUMNS
-from .runner import RunResult, run_points
-from .store import ResultStore
+from ..evaluation import COLUMNS, EvalSettings, ResultStore, RunResult, design_hash, run_points
 
 __all__ = ["GridResult", "run_grid"]
 

@@ -31,13 +31,12 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..clutch import EngineCurve
-from ..core import ClutchfemError, InputError, ParameterError, get_material
+from ..core import ClutchfemError, InputError, ParameterError, get_material, param_bounds, round12
+from ..evaluation import Settings
 from ..geometry import MeshSettings, concepts, get_concept
 from ..loadcase import USER_THICKNESS, OperatingPoint
-from .point import Settings
 from .schema import MAX_POINTS, MISSING, AxisTable, SpecError, SpecTable, translate_error
 from .spec import Axis, StudySpec
-from .values import param_bounds, round12
 
 #: operating-point fields a spec may set (or vary); rpm is the analysis's own business
 _OP_EXCLUDED = ("rpm",)

@@ -21,7 +21,7 @@ import math
 import numpy as np
 from scipy.stats import qmc
 
-from .values import round12
+from ..core import round12
 
 
 def unit_samples(method: str, d: int, n: int, seed: int) -> np.ndarray:

@@ -61,7 +61,7 @@ from importlib import resources
 
 import numpy as np
 
-from .point import Settings
+from ..evaluation import Settings
 from .sampling import from_unit, unit_samples
 
 #: the example spec (``clutchfem study --example``): 12 designs of concept 4, runs as it is

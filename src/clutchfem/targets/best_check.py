@@ -63,7 +63,7 @@ def _key(settings, point: dict | None = None) -> tuple:
 @cached(LRUCache(maxsize=RECENT_SIZE), key=_key)
 def best_estimate(settings, point: dict | None = None) -> Analysis:
     """``analyze`` with the error step of the design of ``settings`` (an
-    :class:`~clutchfem.studies.EvalSettings`) with ``point``'s parameter texts, meshed from
+    :class:`~clutchfem.evaluation.EvalSettings`) with ``point``'s parameter texts, meshed from
     scratch: the answers a user gets from ``clutchfem analyze CONCEPT --set ...``.  The same
     design asked again (by its parameter values, mesh, operating point, engine and
     requirements) is answered from the last :data:`RECENT_SIZE` in this process.

@@ -60,9 +60,9 @@ import numpy as np
 from scipy.optimize import lsq_linear
 
 from ..core import InputError, ParameterError, SolverError, clean, rpm_to_rad_s, wrap_angle
+from ..core import values as V
 from ..geometry import TABLE_FIELDS, TABLE_N, MeshSettings, get_concept, table_cardinal
 from ..loadcase import Design, OperatingPoint, contact_extent
-from ..studies import values as V
 
 #: the control values are kept this far inside the table's declared range [m]
 RANGE_MARGIN = 0.01e-3

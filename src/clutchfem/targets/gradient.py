@@ -67,8 +67,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import ParameterError
-from ..studies import EvalSettings, evaluate_many, step_for
-from ..studies import values as V
+from ..core import values as V
+from ..evaluation import EvalSettings, evaluate_many, step_for
 from .rules import admissible_step, rule
 from .sqp import bfgs, merit, repair_step
 from .targets import Targets

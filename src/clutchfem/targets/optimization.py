@@ -36,7 +36,7 @@ of COBYLA/COBYQA need a value everywhere and are misled by noise at small steps.
 refused or failed design is simply worse than all others and costs nothing (refusals are
 found before any meshing), its steps never fall below the parameters' snapping resolution
 (noise cannot be chased below it), and each poll (2 n designs) is one parallel batch of
-:func:`~clutchfem.studies.batch.evaluate_many`.
+:func:`~clutchfem.evaluation.batch.evaluate_many`.
 
 Comparison (a filter in its simplest form): a feasible design beats an infeasible one; two
 infeasible designs compare by h; two feasible ones by the objective.  An improvement counts
@@ -67,8 +67,8 @@ import numpy as np
 from scipy.stats import qmc
 
 from ..core import InputError, ParameterError, as_bool, clean
-from ..studies import EvalSettings, evaluate_many, shared_cluster
-from ..studies import values as V
+from ..core import values as V
+from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from .best_check import best_estimate, check_optimum, start_targets
 from .gradient import gradient_search
 from .search_space import default_free, make_space

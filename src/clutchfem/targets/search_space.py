@@ -9,8 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core import ParameterError
+from ..core import values as V
 from ..geometry import ConceptParams
-from ..studies import values as V
 
 
 @dataclass

@@ -84,7 +84,7 @@ class Targets:
 
     @classmethod
     def defaults(cls, settings, safety_factor_min: float = 1.5, objective: str = "mass") -> "Targets":
-        """The requirement checks of ``settings`` (:class:`~clutchfem.studies.EvalSettings`):
+        """The requirement checks of ``settings`` (:class:`~clutchfem.evaluation.EvalSettings`):
         engagement with ripple >= a x idle rpm, slip <= b x rpm of max engine torque, and
         the safety factor against yield >= ``safety_factor_min``."""
         eng = settings.engine()

@@ -21,8 +21,8 @@ import time
 from dataclasses import dataclass, field
 
 from ..core import ParameterError, clean
+from ..evaluation import EvalSettings, Sensitivities, sensitivities
 from ..geometry import get_concept
-from ..studies import EvalSettings, Sensitivities, sensitivities
 from ..targets import Targets
 from .algebra import allocate_linear, check_yield, joint_scale
 from .robust import model_bands

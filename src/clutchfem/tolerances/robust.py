@@ -53,9 +53,9 @@ from dataclasses import dataclass, field
 from statistics import NormalDist
 
 from ..core import InputError, ParameterError, clean
+from ..core import values as V
+from ..evaluation import EvalSettings, sensitivities
 from ..geometry import get_concept
-from ..studies import EvalSettings, sensitivities
-from ..studies import values as V
 from ..targets import METHODS, OptimizationResult, Targets, best_estimate, bisect, optimize
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 

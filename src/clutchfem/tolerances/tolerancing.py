@@ -59,8 +59,8 @@ import numpy as np
 from scipy.stats import binomtest, bootstrap
 
 from ..core import InputError, ParameterError, clean
-from ..studies import EvalSettings, evaluate_many, shared_cluster
-from ..studies import values as V
+from ..core import values as V
+from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from ..targets import Targets, best_estimate, correction_ratios
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)

@@ -11,12 +11,12 @@ meshing it):
 * the operating point (material with its constants, mu, rotation, softening, formulation,
   drum wall ...) with the point's operating-point values, the mesh settings, the engine
   curve's numbers (not its file name), the idle speed and the requirement factors;
-* for a study that morphs its meshes (:attr:`~clutchfem.studies.Settings.morph`), the full
+* for a study that morphs its meshes (:attr:`~clutchfem.evaluation.Settings.morph`), the full
   parameter set of the reference design.
 
 Floats are written with 12 significant digits, so ``1.5mm`` parsed as 0.0015000000000000002
 and 0.0015 typed in metres are one design.  The model version (see
-:func:`clutchfem.studies.point.model_version`) is kept apart: the same design under a new
+:func:`clutchfem.evaluation.point.model_version`) is kept apart: the same design under a new
 model is a new row, not a changed hash.
 """
 
@@ -27,10 +27,9 @@ import json
 import math
 from typing import Any
 
-from ..core import get_material
+from ..core import get_material, round12
 from ..geometry import get_concept
 from .point import split_point
-from .values import round12
 
 
 def _norm(x: Any) -> Any:

@@ -1,11 +1,11 @@
 """One design point -> one row of answers, and the one function that evaluates batches:
-:func:`evaluate_many`, on the study engine of issue 10 (:mod:`clutchfem.studies`).
+:func:`evaluate_many`, on the study engine of issue 10 (:mod:`clutchfem.evaluation`).
 
 A *point* is a dict ``name -> --set text`` (``{"flexure_thickness": "2.13mm"}``) applied on
 top of a base design (:class:`EvalSettings`); the design evaluated is exactly the one
 ``clutchfem analyze C --set ...`` builds from the same texts
-(:mod:`clutchfem.studies.values`): the texts are read by the parameter set's own parser and
-the values handed to the study engine (:func:`clutchfem.studies.evaluate`, the full
+(:mod:`clutchfem.core.values`): the texts are read by the parameter set's own parser and
+the values handed to the study engine (:func:`clutchfem.evaluation.evaluate`, the full
 :func:`~clutchfem.analysis.analyze` with ``errors=False``: a search ranks designs on
 one mesh each; the error of an answer is stated for the design it ends on).
 
@@ -17,7 +17,7 @@ in this process, before anything is sent: a refusal costs microseconds -- or the
 mesh cannot be made); ``failed`` (a valid design without an answer: a solver refusal, or the
 worker process died, e.g. gmsh aborting on a high-order mesh fix-up).
 
-Scheduling: :func:`clutchfem.studies.runner.run_points` -- a ``dask.distributed`` cluster of
+Scheduling: :func:`clutchfem.evaluation.runner.run_points` -- a ``dask.distributed`` cluster of
 process workers with one thread each (or an existing cluster at ``scheduler``, or this
 process with ``workers=0``), each finished row committed to a SQLite store as it arrives.
 An optimisation sends many small batches (one per poll), so :func:`shared_cluster` keeps one local
@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..clutch import EngineCurve
-from ..core import InputError, ParameterError
+from ..core import InputError, ParameterError, changed_texts, exact_text
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import Design, OperatingPoint
 from .cluster import check_scheduler, local_cluster, workers_machine_holds
@@ -48,7 +48,6 @@ from .hashing import design_hash
 from .point import COLUMNS, Settings, model_version
 from .runner import run_points
 from .store import STORE_NAME, ResultStore
-from .values import changed_texts, exact_text
 
 #: the answers a row carries (name -> unit), in table order
 ANSWERS = {
@@ -108,7 +107,7 @@ class EvalSettings:
     #: an engine curve given as an object (the API); wins over ``engine_csv``
     curve: EngineCurve | None = None
     #: morph the designs' meshes from this reference design ((name, SI value) pairs,
-    #: :attr:`clutchfem.studies.Settings.morph`); None: mesh every design from scratch
+    #: :attr:`clutchfem.evaluation.Settings.morph`); None: mesh every design from scratch
     morph: tuple | None = None
     #: the mesh settings as an object (the API; a guideline study's): wins over ``mesh_size``
     mesh: MeshSettings | None = None
@@ -193,7 +192,7 @@ class EvalSettings:
         return out + [f"{k}={v}" for k, v in (point or {}).items()]
 
     def study(self):
-        """The study engine's :class:`clutchfem.studies.Settings` (the base as fixed values)."""
+        """The study engine's :class:`clutchfem.evaluation.Settings` (the base as fixed values)."""
         fixed = tuple(sorted(self.values().items()))
         return Settings(concept=self.concept, fixed=fixed, op=self.operating_point(), mesh=self.mesh_settings(),
                         engine=self.engine() if (self.engine_csv or self.curve is not None) else None, idle_rpm=self.idle_rpm, a=self.a,
@@ -258,7 +257,7 @@ def _num(x):
 
 
 def from_study_row(r: dict, point: dict) -> dict:
-    """A study engine row (:data:`clutchfem.studies.COLUMNS`, MPa and g) as a row of this
+    """A study engine row (:data:`clutchfem.evaluation.COLUMNS`, MPa and g) as a row of this
     package (SI units, the point's ``--set`` texts)."""
     row = {"params": dict(point), "status": r.get("status") or "failed", "message": r.get("message") or "",
            "design_hash": r.get("design_hash"), "seconds": _num(r.get("t_total_s"))}
@@ -320,7 +319,7 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
             sched = _ACTIVE.get("scheduler")
             w = None if sched else (workers if workers is not None else _ACTIVE.get("workers"))
             run_points([vals[i] for i in todo], st, store, workers=w, scheduler=sched, progress=progress,
-                       source="clutchfem.studies", desc="designs")
+                       source="clutchfem.evaluation", desc="designs")
             version = model_version(settings.concept)
             keys = [design_hash(vals[i], st) for i in todo]
             with ResultStore(store, COLUMNS) as rs:

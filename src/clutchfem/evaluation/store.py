@@ -24,7 +24,7 @@ second study writing the same file): every statement is retried for up to
 :data:`LOCK_WAIT_S` (said at once on stderr), then :class:`StoreLocked` names the file and
 what to do (nothing finished is lost: the rows already committed stay, a rerun resumes).
 
-The table's columns come from the caller (:data:`clutchfem.studies.point.COLUMNS`); a store
+The table's columns come from the caller (:data:`clutchfem.evaluation.point.COLUMNS`); a store
 written by an older version gains any new columns on open (``ALTER TABLE ADD COLUMN``).
 """
 

@@ -65,8 +65,8 @@ from dataclasses import dataclass, field
 
 from ..analysis import CONTACT_SPEED_OF, idle_speed
 from ..core import ParameterError
+from ..core import values as V
 from ..loadcase import Design
-from . import values as V
 from .batch import EvalSettings, evaluate_many, shared_cluster
 
 #: (row key, unit) of the differentiated answers
@@ -98,7 +98,7 @@ class Sensitivities:
     A hand-made record (:func:`sensitivities` computes one): engagement +1000 rpm per mm of
     flexure, and a contact event inside the step.
 
-    >>> from clutchfem.studies import Sensitivities
+    >>> from clutchfem.evaluation import Sensitivities
     >>> s = Sensitivities("concept1", base={"engagement_rpm": 4000.0}, values={"flexure_thickness": 2.2e-3},
     ...                   steps={"flexure_thickness": 1e-5}, units={"flexure_thickness": "m"},
     ...                   derivatives={"flexure_thickness": {"engagement_rpm": 1.0e6}},

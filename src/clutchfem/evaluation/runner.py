@@ -46,24 +46,19 @@ committed, and running the same spec again resumes.
 
 from __future__ import annotations
 
-import json
 import logging
 import sys
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-import pandas as pd
 from tqdm import tqdm
 
-from ..core import ClutchfemError, InputError, write
+from ..core import ClutchfemError, InputError
 from .cluster import check_scheduler, rows_on_dask, workers_machine_holds
 from .hashing import design_hash
 from .point import COLUMNS, Settings, evaluate, failed_row, model_version
-from .rerun import fingerprint
-from .spec import StudySpec, display_value
-from .store import STORE_NAME, ResultStore, StoreLocked
+from .store import ResultStore, StoreLocked
 
 log = logging.getLogger("clutchfem")
 
@@ -128,7 +123,7 @@ class StudyInterrupted(ClutchfemError):
     Examples
     --------
     >>> import clutchfem as cf
-    >>> from clutchfem.studies import RunResult
+    >>> from clutchfem.evaluation import RunResult
     >>> res = RunResult(points=12, done=5, ok=5, refused=0, failed=0, computed=5, skipped=0,
     ...                 store="out/results.sqlite", model_version="v1", wall_s=40.0, compute_s=35.0,
     ...                 workers=2, scheduler="local", interrupted=True)
@@ -265,174 +260,3 @@ def _in_process(todo: list[str], tasks: dict, settings: Settings, want_errors=fr
     yield {"__start__": 0}
     for h in todo:
         yield evaluate(tasks[h], settings, h, h in want_errors)
-
-
-# ---------------------------------------------------------------------------------------
-# a whole study: run, export, summary (its charts are the report stage's, drawn by the faces)
-# ---------------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class StudyResult:
-    """A parameter study run into its folder (:func:`run_study`): the counts of the run, this
-    spec's rows and the files written; :meth:`to_json` is ``summary.json``.
-
-    Attributes
-    ----------
-    spec : StudySpec
-        The study that ran.
-    run : RunResult
-        What the study engine did (points, ok, refused, failed, computed, skipped, times).
-    frame : pandas.DataFrame
-        This spec's rows in point order, the varied inputs first in the charts' units
-        (``flexure_thickness [mm]``), then every answer in SI (``results.csv``).
-    out : Path
-        The study's folder (store, ``results.csv``, ``summary.json``, charts).
-    files : tuple of Path
-        The files written, ``summary.json`` last.
-    errors : dict
-        The error of the sampled designs' answers (:func:`error_summary`).
-    charts : bool
-        True once the charts are drawn into ``out/charts`` (:meth:`with_files`).
-
-    Examples
-    --------
-    >>> import clutchfem as cf, tempfile
-    >>> from clutchfem.studies import EXAMPLE_SPEC, parse_spec
-    >>> spec = parse_spec(EXAMPLE_SPEC)
-    >>> spec.method, len(spec.points())            # run_study(spec, out) runs them
-    ('grid', 12)
-    """
-
-    spec: StudySpec
-    run: RunResult
-    frame: pd.DataFrame = field(repr=False)
-    out: Path
-    fingerprint: str | None
-    errors: dict = field(repr=False, default_factory=dict)
-    files: tuple[Path, ...] = ()
-    charts: bool = False
-
-    @property
-    def feasible(self) -> int:
-        """Designs that meet every requirement of the spec."""
-        return int(self.frame["feasible"].fillna(0).astype(int).sum()) if len(self.frame) else 0
-
-    @property
-    def summary_path(self) -> Path:
-        return self.out / "summary.json"
-
-    def to_json(self) -> dict:
-        """The summary (``summary.json``): the run's counts and times, the design, method and
-        spec, the feasible count, the error summary and the files."""
-        s = self.run.to_json()
-        s["errors"] = self.errors
-        s.update(design=self.spec.design, method=self.spec.method, spec=self.spec.source, out=str(self.out),
-                 feasible=self.feasible,
-                 files=[str(f) for f in self.files], charts=self.charts, keys=list(self.run.keys),
-                 fingerprint=self.fingerprint)
-        return s
-
-    def with_files(self, files, *, charts: bool = False) -> "StudyResult":
-        """This result with ``files`` (the charts a face drew into its folder) added to its
-        record, and ``summary.json`` written again with them."""
-        done = tuple(f for f in self.files if f != self.summary_path)
-        new = replace(self, files=(*done, *map(Path, files), self.summary_path), charts=self.charts or charts)
-        write(new.summary_path, new.to_json(), indent=1)
-        return new
-
-
-def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: str | None = None,
-              retry_failed: bool = False, progress: bool = True) -> StudyResult:
-    """Run a parameter study into a folder, resumably: every point through the full
-    analysis on the study engine (Dask: local process workers, or the cluster at
-    ``scheduler``), each finished row committed to the store as it arrives.
-
-    Parameters
-    ----------
-    spec : StudySpec
-        From :func:`~clutchfem.load_study`.
-    out : path
-        The store (``results.sqlite``), ``results.csv`` (this spec's rows, inputs in
-        designers' units) and ``summary.json``.  The charts are drawn by the faces
-        (:func:`clutchfem.report.study_charts`).
-    workers, scheduler
-        Local workers (``0``: in this process) or an existing scheduler's address.
-    retry_failed : bool
-        Recompute the points stored as failed (finished points are otherwise skipped).
-    progress : bool
-        A progress bar on standard error.
-
-    Returns
-    -------
-    StudyResult
-        The counts (also on :class:`StudyInterrupted`, via its ``result``), the rows, the
-        error summary and the files written.
-
-    Examples
-    --------
-    >>> import clutchfem as cf, tempfile
-    >>> from clutchfem.studies import parse_spec
-    >>> spec = parse_spec('''
-    ... [design]
-    ... concept = "concept1"
-    ... [settings]
-    ... mesh_size = "3mm"
-    ... [errors]
-    ... sample = 0
-    ... [vary]
-    ... method = "grid"
-    ... [vary.params]
-    ... flexure_thickness = {values = ["2.0mm", "2.4mm"]}
-    ... ''')
-    >>> s = cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False)
-    >>> s.run.points, s.run.ok, list(s.frame["flexure_thickness [mm]"])
-    (2, 2, [2.0, 2.4])"""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    points = spec.points()
-    res = run_points(points, spec.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
-                     retry_failed=retry_failed, progress=progress, source=spec.source, spec_text=spec.text,
-                     error_points=spec.error_points(len(points)))
-    frame = table(spec, res)
-    csv = out / "results.csv"
-    frame.to_csv(csv, index=False)
-    result = StudyResult(spec=spec, run=res, frame=frame, out=out, fingerprint=fingerprint(spec.source, spec.text), errors=error_summary(frame),
-                         files=(csv, out / "summary.json"))
-    write(result.summary_path, result.to_json(), indent=1)
-    return result
-
-
-#: error columns of a row: (answer, total band, discretisation part, unit)
-ERROR_COLUMNS = (("engagement_rpm", "engagement_err_rpm", "engagement_disc_rpm", "rpm"),
-                 ("slip_rpm", "slip_err_rpm", "slip_disc_rpm", "rpm"),
-                 ("torque_at_max_engine_torque_Nm", "torque_err_Nm", "torque_disc_Nm", "N m"),
-                 ("max_von_mises_MPa", "stress_err_MPa", "stress_disc_MPa", "MPa"))
-
-
-def error_summary(frame) -> dict:
-    """The study's error from its sampled designs: per answer, the median and largest band
-    (discretisation + model form) relative to the answer [%], and the discretisation part."""
-    sel = frame[(frame["status"] == "ok") & (frame["errors_estimated"].fillna(0) == 1)]
-    out: dict = {"sampled": int(len(sel)),
-                 "method": "designs evenly spaced in the spec, analysed again on a mesh twice as fine "
-                           "(discretisation 2|a_h - a_h/2|) plus the measured model-form terms (clutchfem.errorest)"}
-    for ans, tot, disc, unit in ERROR_COLUMNS:
-        v = sel[ans].astype(float).abs()
-        rel_t = (sel[tot].astype(float) / v * 100).replace([np.inf, -np.inf], np.nan).dropna()
-        rel_d = (sel[disc].astype(float) / v * 100).replace([np.inf, -np.inf], np.nan).dropna()
-        out[ans] = {"band_median_pct": float(rel_t.median()) if len(rel_t) else None,
-                    "band_max_pct": float(rel_t.max()) if len(rel_t) else None,
-                    "discretisation_median_pct": float(rel_d.median()) if len(rel_d) else None,
-                    "discretisation_max_pct": float(rel_d.max()) if len(rel_d) else None}
-    return out
-
-
-def table(spec, res: RunResult):
-    """This spec's rows (point order) with one column per varied input, in the units of the
-    charts (lengths in mm: ``flexure_thickness [mm]``), before the answers."""
-    with ResultStore(res.store, COLUMNS) as st:
-        df = st.frame(res.model_version, res.keys)
-    cols = {}
-    for a in spec.axes:
-        cols[a.label()] = [display_value(json.loads(p).get(a.name), a.unit) for p in df["point_json"]]
-    front = pd.DataFrame(cols, index=df.index)
-    return pd.concat([front, df], axis=1)

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 
-from ..core import ParameterError
+from .errors import ParameterError
 
 #: snapping resolution per unit (in the unit's SI value), see module docstring
 RESOLUTION = {"m": 1e-5, "deg": 0.1, "-": 1e-3, "": 1e-3}

@@ -1,4 +1,4 @@
-"""One design of a study -> one row: the only module of :mod:`clutchfem.studies` that knows
+"""One design of a study -> one row: the only module of :mod:`clutchfem.evaluation` that knows
 the analysis API.
 
 :func:`evaluate` takes a *point* (the varied inputs, ``{name: value}`` in the parameter's
@@ -407,3 +407,10 @@ def warm_up(concept: str | None = None) -> str:
     if concept:
         get_concept(concept)
     return model_version(concept)
+
+
+#: error columns of a row: (answer, total band, discretisation part, unit)
+ERROR_COLUMNS = (("engagement_rpm", "engagement_err_rpm", "engagement_disc_rpm", "rpm"),
+                 ("slip_rpm", "slip_err_rpm", "slip_disc_rpm", "rpm"),
+                 ("torque_at_max_engine_torque_Nm", "torque_err_Nm", "torque_disc_Nm", "N m"),
+                 ("max_von_mises_MPa", "stress_err_MPa", "stress_disc_MPa", "MPa"))
