@@ -10,8 +10,16 @@ os.environ.setdefault("CLUTCHFEM_FIDELITY", "fast")
 
 
 @pytest.fixture(autouse=True, scope="session")
-def _isolated_cache(tmp_path_factory):
-    """Each test session (tests and doctests) meshes into its own cache (no stale meshes from a developer's home)."""
-    d = tmp_path_factory.mktemp("cache")
+def _isolated_cache(tmp_path_factory, request):
+    """One mesh cache for the whole test run (tests and doctests), never the developer's
+    (no stale meshes from a home cache): under pytest-xdist every worker, and every process
+    a test starts (they inherit the variable), meshes into the same folder of this run's
+    temporary root, so a design two workers need is meshed once (the cache's entry lock
+    makes the second wait for the first)."""
+    base = tmp_path_factory.getbasetemp()
+    if hasattr(request.config, "workerinput"):  # an xdist worker (not a pytest a test starts)
+        base = base.parent  # pytest-of-USER/pytest-N/popen-gwK -> the run's shared root
+    d = base / "clutchfem-cache"
+    d.mkdir(exist_ok=True)
     os.environ["CLUTCHFEM_CACHE"] = str(d)
     yield

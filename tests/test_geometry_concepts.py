@@ -32,13 +32,6 @@ CORNER = 6.0e-3  # coarser still for the many range-corner builds (gmsh still re
 FINE = MeshSettings(size=1.5e-3, fillet_factor=0.3)  # for the area checks (P2 arcs to < 1e-6)
 
 
-@pytest.fixture(autouse=True)
-def _cache(monkeypatch, tmp_path_factory):
-    """One mesh cache per test worker, never the developer's (cached meshes are reused
-    between the tests of this file, which share parameter sets)."""
-    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path_factory.getbasetemp() / "geometry-concepts-cache"))
-
-
 def _mesh(name: str, ms: MeshSettings, **values):
     c = get_concept(name)
     return mesh_concept(c, c.params(**values), ms)

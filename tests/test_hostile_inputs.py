@@ -194,7 +194,8 @@ def test_bad_out_folder_is_refused_before_any_work(tmp_path, cmd, where):
     assert time.perf_counter() - t0 < 5.0  # refused before meshing or solving
 
 
-def test_corrupted_mesh_cache_is_rebuilt_with_a_warning():
+def test_corrupted_mesh_cache_is_rebuilt_with_a_warning(tmp_path, monkeypatch):
+    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path))  # its own cache: the run's is shared by the workers
     c = get_concept("concept1")
     p = c.params(flexure_thickness=2.1e-3)
     cm = mesh_concept(c, p, COARSE)
