@@ -18,6 +18,7 @@ def run(*args, ok=True):
     return r
 
 
+@pytest.mark.slow
 def test_geometry_list_and_params():
     names = run("geometry", "--list").stdout.split()
     assert "concept1" in names
@@ -25,6 +26,7 @@ def test_geometry_list_and_params():
     assert "flexure_thickness" in out and "mm" in out
 
 
+@pytest.mark.slow
 def test_geometry_builds_files(tmp_path):
     run("geometry", "concept1", "--set", "flexure_thickness=1.8mm", "--out", str(tmp_path), "--mesh-size", "0.002")
     (msh,) = tmp_path.glob("concept1-*.msh")  # a design off the defaults: its label carries the hash
@@ -33,6 +35,7 @@ def test_geometry_builds_files(tmp_path):
     assert info["params"]["flexure_thickness"] == pytest.approx(1.8e-3)
 
 
+@pytest.mark.slow
 def test_geometry_bad_parameter_is_clear(tmp_path):
     r = run("geometry", "concept1", "--set", "clearance=-1mm", "--out", str(tmp_path), ok=False)
     assert r.returncode == 2
@@ -42,6 +45,7 @@ def test_geometry_bad_parameter_is_clear(tmp_path):
     assert (here.returncode, here.stdout, here.stderr) == (r.returncode, r.stdout, r.stderr)
 
 
+@pytest.mark.slow
 def test_solve_json_contract(tmp_path):
     r = run("solve", "concept1", "--mesh-size", "0.002", "--rpm", "0:8000:2000", "--json")
     d = json.loads(r.stdout)
@@ -62,6 +66,7 @@ def test_solve_bad_input(args, word):
     assert r.returncode == 2 and word in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_solve_vtk_series_of_the_whole_part(tmp_path):
     """--vtk writes one .pvd time series over the speeds (rpm as its time) that ParaView's
     reader (pyvista) opens: per speed a quadratic-triangle .vtu of the whole part (the sector

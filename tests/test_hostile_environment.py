@@ -121,6 +121,7 @@ def cache_dir_of(root: Path) -> Path:
     return d
 
 
+@pytest.mark.slow
 def test_cache_command_shows_and_clears_in_json(tmp_path):
     env = {"CLUTCHFEM_CACHE": str(tmp_path)}
     (tmp_path / "meshes").mkdir()
@@ -189,6 +190,7 @@ def d1():
     return Design.from_concept("concept1")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("call, words", [
     (lambda d: analyze(d, engine="no-such-file.csv"), "engine curve file not found"),
     (lambda d: analyze(d, engine=3), "parameter 'engine' = 'int'"),
@@ -217,6 +219,7 @@ def test_a_string_speed_is_read_as_rpm(d1):
 
 
 # ---- refusals are one line when standard error is a file ------------------------------------
+@pytest.mark.slow
 def test_refusals_and_usage_errors_are_one_line_on_a_pipe():
     r = _cli("analyze", "concept1", "--mu", "7")
     lines = r.stderr.strip().splitlines()
@@ -239,6 +242,7 @@ print(render_png(Path(sys.argv[1]), Path(sys.argv[1]).with_suffix(".png")))
 """
 
 
+@pytest.mark.slow
 def test_a_render_on_a_headless_machine_prints_no_x_server_warning(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
     env["PYTHONPATH"] = str(ROOT / "src")
@@ -252,6 +256,7 @@ def test_a_render_on_a_headless_machine_prints_no_x_server_warning(tmp_path):
 
 
 # ---- progress on a terminal, never in --json standard output -------------------------------
+@pytest.mark.slow
 def test_a_single_design_command_shows_its_stages_on_a_terminal_and_keeps_json_clean(tmp_path):
     args = ("solve", "concept1", "--mesh-size", "3mm", "--rpm", "8000", "--no-errors", "--json")
     env = {"CLUTCHFEM_CACHE": str(tmp_path)}

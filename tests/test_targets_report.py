@@ -27,6 +27,7 @@ def design_report(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow
 def test_html_is_self_contained_with_answers_units_images_inputs(design_report):
     html = (design_report / "report.html").read_text()
     assert html.startswith("<!DOCTYPE html>")
@@ -43,6 +44,7 @@ def test_html_is_self_contained_with_answers_units_images_inputs(design_report):
     assert inputs["concept"] == "concept4" and "mesh_settings" in inputs and "operating_point" in inputs
 
 
+@pytest.mark.slow
 def test_markdown_has_the_same_answers(design_report):
     md = (design_report / "report.md").read_text()
     html = (design_report / "report.html").read_text()
@@ -57,6 +59,7 @@ def test_markdown_has_the_same_answers(design_report):
         assert (design_report / img).exists()
 
 
+@pytest.mark.slow
 def test_run_folder_renders_again(design_report, tmp_path):
     import pandas as pd
 
@@ -78,6 +81,7 @@ def test_report_refuses_unclear_requests(tmp_path):
     assert r.returncode == 2 and "exactly one" in r.stderr
 
 
+@pytest.mark.slow
 def test_report_of_a_user_mesh(tmp_path):
     """`report --mesh`: the mesh picture instead of the drawing, the mesh file and its SHA-256 in
     the inputs."""

@@ -217,6 +217,7 @@ def coarse():
     return EvalSettings("concept4", mesh_size=3e-3)
 
 
+@pytest.mark.slow
 def test_fe_allocation_meets_the_spread_of_robust_design(coarse):
     """One dimension, one target on the FE model: the allocated half-width is 3 slack /
     (z |dA/dx|), and robust.spreads (its own code path) at that width gives z sigma = slack."""
@@ -241,6 +242,7 @@ def test_fe_allocation_meets_the_spread_of_robust_design(coarse):
     assert r.constraints[0]["sigma_model"] > 0
 
 
+@pytest.mark.slow
 def test_cli_allocate(tmp_path):
     args = CLI + ["tolerance", "concept4", *sum((["--set", x] for x in ROB), []), "--mesh-size", "3mm",
                   "--tol", "flexure_thickness=+-0.05mm", "--tol", "clearance=+-0.02mm", "--allocate",
