@@ -2,28 +2,18 @@
 
 import json
 import re
-import subprocess
-import sys
 
 import pytest
 
 from support.cli import cli_in_process
 
-CLI = [sys.executable, "-m", "clutchfem.cli"]
-
-
-def run(*args, ok=True):
-    r = subprocess.run(CLI + list(args), capture_output=True, text=True, timeout=600)
-    if ok:
-        assert r.returncode == 0, r.stderr[-3000:]
-    return r
-
 
 @pytest.fixture(scope="module")
 def design_report(tmp_path_factory):
     out = tmp_path_factory.mktemp("report")
-    run("report", "concept4", "--set", "flexure_thickness=1.8mm", "--mesh-size", "2.4mm",
-        "--no-errors", "--out", str(out))
+    # in this process (support/cli.py), as the tests below: the files are the point, not the process
+    cli_in_process("report", "concept4", "--set", "flexure_thickness=1.8mm", "--mesh-size", "2.4mm",
+                   "--no-errors", "--out", str(out), ok=True)
     return out
 
 
@@ -65,11 +55,11 @@ def test_run_folder_renders_again(design_report, tmp_path):
 
     pd.DataFrame({"rpm": [1000, 2000], "torque_Nm": [0.0, 1.5]}).to_csv(tmp_path / "sweep.csv", index=False)
     (tmp_path / "torque.png").write_bytes((design_report / "torque_rpm.png").read_bytes())
-    run("report", "--run", str(tmp_path))
+    cli_in_process("report", "--run", str(tmp_path), ok=True)
     html = (tmp_path / "report.html").read_text()
     assert "sweep.csv" in html and "data:image/png;base64," in html and "torque_Nm" in html
     out = tmp_path / "again"
-    run("report", "--run", str(design_report), "--out", str(out))
+    cli_in_process("report", "--run", str(design_report), "--out", str(out), ok=True)
     assert "engagement speed" in (out / "report.html").read_text()
 
 
@@ -85,11 +75,11 @@ def test_report_refuses_unclear_requests(tmp_path):
 def test_report_of_a_user_mesh(tmp_path):
     """`report --mesh`: the mesh picture instead of the drawing, the mesh file and its SHA-256 in
     the inputs."""
-    run("geometry", "concept4", "--out", str(tmp_path / "geo"), "--model", "full", "--mesh-size", "2.4mm",
-        "--no-drawing")
+    cli_in_process("geometry", "concept4", "--out", str(tmp_path / "geo"), "--model", "full", "--mesh-size", "2.4mm",
+                   "--no-drawing", ok=True)
     out = tmp_path / "rep"
-    run("report", "--mesh", str(next((tmp_path / "geo").glob("concept4-*.msh"))), "--drum-radius", "34.4mm", "--thickness", "11mm",
-        "--no-errors", "--out", str(out))
+    cli_in_process("report", "--mesh", str(next((tmp_path / "geo").glob("concept4-*.msh"))), "--drum-radius", "34.4mm",
+                   "--thickness", "11mm", "--no-errors", "--out", str(out), ok=True)
     html = (out / "report.html").read_text()
     assert "the user mesh" in html and html.count("data:image/png;base64,") >= 3
     inputs = json.loads((out / "inputs.json").read_text())

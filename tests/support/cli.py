@@ -26,9 +26,10 @@ import traceback
 from unittest import mock
 
 
-def cli_in_process(*args: str, env: dict | None = None) -> subprocess.CompletedProcess:
+def cli_in_process(*args: str, env: dict | None = None, ok: bool = False) -> subprocess.CompletedProcess:
     """Run ``clutchfem ARGS`` in this process; the result as :func:`subprocess.run` gives
-    it (``returncode``, ``stdout``, ``stderr``).  ``env``: variables set for the run."""
+    it (``returncode``, ``stdout``, ``stderr``).  ``env``: variables set for the run;
+    ``ok``: assert that it exited with 0 (its standard error in the message)."""
     from clutchfem.cli import main
 
     out, err = io.StringIO(), io.StringIO()
@@ -59,4 +60,7 @@ def cli_in_process(*args: str, env: dict | None = None) -> subprocess.CompletedP
                 if h not in handlers:
                     log.removeHandler(h)
             log.setLevel(level)
-    return subprocess.CompletedProcess(["clutchfem", *map(str, args)], code, out.getvalue(), err.getvalue())
+    r = subprocess.CompletedProcess(["clutchfem", *map(str, args)], code, out.getvalue(), err.getvalue())
+    if ok:
+        assert r.returncode == 0, r.stderr[-3000:] + r.stdout[-3000:]
+    return r
