@@ -1,6 +1,7 @@
 # clutchfem: two commands on a fresh Debian machine.
 #   make demo   set up, then build every concept and run the main job on the default design
-#   make test   set up, then run the test suite
+#   make test   set up, then run the whole test suite (and print its 20 slowest tests)
+#   make check  set up, then run the fast tier (-m "not slow": no meshing, solving, processes) for the inner loop
 #   make docs   set up, then build the documentation site into site/ (every warning an error)
 #   make pictures  regenerate the README's and docs' study, target, field, report and cutting pictures
 #   make bench-peer  install CalculiX (Debian calculix-ccx, benchmarks only) and run the peer checks
@@ -17,7 +18,7 @@ APT_PKGS := libglu1-mesa libxcursor1 libxinerama1 libxft2 libxrender1 libxext6 l
 # The peer solver of the benchmarks only (never a runtime or test dependency): CalculiX 2.20.
 BENCH_APT_PKGS := calculix-ccx
 
-.PHONY: setup sysdeps demo test docs bench bench-peer pictures clean
+.PHONY: setup sysdeps demo test check docs bench bench-peer pictures clean
 
 sysdeps:
 	@bash scripts/sysdeps.sh $(APT_PKGS)
@@ -37,8 +38,16 @@ setup: $(STAMP)
 demo: setup
 	$(VENV)/bin/clutchfem demo --out $(OUT)
 
+# Two workers (the 2-core machine of CI and the developers).  worksteal: an idle worker takes
+# half of the other's queue, so a long test near the end does not leave one core idle; one
+# mesh cache for the run (conftest.py).
+PYTEST := $(PY) -m pytest -n 2 --dist worksteal -q
+
 test: setup
-	$(PY) -m pytest -n 2 -q
+	$(PYTEST) --durations=20
+
+check: setup
+	$(PYTEST) -m "not slow" --durations=10
 
 # The site: MkDocs (Material) + mkdocstrings; the API, CLI and benchmarks pages are generated
 # at build time (scripts/docs_pages.py).  The two variables only hush the banners that

@@ -1,4 +1,5 @@
 import os
+import re
 
 import pytest
 
@@ -10,8 +11,36 @@ os.environ.setdefault("CLUTCHFEM_FIDELITY", "fast")
 
 
 @pytest.fixture(autouse=True, scope="session")
-def _isolated_cache(tmp_path_factory):
-    """Each test session (tests and doctests) meshes into its own cache (no stale meshes from a developer's home)."""
-    d = tmp_path_factory.mktemp("cache")
+def _isolated_cache(tmp_path_factory, request):
+    """One mesh cache for the whole test run (tests and doctests), never the developer's
+    (no stale meshes from a home cache): under pytest-xdist every worker, and every process
+    a test starts (they inherit the variable), meshes into the same folder of this run's
+    temporary root, so a design two workers need is meshed once (the cache's entry lock
+    makes the second wait for the first)."""
+    base = tmp_path_factory.getbasetemp()
+    if hasattr(request.config, "workerinput"):  # an xdist worker (not a pytest a test starts)
+        base = base.parent  # pytest-of-USER/pytest-N/popen-gwK -> the run's shared root
+    d = base / "clutchfem-cache"
+    d.mkdir(exist_ok=True)
     os.environ["CLUTCHFEM_CACHE"] = str(d)
     yield
+
+
+#: a doctest whose example calls one of these meshes, solves, runs designs or draws: the fast
+#: tier (``make check``, ``-m "not slow"``) leaves it to ``make test``.  Read from the
+#: examples' source, so a new or moved example is placed without a list to keep.
+HEAVY_EXAMPLE = re.compile(
+    r"Design\.from_concept|Design\.from_mesh|\banalyze\(|\brun_(study|grid|guidelines|points)\(|\boptimize\("
+    r"|\btolerance\(|\bsensitivities\(|\bcompensate\(|\bexport\(|\bwrite_report\(|\bvalidate\("
+    r"|\bbest_estimate\(|\bslip_heat\(|\bmesh_concept\(|\bmorph\(|\bdraw_concept\(|\byield_front\("
+    r"|\ballocate_tolerances\(|\brobust_optimize\(|\bpeak_stress_converged\(|\bdefault_design_report\("
+    r"|\btorque_speed_plot\(|\bevaluate_many\(|\bReducedModel|\breduce\(")
+
+
+def pytest_collection_modifyitems(config, items):
+    """Doctests cannot carry a decorator: the ones whose examples do heavy work
+    (:data:`HEAVY_EXAMPLE`) are marked slow here."""
+    for item in items:
+        if isinstance(item, pytest.DoctestItem) and any(HEAVY_EXAMPLE.search(ex.source)
+                                                         for ex in item.dtest.examples):
+            item.add_marker(pytest.mark.slow)

@@ -61,6 +61,7 @@ def _forced(err, q, share):
     return (e["model_form"] + share * e["discretisation"]) / abs(e["value"])
 
 
+@pytest.mark.slow
 def test_within_target_bit_identical_and_no_extra_level(base, monkeypatch):
     d, an, values, _, ref = base
 
@@ -79,6 +80,7 @@ def test_within_target_bit_identical_and_no_extra_level(base, monkeypatch):
     assert an.errors["engagement_rpm"]["value"] == an.engagement_rpm
 
 
+@pytest.mark.slow
 def test_rule_reports_the_finest_level_and_the_finer_pairs_error(base, monkeypatch):
     """Engagement with a target just under its band, torque with one only its model form
     meets: both from one shared h/4 level, the slip (within its target) untouched."""
@@ -108,6 +110,7 @@ def test_rule_reports_the_finest_level_and_the_finer_pairs_error(base, monkeypat
         assert err[q] == plain[q]  # only the answers that need it
 
 
+@pytest.mark.slow
 def test_refined_torque_keeps_its_nonlinearity_correction(base):
     """The best path's torque is corrected for non-linearity first: the finest level's value
     carries the same factor, and both corrections are recorded."""
@@ -126,6 +129,7 @@ def test_refined_torque_keeps_its_nonlinearity_correction(base):
     assert fix["mesh_refinement"] == pytest.approx(a2 / values[T] - 1, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_analyze_reports_the_refined_answers(base, monkeypatch):
     """Through analyze: the refined torque and engagement replace the analysis's, the
     requirement checks follow the refined engagement, and the report's text says why."""

@@ -30,6 +30,7 @@ def test_session_refuses_at_the_parameter_and_keeps_the_last_design():
     assert s.set_value("drum_wall", 0.0) is None and s.op.drum_wall == 0.0 and s.op.drum_wall_m is None  # rigid
 
 
+@pytest.mark.slow
 def test_session_fidelity_control_and_the_drum_it_shows(monkeypatch):
     """The app's model control: the shipped default (best) shows its 2 mm drum (not 0, which
     reads as rigid), and switching to fast gives the rigid drum and the fast mesh."""
@@ -58,6 +59,7 @@ def _engagement(page) -> str:
     return row.locator("td").nth(1).inner_text().split(" +-")[0].strip()
 
 
+@pytest.mark.slow
 def test_live_design_in_a_real_browser(server):
     from playwright.sync_api import expect, sync_playwright
 

@@ -46,6 +46,7 @@ def test_layer_contract():
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-2000:]
 
 
+@pytest.mark.slow
 def test_every_module_states_its_job():
     missing = [rel for rel, f in _modules()
                if not (ast.get_docstring(ast.parse(f.read_text())) or "").strip().split("\n")[0]
@@ -67,6 +68,7 @@ def _function_imports(tree):
                     yield node
 
 
+@pytest.mark.slow
 def test_imports_inside_functions_only_defer_heavy_dependencies():
     bad = []
     for rel, f in _modules():
@@ -82,6 +84,7 @@ def test_imports_inside_functions_only_defer_heavy_dependencies():
     assert not bad, f"{len(bad)} imports inside functions (move them to the top of the module):\n" + "\n".join(bad)
 
 
+@pytest.mark.slow
 def test_no_private_name_crosses_modules():
     bad = []
     for rel, f in _modules():

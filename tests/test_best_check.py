@@ -30,6 +30,7 @@ def test_targets_move_inward_by_the_ratio_never_outward():
     assert bc.confirmed(moved, row) == ["slip speed <= max", "safety factor at engine max >= min"]
 
 
+@pytest.mark.slow
 def test_optimize_reports_what_analyze_gives_for_its_design():
     d = cf.Design.from_concept("concept4", mesh=COARSE)
     r = cf.optimize(d, free=["flexure_thickness"], sample=0, max_evals=4, workers=0)
@@ -42,6 +43,7 @@ def test_optimize_reports_what_analyze_gives_for_its_design():
     assert off.best_estimate is None
 
 
+@pytest.mark.slow
 def test_a_target_analyze_misses_is_moved_and_searched_again(monkeypatch):
     """analyze made to read the safety factor 5 % below the rows: the check moves the target
     to 1.5 / 0.95 and searches on from the design, until analyze confirms it or says it misses."""
@@ -82,6 +84,7 @@ def test_correction_ratios_read_the_error_steps_corrections():
     assert bc.correction_ratios(SimpleNamespace(errors={})) == {}
 
 
+@pytest.mark.slow
 def test_tolerance_on_the_best_path_reads_the_answers_analyze_reports():
     """The Monte Carlo's parts are analysed without the error step; on the best path their
     constrained answers get the nominal design's corrections, so the nominal part reads the
@@ -97,6 +100,7 @@ def test_tolerance_on_the_best_path_reads_the_answers_analyze_reports():
     assert fast.corrections == {}
 
 
+@pytest.mark.slow
 def test_a_moved_target_no_design_meets_keeps_the_checked_design(monkeypatch):
     """analyze made to read half the safety factor: no design of the small search meets the
     moved target, so the result is the design analyze checked, said to miss, not the failed
@@ -113,6 +117,7 @@ def test_a_moved_target_no_design_meets_keeps_the_checked_design(monkeypatch):
     assert r.best["assessment_searched"]["h"] == 0.0  # the checked design met the targets in the search
 
 
+@pytest.mark.slow
 def test_an_optimum_analyze_cannot_check_is_said_not_hidden(monkeypatch):
     d = cf.Design.from_concept("concept4", mesh=COARSE)
 

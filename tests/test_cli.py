@@ -6,6 +6,8 @@ import sys
 
 import pytest
 
+from support.cli import cli_in_process
+
 CLI = [sys.executable, "-m", "clutchfem.cli"]
 
 
@@ -16,6 +18,7 @@ def run(*args, ok=True):
     return r
 
 
+@pytest.mark.slow
 def test_geometry_list_and_params():
     names = run("geometry", "--list").stdout.split()
     assert "concept1" in names
@@ -23,6 +26,7 @@ def test_geometry_list_and_params():
     assert "flexure_thickness" in out and "mm" in out
 
 
+@pytest.mark.slow
 def test_geometry_builds_files(tmp_path):
     run("geometry", "concept1", "--set", "flexure_thickness=1.8mm", "--out", str(tmp_path), "--mesh-size", "0.002")
     (msh,) = tmp_path.glob("concept1-*.msh")  # a design off the defaults: its label carries the hash
@@ -31,12 +35,17 @@ def test_geometry_builds_files(tmp_path):
     assert info["params"]["flexure_thickness"] == pytest.approx(1.8e-3)
 
 
+@pytest.mark.slow
 def test_geometry_bad_parameter_is_clear(tmp_path):
     r = run("geometry", "concept1", "--set", "clearance=-1mm", "--out", str(tmp_path), ok=False)
     assert r.returncode == 2
     assert "clearance" in r.stderr and "Traceback" not in r.stderr
+    # the tests' in-process runs (support/cli.py) say what the process says
+    here = cli_in_process("geometry", "concept1", "--set", "clearance=-1mm", "--out", str(tmp_path))
+    assert (here.returncode, here.stdout, here.stderr) == (r.returncode, r.stdout, r.stderr)
 
 
+@pytest.mark.slow
 def test_solve_json_contract(tmp_path):
     r = run("solve", "concept1", "--mesh-size", "0.002", "--rpm", "0:8000:2000", "--json")
     d = json.loads(r.stdout)
@@ -52,10 +61,12 @@ def test_solve_json_contract(tmp_path):
 @pytest.mark.parametrize("args,word", [(["--rpm", "abc"], "rpm"), (["--rpm", "-5"], "rpm"),
                                        (["--mu", "-0.1"], "mu"), (["--drum-radius", "0.02"], "drum radius")])
 def test_solve_bad_input(args, word):
-    r = run("solve", "concept1", "--mesh-size", "0.002", *args, ok=False)
+    # in this process (support/cli.py): the refusal is the point, not the process
+    r = cli_in_process("solve", "concept1", "--mesh-size", "0.002", *args)
     assert r.returncode == 2 and word in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_solve_vtk_series_of_the_whole_part(tmp_path):
     """--vtk writes one .pvd time series over the speeds (rpm as its time) that ParaView's
     reader (pyvista) opens: per speed a quadratic-triangle .vtu of the whole part (the sector
@@ -66,8 +77,9 @@ def test_solve_vtk_series_of_the_whole_part(tmp_path):
     import numpy as np
     import pyvista as pv
 
-    run("solve", "concept4", "--mesh-size", "0.002", "--rpm", "0:10000:2000", "--vtk",
-        "--vtk-rpm", "4000,10000", "--out", str(tmp_path))
+    # in this process (support/cli.py): the files are the point, not the process
+    cli_in_process("solve", "concept4", "--mesh-size", "0.002", "--rpm", "0:10000:2000", "--vtk",
+                   "--vtk-rpm", "4000,10000", "--out", str(tmp_path), ok=True)
     (res,) = tmp_path.glob("concept4-*_result.json")  # every file named after the design's label
     label = res.name.removesuffix("_result.json")
     curve = {row["rpm"]: row for row in json.loads(res.read_text())["curve"]}

@@ -29,6 +29,7 @@ def analyses():
     return out
 
 
+@pytest.mark.slow
 def test_character_comes_out_of_the_model(analyses):
     assert analyses["minus"].shoe_character == "minus"
     assert analyses["plus"].shoe_character == "plus"
@@ -42,6 +43,7 @@ def test_character_comes_out_of_the_model(analyses):
     assert spread(sp) > spread(sm)
 
 
+@pytest.mark.slow
 def test_nominal_arc_overpredicts_torque_tip_contact(analyses):
     an = analyses["minus"]
     c = an.curves.set_index("rpm")

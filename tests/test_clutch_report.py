@@ -41,6 +41,7 @@ def c4(tmp_path_factory):
     return doc, out
 
 
+@pytest.mark.slow
 def test_json_has_every_answer(c4):
     d, _ = c4
     for k in KEYS + ("slip_power_W", "torque_margin_Nm", "mu_sensitivity", "requirements", "warnings",
@@ -50,6 +51,7 @@ def test_json_has_every_answer(c4):
     assert d["max_stress_rpm"] == 14000.0 == d["max_engine_rpm"]  # stress at the engine's max rpm
 
 
+@pytest.mark.slow
 def test_engagement_with_ripple_solves_the_ripple_equation(c4):
     d, _ = c4
     s, x = d["engagement_rpm"], d["engagement_rpm_with_ripple"]
@@ -59,6 +61,7 @@ def test_engagement_with_ripple_solves_the_ripple_equation(c4):
     assert x < d["engagement_rpm_with_ripple_typical"] < s
 
 
+@pytest.mark.slow
 def test_slip_speed_is_where_fe_torque_meets_the_engine(c4):
     d, _ = c4
     eng = EngineCurve.default()
@@ -80,6 +83,7 @@ def test_slip_speed_is_where_fe_torque_meets_the_engine(c4):
     assert req["engagement_ok"] == (d["engagement_rpm_with_ripple"] > 1.3 * 2700.0)
 
 
+@pytest.mark.slow
 def test_stress_above_yield_is_said_plainly(c4):
     d, _ = c4
     assert d["safety_factor"] == pytest.approx(1250e6 / d["max_von_mises_Pa"], rel=1e-9)
@@ -87,6 +91,7 @@ def test_stress_above_yield_is_said_plainly(c4):
     assert said == (d["safety_factor"] < 1.0)
 
 
+@pytest.mark.slow
 def test_plus_minus_and_mu_sensitivity_follow_the_physics(c4):
     d, _ = c4
     (shoe,) = d["shoe_character_per_shoe"]
@@ -100,6 +105,7 @@ def test_plus_minus_and_mu_sensitivity_follow_the_physics(c4):
     assert (d["mu_sensitivity"]["elasticity"] < 1.0) == (shoe["character"] == "minus")
 
 
+@pytest.mark.slow
 def test_nominal_arc_overpredicts_where_contact_is_at_the_tip(c4):
     d, _ = c4
     cp = d["coupling"]
@@ -111,6 +117,7 @@ def test_nominal_arc_overpredicts_where_contact_is_at_the_tip(c4):
     assert abs(m["analytic_fe_arc_Nm"] / m["fe_torque_Nm"] - 1) < 0.15
 
 
+@pytest.mark.slow
 def test_out_writes_plots_and_tables(c4):
     _, out = c4
     # not the default mesh size: the file names carry the design hash
@@ -125,6 +132,7 @@ def test_out_writes_plots_and_tables(c4):
     assert inp["operating_point"]["mu"] == 0.165 and inp["engine"]["max_torque_Nm"] == 3.4
 
 
+@pytest.mark.slow
 def test_two_designs_in_one_folder_are_told_apart(tmp_path):
     for t in ("1.7mm", "1.8mm"):
         r = invoke("analyze", "concept4", *MESH, "--set", f"flexure_thickness={t}", "--out",
@@ -136,6 +144,7 @@ def test_two_designs_in_one_folder_are_told_apart(tmp_path):
     assert th == pytest.approx([1.7e-3, 1.8e-3])
 
 
+@pytest.mark.slow
 def test_terminal_table_has_units_and_warning(c4):
     d, _ = c4
     r = invoke("analyze", "concept4", *MESH)
@@ -147,6 +156,7 @@ def test_terminal_table_has_units_and_warning(c4):
     assert ("WARNING: STRESS ABOVE YIELD" in t) == (d["safety_factor"] < 1)
 
 
+@pytest.mark.slow
 def test_summary_rows_say_never_holds_and_never_engages(c4, tmp_path):
     from clutchfem.report import summary_rows
 
@@ -163,6 +173,7 @@ def test_summary_rows_say_never_holds_and_never_engages(c4, tmp_path):
         assert rows["slip speed (drum held, full throttle)"] == status.upper()
 
 
+@pytest.mark.slow
 def test_comparison_chart_with_baseline(c4, tmp_path):
     import pandas as pd
 
@@ -176,6 +187,7 @@ def test_comparison_chart_with_baseline(c4, tmp_path):
     assert p.read_bytes()[:4] == b"\x89PNG" and p.stat().st_size > 10000
 
 
+@pytest.mark.slow
 def test_engine_curve_below_engagement_never_engages(tmp_path):
     e = tmp_path / "low.csv"
     e.write_text("rpm,torque\n1000,1.0\n2000,2.0\n")
@@ -188,6 +200,7 @@ def test_engine_curve_below_engagement_never_engages(tmp_path):
     assert d["shoe_character"] == "never engages"
 
 
+@pytest.mark.slow
 def test_strong_engine_never_holds(tmp_path):
     """An engine far stronger than the clutch: the clutch slips at every speed (issue 12: it
     used to say 'never slips', the opposite)."""
@@ -232,6 +245,7 @@ def test_bad_input_clear_error(tmp_path, csv, args, fragments):
         assert frag in t, (frag, t)
 
 
+@pytest.mark.slow
 def test_default_design_report_writes_fig25_and_says_yield(tmp_path):
     from clutchfem.report import default_design_report
 

@@ -81,6 +81,7 @@ def test_rotor_composite_properties():
         rot.polar_inertia_kg_m2("spinning")
 
 
+@pytest.mark.slow
 def test_concept_rotor_mass_from_geometry(rotor4):
     name, rot = rotor4
     assert name == "concept4"
@@ -103,6 +104,7 @@ def test_concept_rotor_mass_from_geometry(rotor4):
     assert rot2.parts[0].mass_kg == pytest.approx(2 * clutch.mass_kg, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_crankshaft_whirl_gyroscopic_ordering_and_fe_check(rotor4):
     _, rot = rotor4
     res = {g: W.crankshaft_whirl(rot, gyroscopic=g) for g in ("engaged", "drum_held", "none")}
@@ -130,6 +132,7 @@ def test_crankshaft_whirl_against_a_rigid_rotor_on_a_massless_shaft():
     assert r.omega_crit_rad_s == pytest.approx(math.sqrt(k / 5.0), rel=1e-3)
 
 
+@pytest.mark.slow
 def test_heavier_rotor_longer_overhang_lower_critical_speed(rotor4):
     _, rot = rotor4
     base = W.crankshaft_whirl(rot)
@@ -139,6 +142,7 @@ def test_heavier_rotor_longer_overhang_lower_critical_speed(rotor4):
     assert thin.rpm_crit < base.rpm_crit
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kwargs", [
     {"shaft_diameter_m": 0.0},
     {"bearing_span_m": float("inf")},
@@ -151,6 +155,7 @@ def test_whirl_bad_input(kwargs, rotor4):
         W.crankshaft_whirl(rotor4[1], replace(W.CHAINSAW_LAYOUT, **kwargs))
 
 
+@pytest.mark.slow
 def test_whirl_answer(answer4):
     """What the validation records of the whirl carried (clutch mass and inertias, drum and
     sprocket, overhang, three critical speeds, margin over the lowest), now fields of the
@@ -180,6 +185,7 @@ def test_whirl_answer(answer4):
     assert other.clutch_mass_kg != answer4.clutch_mass_kg
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["concept1", "concept4"])
 @pytest.mark.parametrize("model", ["sector", "full"])
 def test_whirl_from_the_mesh_equals_the_occ_reference(name, model):
@@ -201,6 +207,7 @@ def test_whirl_from_the_mesh_equals_the_occ_reference(name, model):
                                                         rel=1e-6)
 
 
+@pytest.mark.slow
 def test_mesh_area_properties_of_two_shoes_sector_and_full():
     """Two shoes: the part is not axisymmetric in its second moments (I_xx != I_yy, I_xy != 0).
     The sector completed by its 180 deg copy equals the full mesh and the OCC-exact values of

@@ -42,6 +42,7 @@ def hertz_arc_deg(normal_force: float, thickness: float, E: float) -> float:
     return math.degrees(2 * b / R_D)
 
 
+@pytest.mark.slow
 def test_ring_segment_arc_is_hertz(segment):
     """The arc of a ring segment pressed into the drum is Hertz's 2b / R_d within its stated
     error (plus Hertz's own first-order error), at every speed of a dense sweep; the ends lie
@@ -65,6 +66,7 @@ def test_ring_segment_arc_is_hertz(segment):
     assert np.allclose(ext[on, 0], -ext[on, 1], atol=float(np.max(ext[on, 2])))  # symmetric about the x axis
 
 
+@pytest.mark.slow
 def test_arc_smooth_in_speed(segment):
     """No step of the arc from one speed to the next exceeds its stated error, and, above 1.5 x
     the engagement speed (where Hertz's arc ~ sqrt(w^2 - w0^2) is smooth), halving the speed
@@ -95,6 +97,7 @@ def test_arc_exact_where_contact_reaches_the_surface_end(tmp_path):
     assert r.curve["contact_arc_error_deg"].tolist() == [0.0, 0.0, 0.0]
 
 
+@pytest.mark.slow
 def test_concept_arc_smooth_in_speed():
     """concept 1 (default mesh, 0.5 deg between contact nodes) every 25 rpm from engagement to
     9000 rpm: no step of the arc larger than its stated error (the node count steps by 2 of

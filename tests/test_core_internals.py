@@ -34,6 +34,7 @@ def concept1_coarse():
     return mesh_concept(c, p, MeshSettings(size=2.0e-3, model="sector")), p
 
 
+@pytest.mark.slow
 def test_lazy_condensation_equals_dense_lcp(concept1_coarse):
     cm, p = concept1_coarse
     d = design(cm, p, mu=0.3)
@@ -110,6 +111,7 @@ def test_lazy_lcp_matches_dense(seed, m, skew):
     assert set(np.nonzero(lam_lazy)[0]) <= asked
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("backend", ["superlu", "cholmod"])
 def test_solver_backends_agree(concept1_coarse, backend, monkeypatch):
     """Every installed direct solver gives the same sweep (CHOLMOD is installed by
@@ -133,6 +135,7 @@ def test_solver_backends_agree(concept1_coarse, backend, monkeypatch):
         assert np.allclose(r.curve["max_von_mises_Pa"], ref.curve["max_von_mises_Pa"], rtol=1e-7)
 
 
+@pytest.mark.slow
 def test_injected_solver_factory_is_used(concept1_coarse):
     """A user's own factory (here scipy's splu wrapped) is what factorises K."""
     import scipy.sparse.linalg as spla
@@ -190,6 +193,7 @@ def test_base_mu_is_checked(kw):
         Ritz(**kw)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("what", ["sweep", "analyze"])
 def test_a_finished_design_is_freed_without_the_garbage_collector(concept1_coarse, what):
     """No reference cycle holds a design's FE model (its matrices and factorisation): when the

@@ -33,6 +33,7 @@ def _rel(a, b) -> float:
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
 
 
+@pytest.mark.slow
 def test_sweeps_equal_the_pre_redesign_numbers(design):
     cases = {k: v for k, v in REF["cases"].items() if k.startswith(design.name + "/")}
     assert len(cases) == 5
@@ -47,6 +48,7 @@ def test_sweeps_equal_the_pre_redesign_numbers(design):
             assert _rel(res.shoes["normal_force_N"], case["shoe_normal_force_N"]) < TOL, key
 
 
+@pytest.mark.slow
 def test_analyze_assembles_and_factorises_once(monkeypatch):
     from clutchfem.analysis import analyze
     from clutchfem.fe import COUNTS

@@ -34,6 +34,7 @@ def _entities(path, layers):
     return sorted(out), doc
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name, values", [("concept1", {}), ("concept4", {"profile": "table",
                                                                           "table_c8": "0.45mm"})])
 def test_dxf_and_step_hold_the_exact_part(tmp_path, name, values):
@@ -70,6 +71,7 @@ def test_dxf_and_step_hold_the_exact_part(tmp_path, name, values):
     assert rec["design_hash"] == r.design_hash and rec["clutchfem"] == cf.__version__ and rec["params"]
 
 
+@pytest.mark.slow
 def test_process_and_kerf_change_the_tool_path_not_the_part(tmp_path):
     d = cf.Design.from_concept("concept1", mesh=COARSE)
     parts, paths = [], []
@@ -89,6 +91,7 @@ def test_process_and_kerf_change_the_tool_path_not_the_part(tmp_path):
     assert not paths[0] and paths[1] and paths[1] != paths[2] and paths[1] != paths[3]
 
 
+@pytest.mark.slow
 def test_features_below_the_process_limit_are_refused_by_name(tmp_path):
     d = cf.Design.from_concept("concept1", fillet_radius="0.15mm", mesh=COARSE)
     with pytest.raises(cf.CuttingError) as e:
@@ -137,6 +140,7 @@ def test_step_and_dxf_round_trip_within_the_discretisation_band(tmp_path, name):
         assert abs(s - s_d) <= band_s, (suffix, s, s_d, band_s)
 
 
+@pytest.mark.slow
 def test_as_cut_kerf_error_moves_engagement_and_slip(tmp_path):
     d = cf.Design.from_concept("concept1", mesh=COARSE)
     out = as_cut(part_outline(d.concept, d.params), d, kerf_error=0.05e-3, mesh_size=2e-3, band=False)
@@ -151,6 +155,7 @@ def test_as_cut_kerf_error_moves_engagement_and_slip(tmp_path):
     assert dm == pytest.approx(perim * 0.025e-3, rel=0.02) and dm < area
 
 
+@pytest.mark.slow
 def test_from_run_folder_reads_back_the_same_design(tmp_path):
     d = cf.Design.from_concept("concept3", shoe_arc="70deg", mesh=COARSE)
     r = cf.export(d, tmp_path / "a", analyze_design=False)
@@ -160,6 +165,7 @@ def test_from_run_folder_reads_back_the_same_design(tmp_path):
     assert r2.area_m2 == r.area_m2
 
 
+@pytest.mark.slow
 def test_cli_export_and_hostile_options(tmp_path):
     run = CliRunner().invoke
     res = run(app, ["export", "concept4", "--process", "wire-edm", "--units", "in", "--no-analysis",
@@ -188,6 +194,7 @@ def test_cli_export_and_hostile_options(tmp_path):
     assert res.exit_code == 2 and "exactly one design" in res.output
 
 
+@pytest.mark.slow
 def test_design_of_a_compensate_folder_and_of_a_study_row(tmp_path):
     """--from picks the compensated design ('after') of a compensate folder; --study/--row
     the row's concept, parameters and operating point (a store written by the study engine's
@@ -216,6 +223,7 @@ def test_design_of_a_compensate_folder_and_of_a_study_row(tmp_path):
         design_from_study(tmp_path / "study", "3fa")
 
 
+@pytest.mark.slow
 def test_report_links_the_cutting_files(tmp_path):
     d = cf.Design.from_concept("concept1", mesh=COARSE)
     a = cf.analyze(d, errors=False)

@@ -32,6 +32,7 @@ from clutchfem.core import Material, ParameterError, get_material
 RD = 0.0344
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("t, ks, tol", [(0.5e-3, (0, 2, 3, 6), 1e-3), (2e-3, (0, 3, 6, 9), 1.5e-2)])
 def test_ring_harmonics_match_fe_annulus(tmp_path, t, ks, tol):
     wall = DrumWall(wall_thickness=t)
@@ -162,6 +163,7 @@ def test_annulus_on_elastic_drum_closed_form(tmp_path, state):
     assert N > 0
 
 
+@pytest.mark.slow
 def test_nonlinear_reference_with_elastic_drum_linear_limit(tmp_path):
     """The non-linear reference with an elastic drum (C_d in its bordered Newton system, the
     drum's free expansion in its gaps) tends to the linear path with the same physics (spin

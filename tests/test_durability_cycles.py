@@ -198,6 +198,7 @@ def test_longest_chord_is_the_ellipse_major_axis():
 # ---------------------------------------------------------------------------------------
 # the holding-state line against solved states (FE)
 # ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["concept1", "concept4"])
 def test_reverse_capacity_line_against_a_solved_reverse_state(name):
     """The line through the frictionless and the forward full-slip state gives the reverse
@@ -271,6 +272,7 @@ def an4():
     return analyze(Design.from_concept("concept4", mesh=COARSE))
 
 
+@pytest.mark.slow
 def test_analyze_has_fatigue_answer_with_a_named_location(an4):
     """Concept 4: the factor, a flexure-end location, the governing cycle among the cycles
     counted; JSON strict and carries the keys; the table and the report show them; no
@@ -321,6 +323,7 @@ def test_material_without_fatigue_data_is_not_available():
     assert fa.safety_factor is None and "7075" in fa.details["reason"]
 
 
+@pytest.mark.slow
 def test_analyze_cli_json_has_fatigue_keys_and_settings_act():
     """analyze --json (coarse concept 4): the fatigue keys with a named location; --fatigue
     settings reach the step (wire-EDM edges: S_e 373 MPa); bad settings are refused before
@@ -352,6 +355,7 @@ def test_analyze_cli_json_has_fatigue_keys_and_settings_act():
     assert r.exit_code == 0 and "start_stops" in r.output and "edge_finish" in r.output
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("concept, loads", [
     ("concept4", FatigueLoads()),
     ("concept1", FatigueLoads()),

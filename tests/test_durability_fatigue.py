@@ -287,6 +287,7 @@ def test_location_naming_concept4():
     assert loc.zone == "shoe_0" and loc.index == 0
 
 
+@pytest.mark.slow
 def test_location_naming_concept1_and_concept2():
     """Concept 1 (drawing: the flexure leaves the hub near the sector's upper cut, y ~ 0,
     and meets the shoe below): its highest element is the hub end, its lowest the shoe

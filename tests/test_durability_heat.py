@@ -100,6 +100,7 @@ def l2_error(cm, T, t):
 # ---------------------------------------------------------------------------------------
 # closed-form transients
 # ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_strip_step_flux_space_convergence(tmp_path_factory):
     """P2 in space: L2 error at t = 1 s (Fo = 0.032, steep profile) against the Fourier
     series, time error made negligible (dt = 0.5 ms).  Measured: 4.9e-6, 7.0e-7, 7.7e-8 K m
@@ -122,6 +123,7 @@ def test_strip_step_flux_space_convergence(tmp_path_factory):
     assert errs[-1] < 1e-6 * rise * math.sqrt(L_STRIP * B_STRIP)
 
 
+@pytest.mark.slow
 def test_strip_step_flux_time_convergence(tmp_path_factory):
     """Crank-Nicolson with the backward-Euler start: self-convergence at t = 10 s on the
     1 mm mesh (reference: 2560 steps).  Measured errors 3.2e-4, 6.5e-5, 1.3e-5, 2.3e-6 K for
@@ -219,6 +221,7 @@ def tip_load(cm, p, rpm=7000.0, mu=0.165, pressure=5e6):
                         drum_radius_m=p.drum_radius)
 
 
+@pytest.mark.slow
 def test_energy_conservation_concept1_cycles():
     """Concept 1 sector, two slip events of 5 s with 5 s pauses, computed partition.  Input
     from the load arrays alone (gamma mu v sum(lam) x 3 shoes x time); stored energy by an
@@ -288,6 +291,7 @@ def _annulus_load(cm, copies, H):
     return SlipHeatLoad(node_index=idx, lam_N=lam[idx], mu=0.2, omega_rad_s=700.0, drum_radius_m=0.0306)
 
 
+@pytest.mark.slow
 def test_sector_equals_full_part(tmp_path):
     """Cyclic sector (120 deg annulus, gmsh-periodic cuts) against the full part made of its
     three rotated copies, an unsymmetric load in each sector, computed partition, two
@@ -310,6 +314,7 @@ def test_sector_equals_full_part(tmp_path):
     assert rs.energy["lost_edges_J"] > 0  # the edge convection acted
 
 
+@pytest.mark.slow
 def test_concept1_sector_vs_full_mesh():
     """Concept 1 meshed as a sector and as the full part by gmsh (different meshes): the
     probes agree to the discretisation error (1 % of each rise allowed; the exact identity is
@@ -328,6 +333,7 @@ def test_concept1_sector_vs_full_mesh():
         assert np.max(np.abs(a - b)) < 1e-2 * rise + 1e-6
 
 
+@pytest.mark.slow
 def test_concept1_probes_limit_and_outputs(tmp_path):
     """A long slip on concept 2 (its in-shoe flexure sits at the drum): the flexure probe
     crosses the limit temperature; the crossing time interpolates the series; the yield
@@ -382,6 +388,7 @@ ALU = DrumThermal(conductivity=150.0, density=2700.0, specific_heat=900.0, wall_
 THICK_STEEL = DrumThermal(wall_thickness=50e-3)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("drum", [THICK_STEEL, ALU], ids=["steel", "aluminium"])
 def test_partition_peclet_limits(drum):
     """Thick wall (penetration << wall in 0.5 s): Pe -> 0 gives two stationary half-spaces,
@@ -405,6 +412,7 @@ def test_partition_peclet_limits(drum):
     assert abs(errs[-1]) < 1e-3 * lim
 
 
+@pytest.mark.slow
 def test_partition_drum_branches_agree():
     """The drum's steady-periodic (Fourier) form and the pass-by-pass superposition agree
     once many passes have happened (measured 5e-5 relative at 700 passes; 1e-4 allowed),
@@ -434,6 +442,7 @@ def test_wall_step_response_series():
         tl / (d.density * d.specific_heat * d.wall_thickness) + d.wall_thickness / (3 * d.conductivity), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_partition_with_fe_shoe_side_is_blok_matched():
     """With the part's own response, the slip heat result's partition satisfies Blok's
     condition: gamma R_s = (1 - gamma) R_d."""

@@ -20,6 +20,7 @@ def test_layers_richardson_is_exact_for_a_first_order_sequence():
     assert layers_error(a, 2, None, 3) is None
 
 
+@pytest.mark.slow
 def test_solve_errors_of_a_3d_design_sum_the_measured_terms():
     d = cf.Design.from_concept("concept4", formulation="3d", layers=1, mesh=COARSE)
     res = d.sweep([9000.0])

@@ -30,6 +30,7 @@ def test_discretisation_estimate_bounds_the_error_against_a_finer_mesh():
         assert e["discretisation"] <= 20 * max(true, 1e-9 * abs(getattr(an, key))), key  # not absurdly loose
 
 
+@pytest.mark.slow
 def test_model_form_terms_follow_the_measurements():
     d = Design.from_concept("concept4", mesh=MeshSettings(size=2.5e-3), fidelity="fast")
     t, _ = model_form(d, "engagement_rpm", 4200.0)
@@ -58,6 +59,7 @@ def test_model_form_terms_follow_the_measurements():
     assert sum(map(abs, tb.values())) < 0.25 * sum(map(abs, tf.values()))  # the fast path's band is larger
 
 
+@pytest.mark.slow
 def test_analyze_and_solve_report_errors(tmp_path):
     r = CliRunner().invoke(app, ["analyze", "concept1", "--mesh-size", "2.5mm", "--json"])
     doc = json.loads(r.output.strip().splitlines()[-1])

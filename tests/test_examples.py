@@ -33,6 +33,7 @@ def test_examples_are_found():
     assert EXAMPLES, "no examples/*.py found"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("script", EXAMPLES, ids=[p.stem for p in EXAMPLES])
 def test_example_runs(script, tmp_path):
     out = tmp_path / "out"

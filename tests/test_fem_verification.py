@@ -242,6 +242,7 @@ def annulus_full(tmp_path_factory):
     return load_annulus(tmp_path_factory.mktemp("ann") / "full.msh", A_IN, B_OUT, 1.5e-3, thickness=H)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("softening", ["modal", "exact"])
 def test_annulus_spin_softening_closed_form(annulus_full, softening):
     """With spin softening the free annulus follows the Bessel solution (+2.0 % on the peak
@@ -265,6 +266,7 @@ def test_annulus_spin_softening_closed_form(annulus_full, softening):
     assert e["u_L2"] < 2e-4 and e["sigma_L2"] < 3e-3
 
 
+@pytest.mark.slow
 def test_annulus_no_softening_closed_form(annulus_full):
     omega = 5.0e4
     plain = Lame(STEEL, omega, A_IN, B_OUT)
@@ -535,6 +537,7 @@ def test_spin_softening_modal_vs_exact_concept1():
     assert _at(off, 8000, "normal_force_N") < 0.99 * _at(ex, 8000, "normal_force_N")
 
 
+@pytest.mark.slow
 def test_exact_softening_below_engagement():
     """Below engagement (and with no drum) 'exact' must still soften: its displacement
     field has to match 'modal' (both are (K - w^2 M)^-1 w^2 f1 there).  FAILS:

@@ -31,6 +31,7 @@ def test_the_shipped_default_is_the_best_estimate(monkeypatch):
         cf.OperatingPoint()
 
 
+@pytest.mark.slow
 def test_analyze_cli_default_is_the_corrected_best_estimate(monkeypatch):
     """`clutchfem analyze concept4` with nothing set: the thick model on the 2 mm elastic
     drum, the peak stress corrected (non-linearity and mesh extrapolation)."""
@@ -49,6 +50,7 @@ def test_every_design_command_takes_fidelity(name):
     assert "fidelity" in inspect.signature(cmd.callback).parameters
 
 
+@pytest.mark.slow
 def test_a_study_command_runs_on_the_fidelity_it_is_given():
     """`tolerance --fidelity best` under a fast session default: the nominal design's
     engagement is the best path's (the thick model's), not the fast one's."""

@@ -21,6 +21,7 @@ from clutchfem.fe import estimate_3d
 COARSE = cf.MeshSettings(size="6mm", flexure_factor=1.0, contact_factor=0.5, fillet_factor=1.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("formulation", ["auto", "plane-stress", "plane-strain", "thick", "3d"])
 @pytest.mark.parametrize("softening", ["prestress", "ritz", "exact", "off", "prestress-exact"])
 def test_every_formulation_and_softening_through_analyze(formulation, softening):
@@ -32,6 +33,7 @@ def test_every_formulation_and_softening_through_analyze(formulation, softening)
     assert a.inputs["model"]["formulation"] == ("plane-stress" if formulation == "auto" else formulation)  # fast
 
 
+@pytest.mark.slow
 def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components():
     d = cf.Design.from_concept("concept4", formulation="3d", layers=1, mesh=COARSE)
     a = cf.analyze(d, errors=False)
@@ -39,6 +41,7 @@ def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components():
     assert a.fatigue["worst_xy_m"] is not None and len(a.fatigue["worst_xy_m"]) == 2
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("formulation", ["3d", "thick", "plane-strain"])
 def test_a_study_runs_every_formulation(tmp_path, formulation):
     op = cf.OperatingPoint(formulation=formulation, layers=1)
@@ -47,6 +50,7 @@ def test_a_study_runs_every_formulation(tmp_path, formulation):
     assert list(df["status"]) == ["ok"], df["message"].tolist()
 
 
+@pytest.mark.slow
 def test_a_study_runs_the_exact_prestress_and_the_smoothed_contact(tmp_path):
     op = cf.OperatingPoint(softening="prestress-exact", contact_smoothing="1um")
     d = cf.Design.from_concept("concept4", operating=op, mesh=cf.MeshSettings(size="6mm"))
@@ -69,6 +73,7 @@ def test_layers_past_the_memory_limit_are_refused_before_building(monkeypatch):
     assert d.model.ndofs == n1
 
 
+@pytest.mark.slow
 def test_cli_analyze_3d_json():
     r = CliRunner().invoke(app, ["analyze", "concept4", "--formulation", "3d", "--layers", "1", "--mesh-size", "6mm",
                                  "--json"])
@@ -77,6 +82,7 @@ def test_cli_analyze_3d_json():
     assert doc["inputs"]["model"]["formulation"] == "3d" and np.isfinite(doc["max_von_mises_Pa"])
 
 
+@pytest.mark.slow
 def test_cli_drum_wall_rigid_and_its_model_form_term():
     """``--drum-wall rigid`` (the help's LENGTH|rigid) gives the rigid drum on the best path,
     whose model-form band then carries the rigid-drum term again; a wall below the ring

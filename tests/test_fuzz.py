@@ -46,6 +46,7 @@ def check_answer(res) -> None:
         assert touching.min() >= res.engagement_rpm * (1 - 1e-9)
 
 
+@pytest.mark.slow
 @FUZZ
 @given(mu=st.one_of(weird_floats, st.sampled_from([0.0, 0.165, 0.5, 1.0])),
        rotation=st.sampled_from(["ccw", "cw", "CCW", "left", ""]),
@@ -78,6 +79,7 @@ def concept_params(draw):
     return name, vals
 
 
+@pytest.mark.slow
 @FUZZ
 @given(cp=concept_params(), mu=st.sampled_from([0.0, 0.165, 0.6]))
 def test_api_concept_parameters_and_analysis(cp, mu):
@@ -107,6 +109,7 @@ OPTIONS = {
 }
 
 
+@pytest.mark.slow
 @FUZZ
 @given(cmd=st.sampled_from(["solve", "analyze"]),
        opts=st.dictionaries(st.sampled_from(sorted(OPTIONS)), st.integers(0, 5), max_size=3))

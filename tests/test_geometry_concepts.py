@@ -32,13 +32,6 @@ CORNER = 6.0e-3  # coarser still for the many range-corner builds (gmsh still re
 FINE = MeshSettings(size=1.5e-3, fillet_factor=0.3)  # for the area checks (P2 arcs to < 1e-6)
 
 
-@pytest.fixture(autouse=True)
-def _cache(monkeypatch, tmp_path_factory):
-    """One mesh cache per test worker, never the developer's (cached meshes are reused
-    between the tests of this file, which share parameter sets)."""
-    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path_factory.getbasetemp() / "geometry-concepts-cache"))
-
-
 def _mesh(name: str, ms: MeshSettings, **values):
     c = get_concept(name)
     return mesh_concept(c, c.params(**values), ms)
@@ -82,6 +75,7 @@ CONCEPT = Dropped()
 '''
 
 
+@pytest.mark.slow
 def test_a_dropped_concept_is_tested(tmp_path):
     """A concept file in a geometries folder ($CLUTCHFEM_GEOMETRIES here) gets every
     contract test of this file, and they run, without editing this file."""
@@ -112,6 +106,7 @@ def test_a_dropped_concept_is_tested(tmp_path):
 # --------------------------------------------------------------------------------------
 # defaults: sector and full, minus and plus; groups; cyclic cut
 # --------------------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 @pytest.mark.parametrize("arrangement", ["minus", "plus"])
 def test_defaults_build_sector_and_full(name, arrangement):
@@ -157,6 +152,7 @@ def _check_cyclic(cm):
     assert np.min(np.hypot(*a)) == pytest.approx(r_bore, abs=1e-9)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 @pytest.mark.parametrize("profile", ["eccentric", "linear"])
 def test_other_profiles_build(name, profile):
@@ -172,6 +168,7 @@ def _r2(w):
     return w.x[0] ** 2 + w.x[1] ** 2
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_mesh_mass_properties_equal_occ(name):
     """Mass of the meshed part, of each shoe zone and the part's polar moment equal gmsh OCC's
@@ -188,6 +185,7 @@ def test_mesh_mass_properties_equal_occ(name):
             assert float(_one.assemble(bi)) == pytest.approx(cm.mass[f"shoe_{i}"]["area"], rel=1e-6)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_order2_boundary_tags_on_the_exact_curves(name):
     """The named boundaries of an order-2 concept mesh survive the gmsh -> meshio -> skfem
@@ -209,6 +207,7 @@ def test_order2_boundary_tags_on_the_exact_curves(name):
     assert np.array_equal(np.sort(cm.boundary("contact")), np.unique(contact))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_minus_mesh_is_mirror_of_plus(name):
     ms = MeshSettings(size=COARSE, model="sector")
@@ -247,6 +246,7 @@ def _param_strategy(name: str):
     return st.fixed_dictionaries(parts)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_parameter_space_builds_or_fails_clearly(name):
     """Hypothesis (derandomized, no example database: the same draws on every run) over the
@@ -290,6 +290,7 @@ def _build_or_refuse(name, values, model="sector", size=COARSE, geometry_error_o
     return True
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_range_corners_build_or_fail_clearly(name):
     """Each numeric parameter at both ends of its declared range (the others at their
@@ -387,6 +388,7 @@ def test_concept4_defaults_engage_in_window():
 WINDOW_RPM = (1.3 * 2700.0, 5000.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["concept1", "concept2"])
 def test_concept1_and_2_defaults_engage_in_window(name):
     """The 60 cc defaults engage inside the window (51CrV4, mu = 0.165, spin softening on);
@@ -411,6 +413,7 @@ REACH_THE_CONTACT_CIRCLE = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", [n for n in ALL if n not in REACH_THE_CONTACT_CIRCLE])
 def test_only_shoes_reach_the_drum(name):
     """Everything but the shoes' contact surfaces stays >= 0.3 mm inside the drum's
@@ -427,6 +430,7 @@ def test_only_shoes_reach_the_drum(name):
     assert r_other < p.drum_radius - p.clearance - margin
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL)
 def test_every_concept_draws(name, tmp_path):
     """The labelled drawing of the defaults (PNG and SVG) is written for every concept."""
@@ -461,6 +465,7 @@ def test_outline_detects_self_intersection():
     assert circ.signed_area() == pytest.approx(math.pi, rel=2e-3)
 
 
+@pytest.mark.slow
 def test_drawings_are_written(tmp_path):
     from clutchfem.geometry import draw_concept
     from clutchfem.mesh import draw_mesh

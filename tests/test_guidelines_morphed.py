@@ -29,6 +29,7 @@ def sens(design):
     return cf.sensitivities(design, ["flexure_thickness", "mu", "idle_rpm"], workers=0)
 
 
+@pytest.mark.slow
 def test_guideline_elasticity_is_the_sensitivities_and_says_its_method(design, sens, tmp_path):
     g = cf.run_guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["mu"], workers=0, progress=False)
     doc = json.loads((tmp_path / "guidelines.json").read_text())
@@ -52,6 +53,7 @@ def test_guideline_elasticity_is_the_sensitivities_and_says_its_method(design, s
     assert g.inputs == ["mu"] and "E_remeshed" not in eng  # the remeshed check is an option
 
 
+@pytest.mark.slow
 def test_operating_input_derivative_is_a_two_point_difference_of_analyze(design, sens):
     mu, h = sens.values["mu"], sens.steps["mu"]
     assert mu == 0.165 and h == pytest.approx(0.01 * mu)
@@ -79,6 +81,7 @@ def test_operating_inputs_refused_as_a_user_would_hear_it(design, tmp_path):
         cf.run_guidelines(design, tmp_path, params=["flexure_thickness"], inputs=["rpm"], workers=0, progress=False)
 
 
+@pytest.mark.slow
 def test_drum_wall_derivative_on_an_elastic_drum():
     """An elastic drum's wall is an operating input (the fast path's rigid drum has none):
     differentiated on the design's own mesh; a thicker wall yields less under the shoes,
@@ -91,6 +94,7 @@ def test_drum_wall_derivative_on_an_elastic_drum():
     assert s.derivatives["drum_wall"]["mass_kg"] == 0.0  # the part is not the drum
 
 
+@pytest.mark.slow
 def test_an_operating_input_at_zero_is_not_studied_and_said(tmp_path):
     """(x / A) dA/dx is 0 at x = 0 whatever the derivative: mu = 0 gets a note, not a row."""
     d = cf.Design.from_concept("concept4", mesh=MESH, mu=0.0)

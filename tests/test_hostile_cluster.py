@@ -88,6 +88,7 @@ def http_port():
     srv.shutdown()
 
 
+@pytest.mark.slow
 def test_an_http_server_or_a_silent_port_is_refused_within_seconds(http_port, monkeypatch):
     """The issue: --scheduler at a port where an HTTP server listens hung past 60 s."""
     monkeypatch.setattr(cluster_mod, "GREETING_S", 1.0)
@@ -134,6 +135,7 @@ def test_worker_counts_the_machine_cannot_hold_are_capped_and_said():
     assert workers_machine_holds(None, points=1)[0] == 1  # never more workers than points
 
 
+@pytest.mark.slow
 def test_a_locked_store_is_waited_for_then_refused(tmp_path, monkeypatch, caplog):
     """A database browser left open ended the study in a raw OperationalError."""
     monkeypatch.setattr(store_mod, "LOCK_WAIT_S", 1.0)
@@ -152,6 +154,7 @@ def test_a_locked_store_is_waited_for_then_refused(tmp_path, monkeypatch, caplog
         other.close()
 
 
+@pytest.mark.slow
 def test_a_handful_of_points_runs_in_process(tmp_path):
     """Small studies paid a cluster start (BENCHMARKS.md: the crossover)."""
     spec = parse_spec(TINY.replace("N", "2"))
@@ -190,6 +193,7 @@ def scheduler(tmp_path):
         log.close()
 
 
+@pytest.mark.slow
 def test_no_workers_and_a_dead_worker_stop_the_study_with_the_rows_kept(tmp_path, scheduler, monkeypatch, caplog):
     monkeypatch.setattr(cluster_mod, "WAIT_WORKERS_S", 3.0)
     spec = parse_spec(TINY.replace("N", "6"))

@@ -141,6 +141,7 @@ def test_the_engagement_speed_does_not_depend_on_the_engine(c4, tmp_path):
     assert "does not depend on the engine" in a.engagement_note
 
 
+@pytest.mark.slow
 def test_a_failing_mu_sensitivity_case_keeps_the_main_answers():
     """concept4 plus at mu 0.6 was refused 'with mu = 0.78' (the hidden +30 % case); a study
     stored the point as failed."""

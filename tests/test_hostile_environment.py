@@ -74,6 +74,54 @@ def test_the_cache_evicts_the_least_recently_used_entries_down_to_its_bound(tmp_
     assert clear_cache(d)[0] == 1 and cache_entries(d) == []
 
 
+MESH_ONE = """
+import json, sys
+from clutchfem.geometry import MeshSettings, get_concept
+from clutchfem.mesh import mesh_concept
+print("started", flush=True)
+c = get_concept("concept1")
+cm = mesh_concept(c, c.params(flexure_thickness=1.95e-3), MeshSettings(size=4e-3))
+print(json.dumps({"cached": cm.cached, "n": cm.n_elements}), flush=True)
+"""
+
+
+@pytest.mark.slow
+def test_two_processes_meshing_one_design_at_once_mesh_it_once(tmp_path):
+    """The test suite's workers (and a study's) share one cache: two processes that ask for
+    the same design while its entry is locked both wait; then one meshes it and the other
+    reads its files (without the entry lock both would mesh, each in its own files)."""
+    from clutchfem.geometry import MeshSettings
+    from clutchfem.mesh import cache_key
+    from clutchfem.mesh.cache import entry_lock
+
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src"), "CLUTCHFEM_CACHE": str(tmp_path)}
+    c = get_concept("concept1")
+    name = f"concept1-{cache_key(c, c.params(flexure_thickness=1.95e-3), MeshSettings(size=4e-3))}"
+    with entry_lock(cache_dir_of(tmp_path), name):
+        procs = [subprocess.Popen([sys.executable, "-c", MESH_ONE], env=env, stdout=subprocess.PIPE,
+                                  stderr=subprocess.PIPE, text=True) for _ in range(2)]
+        for p in procs:
+            assert p.stdout.readline().strip() == "started", p.communicate()
+        time.sleep(1.0)  # both are now at the entry's lock (the import is done; a mesh takes longer)
+        assert not list(cache_dir_of(tmp_path).glob("concept1-*.msh"))
+    outs = []
+    for p in procs:
+        out, err = p.communicate(timeout=120)
+        assert p.returncode == 0, err
+        outs.append(json.loads(out.splitlines()[-1]))
+    assert sorted(o["cached"] for o in outs) == [False, True]  # meshed once, read once
+    assert outs[0]["n"] == outs[1]["n"]
+    assert len(cache_entries(cache_dir_of(tmp_path))) == 1
+
+
+def cache_dir_of(root: Path) -> Path:
+    """The mesh folder of a cache whose CLUTCHFEM_CACHE is ``root``."""
+    d = root / "meshes"
+    d.mkdir(exist_ok=True)
+    return d
+
+
+@pytest.mark.slow
 def test_cache_command_shows_and_clears_in_json(tmp_path):
     env = {"CLUTCHFEM_CACHE": str(tmp_path)}
     (tmp_path / "meshes").mkdir()
@@ -142,6 +190,7 @@ def d1():
     return Design.from_concept("concept1")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("call, words", [
     (lambda d: analyze(d, engine="no-such-file.csv"), "engine curve file not found"),
     (lambda d: analyze(d, engine=3), "parameter 'engine' = 'int'"),
@@ -170,6 +219,7 @@ def test_a_string_speed_is_read_as_rpm(d1):
 
 
 # ---- refusals are one line when standard error is a file ------------------------------------
+@pytest.mark.slow
 def test_refusals_and_usage_errors_are_one_line_on_a_pipe():
     r = _cli("analyze", "concept1", "--mu", "7")
     lines = r.stderr.strip().splitlines()
@@ -192,6 +242,7 @@ print(render_png(Path(sys.argv[1]), Path(sys.argv[1]).with_suffix(".png")))
 """
 
 
+@pytest.mark.slow
 def test_a_render_on_a_headless_machine_prints_no_x_server_warning(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
     env["PYTHONPATH"] = str(ROOT / "src")
@@ -205,6 +256,7 @@ def test_a_render_on_a_headless_machine_prints_no_x_server_warning(tmp_path):
 
 
 # ---- progress on a terminal, never in --json standard output -------------------------------
+@pytest.mark.slow
 def test_a_single_design_command_shows_its_stages_on_a_terminal_and_keeps_json_clean(tmp_path):
     args = ("solve", "concept1", "--mesh-size", "3mm", "--rpm", "8000", "--no-errors", "--json")
     env = {"CLUTCHFEM_CACHE": str(tmp_path)}

@@ -54,6 +54,7 @@ def c1():
 # ---------------------------------------------------------------------------------------
 # answers that depended on how the user sampled the speeds
 # ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("rpm", [None, "0:5000:125", "8000", "0:14000:1750", "3000,13000"])
 def test_answers_do_not_depend_on_the_speed_grid(c1, rpm):
     """The issue's example: --rpm 0:5000:125 gave slip 6550 rpm and 5.58 N m at 8000 rpm
@@ -94,6 +95,7 @@ def test_binary_engine_file_is_refused(tmp_path):
     assert r.exit_code == 2 and "not a text CSV" in flat(r.output)
 
 
+@pytest.mark.slow
 def test_first_point_zero_torque_is_not_holds_at_start(tmp_path, c1):
     f = tmp_path / "engine.csv"
     f.write_text("rpm,torque\n500,0\n2500,1.9\n8000,3.4\n14000,1.3\n")
@@ -102,6 +104,7 @@ def test_first_point_zero_torque_is_not_holds_at_start(tmp_path, c1):
     assert d["slip_status"] == "slips" and d["slip_rpm"] > d["engagement_rpm"]
 
 
+@pytest.mark.slow
 def test_no_friction_never_holds_and_says_so(c1):
     cm, p = c1
     an = analyze(Design(cm, OperatingPoint(mu=0.0), params=p))
@@ -128,6 +131,7 @@ def test_speed_past_divergence_is_refused_for_a_free_part(c1):
             sweep(case, [0.0, 1.2 * max(lim, lim_s)])
 
 
+@pytest.mark.slow
 def test_past_divergence_the_drum_holds_the_shoe():
     """A slender flexure (L/t = 100) diverges at ~1000 rpm, after its shoe touched the drum:
     past it the held state is answered (found by continuation, its stability checked by the
@@ -148,6 +152,7 @@ def test_past_divergence_the_drum_holds_the_shoe():
     assert r.curve["residual"].max() < 1e-3
 
 
+@pytest.mark.slow
 def test_solve_without_drum_says_free_spin(tmp_path):
     msh = tmp_path / "c1.msh"
     assert invoke("geometry", "concept1", *MESH, "--out", str(tmp_path), "--no-drawing").exit_code == 0
@@ -161,6 +166,7 @@ def test_solve_refuses_a_drum_that_is_not_the_concepts():
     assert r.exit_code == 2 and "drum radius" in flat(r.output) and "--set drum_radius" in flat(r.output)
 
 
+@pytest.mark.slow
 def test_solve_warns_like_analyze():
     r = invoke("solve", "concept4", *MESH, "--rpm", "0:14000:7000", "--json")
     d = strict_json(r.output)
@@ -168,6 +174,7 @@ def test_solve_warns_like_analyze():
     assert d["max_residual"] < 1e-4 and d["condition_estimate"] > 1
 
 
+@pytest.mark.slow
 def test_plus_shoe_at_high_mu_is_flagged(c1):
     c = get_concept("concept1")
     p = c.params(arrangement="plus")
@@ -194,7 +201,9 @@ def test_bad_out_folder_is_refused_before_any_work(tmp_path, cmd, where):
     assert time.perf_counter() - t0 < 5.0  # refused before meshing or solving
 
 
-def test_corrupted_mesh_cache_is_rebuilt_with_a_warning():
+@pytest.mark.slow
+def test_corrupted_mesh_cache_is_rebuilt_with_a_warning(tmp_path, monkeypatch):
+    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path))  # its own cache: the run's is shared by the workers
     c = get_concept("concept1")
     p = c.params(flexure_thickness=2.1e-3)
     cm = mesh_concept(c, p, COARSE)
@@ -245,6 +254,7 @@ def test_smallest_mesh_size_is_refused_at_once_with_an_estimate():
     assert "at least" in str(ei.value)  # says what size would do
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_ctrl_c_stops_meshing_cleanly(tmp_path):
     env = {**os.environ, "CLUTCHFEM_CACHE": str(tmp_path)}
@@ -264,6 +274,7 @@ def test_ctrl_c_stops_meshing_cleanly(tmp_path):
 # ---------------------------------------------------------------------------------------
 # output other tools must read; exit codes and units
 # ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_json_outputs_are_strict_json(tmp_path):
     r = invoke("solve", "concept1", *MESH, "--rpm", "0,8000", "--json", "--out", str(tmp_path))
     strict_json(r.stdout)  # stdout: the JSON document; stderr: the files written
@@ -272,6 +283,7 @@ def test_json_outputs_are_strict_json(tmp_path):
     strict_json(r.output.strip().splitlines()[-1])
 
 
+@pytest.mark.slow
 def test_units_survive_in_help_and_tables():
     h = invoke("solve", "--help").output
     assert "34.4mm" in h and "LENGTH" in h  # lengths are asked for with their unit
@@ -280,6 +292,7 @@ def test_units_survive_in_help_and_tables():
     assert "[deg]" in r.output and "[MPa]" in r.output and "[mm]" in r.output
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("args, fragment", [
     (["--drum-radius", "35mm"], None),
     (["--thickness", "11mm"], None),

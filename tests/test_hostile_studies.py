@@ -107,6 +107,7 @@ def test_api_refusals_of_seeds_tolerances_and_engine_targets(c4):
         optimize(c4, Targets(15000, None, 16000, 1.5), workers=0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("args", [["tolerance", "concept4", "--tol", "flexure_thickness=+-0.05mm", "--seed", "-1"],
                                   ["optimize", "concept4", "--engage-rpm", "5000:", "--slip-rpm-max", "4000"]])
 def test_cli_refuses_before_meshing(args):
@@ -136,6 +137,7 @@ def _study(spec: Path, out: Path, *extra: str, env: dict | None = None) -> tuple
     return json.loads(r.stdout), r.stderr
 
 
+@pytest.mark.slow
 def test_a_rerun_of_a_finished_study_loads_no_fe_stack_and_resumes_when_anything_changed(tmp_path):
     spec = tmp_path / "s.toml"
     spec.write_text(BASE + '[errors]\nsample = 0\n[vary]\n[vary.params]\nflexure_thickness = {values = ["1.6mm", '

@@ -41,6 +41,7 @@ def _tangent_partition(h: float):
     gmsh.model.mesh.generate(2)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("h", [0.1e-3, 0.5e-3])
 def test_tangent_partition_sliver_repaired_without_moving_the_outline(h):
     with gmsh_session("sliver"):
@@ -80,6 +81,7 @@ def test_p2_scaled_jacobian_is_the_mesh_quality_measure():
     assert np.allclose(scaled_jacobian(m), det.min(axis=1) / det.max(axis=1), atol=1e-12)
 
 
+@pytest.mark.slow
 def test_concept4_fine_fillets_peak_is_the_notch_not_a_sliver():
     """Concept 4, best preset with fillet factor 0.0625: before the guard a sliver where
     the R 27.8 mm shoe-zone circle meets the R 0.8 mm notch fillet tangentially had scaled
@@ -100,6 +102,7 @@ def test_concept4_fine_fillets_peak_is_the_notch_not_a_sliver():
     assert np.hypot(*(m.stress.points[:, i] - [26.97e-3, -1.35e-3])) < 0.2e-3
 
 
+@pytest.mark.slow
 def test_best_preset_reshapes_cusp_slivers_the_thick_model_reads():
     """Concept 1 design lhs03 (bench_accuracy.py), best preset refined once, the thick plane
     model at 14 000 rpm: a curved sliver (scaled Jacobian 0.1-0.14, valid) in the cusp where
@@ -138,6 +141,7 @@ print("meshed", d.cm.mesh.t.shape[1])
 """
 
 
+@pytest.mark.slow
 def test_a_failing_gmsh_optimiser_neither_aborts_nor_refuses_the_design(tmp_path):
     """gmsh reports "Failed to reach critical value ... ScaledJac" as an error: thrown inside an
     OpenMP region it aborted a robust-design run (std::terminate), elsewhere it refused a usable

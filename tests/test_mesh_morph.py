@@ -29,6 +29,7 @@ def _param(name, p) -> str:
     return OWN.get(name) or next(n for n in PREFERRED if n in names)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", concepts())
 def test_morphed_design_matches_the_design_meshed_from_scratch(name):
     """Done-when item of issue 21: every answer of a morphed design (a 4 % change of the
@@ -107,6 +108,7 @@ def test_morph_refuses_unknown_names_and_user_meshes():
         cf.morph(d, flexure_thicknes=2e-3)
 
 
+@pytest.mark.slow
 def test_answers_are_smooth_in_the_parameters_on_morphed_meshes():
     """The reason for morphing: finite-difference derivatives of the engagement speed over
     steps from 1e-3 to 1e-1 mm agree to 0.1 % on morphed meshes."""

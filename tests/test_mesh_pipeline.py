@@ -109,6 +109,7 @@ def test_user_mesh_without_triangles_or_unreadable_refused(tmp_path):
         load_user_geometry(junk)
 
 
+@pytest.mark.slow
 def test_concept_msh_with_groups_reimports_as_user_mesh():
     """The .msh that ``clutchfem geometry`` hands out (named physical groups) is a valid user
     mesh: re-imported through load_user_geometry it has the same nodes, elements, shoe
@@ -128,6 +129,7 @@ def test_concept_msh_with_groups_reimports_as_user_mesh():
         assert np.array_equal(user.mesh.subdomains[f"shoe_{i}"], cm.mesh.subdomains[f"shoe_{i}"])
 
 
+@pytest.mark.slow
 def test_step_import_finds_bore_and_contact(tmp_path):
     """A STEP file from CAD (annulus 10-30 mm, drawn in mm as the file declares: gmsh writes
     OCC's millimetre) is meshed with P2 triangles in metres; the bore is the loop around the
@@ -171,6 +173,7 @@ def test_concept_mesh_area_matches_occ_and_is_cached():
     assert again.cached and again.n_elements == cm.n_elements
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("arrangement", ["minus", "plus"])
 def test_sector_cut_nodes_match_and_sector_is_one_nth(arrangement):
     from scipy.spatial import cKDTree

@@ -200,6 +200,7 @@ def test_annulus_small_strain_limit_is_linear(sector):
     assert all(abs(q - 2) < 0.02 for q in orders)
 
 
+@pytest.mark.slow
 def test_annulus_on_drum_contact_force_matches_ode(sector):
     """The whole rim pressed on the exact circle R_d = b + c: total normal force vs the SVK
     ODE with u(b) = c (soft material, large strain), and the linear answer's error."""

@@ -26,6 +26,7 @@ def _answers(outcomes, case):
     return [o for o in outcomes if o.case == case and o.outcome == "answer"]
 
 
+@pytest.mark.slow
 def test_every_case_answers_or_refuses_clearly(outcomes):
     for o in outcomes:
         assert o.outcome in ("answer", "refused"), o
@@ -33,6 +34,7 @@ def test_every_case_answers_or_refuses_clearly(outcomes):
             assert len(o.message) > 30 and ("speed" in o.message or "size" in o.message), o.message
 
 
+@pytest.mark.slow
 def test_answers_satisfy_the_invariants(outcomes):
     for o in outcomes:
         if o.outcome != "answer":
@@ -49,6 +51,7 @@ def test_answers_satisfy_the_invariants(outcomes):
             assert np.all(c["max_von_mises_Pa"] >= 0)
 
 
+@pytest.mark.slow
 def test_checks_against_references(outcomes):
     tol = {"closed-form engagement (Lame, no softening)": 3e-4,  # straight-sided P2 chords
            "engagement vs Lame closed form": 1e-5,
@@ -64,6 +67,7 @@ def test_checks_against_references(outcomes):
     assert seen == set(tol)
 
 
+@pytest.mark.slow
 def test_expected_refusals(outcomes):
     by = {(o.case, o.inputs): o for o in outcomes}
     refused = [o for o in outcomes if o.outcome == "refused"]
@@ -77,6 +81,7 @@ def test_expected_refusals(outcomes):
     assert len(by) == len(outcomes)
 
 
+@pytest.mark.slow
 def test_slivers_only_worsen_the_conditioning(outcomes):
     sl = _answers(outcomes, "sliver elements")
     assert len(sl) == 5
@@ -86,6 +91,7 @@ def test_slivers_only_worsen_the_conditioning(outcomes):
     assert conds[-1] > 100 * conds[0]  # ... reported through the condition estimate
 
 
+@pytest.mark.slow
 def test_friction_character_and_slender_flexure(outcomes):
     fr = {o.inputs: o.extra["N_ratio"] for o in _answers(outcomes, "friction")}
     assert fr["concept1 minus, mu 1"] < fr["concept1 minus, mu 0.165"] < 1.0 < fr["concept1 plus, mu 0.165"] \

@@ -29,6 +29,7 @@ def _twin(design):
     return Design(design.cm, design.op.replace(formulation="plane-stress"), params=design.params, name=design.name)
 
 
+@pytest.mark.slow
 def test_exact_contact_step_reaches_the_active_set_iterations_state_in_fewer_steps(best):
     """Elastic drum, 14 000 rpm, from the linear pre-stressed state: 'lcp' and 'pdas' agree to
     round-off; 'pdas' lets one contact node leave per iteration (measured 16-22 iterations
@@ -50,6 +51,7 @@ def test_exact_contact_step_reaches_the_active_set_iterations_state_in_fewer_ste
     assert a.iterations <= 5 < b.iterations
 
 
+@pytest.mark.slow
 def test_peak_nonlinearity_equals_the_continuation_reference(best):
     """d_NL of the correction (Newton from the linear state) = that of the reference's
     continuation from rest through the speeds (bench_accuracy.nonlinear_delta's way)."""

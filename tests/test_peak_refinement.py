@@ -97,6 +97,7 @@ def _peak_von_mises(size: float) -> tuple[float, np.ndarray]:
     return float(vm[i]), m.p[:, m.t[i[1], i[0]]]
 
 
+@pytest.mark.slow
 def test_local_refinement_at_a_hole_converges_at_p2_rate_to_kirsch():
     """Local sizes a/16, a/32, a/64 (measured 2026-11-26: errors 5.5e-4, 1.4e-4, 3.3e-5 of
     3 S; observed orders 1.98, 2.07; a/4 and a/8 are pre-asymptotic, orders 0.7 and 1.3).
@@ -127,6 +128,7 @@ def test_richardson_exact_for_a_power_law_and_honest_when_not_monotone():
     assert math.isnan(p) and est == pytest.approx(0.1)
 
 
+@pytest.mark.slow
 def test_concept4_peak_converged_in_its_notch_fillet():
     """Concept 4 at its defaults, best preset: the free-spin peak sits on the R 0.8 mm fillet
     at (26.94, -1.35) mm (where the slot meets the rim), and local refinement converges it

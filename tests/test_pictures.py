@@ -29,6 +29,7 @@ def c4():
     return d, cf.analyze(d)
 
 
+@pytest.mark.slow
 def test_torque_plot(c4, tmp_path):
     """Engagement (static and with ripple), slip and both requirement limits, as the JSON."""
     _, an = c4
@@ -41,6 +42,7 @@ def test_torque_plot(c4, tmp_path):
     agrees(rec, r"b x rpm\(max torque\) =", doc["requirements"]["slip_limit_rpm"])
 
 
+@pytest.mark.slow
 def test_arc_stress_plot(c4, tmp_path):
     """The contact arc at the rpm of max engine torque with its error, the peak stress at the
     engine's maximum speed with its error band and safety factor, the yield: as the JSON."""
@@ -62,6 +64,7 @@ def test_arc_stress_plot(c4, tmp_path):
     assert any("share of the nominal shoe arc" in a["ylabel"] for a in rec["axes"])
 
 
+@pytest.mark.slow
 def test_comparison_plot(c4, tmp_path):
     _, an = c4
     rec = rule(torque_speed_plot({"concept4": an}, cf.EngineCurve.default(), tmp_path / "c.png"))
@@ -69,6 +72,7 @@ def test_comparison_plot(c4, tmp_path):
     agrees(rec, r"concept4 slip", an.slip_rpm)
 
 
+@pytest.mark.slow
 def test_field_picture_agrees_with_the_table(c4, tmp_path):
     """The picture's peak is the table's (unaveraged element vertices), its place and the
     averaged peak are named, the contact arc is the table's."""
@@ -85,6 +89,7 @@ def test_field_picture_agrees_with_the_table(c4, tmp_path):
     assert "MPa" in rec["axes"][-1]["ylabel"]  # the colour bar: MPa
 
 
+@pytest.mark.slow
 def test_study_charts(tmp_path):
     """Answers vs an input with a refused design: the limits named with their values, the
     counts of the title; a refused design is not drawn as a value; parallel coordinates with
@@ -121,6 +126,7 @@ flexure_thickness = {{values = ["1.6mm", "1.8mm", "2.2mm"]}}
     assert any("1 refused/failed" in t for t in texts(pc))
 
 
+@pytest.mark.slow
 def test_guideline_charts(tmp_path):
     """The design point's value in each one-at-a-time panel and each elasticity bar's label
     are the JSON's; the inactive profile controls are not studied, and the chart says so."""
@@ -145,6 +151,7 @@ def test_guideline_charts(tmp_path):
             assert float(label) == pytest.approx(round(e, 2), abs=0.0051), (col, name)
 
 
+@pytest.mark.slow
 def test_slip_heat_picture(tmp_path):
     """Peak, flexure peak, the limit and the time the flexure reaches it: the JSON's."""
     run = cf.slip_heat(cf.Design.from_concept("concept2", mesh=cf.MeshSettings(size=SIZE)),

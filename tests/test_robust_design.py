@@ -11,6 +11,7 @@ import clutchfem as cf
 from clutchfem.core import ParameterError
 from clutchfem.targets import Targets
 from clutchfem.tolerances.robust import shifted
+from support.cli import cli_in_process
 
 COARSE = cf.MeshSettings(size="3mm")
 CLI = [sys.executable, "-m", "clutchfem.cli"]
@@ -21,6 +22,7 @@ def design():
     return cf.Design.from_concept("concept4", mesh=COARSE)
 
 
+@pytest.mark.slow
 def test_sensitivities_are_flat_in_the_step_on_morphed_meshes(design):
     """Central differences at 0.01 and 0.1 mm on meshes morphed from the design agree to
     0.1 % (the derivative of a smooth answer, not of remeshing noise) for the engagement
@@ -77,12 +79,13 @@ def test_robust_optimize_refuses_bad_yield_distribution_and_no_tolerance(design)
     (["--tol", "flexure_thickness=+-0.05mm", "--rounds", "0"], "rounds"),
 ])
 def test_cli_refuses_bad_robust_options_without_a_traceback(args, needle):
-    r = subprocess.run(CLI + ["optimize", "concept4", "--mesh-size", "3mm", "--workers", "0", *args],
-                       capture_output=True, text=True, timeout=600)
+    # in this process (support/cli.py): the refusal is the point, not the process
+    r = cli_in_process("optimize", "concept4", "--mesh-size", "3mm", "--workers", "0", *args)
     assert r.returncode != 0
     assert needle in r.stderr + r.stdout and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_robust_rounds_start_with_the_deterministic_optimum(design):
     """SORA's first cycle: the deterministic optimum (round 0), then the shifted rounds; the
     evaluations of every round are counted."""
@@ -196,6 +199,7 @@ def test_tolerances_that_close_the_window_are_refused_naming_them():
     assert window(Targets(3510.0, None, 8000.0, 1.5), {"slip_rpm": 100.0}, "x", 0.99).slip_rpm_max == 7900.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("extra", [["--dist", "uniform", "--no-model-error"]])
 def test_cli_robust_optimize_runs_end_to_end_with_its_check(extra):
     """`optimize --tol ... --yield ... --check N` to its end with the non-default options (the

@@ -50,6 +50,7 @@ def test_spread_derivative_takes_the_steeper_side_with_the_central_sign():
     assert s.spread_derivative("u", "slip_rpm") is None
 
 
+@pytest.mark.slow
 def test_sensitivities_report_the_contact_events_the_analyses_show():
     """With a 0.1 mm step on concept 4's coarse mesh, the kinks reported are exactly the
     answers whose contact set at their speed differs between the two sides, as independent

@@ -49,6 +49,7 @@ def run(tmp_path_factory):
     return strict(r.stdout), out
 
 
+@pytest.mark.slow
 def test_json_keys_and_their_relations(run):
     d, _ = run
     for k in ("seconds", "slip_rpm", "slip_power_W", "heat_into_part_J", "flexure_temperature_C",
@@ -76,6 +77,7 @@ def test_json_keys_and_their_relations(run):
     assert d["inputs"]["thermal"]["scenario"]["steps_per_event"] == 20
 
 
+@pytest.mark.slow
 def test_files_in_out(run):
     d, out = run
     stem = d["label"] + "_slip_heat"
@@ -88,6 +90,7 @@ def test_files_in_out(run):
     assert 10_000 < (out / f"{stem}.png").stat().st_size < 400_000
 
 
+@pytest.mark.slow
 def test_transient_time_series(run):
     """The transient is one .pvd time series ParaView opens (pyvista's reader): frames of the
     whole part from the start to the end of the run, each slip and pause end among them; the
@@ -115,6 +118,7 @@ def test_transient_time_series(run):
         assert min(abs(np.array(peaks) - c["end_of_slip_part_max_C"])) < 1e-9 * c["end_of_slip_part_max_C"]
 
 
+@pytest.mark.slow
 def test_table_has_units():
     r = invoke("slip-heat", "concept4", *MESH, *SHORT)
     assert r.exit_code == 0, r.output
@@ -124,6 +128,7 @@ def test_table_has_units():
     assert "slip speed" in t and "flexure" in t and "yield strength left" in t
 
 
+@pytest.mark.slow
 def test_thermal_settings_act():
     """--thermal changes what it says: more face cooling and a lower limit temperature."""
     base = strict(invoke("slip-heat", "concept4", *MESH, *SHORT, "--json").stdout)
@@ -146,6 +151,7 @@ def test_list_thermal():
         assert s in t, s
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("args,status,why", [
     (["--mu", "0"], "never holds", "mu = 0"),
     (["concept3"], "never engages", "never touch the drum"),
@@ -217,6 +223,7 @@ def test_bad_out_folder_refused(tmp_path):
         assert r.exit_code == 2 and "--out" in r.output
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_ctrl_c_stops_cleanly_and_writes_nothing(tmp_path):
     env = {**os.environ, "CLUTCHFEM_CACHE": str(tmp_path / "cache")}
@@ -233,6 +240,7 @@ def test_ctrl_c_stops_cleanly_and_writes_nothing(tmp_path):
     assert not out.exists() or not list(out.iterdir())
 
 
+@pytest.mark.slow
 def test_part_mean_temperature_is_the_heat_content():
     """The whole-part mean probe: (mean at the end - at the start) x rho c h A x (n_total /
     n_model) equals the stored energy of the independent energy tally (1e-9)."""
@@ -252,6 +260,7 @@ def test_part_mean_temperature_is_the_heat_content():
     assert doc["series"]["part_mean_C"][-1] == r.part_mean_C[-1]
 
 
+@pytest.mark.slow
 def test_a_folder_in_the_way_of_an_output_is_refused_and_nothing_written(tmp_path):
     out = tmp_path / "o"
     (out / "concept4_slip_heat.png").mkdir(parents=True)

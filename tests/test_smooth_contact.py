@@ -56,6 +56,7 @@ def test_operating_option_refuses_out_of_range():
     assert cf.OperatingPoint(contact_smoothing="0.5um").contact_smoothing == pytest.approx(5e-7)
 
 
+@pytest.mark.slow
 def test_analyze_with_smoothing_moves_answers_by_its_measured_bias():
     ms = cf.MeshSettings(size="3mm")
     a0 = cf.analyze(cf.Design.from_concept("concept4", mesh=ms))

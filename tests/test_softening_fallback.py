@@ -17,6 +17,7 @@ def design():
     return cf.Design.from_concept("concept4", **LHS06, mesh=cf.MeshSettings(size="3mm"))
 
 
+@pytest.mark.slow
 def test_ritz_space_misses_and_the_exact_one_holds(design):
     with pytest.raises(EquilibriumError, match="equilibrium residual"):
         design.sweep([14000])
@@ -27,6 +28,7 @@ def test_ritz_space_misses_and_the_exact_one_holds(design):
     assert res.softening == "prestress-exact"
 
 
+@pytest.mark.slow
 def test_analyze_falls_back_and_says_so(design):
     a = cf.analyze(design, errors=False)
     assert any("missed equilibrium" in n and "prestress-exact" in n for n in a.notes)
@@ -36,6 +38,7 @@ def test_analyze_falls_back_and_says_so(design):
 
 
 
+@pytest.mark.slow
 def test_prestress_exact_where_the_prestress_outweighs_the_softening_everywhere():
     """Concept 5's stretched beams: M - K_sigma1 is negative on every Ritz seed, so the free
     part never diverges.  The per-speed strategy's divergence estimate used to stop on an
@@ -47,6 +50,7 @@ def test_prestress_exact_where_the_prestress_outweighs_the_softening_everywhere(
     assert case.engagement_rpm > 0
 
 
+@pytest.mark.slow
 def test_a_small_ritz_residual_is_carried_in_the_band_and_the_peak_re_solved():
     """Concept 3.1 on the best path at 14 000 rpm: the pre-stress Ritz space leaves a
     displacement error of ~0.12 % (3 mm mesh), above the exact solves' 1e-3 but below

@@ -43,6 +43,7 @@ def _answers(an) -> dict:
             "contact_arc_deg": an.contact_arc_at_max_engine_torque_deg}
 
 
+@pytest.mark.slow
 def test_guideline_elasticities_equal_finite_differences_of_single_design_analysis(tmp_path):
     h = 0.02
     run = subprocess.run([sys.executable, "-m", "clutchfem.cli", "guidelines", "concept4", "--params",

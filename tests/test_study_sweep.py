@@ -116,6 +116,7 @@ def _wait_rows(proc: subprocess.Popen, store: Path, n: int, timeout: float = 120
 
 
 # ---------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_refused_and_failed_points_are_recorded_and_resume_skips_them(tmp_path, monkeypatch):
     monkeypatch.setenv("CLUTCHFEM_GEOMETRIES", str(CRASHY))
     spec = parse_spec("""
@@ -149,6 +150,7 @@ flexure_length = {values = ["19mm", "19mm", "30mm"]}
     assert (retry.computed, retry.failed) == (1, 1)
 
 
+@pytest.mark.slow
 def test_a_design_that_kills_its_worker_is_failed_and_the_sweep_goes_on(tmp_path, monkeypatch):
     monkeypatch.setenv("CLUTCHFEM_GEOMETRIES", str(CRASHY))  # inherited by the worker processes
     spec = parse_spec("""
@@ -170,6 +172,7 @@ flexure_thickness = {values = ["1.7mm", "1.75mm", "1.8mm", "1.85mm"]}
     assert json.loads(pj)["crash"] == 1 and "worker process died" in msg
 
 
+@pytest.mark.slow
 def test_kill_9_loses_no_finished_point_and_the_rerun_computes_only_the_rest(tmp_path):
     spec = tmp_path / "k.toml"
     spec.write_text(SMALL)
@@ -200,6 +203,7 @@ def test_kill_9_loses_no_finished_point_and_the_rerun_computes_only_the_rest(tmp
         assert after[h] == (st, t)
 
 
+@pytest.mark.slow
 def test_ctrl_c_stops_cleanly_and_keeps_finished_points(tmp_path):
     spec = tmp_path / "c.toml"
     spec.write_text(SMALL)
@@ -225,6 +229,7 @@ def test_ctrl_c_stops_cleanly_and_keeps_finished_points(tmp_path):
     assert outcome == "interrupted"
 
 
+@pytest.mark.slow
 def test_remote_scheduler_and_worker_processes(tmp_path):
     sched_file = tmp_path / "scheduler.json"
     env = _env()
@@ -269,6 +274,7 @@ def test_remote_scheduler_and_worker_processes(tmp_path):
         log_w.close()
 
 
+@pytest.mark.slow
 def test_example_spec_runs_as_it_is(tmp_path):
     ex = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", "--example"], env=_env(),
                         capture_output=True, text=True, timeout=60)
@@ -301,6 +307,7 @@ def test_example_spec_runs_as_it_is(tmp_path):
     assert 0 < e["engagement_rpm"]["discretisation_median_pct"] <= e["engagement_rpm"]["band_median_pct"]
 
 
+@pytest.mark.slow
 def test_user_mesh_spec_varies_the_operating_point(tmp_path):
     """A spec on a user mesh (here concept 4's own mesh file with its named groups): the
     mesh travels with the settings; mu varies; a higher mu gives more torque."""

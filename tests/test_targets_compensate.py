@@ -33,6 +33,7 @@ def comp():
     return compensate("concept4", rpm=8000.0, target_arc=0.8, mesh_settings=MeshSettings(size=SIZE))
 
 
+@pytest.mark.slow
 def test_compensation_spreads_the_contact(comp):
     """Measured on the FE contact of the rebuilt part, not on the linearisation."""
     assert comp.state_before.contact_share < 0.05  # the tip only
@@ -46,6 +47,7 @@ def test_compensation_spreads_the_contact(comp):
     assert np.mean(comp.state_after.force_N[T] > 0) > 0.9
 
 
+@pytest.mark.slow
 def test_printed_profile_rebuilds_the_same_contact(comp):
     """`--set profile=table --set table_c0=...` (the printed texts) builds the compensated part."""
     c = get_concept("concept4")
@@ -56,6 +58,7 @@ def test_printed_profile_rebuilds_the_same_contact(comp):
     assert evenness(st, comp.arc) == pytest.approx(comp.steps[-1].measured_cv, rel=1e-6)
 
 
+@pytest.mark.slow
 def test_compensate_cli_json_and_refusals(tmp_path):
     cli = [sys.executable, "-m", "clutchfem.cli", "compensate", "concept4"]
     r = subprocess.run(cli + ["--rpm", "8000", "--target-arc", "1.5"], capture_output=True, text=True, timeout=300)
@@ -70,6 +73,7 @@ def test_compensate_cli_json_and_refusals(tmp_path):
     assert any("engagement" in k for k in rows) and any("torque" in k for k in rows)
 
 
+@pytest.mark.slow
 def test_compensation_picture_agrees(comp, tmp_path):
     """The picture rule: the contact shares before and after are the result's, legends off the
     data, every axis with its unit."""

@@ -10,6 +10,7 @@ from clutchfem.evaluation.batch import shared_cluster
 SIZE = 2.4e-3
 
 
+@pytest.mark.slow
 def test_rows_in_order_with_refusals_in_process(tmp_path):
     s = EvalSettings("concept4", mesh_size=SIZE, store=str(tmp_path / "results.sqlite"))
     pts = [{"flexure_thickness": "1.7mm"}, {"flexure_thickness": "9mm"}, {"flexure_thickness": "1.7mm"},
@@ -37,6 +38,7 @@ def test_rows_in_order_with_refusals_in_process(tmp_path):
     assert (tmp_path / "results.sqlite").exists()  # every design kept with its inputs (study store)
 
 
+@pytest.mark.slow
 def test_on_a_local_dask_cluster():
     s = EvalSettings("concept4", mesh_size=SIZE)
     with shared_cluster(1) as address:

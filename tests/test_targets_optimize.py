@@ -75,6 +75,7 @@ def test_targets_and_space_refuse_bad_input():
     assert e.value.name == "profile"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["gradient", "pattern"])
 def test_optimize_json_params_are_confirmed_by_analyze(tmp_path, method):
     """A small search (two free parameters, coarse mesh, targets the start misses on slip) and the
@@ -103,6 +104,7 @@ def test_optimize_json_params_are_confirmed_by_analyze(tmp_path, method):
     assert an["slip_rpm"] == pytest.approx(start["value"], rel=1e-9)
 
 
+@pytest.mark.slow
 def test_infeasible_targets_name_the_binding_constraint(tmp_path):
     r = run("optimize", "concept4", "--free", "flexure_thickness", "--safety-factor-min", "20", "--sample", "0",
             "--max-evals", "6", "--mesh-size", SIZE, "--out", str(tmp_path), "--json", "--method", "pattern")

@@ -29,6 +29,7 @@ def test_inert_table_values_leave_dump_and_cache_key_unchanged():
     assert cache_key(c, t, COARSE) != cache_key(c, p, COARSE)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["concept1", "concept4"])
 def test_uniform_table_is_the_concentric_shoe(name):
     """A table of equal clearances is the concentric circle: same engagement speed (closed form,
@@ -39,6 +40,7 @@ def test_uniform_table_is_the_concentric_shoe(name):
     assert abs(e1 - e0) / e0 < 1e-4, (e0, e1)
 
 
+@pytest.mark.slow
 def test_table_profile_follows_the_spline_at_the_contact_nodes():
     """The meshed contact nodes sit on the tabulated clearance c(s): rest gap = spline value."""
     c = get_concept("concept4")

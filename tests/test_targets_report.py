@@ -2,29 +2,22 @@
 
 import json
 import re
-import subprocess
-import sys
 
 import pytest
 
-CLI = [sys.executable, "-m", "clutchfem.cli"]
-
-
-def run(*args, ok=True):
-    r = subprocess.run(CLI + list(args), capture_output=True, text=True, timeout=600)
-    if ok:
-        assert r.returncode == 0, r.stderr[-3000:]
-    return r
+from support.cli import cli_in_process
 
 
 @pytest.fixture(scope="module")
 def write_report(tmp_path_factory):
     out = tmp_path_factory.mktemp("report")
-    run("report", "concept4", "--set", "flexure_thickness=1.8mm", "--mesh-size", "2.4mm",
-        "--no-errors", "--out", str(out))
+    # in this process (support/cli.py), as the tests below: the files are the point, not the process
+    cli_in_process("report", "concept4", "--set", "flexure_thickness=1.8mm", "--mesh-size", "2.4mm",
+                   "--no-errors", "--out", str(out), ok=True)
     return out
 
 
+@pytest.mark.slow
 def test_html_is_self_contained_with_answers_units_images_inputs(write_report):
     html = (write_report / "report.html").read_text()
     assert html.startswith("<!DOCTYPE html>")
@@ -41,6 +34,7 @@ def test_html_is_self_contained_with_answers_units_images_inputs(write_report):
     assert inputs["concept"] == "concept4" and "mesh_settings" in inputs and "operating_point" in inputs
 
 
+@pytest.mark.slow
 def test_markdown_has_the_same_answers(write_report):
     md = (write_report / "report.md").read_text()
     html = (write_report / "report.html").read_text()
@@ -55,34 +49,37 @@ def test_markdown_has_the_same_answers(write_report):
         assert (write_report / img).exists()
 
 
+@pytest.mark.slow
 def test_run_folder_renders_again(write_report, tmp_path):
     import pandas as pd
 
     pd.DataFrame({"rpm": [1000, 2000], "torque_Nm": [0.0, 1.5]}).to_csv(tmp_path / "sweep.csv", index=False)
     (tmp_path / "torque.png").write_bytes((write_report / "torque_rpm.png").read_bytes())
-    run("report", "--run", str(tmp_path))
+    cli_in_process("report", "--run", str(tmp_path), ok=True)
     html = (tmp_path / "report.html").read_text()
     assert "sweep.csv" in html and "data:image/png;base64," in html and "torque_Nm" in html
     out = tmp_path / "again"
-    run("report", "--run", str(write_report), "--out", str(out))
+    cli_in_process("report", "--run", str(write_report), "--out", str(out), ok=True)
     assert "engagement speed" in (out / "report.html").read_text()
 
 
 def test_report_refuses_unclear_requests(tmp_path):
-    r = run("report", "concept4", ok=False)
+    run = cli_in_process  # in this process (support/cli.py): the refusals are the point
+    r = run("report", "concept4")
     assert r.returncode == 2 and "--out" in r.stderr
-    r = run("report", "concept4", "--run", str(tmp_path), ok=False)
+    r = run("report", "concept4", "--run", str(tmp_path))
     assert r.returncode == 2 and "exactly one" in r.stderr
 
 
+@pytest.mark.slow
 def test_report_of_a_user_mesh(tmp_path):
     """`report --mesh`: the mesh picture instead of the drawing, the mesh file and its SHA-256 in
     the inputs."""
-    run("geometry", "concept4", "--out", str(tmp_path / "geo"), "--model", "full", "--mesh-size", "2.4mm",
-        "--no-drawing")
+    cli_in_process("geometry", "concept4", "--out", str(tmp_path / "geo"), "--model", "full", "--mesh-size", "2.4mm",
+                   "--no-drawing", ok=True)
     out = tmp_path / "rep"
-    run("report", "--mesh", str(next((tmp_path / "geo").glob("concept4-*.msh"))), "--drum-radius", "34.4mm", "--thickness", "11mm",
-        "--no-errors", "--out", str(out))
+    cli_in_process("report", "--mesh", str(next((tmp_path / "geo").glob("concept4-*.msh"))), "--drum-radius", "34.4mm",
+                   "--thickness", "11mm", "--no-errors", "--out", str(out), ok=True)
     html = (out / "report.html").read_text()
     assert "the user mesh" in html and html.count("data:image/png;base64,") >= 3
     inputs = json.loads((out / "inputs.json").read_text())

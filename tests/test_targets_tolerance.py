@@ -48,6 +48,7 @@ def test_parse_tolerance():
         assert e.value.name == name
 
 
+@pytest.mark.slow
 def test_small_monte_carlo_run(tmp_path):
     s = EvalSettings("concept4", mesh_size=2.4e-3)
     res = tolerance(s, {"flexure_thickness": 0.05e-3, "hub_radius": 0.05e-3}, n=12, seed=2, shifts=True)

@@ -39,6 +39,7 @@ def free_engagement(model, nodes) -> float:
 CONCEPT5_MISS = pytest.mark.xfail(strict=True, reason="thick model 0.76 % stiff on the stretched beams of concept 5")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("concept, thickness", [("concept2", 9e-3), pytest.param("concept5", 14e-3, marks=CONCEPT5_MISS),
                                                 ("concept3", 11e-3)])
 def test_thick_matches_3d_tetrahedra(concept, thickness):
@@ -80,6 +81,7 @@ def test_thin_part_is_plane_stress_and_operators_are_symmetric():
     assert free_engagement(th2, contact_nodes(th2, R)) >= w_th - 1e-9
 
 
+@pytest.mark.slow
 def test_thick_stress_against_3d_at_the_fillet():
     """The thick model's 3-D stress at the governing fillet (mid-plane and free face) against
     the tetrahedra's, nodal values averaged over the elements sharing a point (raw vertex
@@ -108,6 +110,7 @@ def test_thick_stress_against_3d_at_the_fillet():
     assert r["thick"][0] == pytest.approx(r["3d"][0], rel=0.03)
 
 
+@pytest.mark.slow
 def test_thick_runs_the_whole_analysis():
     """fidelity 'best' through analyze: the thick model, the elastic drum, the
     fatigue step on 6 stress components, the bands and the drum-wall sensitivity."""
@@ -122,6 +125,7 @@ def test_thick_runs_the_whole_analysis():
     assert a.errors["engagement_rpm"]["sensitivities"]["drum wall 1.5 / 2.5 mm"] == pytest.approx([a.engagement_rpm] * 2, rel=1e-12)  # held: not w0
 
 
+@pytest.mark.slow
 def test_sweep_peak_reads_the_finite_measure_where_it_can_be():
     """The sweep's peak (ThickStress.finite_peak: the finite-rotation measure evaluated only
     on the elements near the small-strain peak) equals the measure's maximum over every

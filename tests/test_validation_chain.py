@@ -114,6 +114,7 @@ def test_bad_input_raises_parameter_error(call):
         call()
 
 
+@pytest.mark.slow
 def test_figures(tmp_path):
     paths = chain.figures(tmp_path)
     assert [p.name for p in paths] == ["fig3_Nu2_vs_psi.png", "fig4_Nu1_vs_psi.png"]

@@ -148,6 +148,7 @@ def test_unexplained_differs_and_duplicates_are_flagged(monkeypatch):
     assert any("duplicate" in w for w in run.warnings)
 
 
+@pytest.mark.slow
 def test_report_contents(report):
     root, md = report
     text = md.read_text()
@@ -205,6 +206,7 @@ def test_report_run_does_not_run_modules_again(monkeypatch, tmp_path):
     assert "`y.a`" in (tmp_path / "v.md").read_text()
 
 
+@pytest.mark.slow
 def test_full_run_is_fast(tmp_path):
     """Everything that exists (all four modules when present) in well under 60 s."""
     t0 = time.perf_counter()
@@ -215,6 +217,7 @@ def test_full_run_is_fast(tmp_path):
     assert (tmp_path / "validation.md").stat().st_size > 1000
 
 
+@pytest.mark.slow
 def test_cli_validate_docs_collects_once(monkeypatch, tmp_path):
     from typer.testing import CliRunner
 

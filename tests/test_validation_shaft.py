@@ -57,6 +57,7 @@ def test_jump_is_the_lost_root_of_the_printed_system():
     assert np.all(np.diff(b) < 0)
 
 
+@pytest.mark.slow
 def test_records(records):
     assert records["shaft.beta1.l1_0.34.l2_0.10.D500"].status == "reproduced"
     assert records["shaft.beta2.l1_0.36.l2_0.30.D500"].paper == 8.74
@@ -83,6 +84,7 @@ def test_paper_shaft_bad_input():
         sh.paper_shaft(0.34, 0.1, "D900")
 
 
+@pytest.mark.slow
 def test_figures(tmp_path):
     paths = sh.figures(tmp_path)
     assert [p.name for p in paths] == ["fig2_beta_vs_l2.png", "fig3_omega1_vs_l2.png"]

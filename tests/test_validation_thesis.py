@@ -52,6 +52,7 @@ def test_script_refuses_plus_shoe():
         thesis.matlab_appendix(plus)
 
 
+@pytest.mark.slow
 def test_records_and_figures(tmp_path):
     recs = thesis.records()
     by = {r.id: r for r in recs}

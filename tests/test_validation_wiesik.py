@@ -140,6 +140,7 @@ def test_loss_deficit_closed_form():
         assert loss_deficit(ms, d) == pytest.approx(expected, rel=1e-6)
 
 
+@pytest.mark.slow
 def test_loss_model_against_paper_within_stated_band(all_records):
     recs = {r.id: r for r in all_records}
     # torque-deficit model: within 16 % of 1.32/5.15/0.75/4.14 %; 20" worn overestimates (~26 %)
@@ -150,6 +151,7 @@ def test_loss_model_against_paper_within_stated_band(all_records):
     assert recs["wiesik.loss_new_dynamic"].computed < 0.05 * 1.32
 
 
+@pytest.mark.slow
 def test_cycle_slip_energy_behaviour():
     d = DriveData()
     ms = 10.23
@@ -202,6 +204,7 @@ def test_worn_engagement_speed():
 # ---- records and figures ------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_records_ids_and_core_reproductions(all_records):
     recs = all_records
     ids = [r.id for r in recs]
@@ -219,6 +222,7 @@ def test_records_ids_and_core_reproductions(all_records):
             assert 0 < r.tol < 0.5
 
 
+@pytest.mark.slow
 def test_figures(tmp_path):
     paths = wiesik.figures(tmp_path)
     assert len(paths) == 4
@@ -292,6 +296,7 @@ def test_rounding_bound_tolerance_sides():
         assert abs(4.0 - paper) > b.tol_for(paper, 0.05) * paper
 
 
+@pytest.mark.slow
 def test_r2_records_follow_the_bound(all_records):
     by = {r.id: r for r in all_records}
     for rid in ("p_slip_new", "p_slip_worn", "p_slip_13in", "loss_new", "loss_worn",

@@ -31,6 +31,7 @@ def written(solved, tmp_path_factory):
     return write_vtk(res, RPMS, out, stem="c4", cm=d.cm)
 
 
+@pytest.mark.slow
 def test_tetra10_order_is_scikit_fems_edges(solved):
     """Each mid-edge node of a cell is the scikit-fem dof of the edge joining VTK's corner pair:
     on a straight (vertical) edge exactly its midpoint, on a curved one within its sagitta;
@@ -54,6 +55,7 @@ def test_tetra10_order_is_scikit_fems_edges(solved):
     assert np.median(off / np.linalg.norm(pts[wrong[:, 1]] - pts[wrong[:, 3]], axis=1)) > 0.3
 
 
+@pytest.mark.slow
 def test_vtu_read_back_by_meshio_whole_part_full_thickness(solved, written):
     d, res = solved
     pvd, *vtus = written
@@ -92,6 +94,7 @@ def test_vtu_read_back_by_meshio_whole_part_full_thickness(solved, written):
         assert (np.nan_to_num(p) > 0).any() == (float(res.curve["normal_force_N"].iloc[k]) > 0)
 
 
+@pytest.mark.slow
 def test_pvd_series_and_volume_in_pyvista(solved, written):
     """ParaView's reader opens the series (rpm as time); the cells' volume, which VTK computes
     from the tetra10 nodes in its own order, is the whole part's: a wrong mid-edge order
@@ -109,6 +112,7 @@ def test_pvd_series_and_volume_in_pyvista(solved, written):
     assert vol.min() > 0 and vol.sum() == pytest.approx(whole, rel=2e-3)
 
 
+@pytest.mark.slow
 def test_half_model_on_request(solved, tmp_path):
     d, res = solved
     fr = Frames3D(res, d.cm, full_thickness=False)
@@ -118,6 +122,7 @@ def test_half_model_on_request(solved, tmp_path):
                                                                    rel=1e-9)
 
 
+@pytest.mark.slow
 def test_cli_solve_3d_vtk(tmp_path):
     """``solve --formulation 3d --vtk`` writes the .pvd and tetra10 .vtu files named after the
     design's label (listed as written) and says why there is no PNG; ``--set formulation=3d``

@@ -17,6 +17,12 @@ and what ``clutchfem cache`` shows and clears.
   are deleted until it holds 80 % of the bound; an entry used in the last
   :data:`KEEP_RECENT_S` seconds is never evicted (a study's other worker processes may be
   reading it).
+* **Concurrent writers.** Processes that mesh the same design at once (a study's workers,
+  the test suite's xdist workers sharing one cache) take the entry's lock
+  (:func:`entry_lock`, a ``flock`` on ``.locks/<entry>.lock``): the first meshes, the
+  others wait and read its files.  Every file is written to a temporary file of its own and
+  renamed into place, so a reader sees a whole file or none, also where there is no
+  ``fcntl`` (Windows: no lock, two processes may then mesh the same design twice).
 * **Why not diskcache.** It keeps values in its own SQLite and file names; meshio and the
   user (``geometry --out`` copies the ``.groups.msh``) need the ``.msh`` files themselves
   on disk, and the eviction needed here is a few lines over ``os.scandir``.
@@ -24,23 +30,32 @@ and what ``clutchfem cache`` shows and clears.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 import platformdirs
 
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - Windows: no entry lock (module docstring)
+    fcntl = None
+
 from ..core import InputError
 
 __all__ = ["DEFAULT_SIZE", "KEEP_RECENT_S", "CacheEntry", "cache_dir", "cache_entries", "cache_limit", "clear_cache",
-           "evict", "touch"]
+           "entry_lock", "evict", "touch"]
 
 #: default bound of the mesh cache [bytes] (module docstring)
 DEFAULT_SIZE = 1_000_000_000
 #: an entry used this recently [s] is never evicted
 KEEP_RECENT_S = 600.0
+#: the folder of the entries' lock files, inside the cache folder
+LOCKS = ".locks"
 _UNITS = {"": 1, "b": 1, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12, "kib": 1024, "mib": 1024 ** 2,
           "gib": 1024 ** 3}
 
@@ -173,6 +188,31 @@ def touch(side_car: Path) -> None:
         pass
 
 
+@contextlib.contextmanager
+def entry_lock(d: Path, name: str) -> Iterator[None]:
+    """Hold the exclusive lock of entry ``name`` of cache folder ``d`` (module docstring):
+    blocks while another process holds it.  Without ``fcntl`` (Windows) it locks nothing."""
+    if fcntl is None:  # pragma: no cover - Windows: atomic renames alone keep readers safe
+        yield
+        return
+    locks = d / LOCKS
+    locks.mkdir(exist_ok=True)
+    fd = os.open(locks / f"{name}.lock", os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)  # releases the lock
+
+
+def _unlink(files) -> None:
+    for f in files:
+        try:
+            f.unlink()
+        except OSError:
+            pass
+
+
 def evict(limit: int | None = None, d: Path | None = None) -> tuple[int, int]:
     """Delete the least recently used entries while the cache holds more than ``limit``
     (default :func:`cache_limit`), down to 80 % of it; entries used in the last
@@ -188,11 +228,7 @@ def evict(limit: int | None = None, d: Path | None = None) -> tuple[int, int]:
             break
         if now - e.used < KEEP_RECENT_S:
             continue
-        for f in e.files:
-            try:
-                f.unlink()
-            except OSError:
-                pass
+        _unlink((*e.files, _lock_file(e)))
         total -= e.size
         freed += e.size
         n += 1
@@ -224,9 +260,10 @@ def clear_cache(d: Path | None = None) -> tuple[int, int]:
     """
     entries = cache_entries(d)
     for e in entries:
-        for f in e.files:
-            try:
-                f.unlink()
-            except OSError:
-                pass
+        _unlink((*e.files, _lock_file(e)))
     return len(entries), sum(e.size for e in entries)
+
+
+def _lock_file(e: CacheEntry) -> Path:
+    """The lock file of an entry (it may not exist)."""
+    return e.files[0].parent / LOCKS / f"{e.name}.lock"

@@ -10,6 +10,9 @@
   that fits.
 * The cache (:mod:`.cache`) lives in the platform's cache folder or ``$CLUTCHFEM_CACHE``
   and is bounded: a hit marks its entry used, a new entry evicts the least recently used.
+  Processes meshing the same design at once take turns on its entry lock
+  (:func:`.cache.entry_lock`): the first meshes, the others read its files; each file is
+  written under a temporary name of its own and renamed into place.
 * The cache file is saved with every element's entity tag and no physical groups (meshio's
   msh4 reader wants all or none); the side-car maps entity tags to group names.  A second
   file, :func:`groups_msh_path`, keeps the named physical groups for the user.
@@ -45,7 +48,7 @@ from ..geometry import (
     occ_tolerances,
     source_files,
 )
-from .cache import cache_dir, evict, touch
+from .cache import cache_dir, entry_lock, evict, touch
 from .clutch_mesh import ClutchMesh, groups_msh_path
 from .convert import meshio_to_skfem, read_msh
 from .highorder import guard_high_order, optimise_high_order
@@ -92,40 +95,50 @@ def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = N
     key = cache_key(concept, p, ms)
     d = cache_dir()
     msh, side = d / f"{concept.name}-{key}.msh", d / f"{concept.name}-{key}.json"
-    cached = use_cache and msh.exists() and side.exists()
-    if cached:
-        try:
-            meta = json.loads(side.read_text())
-            cm = _load_generated(msh, meta, concept.name)
-            touch(side)
-        except Exception as exc:  # noqa: BLE001 - a broken cache entry is rebuilt, not fatal
-            warnings.warn(f"mesh cache file {msh} is unreadable ({type(exc).__name__}: {exc}); "
-                          "deleted and rebuilt", stacklevel=2)
-            for f in (msh, side, groups_msh_path(msh)):
-                f.unlink(missing_ok=True)
-            cached = False
-    if not cached:
-        t0 = time.perf_counter()
-        built = _generate(concept, p, ms, msh, max_elements)
-        meta = {"entity_groups": built.entity_groups, "group_dims": built.group_dims,
-                "mass": built.mass, "pivots": built.pivots, "contact_arcs": built.contact_arcs,
-                "n_shoes_total": built.n_shoes_total, "n_shoes_model": built.n_shoes_model,
-                "sector_angle": built.sector_angle, "mirrored": built.mirrored,
-                "mesh_time_s": time.perf_counter() - t0}
-        tmp = side.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps(meta))
-        tmp.replace(side)
-        cm = _load_generated(msh, meta, concept.name)
-        n, freed = evict(d=d)
-        if n:
-            log.info("mesh cache %s: %d least recently used meshes deleted (%.0f MB) to stay within its bound "
-                     "(CLUTCHFEM_CACHE_SIZE)", d, n, freed / 1e6)
+    cm = _read_cached(msh, side, concept.name) if use_cache else None
+    if cm is None:
+        # one writer per entry: processes meshing the same design at once (a study's or the
+        # test suite's workers sharing one cache) wait for the first, then read its files
+        with entry_lock(d, msh.stem):
+            cm = _read_cached(msh, side, concept.name) if use_cache else None
+            if cm is None:
+                t0 = time.perf_counter()
+                built = _generate(concept, p, ms, msh, max_elements)
+                meta = {"entity_groups": built.entity_groups, "group_dims": built.group_dims,
+                        "mass": built.mass, "pivots": built.pivots, "contact_arcs": built.contact_arcs,
+                        "n_shoes_total": built.n_shoes_total, "n_shoes_model": built.n_shoes_model,
+                        "sector_angle": built.sector_angle, "mirrored": built.mirrored,
+                        "mesh_time_s": time.perf_counter() - t0}
+                _atomic_write_text(side, json.dumps(meta))
+                cm = _load_generated(msh, meta, concept.name)
+                cm.cached, cm.mesh_time_s = False, meta["mesh_time_s"]
+                n, freed = evict(d=d)
+                if n:
+                    log.info("mesh cache %s: %d least recently used meshes deleted (%.0f MB) to stay within its "
+                             "bound (CLUTCHFEM_CACHE_SIZE)", d, n, freed / 1e6)
     cm.params = p.model_dump()
     cm.mesh_settings = ms.model_dump()
     cm.drum_radius = p.drum_radius
     cm.thickness = p.thickness
-    cm.cached = cached
-    cm.mesh_time_s = meta["mesh_time_s"]
+    return cm
+
+
+def _read_cached(msh: Path, side: Path, source: str) -> ClutchMesh | None:
+    """The cached mesh of an entry, or None if there is none; a cached file that cannot be
+    read is deleted, named in a warning, and None returned (it is rebuilt)."""
+    if not (msh.exists() and side.exists()):
+        return None
+    try:
+        meta = json.loads(side.read_text())
+        cm = _load_generated(msh, meta, source)
+        touch(side)
+    except Exception as exc:  # noqa: BLE001 - a broken cache entry is rebuilt, not fatal
+        warnings.warn(f"mesh cache file {msh} is unreadable ({type(exc).__name__}: {exc}); "
+                      "deleted and rebuilt", stacklevel=3)
+        for f in (msh, side, groups_msh_path(msh)):
+            f.unlink(missing_ok=True)
+        return None
+    cm.cached, cm.mesh_time_s = True, meta["mesh_time_s"]
     return cm
 
 
@@ -205,6 +218,19 @@ def _atomic_write(path: Path) -> None:
     os.close(fd)
     gmsh.write(tmp)
     os.replace(tmp, path)
+
+
+def _atomic_write_text(path: Path, text: str) -> None:
+    """Write ``path`` through a temporary file of its own and an atomic rename: a reader sees
+    the old file or the whole new one, and two writers never share a temporary file."""
+    fd, tmp = tempfile.mkstemp(suffix=".json.tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
 
 
 def _load_generated(msh: Path, meta: dict, source: str) -> ClutchMesh:
