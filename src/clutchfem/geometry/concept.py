@@ -195,6 +195,7 @@ class ConceptParams(ParamSet):
 #: is 1077 MPa; engagement and torque move by ~1e-6 (BENCHMARKS.md section 13)
 MESH_PRESETS = {"fast": {}, "best": {"size": 6e-3, "contact_factor": 0.25, "flexure_factor": 0.5,
                                      "fillet_factor": 0.25, "reshape_below": 0.2}}
+MESH_PRESETS["live"] = MESH_PRESETS["best"]  # the reduced model's FE (fallback, fields) is the best path's
 
 
 class MeshSettings(ParamSet):

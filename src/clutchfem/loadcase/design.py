@@ -90,38 +90,63 @@ class Design:
     0.0
     """
 
-    def __init__(self, cm: ClutchMesh, op: OperatingPoint | None = None, *, params=None,
-                 solver: Solver = None, name: str = "", concept=None):
-        if not isinstance(cm, ClutchMesh):
-            raise ParameterError("cm", type(cm).__name__, "a ClutchMesh (from clutchfem.mesh.mesh_concept "
-                                 "or load_user_geometry)")
+    def __init__(self, cm: ClutchMesh | None, op: OperatingPoint | None = None, *, params=None,
+                 solver: Solver = None, name: str = "", concept=None, mesh_settings: MeshSettings | None = None):
         op = op if op is not None else OperatingPoint()
         if not isinstance(op, OperatingPoint):
             raise ParameterError("op", type(op).__name__, "an OperatingPoint")
-        self.cm = cm
+        if cm is None:  # a concept's design, meshed on first use (:attr:`cm`)
+            if concept is None or params is None:
+                raise ParameterError("cm", None, "a ClutchMesh, or a concept with its params (meshed on first use)")
+        elif not isinstance(cm, ClutchMesh):
+            raise ParameterError("cm", type(cm).__name__, "a ClutchMesh (from clutchfem.mesh.mesh_concept "
+                                 "or load_user_geometry)")
+        else:
+            self.__dict__["cm"] = cm
         self.op = op
         self.params = params
         #: the concept (geometry plug-in) of a concept design, None for a user mesh
         self.concept = concept
-        self.name = name or cm.source
-        self.drum_radius = _first(op.drum_radius, getattr(params, "drum_radius", None), cm.drum_radius)
-        self.thickness = _first(op.thickness, getattr(params, "thickness", None), cm.thickness)
+        self.name = name or (cm.source if cm is not None else concept.name)
+        self._solver = solver
+        self._mesh_settings = mesh_settings if mesh_settings is not None else MeshSettings.preset(op.fidelity)
+        self.drum_radius = _first(op.drum_radius, getattr(params, "drum_radius", None),
+                                  None if cm is None else cm.drum_radius)
+        self.thickness = _first(op.thickness, getattr(params, "thickness", None), None if cm is None else cm.thickness)
         if self.thickness is None:
             raise ParameterError("thickness", None, "the axial thickness in m (a user mesh carries none; "
                                  "e.g. 0.011 for 11 mm)")
         if params is None and self.drum_radius is not None:
             self._check_user_drum()
+        self._cases: dict = {}
+        if cm is not None:
+            self.model  # a mesh given: its FE model at once (assembled once, every load case shares it)
+
+    @cached_property
+    def cm(self) -> ClutchMesh:
+        """The meshed part.  A concept's design is meshed when an answer first needs it (a live
+        answer from the reduced model needs none: :mod:`clutchfem.reduced`)."""
+        return mesh_concept(self.concept, self.params, self._mesh_settings)
+
+    @property
+    def meshed(self) -> bool:
+        """Whether the design has its mesh yet."""
+        return "cm" in self.__dict__
+
+    @cached_property
+    def model(self):
+        """The FE model of the operating point's formulation (K, f1, constraints, one
+        factorisation), built on first use."""
+        op, cm = self.op, self.cm
         form = op.model_formulation
         if form == "thick":
-            self.model = FEModelThick(cm, op.material, self.thickness, settings=ThickSettings(order=op.thick_order),
-                                      solver=solver)
-        elif form == "3d":
+            return FEModelThick(cm, op.material, self.thickness, settings=ThickSettings(order=op.thick_order),
+                                solver=self._solver)
+        if form == "3d":
             check_3d_size(cm, op.layers)  # before any 3-D array is made
-            self.model = FEModel3D(cm, op.material, self.thickness, settings=ExtrusionSettings(layers=op.layers),
-                                   solver=solver)
-        else:
-            self.model = FEModel(cm, op.material, self.thickness, formulation=form, solver=solver)
-        self._cases: dict = {}
+            return FEModel3D(cm, op.material, self.thickness, settings=ExtrusionSettings(layers=op.layers),
+                             solver=self._solver)
+        return FEModel(cm, op.material, self.thickness, formulation=form, solver=self._solver)
 
     @classmethod
     def from_concept(cls, concept, params=None, operating: OperatingPoint | None = None, mesh=None, *,
@@ -177,8 +202,11 @@ class Design:
             op = op.replace(**op_values)
         if mesh is not None and not isinstance(mesh, MeshSettings):
             raise ParameterError("mesh", type(mesh).__name__, "a MeshSettings (or None)")
-        cm = mesh_concept(c, p, mesh if mesh is not None else MeshSettings.preset(op.fidelity))
-        return cls(cm, op, params=p, solver=solver, name=c.name, concept=c)
+        d = cls(None, op, params=p, solver=solver, name=c.name, concept=c,
+                mesh_settings=mesh if mesh is not None else MeshSettings.preset(op.fidelity))
+        if op.fidelity != "live":  # an FE answer needs the mesh and the model: a refused geometry is said now
+            d.model
+        return d
 
     @classmethod
     def from_mesh(cls, path, *, drum_radius=None, thickness=None, operating: OperatingPoint | None = None,

@@ -48,6 +48,9 @@ BEST_DRUM_WALL = 2.0e-3
 #: what each fidelity means when formulation is "auto" and drum_wall is None
 FIDELITY = {"best": {"formulation": "thick", "drum_wall": BEST_DRUM_WALL},
             "fast": {"formulation": "plane-stress", "drum_wall": None}}
+#: live answers come from the reduced model of the best path (clutchfem.reduced): its FE
+#: model, where one is needed (a fallback, a field), is the best path's
+FIDELITY["live"] = FIDELITY["best"]
 
 
 class OperatingPoint(ParamSet):
@@ -69,9 +72,11 @@ class OperatingPoint(ParamSet):
         Spin softening and pre-stress stiffening (default prestress; prestress-exact: its
         per-speed reference, which ``analyze`` falls back to where prestress misses
         equilibrium).
-    fidelity : {"best", "fast"}
+    fidelity : {"best", "fast", "live"}
         ``best`` (default; ``CLUTCHFEM_FIDELITY`` sets another): the best estimate of the real
-        part; ``fast``: the uncorrected 2-D path (module docstring).
+        part; ``fast``: the uncorrected 2-D path (module docstring); ``live``: the best path's
+        answers from its reduced model (:mod:`clutchfem.reduced`): no mesh, milliseconds, its
+        own measured error in every band.
     formulation : {"auto", "plane-stress", "plane-strain", "thick", "3d"}
         The elastic model (auto: the fidelity's); ``layers``: 3-D element layers through half
         the thickness; ``thick_order``: the thick model's through-thickness order.
@@ -110,10 +115,11 @@ class OperatingPoint(ParamSet):
         "geometrically non-linear reference), ritz (spin softening only, alias modal: 1.3-3 % model-form "
         "error), exact (per-speed reference of ritz), prestress-exact (per-speed reference of prestress; analyze "
         "falls back to it where prestress misses equilibrium), off")
-    fidelity: Literal["best", "fast"] = choice(
+    fidelity: Literal["best", "fast", "live"] = choice(
         "best", "best: the best estimate of the real part (thick plane model, elastic 2 mm drum ASSUMED, pre-stress, "
         "mesh refined at flexures, fillets and contact); fast: the uncorrected 2-D path (plane stress, rigid drum, "
-        "uniform 1.2 mm mesh) with its larger model-form band")
+        "uniform 1.2 mm mesh) with its larger model-form band; live: the best path's answers from its reduced "
+        "model of the design's region (milliseconds, no mesh; its own measured error added to the band)")
     formulation: Literal["auto", "plane-stress", "plane-strain", "thick", "3d"] = choice(
         "auto", "formulation: auto (the fidelity's: thick for best, plane-stress for fast), plane-stress (thin "
         "part), plane-strain (long part), thick (the 2-D mesh with polynomial through-thickness modes: the 3-D "

@@ -1,0 +1,188 @@
+"""The reduced model of a region: every main answer's model, where the FE answers, the best
+path's bands, and the model's own error measured on designs it was not fitted to.
+
+Answers (:data:`ANSWERS`): the static engagement and the engagement with the 2-stroke ripple,
+the slip speed, the torque at the rpm of maximum engine torque, the peak von Mises stress
+at the engine's maximum speed, the fatigue safety factor, the contact arc at the rpm of
+maximum engine torque, the part's and a shoe's mass.  Derived exactly from them (no model
+of their own): the safety factor (yield strength / peak), the torque margin (torque - the
+engine's maximum torque) and the requirement checks.
+
+**The band of a live answer** = the best path's band + the reduced model's own error:
+
+* the best path's band of the designs next to it (the largest relative band of the
+  :data:`NEIGHBOURS` nearest training designs: the band is a property of the model and its
+  mesh, it moves slowly over a region);
+* the reduced model's error: the 95th percentile of its relative error on the held-out
+  designs (:meth:`ReducedModel.measure`: designs drawn apart from the training ones, never
+  fitted to; with fewer than 20 of them, the largest error), per answer.
+
+An answer the FE does not give at a design (no slip speed: the clutch holds at start or
+never engages; no fatigue data) is not given live either where one of the nearest training
+designs lacks it: the live answer says so and the FE is asked instead.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .region import Region
+from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel
+
+__all__ = ["ANSWERS", "NEIGHBOURS", "ReducedModel"]
+
+#: the modelled answers: name -> (study row column, factor to SI, unit, the row's band column or None)
+ANSWERS: dict[str, tuple[str, float, str, str | None]] = {
+    "engagement_rpm": ("engagement_rpm", 1.0, "rpm", "engagement_err_rpm"),
+    "engagement_rpm_with_ripple": ("engagement_ripple_rpm", 1.0, "rpm", "engagement_err_rpm"),
+    "slip_rpm": ("slip_rpm", 1.0, "rpm", "slip_err_rpm"),
+    "torque_at_max_engine_torque_Nm": ("torque_at_max_engine_torque_Nm", 1.0, "N m", "torque_err_Nm"),
+    "max_von_mises_Pa": ("max_von_mises_MPa", 1e6, "Pa", "stress_err_MPa"),
+    "fatigue_safety_factor": ("fatigue_safety_factor", 1.0, "-", None),
+    "contact_arc_deg": ("contact_arc_deg", 1.0, "deg", None),
+    "mass_kg": ("part_mass_g", 1e-3, "kg", None),
+    "shoe_mass_kg": ("shoe_mass_g", 1e-3, "kg", None),
+}
+#: the nearest training designs a live answer's best-path band and availability come from
+NEIGHBOURS = 3
+#: the quantile of the held-out relative errors that is the model's own error
+QUANTILE = 0.95
+
+
+def row_value(row: dict, answer: str) -> float | None:
+    """An answer of a study row in SI (None where the row has none)."""
+    col, scale, _, _ = ANSWERS[answer]
+    v = row.get(col)
+    if v is None:
+        return None
+    v = float(v) * scale
+    return v if math.isfinite(v) and v > 0 else None
+
+
+def row_band(row: dict, answer: str) -> float | None:
+    """The best path's relative band of an answer in a study row (None: not estimated)."""
+    col, scale, _, band = ANSWERS[answer]
+    if band is None or row.get(band) is None or not row.get(col):
+        return None
+    return abs(float(row[band]) / float(row[col]))
+
+
+@dataclass
+class ReducedModel:
+    """Every main answer over a :class:`~clutchfem.reduced.Region` (module docstring).
+
+    Attributes
+    ----------
+    region : Region
+        Where it holds.
+    models : dict
+        Answer name -> its :class:`~clutchfem.reduced.AnswerModel`.
+    status : StatusModel
+        Where the full FE answers at all.
+    accuracy : dict
+        Answer name -> its measured error on held-out designs: ``n``, ``p95_rel``,
+        ``max_rel``, ``mean_rel``, ``within`` (the share of held-out designs whose FE answer
+        the live band holds).
+    """
+
+    region: Region
+    models: dict
+    status: StatusModel
+    U: np.ndarray
+    rows: list = field(repr=False)
+    accuracy: dict = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
+
+    @classmethod
+    def fit(cls, region: Region, rows: list[dict], *, seed: int = 0) -> "ReducedModel":
+        """Fit to the study rows of the region's training designs (each row's ``point_json``
+        holds its parameters)."""
+        t0 = time.perf_counter()
+        U = np.array([region.unit_of(json.loads(r["point_json"])) for r in rows])
+        ok = np.array([r.get("status") == "ok" for r in rows])
+        status = StatusModel.fit(U, ok, seed=seed)
+        models = {}
+        for a in ANSWERS:
+            y = np.array([row_value(r, a) if r.get("status") == "ok" else None for r in rows], dtype=float)
+            have = np.isfinite(y)
+            if have.sum() >= 2 * region.dim + 2:
+                models[a] = AnswerModel.fit(U[have], y[have], seed=seed)
+        m = cls(region=region, models=models, status=status, U=U, rows=list(rows))
+        m.info = {"fit_s": time.perf_counter() - t0, "n_train": len(rows), "n_ok": int(ok.sum())}
+        return m
+
+    # -- answers --------------------------------------------------------------------------
+    def neighbours(self, u: np.ndarray) -> np.ndarray:
+        """Indices of the :data:`NEIGHBOURS` nearest training designs of each point of ``u``
+        (m, d) that the FE answered."""
+        ok = np.array([r.get("status") == "ok" for r in self.rows])
+        idx = np.flatnonzero(ok)
+        d2 = ((u[:, None, :] - self.U[None, idx, :]) ** 2).sum(axis=2)
+        return idx[np.argsort(d2, axis=1)[:, :NEIGHBOURS]]
+
+    def predict(self, u: np.ndarray) -> dict:
+        """The answers at the unit-box points ``u`` (m, d), vectorised: ``value`` (answer ->
+        array, NaN where not given live), ``band`` (answer -> absolute band), ``p_ok`` (the
+        probability that the FE answers there), ``why`` (answer -> per point the reason of a
+        missing value, or '')."""
+        u = np.atleast_2d(np.asarray(u, dtype=float))
+        p_ok = self.status.probability(u)
+        nb = self.neighbours(u)
+        out = {"value": {}, "band": {}, "p_ok": p_ok, "why": {}}
+        for a, model in self.models.items():
+            v = model.predict(u)
+            fe_band = np.array([max((row_band(self.rows[j], a) or 0.0) for j in nb[i]) for i in range(len(u))])
+            own = self.accuracy.get(a, {}).get("p95_rel", np.nan)
+            have = np.array([all(row_value(self.rows[j], a) is not None for j in nb[i]) for i in range(len(u))])
+            why = np.where(p_ok < OK_PROBABILITY, "the full FE gives no answer near here", "")
+            why = np.where((why == "") & ~have, "a design next to it has no such answer", why)
+            v = np.where(why == "", v, np.nan)
+            out["value"][a] = v
+            out["band"][a] = np.abs(v) * (fe_band + (own if math.isfinite(own) else np.inf))
+            out["why"][a] = why
+        return out
+
+    # -- its own error ----------------------------------------------------------------------
+    def measure(self, rows: list[dict]) -> dict:
+        """Measure the model's error on held-out designs (study rows it was not fitted to):
+        per answer the relative error's mean, 95th percentile (the largest with fewer than 20
+        designs), largest, and the share of designs whose FE answer the live band holds."""
+        ok_rows = [r for r in rows if r.get("status") == "ok"]
+        u = np.array([self.region.unit_of(json.loads(r["point_json"])) for r in ok_rows])
+        acc = {}
+        if not len(ok_rows):
+            return acc
+        pred = self.predict(u)
+        for a in self.models:
+            fe = np.array([row_value(r, a) for r in ok_rows], dtype=float)
+            live = pred["value"][a]
+            sel = np.isfinite(fe) & np.isfinite(live)
+            if not sel.any():
+                continue
+            e = np.abs(live[sel] / fe[sel] - 1.0)
+            q = float(np.quantile(e, QUANTILE)) if sel.sum() >= 20 else float(e.max())
+            acc[a] = {"n": int(sel.sum()), "mean_rel": float(e.mean()), "p95_rel": q, "max_rel": float(e.max()),
+                      "unit": ANSWERS[a][2]}
+        self.accuracy = acc
+        pred = self.predict(u)  # the bands with the measured error in them
+        for a in acc:
+            fe = np.array([row_value(r, a) for r in ok_rows], dtype=float)
+            live, band = pred["value"][a], pred["band"][a]
+            sel = np.isfinite(fe) & np.isfinite(live)
+            acc[a]["within"] = float(np.mean(np.abs(live[sel] - fe[sel]) <= band[sel]))
+        # where the FE answers: the status model against the held-out designs' own status
+        p = self.status.probability(np.array([self.region.unit_of(json.loads(r["point_json"])) for r in rows]))
+        st = np.array([r.get("status") == "ok" for r in rows])
+        acc["status"] = {"n": len(rows), "agree": float(np.mean((p >= OK_PROBABILITY) == st)),
+                         "fe_answers": int(st.sum())}
+        return acc
+
+    def to_json(self) -> dict:
+        """The region, the measured accuracy and the build's figures (JSON-ready)."""
+        return {"region": self.region.to_json(), "answers": sorted(self.models), "accuracy": self.accuracy,
+                "info": self.info}
