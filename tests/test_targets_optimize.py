@@ -9,7 +9,8 @@ import sys
 import pytest
 
 from clutchfem.core import ParameterError
-from clutchfem.targets import Targets, default_free
+from clutchfem.geometry import default_free
+from clutchfem.targets import Targets
 from clutchfem.targets.optimization import better, make_space
 from support.pictures import agrees, rule
 

@@ -13,7 +13,6 @@ from ..core import lazy_names
 
 _NAMES: dict[str, str] = {
     "AnswerModel": "surrogate",
-    "free_parameters": "region",
     "OK_PROBABILITY": "surrogate",
     "Region": "region",
     "SPAN": "region",

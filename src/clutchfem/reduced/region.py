@@ -5,10 +5,9 @@ A designer works near one design.  The default region is +-20 % (:data:`SPAN`) o
 free parameter around it, clipped to the parameter's declared range (a parameter whose value
 is 0 gets +-10 % of its declared range instead: a relative span of zero is no region); the
 ranges may be given instead (``ranges={"flexure_thickness": (1.6e-3, 2.0e-3)}``).  The free
-parameters are the concept's shape parameters (:func:`clutchfem.targets.default_free`'s
-choice, repeated here in one line so that this stage does not sit above design to
-targets): the continuous geometry parameters the design uses, not the drum, the thickness,
-the number of shoes or the profile's table.  The concept's own rules cut the box: a point
+parameters are the concept's shape parameters (:func:`clutchfem.geometry.default_free`: the
+concept's own real-valued parameters, the fillet and the clearance), not the drum, the
+thickness, the number of shoes or the profile.  The concept's own rules cut the box: a point
 they refuse has no design, so it is neither trained on nor answered (the refusal is the
 concept's, naming the parameter, as everywhere).
 
@@ -31,31 +30,14 @@ from scipy.stats import qmc
 
 from ..core import ParameterError, dumps, param_bounds, round12
 from ..evaluation import EvalSettings, model_version
-from ..geometry import get_concept
+from ..geometry import default_free, get_concept
 
-__all__ = ["SPAN", "Region", "free_parameters"]
+__all__ = ["SPAN", "Region"]
 
 #: the default half-width of the region, relative to each free parameter's value
 SPAN = 0.2
 #: a parameter at 0: the half-width as a share of its declared range
 ZERO_SPAN = 0.1
-#: parameters that are never free: the drum and the part's envelope, counts and choices
-FIXED_ALWAYS = ("drum_radius", "thickness", "bore_radius", "n_shoes")
-
-
-def free_parameters(P) -> list[str]:
-    """The shape parameters of concept parameter set ``P``: every continuous (float) geometry
-    parameter but the drum, the envelope and the profile table's control values."""
-    out = []
-    for name, f in P.model_fields.items():
-        if name in FIXED_ALWAYS or name.startswith("table_c") or f.annotation is not float:
-            continue
-        lo, hi = param_bounds(P, name)
-        if lo is None or hi is None:
-            continue
-        out.append(name)
-    return out
-
 
 @dataclass(frozen=True)
 class Region:
@@ -102,7 +84,7 @@ class Region:
             raise ParameterError("span", span, "a relative half-width in (0, 0.5] (0.2: +-20 % of each "
                                  "parameter)", "reduced model")
         P = type(design.params)
-        names = list(free) if free is not None else free_parameters(P)
+        names = list(free) if free is not None else default_free(P)
         for n in names:
             if n not in P.model_fields:
                 raise ParameterError(n, None, f"a parameter of {design.name}: " + ", ".join(P.model_fields),

@@ -19,10 +19,10 @@ from .best_check import analysed_answers, best_estimate, check_optimum, correcti
 from .compensation import Compensation, CompensationStep, ShoeState, compensate, evenness, shoe_state
 from .optimization import METHODS, OptimizationResult, better, fatigue_note, optimize
 from .rules import bisect
-from .search_space import Space, default_free, make_space
+from .search_space import Space, make_space
 from .targets import DIMENSIONLESS, OBJECTIVES, Targets
 
 __all__ = ["DIMENSIONLESS", "METHODS", "OBJECTIVES", "Compensation", "CompensationStep", "OptimizationResult",
            "ShoeState", "Space", "Targets", "analysed_answers", "best_estimate", "better", "bisect",
-           "check_optimum", "compensate", "correction_ratios", "default_free", "evenness", "fatigue_note",
+           "check_optimum", "compensate", "correction_ratios", "evenness", "fatigue_note",
            "make_space", "optimize", "shoe_state", "start_targets"]

@@ -69,9 +69,10 @@ from scipy.stats import qmc
 from ..core import InputError, ParameterError, as_bool, clean
 from ..core import values as V
 from ..evaluation import EvalSettings, evaluate_many, shared_cluster
+from ..geometry import default_free
 from .best_check import best_estimate, check_optimum, start_targets
 from .gradient import gradient_search
-from .search_space import default_free, make_space
+from .search_space import make_space
 from .targets import DIMENSIONLESS, Targets
 
 #: an objective improvement smaller than this share is noise, not success

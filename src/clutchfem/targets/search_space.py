@@ -1,6 +1,6 @@
 """The search space of an optimisation: the free parameters with their ranges, mapped onto
 the unit box (:class:`Space`, :func:`make_space`), and the parameters a concept frees by
-default (:func:`default_free`)."""
+default (:func:`clutchfem.geometry.default_free`)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,6 @@ import numpy as np
 
 from ..core import ParameterError
 from ..core import values as V
-from ..geometry import ConceptParams
 
 
 @dataclass
@@ -73,22 +72,3 @@ def make_space(P, free: list[str], ranges: dict | None = None, start=None) -> Sp
         lo.append(float(a))
         hi.append(float(b))
     return Space(P, list(free), np.array(lo), np.array(hi))
-
-
-def default_free(P) -> list[str]:
-    """The concept's own real-valued parameters (those its parameter class adds to the
-    common ones: the shape of hub, flexure and shoe), the fillet radius and the shoe-drum
-    clearance.  The axial thickness (the envelope: ~10-12 mm, ASSUMED), the drum, the bore,
-    the profile and the number of shoes are kept unless freed with ``--free``.
-
-    Why the clearance is free: after contact the flexure's stress at the engine's maximum
-    speed grows with the deflection it took to close the gap, so the clearance is the
-    strongest lever on the safety factor; on concept 4 the shape parameters alone reached a
-    safety factor of 1.14 at best (300 analysed designs) against the 1.5 asked, with the clearance free
-    the targets are met (docs/design_to_targets.md)."""
-    common = set(ConceptParams.model_fields)
-    own = [n for n, f in P.model_fields.items() if n not in common and f.annotation is float]
-    for extra in ("fillet_radius", "clearance"):
-        if extra in P.model_fields and extra not in own:
-            own.append(extra)
-    return own
