@@ -79,6 +79,11 @@ _GROUPS: dict[str, dict[str, str]] = {
         "sensitivities": "clutchfem.evaluation",
         "Sensitivities": "clutchfem.evaluation",
     },
+    "Reduced model": {
+        "reduce": "clutchfem.reduced",
+        "ReducedModel": "clutchfem.reduced",
+        "Region": "clutchfem.reduced",
+    },
     "Design guidelines": {
         "GuidelineSettings": "clutchfem.guidelines",
         "run_guidelines": "clutchfem.guidelines",
@@ -157,6 +162,11 @@ _RENAMED = {"guidelines": "run_guidelines"}  # the other renamed names kept thei
 __all__ = ["__version__", *_API]
 
 
+#: a public name that needs another stage loaded as well: ``analyze`` answers a live design from
+#: the reduced model, which sits above the analysis and registers itself there on import
+_ALSO_LOAD = {"analyze": "clutchfem.reduced.live"}
+
+
 def __getattr__(name: str) -> Any:
     """Import a public name on first use (PEP 562) and keep it."""
     try:
@@ -164,6 +174,8 @@ def __getattr__(name: str) -> Any:
     except KeyError:
         hint = f" (renamed to {_RENAMED[name]!r} in clutchfem 0.3)" if name in _RENAMED else ""
         raise AttributeError(f"module 'clutchfem' has no attribute {name!r}{hint}") from None
+    if name in _ALSO_LOAD:
+        importlib.import_module(_ALSO_LOAD[name])
     value = getattr(importlib.import_module(module), name)
     globals()[name] = value
     return value
@@ -208,6 +220,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
     from .guidelines import GuidelineResult, GuidelineSettings, run_guidelines
     from .loadcase import Design, OperatingPoint, SweepResult, model_warnings, morph, parse_rpm
     from .mesh import cache_dir, cache_entries, cache_limit, clear_cache
+    from .reduced import ReducedModel, Region, reduce
     from .report import (
         default_design_report,
         draw_guideline_charts,

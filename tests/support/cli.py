@@ -39,7 +39,7 @@ def cli_in_process(*args: str, env: dict | None = None, ok: bool = False) -> sub
     code = 0
     # the process-wide allocator settings main() makes for its own process are not this
     # test worker's business
-    with mock.patch.dict(os.environ, env or {}), mock.patch("clutchfem.core.tune_malloc", lambda: False), \
+    with mock.patch.dict(os.environ, env or {}), mock.patch("clutchfem.tune_malloc", lambda: False), \
             contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         sys.argv = ["clutchfem", *map(str, args)]
         try:

@@ -27,7 +27,7 @@ from .answers import (
 from .coupling import answer_curves, coupling_step, torque_models
 from .error_band import error_step
 from .messages import SELF_ENERGISING_WARN, design_notes, design_warnings
-from .pipeline import analyze
+from .pipeline import LIVE, analyze
 from .refinement import ACCURACY_TARGET
 from .requirements import DEFAULT_IDLE_RPM, WHIRL_MARGIN, idle_speed, requirements_step, whirl_step
 from .slip_heat import SlipHeatRun, slip_heat
@@ -50,7 +50,7 @@ from .torque import (
     slip_step,
 )
 
-__all__ = ["ACCURACY_TARGET", "SlipHeatRun", "slip_heat", "DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "CONTACT_SPEED_OF", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
+__all__ = ["LIVE", "ACCURACY_TARGET", "SlipHeatRun", "slip_heat", "DEFAULT_A", "DEFAULT_B", "DEFAULT_IDLE_RPM", "CONTACT_SPEED_OF", "GRID_RPM", "MU_FACTORS", "SELF_ENERGISING_WARN",
            "WHIRL_MARGIN", "Analysis", "CharacterAnswer", "EngagementAnswer", "FETorque", "FatigueAnswer",
            "MuSensitivity", "Requirements", "SlipAnswer", "StressAnswer", "analyze", "answer_curves", "bracket_grid",
            "character_step", "check_speeds", "contact_sets_step", "coupling_step", "design_notes", "design_warnings", "engagement_step",

@@ -246,6 +246,12 @@ class Analysis:
     #: "torque", "peak" (clutchfem.analysis.torque.contact_sets_step); designs morphed from one
     #: reference share the numbering, and a change between them is a kink of those answers
     contact_sets: dict = field(default_factory=dict)
+    #: what answered: "FE" (the analysis steps above), "reduced model" (a live answer of
+    #: clutchfem.reduced: milliseconds, its own measured error in every band) or "FE (fallback)"
+    #: (a live design the reduced model could not answer; the notes say why)
+    answered_by: str = "FE"
+    #: the key of the reduced model's region of a live answer (clutchfem.reduced.Region.key)
+    region_key: str | None = None
 
     def to_json(self) -> dict:
         d = {k: v for k, v in self.__dict__.items() if k != "curves"}

@@ -78,6 +78,12 @@ from .torque import (
     slip_step,
 )
 
+#: the answerer of designs whose operating point's fidelity is ``"live"``: the reduced model's
+#: (:func:`clutchfem.reduced.live_analysis`), registered by that stage when it is imported
+#: (it sits above this one: it is trained from these answers).  ``import clutchfem`` and
+#: ``clutchfem.analyze`` load it.
+LIVE: list = []
+
 
 def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirements | None = None,
             idle_rpm: float | None = None, ripple_model: RippleModel | None = None,
@@ -120,6 +126,11 @@ def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirem
     (True, 'rpm')"""
     if not isinstance(design, Design):
         raise ParameterError("design", type(design).__name__, "a clutchfem Design (Design.from_concept or Design.from_mesh)")
+    if design.op.fidelity == "live":
+        if not LIVE:
+            raise ParameterError("fidelity", "live", "a live answer needs the reduced-model stage: call it as "
+                                 "clutchfem.analyze (or import clutchfem.reduced first)")
+        return LIVE[0](design, engine=engine, requirements=requirements, idle_rpm=idle_rpm)
     engine = EngineCurve.of(engine)
     if requirements is not None and not isinstance(requirements, Requirements):
         raise ParameterError("requirements", type(requirements).__name__, "a Requirements(a=..., b=...) or None "

@@ -26,6 +26,7 @@ from .demo_cmd import demo
 from .export_cmd import export
 from .geometry_cmd import geometry
 from .optimize_cmd import optimize
+from .reduce_cmd import reduce
 from .report_cmd import report
 from .slip_heat_cmd import slip_heat
 from .solve_cmd import solve
@@ -51,6 +52,7 @@ _COMMANDS = [
     (compensate, "compensate", "Design to targets", "clutchfem compensate concept4 --rpm 8000 --out out/comp"),
     (export, "export", "Design to targets",
      "clutchfem export concept4 --process wire-edm --dxf part.dxf --step part.step --drawing part.pdf"),
+    (reduce, "reduce", "Studies", "clutchfem reduce concept4 --workers 2   (then: clutchfem analyze concept4 --fidelity live)"),
     (study, "study", "Studies", "clutchfem study --example > study.toml && clutchfem study study.toml"),
     (guidelines, "guidelines", "Studies", "clutchfem guidelines concept4 --params flexure_thickness,shoe_arc"),
     (validate, "validate", "Checks", "clutchfem validate --docs docs/validation.md --out docs/img/validation"),

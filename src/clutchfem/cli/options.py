@@ -69,11 +69,13 @@ Softening = Annotated[Optional[str], typer.Option(
     "--spin-softening", metavar="NAME", help="prestress (default: spin softening + centrifugal pre-stress), ritz, exact, off, prestress-exact (the per-speed reference of prestress)",
     rich_help_panel=MODEL)]
 Fidelity = Annotated[Optional[str], typer.Option(
-    "--fidelity", metavar="best|fast", help="best (default; the environment variable CLUTCHFEM_FIDELITY sets "
+    "--fidelity", metavar="best|fast|live", help="best (default; the environment variable CLUTCHFEM_FIDELITY sets "
                      "another): the best estimate of the real part (thick plane model with the 3-D thickness effect, "
                      "elastic 2 mm drum ASSUMED, refined mesh, peak stress and torque corrected for non-linearity); "
                      "fast: the uncorrected 2-D path (plane stress, rigid drum, 1.2 mm mesh; ~3-10x larger error "
-                     "band, about half the time), for sweeps that want it", rich_help_panel=MODEL)]
+                     "band, about half the time), for sweeps that want it; live: the best path's answers from the "
+                     "reduced model of the design's region (clutchfem reduce; milliseconds, no mesh, its own measured "
+                     "error in every band)", rich_help_panel=MODEL)]
 Formulation = Annotated[Optional[str], typer.Option(
     "--formulation", metavar="NAME", help="auto (default: the fidelity's), plane-stress, plane-strain, thick (2-D mesh with "
                         "through-thickness modes) or 3d (P2 tetrahedra, --layers)", rich_help_panel=MODEL)]

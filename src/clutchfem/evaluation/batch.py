@@ -141,7 +141,11 @@ class EvalSettings:
               if getattr(design.op, k) != getattr(op0, k) and k not in ("rpm",)}
         if "material" in op:
             op["material"] = op["material"].model_dump()
-        size = (design.cm.mesh_settings or {}).get("size")
+        if design.op.fidelity == "live":  # its designs are evaluated by the FE it stands for: the best path
+            op["fidelity"] = "best"
+            if op0.fidelity == "best":
+                del op["fidelity"]
+        size = design.mesh_settings.size
         size = None if size is None or size == MeshSettings.preset(design.op.fidelity).size else float(size)
         req_a = getattr(requirements, "a", 1.3)
         req_b = getattr(requirements, "b", 1.0)

@@ -194,8 +194,8 @@ class Settings:
 # model version
 # ---------------------------------------------------------------------------------------
 #: parts of the package that only present results (they do not change an answer)
-_PRESENTATION = ("cli/", "app/", "studies/", "validation/", "report/", "export/", "cutting/", "fe/vtu.py", "core/figures.py",
-                 "core/jsonio.py", "loadcase/record.py")
+_PRESENTATION = ("cli/", "app/", "studies/", "targets/", "tolerances/", "guidelines/", "reduced/", "validation/",
+                 "report/", "export/", "cutting/", "fe/vtu.py", "core/figures.py", "core/jsonio.py", "loadcase/record.py")
 
 
 @lru_cache(maxsize=None)
@@ -209,7 +209,7 @@ def model_version(concept: str | None = None) -> str:
     files = []
     for f in sorted(root.rglob("*.py")):
         rel = f.relative_to(root).as_posix()
-        if rel.startswith(_PRESENTATION) and rel != "studies/point.py":
+        if rel.startswith(_PRESENTATION):
             continue
         files.append(rel)
         h.update(rel.encode())

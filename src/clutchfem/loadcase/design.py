@@ -129,6 +129,11 @@ class Design:
         return mesh_concept(self.concept, self.params, self._mesh_settings)
 
     @property
+    def mesh_settings(self) -> MeshSettings:
+        """The mesh settings a concept's design is (or will be) meshed with."""
+        return self._mesh_settings
+
+    @property
     def meshed(self) -> bool:
         """Whether the design has its mesh yet."""
         return "cm" in self.__dict__
@@ -307,6 +312,16 @@ class Design:
             self._cases[key] = LoadCase(self.model, self.contact(mu, drum_wall), soft,
                                         engagement_hint=getattr(self, "_engagement_hint", None))
         return self._cases[key]
+
+    def with_fidelity(self, fidelity: str) -> "Design":
+        """The same concept design at another fidelity (``"best"``, ``"fast"``, ``"live"``):
+        a new design, meshed and modelled as that fidelity asks (a live design's FE twin)."""
+        if self.params is None:
+            raise ParameterError("fidelity", fidelity, "a concept's design (a user mesh has one fidelity: its own)")
+        op = self.op.replace(fidelity=fidelity)
+        same = self._mesh_settings == MeshSettings.preset(self.op.fidelity)
+        return Design.from_concept(self.concept, self.params, op, None if same else self._mesh_settings,
+                                   solver=self._solver)
 
     def with_softening(self, softening: str) -> "Design":
         """The same design (mesh, FE model and its factorisation shared) with the operating

@@ -35,20 +35,23 @@ def _file_sha256(path) -> str | None:
 
 
 def design_inputs(design) -> dict:
-    """The inputs that define ``design``'s answers (JSON-ready)."""
-    cm = design.cm
+    """The inputs that define ``design``'s answers (JSON-ready).  A concept's design that has
+    not been meshed (a live answer needs no mesh) records its mesh settings, not the mesh."""
+    meshed = getattr(design, "meshed", True)
+    cm = design.cm if meshed else None
     d: dict = {"name": design.name, "clutchfem": __version__, "gmsh": gmsh.__version__,
                "scikit-fem": getattr(skfem, "__version__", "?")}
     if design.params is not None:
         d["concept"] = design.name
         d["params"] = design.params.model_dump()
-        d["mesh_settings"] = dict(cm.mesh_settings)
-        if (cm.morph or {}).get("morphed"):  # another discretisation of the same design
+        d["mesh_settings"] = dict(cm.mesh_settings) if cm is not None else design.mesh_settings.model_dump()
+        if cm is not None and (cm.morph or {}).get("morphed"):  # another discretisation of the same design
             d["mesh_morphed_from"] = dict(cm.morph["reference"])
     else:
         d["mesh_file"] = cm.source
         d["mesh_sha256"] = _file_sha256(cm.source)
-    d["mesh"] = {"elements": cm.n_elements, "nodes": cm.n_nodes, "model": "sector" if cm.sector_angle else "full"}
+    if cm is not None:
+        d["mesh"] = {"elements": cm.n_elements, "nodes": cm.n_nodes, "model": "sector" if cm.sector_angle else "full"}
     op = design.op.model_dump()
     op["drum_radius"] = design.drum_radius
     op["thickness"] = design.thickness
@@ -56,7 +59,9 @@ def design_inputs(design) -> dict:
     # what the fidelity resolved to (formulation "auto", drum wall None)
     d["model"] = {"fidelity": design.op.fidelity, "formulation": design.op.model_formulation,
                   "drum_wall_m": design.op.drum_wall_m, "drum_state": design.op.drum_state,
-                  "softening": design.op.softening, "dofs": int(design.model.ndofs)}
+                  "softening": design.op.softening}
+    if cm is not None:
+        d["model"]["dofs"] = int(design.model.ndofs)
     return clean(d)
 
 
@@ -78,7 +83,8 @@ def design_label(design) -> str:
         mesh0 = MeshSettings.preset(design.op.fidelity, model="sector").model_dump()
         # the other fidelity at its defaults is a default design too (its own name tag)
         same_op = design.op == op0 or design.op == op0.replace(fidelity=design.op.fidelity)
-        default = design.params == params0 and same_op and dict(design.cm.mesh_settings) == mesh0
+        ms = design.cm.mesh_settings if getattr(design, "meshed", True) else design.mesh_settings.model_dump()
+        default = design.params == params0 and same_op and dict(ms) == mesh0
         if default and design.op.fidelity != op0.fidelity:
             return f"{design.name}-{design.op.fidelity}"
     return design.name if default else f"{design.name}-{design_hash(design)}"

@@ -262,7 +262,7 @@ def _in_spec(row: dict, spec) -> dict:
 
 def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", seed: int = 1,
               targets=None, engine=None, requirements=None, shifts: bool = True, workers: int | None = None,
-              scheduler: str | None = None, log=None) -> ToleranceResult:
+              scheduler: str | None = None, log=None, model: str | None = None, check: int = 16) -> ToleranceResult:
     """Monte Carlo of manufacturing tolerances: the spread of the answers, the share of parts
     out of spec and a ranking of the dimensions (module docstring).
 
@@ -286,6 +286,12 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
         Also shift each toleranced length by +-0.2 and +-0.5 mm alone.
     workers, scheduler, log
         Study engine controls (``workers=0``: in this process).
+    model : {"fe", "live"}, optional
+        What answers the parts: the full FE (default; ``"live"`` for a design whose fidelity
+        is live) or the reduced model of a region just around the tolerance box
+        (:mod:`clutchfem.tolerances.live`: 10,000 parts in seconds).
+    check : int
+        With ``model="live"``: parts also analysed by the FE, and the agreement reported.
 
     Returns
     -------
@@ -301,6 +307,12 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
     >>> r.n, 0.0 <= r.out_of_spec["any"]["share"] <= 1.0   # share of parts out of any spec
     (8, True)
     """
+    live = (model or ("live" if getattr(getattr(design, "op", None), "fidelity", "") == "live" else "fe")) == "live"
+    if model not in (None, "fe", "live"):
+        raise ParameterError("model", model, "'fe' (the full FE answers every part) or 'live' (the reduced model "
+                             "does, a check sample through the FE)", "tolerance")
+    if isinstance(check, bool) or not isinstance(check, int) or not 0 <= check <= 1000:
+        raise ParameterError("check", check, "an integer in [0, 1000] (parts also through the FE)", "tolerance")
     settings = design if isinstance(design, EvalSettings) else EvalSettings.from_design(
         design, engine=engine, requirements=requirements)
     if not isinstance(tolerances, dict):
@@ -349,18 +361,27 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
                 continue
             for s in SHIFTS:
                 shift_pts.append((name, s, {name: V.exact_text(P, name, round((getattr(p0, name) + s) / 1e-6) * 1e-6)}))
-    batch = [nominal_pt] + points + [pt for _, _, pt in shift_pts]
+    agree, n_check = None, min(check, n) if live else 0
+    batch = [nominal_pt] + (points[:n_check] if live else points) + [pt for _, _, pt in shift_pts]
     if log:
-        log(f"{len(batch)} designs: nominal, {n} samples, {len(shift_pts)} shifted")
+        log(f"{len(batch)} designs through the FE: nominal, {n if not live else n_check} samples, "
+            f"{len(shift_pts)} shifted" + (f"; {n} samples on the reduced model" if live else ""))
     with shared_cluster(workers, scheduler):
         rows_all = evaluate_many(batch, settings, progress=log is not None)
-    nom, rows, srows = rows_all[0], rows_all[1:n + 1], rows_all[n + 1:]
+        if live:
+            rows, rmodel = live_parts(settings, names, nominal, half, dist, D, workers)
+    if live:
+        nom, fe_rows, srows = rows_all[0], rows_all[1:n_check + 1], rows_all[n_check + 1:]
+    else:
+        nom, rows, srows = rows_all[0], rows_all[1:n + 1], rows_all[n + 1:]
     if nom["status"] != "ok":
         raise InputError(f"the nominal design cannot be analysed ({nom['status']}: {nom['message']})")
     for r, dd in zip(rows, devs):
         r["d"] = dict(zip(names, dd))
     tg = targets or Targets(nom["engagement_limit_rpm"], None, nom["slip_limit_rpm"], 1.5)
     spec = tg.constraints()
+    if live:
+        agree = agreement(rows[:n_check], fe_rows, spec, _in_spec)
     ratios = correction_ratios(best_estimate(settings)) if settings.operating_point().fidelity == "best" else {}
     ok_rows = [r for r in rows if r["status"] == "ok"]
     for r in [nom] + ok_rows:  # the parts' answers as analyze reports them (module docstring, "Spec")

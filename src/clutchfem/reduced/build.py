@@ -1,0 +1,197 @@
+"""Building a region's reduced model on the study engine, and keeping it on disk.
+
+**The build** (:func:`reduce`): ``n`` training designs (a scrambled Sobol sample of the
+region, the concept's rules applied) and ``held_out`` more drawn apart from them, every one
+through the full best path (``analyze`` with its error step: the corrected answers and their
+bands) on the study engine (:func:`clutchfem.evaluation.run_points`: Dask workers or this
+process, each finished design committed to the region's store as it arrives, so a build
+that is interrupted or killed resumes where it stopped).  The model is fitted to the
+training designs, its error measured on the held-out ones
+(:meth:`~.model.ReducedModel.measure`), then fitted again to all of them (the error stated is
+the one measured with fewer designs: conservative).
+
+**The cache**: ``$CLUTCHFEM_CACHE/reduced/<concept>-<key>/`` (else the platform's user cache
+folder), one folder per region (:meth:`~.region.Region.key`: concept, bounds, fixed
+parameters, operating point, engine, requirement factors, code version) holding the store
+(``results.sqlite``), the region (``region.json``) and the fitted model (``model.pkl``,
+written atomically last: its presence means a finished build).  A later call with the same
+region loads it in milliseconds; a live answer looks for a cached region that contains its
+design (:func:`find`) before building one.  The cache deletes only what it wrote: a folder
+it did not make is never touched.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import pickle
+import time
+from pathlib import Path
+
+import platformdirs
+import sklearn
+from cachetools import LRUCache, cached
+
+from ..core import InputError, ParameterError, dumps
+from ..evaluation import COLUMNS, STORE_NAME, ResultStore, run_points
+from .model import ReducedModel
+from .region import SPAN, Region
+
+__all__ = ["DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "reduce"]
+
+log = logging.getLogger("clutchfem")
+
+#: training designs of a default build (BENCHMARKS.md section 22: accuracy against designs)
+DEFAULT_N = 120
+#: held-out designs the model's error is measured on
+DEFAULT_HELD_OUT = 30
+#: a file in every folder the cache made (only such folders are ever deleted)
+MARK = ".clutchfem-reduced"
+
+
+def cache_root() -> Path:
+    """The folder of the reduced models: ``$CLUTCHFEM_CACHE/reduced`` if the variable is set,
+    else the platform's user cache folder's ``reduced``."""
+    env = os.environ.get("CLUTCHFEM_CACHE")
+    root = Path(env) if env else Path(platformdirs.user_cache_dir("clutchfem"))
+    return root / "reduced"
+
+
+def _folder(region: Region) -> Path:
+    return cache_root() / f"{region.concept}-{region.key()}"
+
+
+@cached(LRUCache(maxsize=8), key=lambda path, mtime: (str(path), mtime))
+def _read(path: Path, mtime: float) -> dict | None:
+    """A model file's document, kept in this process while the file is unchanged."""
+    try:
+        with open(path, "rb") as fh:
+            return pickle.load(fh)
+    except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError):
+        return None
+
+
+def load(region: Region) -> ReducedModel | None:
+    """The finished reduced model of ``region`` from the cache, or None (read once per process
+    while the file is unchanged)."""
+    path = _folder(region) / "model.pkl"
+    try:
+        mtime = path.stat().st_mtime
+    except OSError:
+        return None
+    doc = _read(path, mtime)
+    if not doc or doc.get("sklearn") != sklearn.__version__ or doc.get("key") != region.key():
+        return None
+    return doc["model"]
+
+
+def find(design, *, engine=None, requirements=None) -> ReducedModel | None:
+    """A cached reduced model whose region contains ``design`` (the same concept, fixed
+    parameters, operating point, engine and requirements; its free parameters in the box),
+    or None."""
+    root = cache_root()
+    if not root.is_dir() or design.params is None:
+        return None
+    for folder in sorted(root.glob(f"{design.name}-*")):
+        try:
+            doc = json.loads((folder / "region.json").read_text())
+        except (OSError, ValueError):
+            continue
+        names = list(doc.get("free", {}))
+        try:
+            region = Region.around(design, free=names, ranges={n: tuple(v) for n, v in doc["free"].items()},
+                                   engine=engine, requirements=requirements)
+        except ParameterError:
+            continue
+        if region.key() != doc.get("key") or not region.contains(design.params.model_dump()):
+            continue
+        model = load(region)
+        if model is not None:
+            return model
+    return None
+
+
+def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None, n: int = DEFAULT_N,
+           held_out: int = DEFAULT_HELD_OUT, engine=None, requirements=None, workers: int | None = None,
+           scheduler: str | None = None, progress: bool = True, seed: int = 0) -> ReducedModel:
+    """Build (or load) the reduced model of the region around ``design``.
+
+    Parameters
+    ----------
+    design : Design
+        A concept's design: the region is +-``span`` of its free parameters (clipped to
+        their declared ranges), or ``ranges``.
+    span : float
+        The relative half-width of the region (default 0.05: :mod:`clutchfem.reduced.region`
+        says why).
+    ranges : dict, optional
+        ``name -> (lo, hi)`` (SI or texts with a unit): these parameters' bounds instead.
+    free : list of str, optional
+        The free parameters (default: the concept's shape parameters).
+    n, held_out : int
+        Training designs, and designs the model's error is measured on.
+    engine, requirements : optional
+        The engine curve and requirement factors the answers are computed against.
+    workers, scheduler, progress
+        The study engine's controls (``workers=0``: in this process).
+    seed : int
+        The Sobol sequence's scrambling.
+
+    Returns
+    -------
+    ReducedModel
+        Its answers in milliseconds (:meth:`~clutchfem.reduced.ReducedModel.predict`) and
+        their measured error (``accuracy``).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> m = cf.reduce(d, free=["flexure_thickness"], n=6, held_out=3, workers=0, progress=False)
+    >>> m.region.names, sorted(m.accuracy)[:2]
+    (('flexure_thickness',), ['contact_arc_deg', 'engagement_rpm'])
+    """
+    for name, v, lo in (("n", n, 3), ("held_out", held_out, 2)):
+        if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= 5000:
+            raise ParameterError(name, v, f"an integer in [{lo}, 5000]", "reduced model")
+    region = Region.around(design, span=span, ranges=ranges, free=free, engine=engine, requirements=requirements)
+    cached = load(region)
+    if cached is not None and cached.info.get("n_train", 0) >= n and cached.info.get("n_held_out", 0) >= held_out:
+        return cached
+    folder = _folder(region)
+    if folder.exists() and not (folder / MARK).exists():
+        raise InputError(f"{folder}: a folder the reduced-model cache did not make is in its way; move it "
+                         "(the cache never deletes what it did not write)")
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / MARK).touch()
+    (folder / "region.json").write_text(dumps(region.to_json(), indent=1))
+    t0 = time.perf_counter()
+    train = region.sample(n, seed=seed)
+    test = region.sample(held_out, seed=seed + 1)
+    points = train + test
+    log.info(f"reduce {region.concept}: {len(points)} designs through the best path ({n} to fit, {held_out} to "
+             f"measure its error) in {region.describe()}")
+    st = region.settings.study()
+    store = folder / STORE_NAME
+    res = run_points(points, st, store, workers=workers, scheduler=scheduler, progress=progress,
+                     source=f"reduce {region.concept}", desc="reduce", error_points=list(range(len(points))))
+    with ResultStore(store, COLUMNS) as rs:
+        df = rs.frame(res.model_version, list(res.keys))
+    by_key = {r["design_hash"]: r for r in json.loads(df.to_json(orient="records"))}
+    keys = list(res.keys)  # in point order (repeats counted once)
+    rows = [by_key[k] for k in keys if k in by_key]
+    rows_train, rows_test = rows[:n], rows[n:]
+    model = ReducedModel.fit(region, rows_train, seed=seed)
+    model.measure(rows_test)
+    accuracy = model.accuracy
+    final = ReducedModel.fit(region, rows, seed=seed)
+    final.accuracy = accuracy
+    final.info.update(n_train=n, n_held_out=held_out, build_s=time.perf_counter() - t0,
+                      fe_designs=len(rows), fe_ok=sum(r.get("status") == "ok" for r in rows),
+                      compute_s=res.compute_s, workers=res.workers)
+    tmp = folder / "model.pkl.tmp"
+    with open(tmp, "wb") as fh:
+        pickle.dump({"model": final, "key": region.key(), "sklearn": sklearn.__version__}, fh)
+    tmp.replace(folder / "model.pkl")
+    return final

@@ -1,0 +1,129 @@
+"""The reduced model (issue 36): its region, its models, its build on the study engine, its
+measured error, and the live answers of ``analyze`` (a design that is never meshed)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import clutchfem as cf
+from clutchfem.reduced import AnswerModel, Region, StatusModel, live_analysis
+from support.cli import cli_in_process
+
+MESH = cf.MeshSettings(size="3mm")
+
+
+def live(**values):
+    return cf.Design.from_concept("concept1", mesh=MESH, fidelity="live", **values)
+
+
+# -- the region ---------------------------------------------------------------------------
+def test_a_live_design_is_not_meshed_and_its_region_is_the_span_around_it():
+    d = live(flexure_thickness="2.2mm")
+    r = Region.around(d, span=0.1)
+    assert not d.meshed  # the region and its key need no mesh
+    assert r.bounds("flexure_thickness") == (pytest.approx(1.98e-3), pytest.approx(2.42e-3))
+    assert r.contains({"flexure_thickness": 2.4e-3}) and not r.contains({"flexure_thickness": 2.5e-3})
+    assert r.outside({"flexure_thickness": 2.5e-3}) == ["flexure_thickness = 0.0025 outside 0.00198..0.00242"]
+    # the key: not the base's values of the free parameters, but every fixed input
+    ranges = {n: r.bounds(n) for n in r.names}
+    assert Region.around(live(flexure_thickness="2.3mm"), ranges=ranges).key() == r.key()
+    assert Region.around(live(flexure_thickness="2.3mm", thickness="10mm"), ranges=ranges).key() != r.key()
+    assert Region.around(live(flexure_thickness="2.3mm", mu=0.2), ranges=ranges).key() != r.key()
+
+
+@pytest.mark.parametrize("kw, name", [({"span": 0.0}, "span"), ({"span": 0.9}, "span"), ({"span": True}, "span"),
+                                      ({"free": ["nope"]}, "nope"),
+                                      ({"ranges": {"flexure_thickness": ("2.4mm", "2.0mm")}}, "flexure_thickness"),
+                                      ({"ranges": {"flexure_thickness": ("0.1mm", "2.0mm")}}, "flexure_thickness")])
+def test_a_bad_region_is_refused_naming_the_input(kw, name):
+    with pytest.raises(cf.ParameterError) as e:
+        Region.around(live(), **kw)
+    assert e.value.name == name
+
+
+def test_a_user_mesh_has_no_region(tmp_path):
+    d = cf.Design.from_concept("concept1", mesh=MESH, fidelity="fast")
+    path = d.cm.write_msh(tmp_path / "part.msh")
+    user = cf.Design.from_mesh(path, drum_radius="34.4mm", fidelity="fast")
+    with pytest.raises(cf.ParameterError, match="a concept's design"):
+        Region.around(user)
+
+
+# -- the models ---------------------------------------------------------------------------
+def test_answer_model_converges_on_a_smooth_answer_and_interpolates_its_training_points():
+    rng = np.random.default_rng(1)
+    f = lambda U: 4000 * np.exp(0.4 * U[:, 0] - 0.1 * U[:, 1] + 0.05 * U[:, 0] * U[:, 1] ** 2)  # noqa: E731
+    test = rng.random((200, 2))
+    errs = []
+    for n in (10, 40):
+        U = rng.random((n, 2))
+        m = AnswerModel.fit(U, f(U))
+        errs.append(np.abs(m.predict(test) / f(test) - 1).max())
+        assert np.allclose(m.predict(U), f(U), rtol=1e-4)
+    assert errs[1] < errs[0] / 20 and errs[1] < 1e-3  # 10 -> 40 designs: 2.4 % -> 0.02 % here
+
+
+def test_status_model_tells_the_answered_designs_from_the_others():
+    U = np.random.default_rng(2).random((120, 3))
+    ok = U[:, 0] ** 2 + 0.5 * U[:, 1] < 0.8  # a smooth divergence boundary
+    s = StatusModel.fit(U, ok)
+    test = np.random.default_rng(3).random((300, 3))
+    truth = test[:, 0] ** 2 + 0.5 * test[:, 1] < 0.8
+    assert np.mean((s.probability(test) > 0.5) == truth) > 0.95
+    assert StatusModel.fit(U, np.ones(len(U), bool)).probability(test).min() == 1.0
+
+
+# -- the build and the live answers ---------------------------------------------------------
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """The reduced model of concept 1's flexure thickness at +-5 % (3 mm mesh, 3 designs fitted,
+    2 held out: the best path with its error step, ~6 s a design), built by the command line
+    in this process."""
+    out = cli_in_process("reduce", "concept1", "--mesh-size", "3mm", "--free", "flexure_thickness", "--n", "3",
+                         "--held-out", "2", "--workers", "0", "--json", ok=True)
+    return json.loads(out.stdout)
+
+
+@pytest.mark.slow
+def test_reduce_builds_the_region_and_measures_its_error_on_held_out_designs(built):
+    assert built["region"]["free"]["flexure_thickness"] == [pytest.approx(2.09e-3), pytest.approx(2.31e-3)]
+    assert built["info"]["n_train"] == 3 and built["info"]["n_held_out"] == 2 and built["info"]["fe_designs"] == 5
+    acc = built["accuracy"]
+    for a in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
+        assert acc[a]["n"] == 2 and 0 <= acc[a]["p95_rel"] < 0.01, (a, acc[a])  # 1-D, +-5 %: well below 1 %
+    assert acc["mass_kg"]["p95_rel"] < 1e-4
+    # again: loaded, not built (no FE: the same answer at once)
+    again = json.loads(cli_in_process("reduce", "concept1", "--mesh-size", "3mm", "--free", "flexure_thickness",
+                                      "--n", "3", "--held-out", "2", "--workers", "0", "--json", ok=True).stdout)
+    assert again["info"] == built["info"]
+
+
+@pytest.mark.slow
+def test_live_analyze_answers_from_the_reduced_model_without_a_mesh_and_its_band_holds_the_fe(built):
+    d = live(flexure_thickness="2.15mm")
+    a = cf.analyze(d)
+    assert a.answered_by == "reduced model" and not d.meshed and a.region_key == built["region"]["key"]
+    fe = cf.analyze(cf.Design.from_concept("concept1", mesh=MESH, fidelity="best", flexure_thickness="2.15mm"))
+    for q, got, want in (("engagement_rpm", a.engagement_rpm, fe.engagement_rpm), ("slip_rpm", a.slip_rpm, fe.slip_rpm),
+                         ("torque_at_max_engine_torque_Nm", a.torque_at_max_engine_torque_Nm,
+                          fe.torque_at_max_engine_torque_Nm), ("max_von_mises_Pa", a.max_von_mises_Pa, fe.max_von_mises_Pa)):
+        band = a.errors[q]["total"]
+        assert abs(got - want) <= band, (q, got, want, band)
+        assert band >= fe.errors[q]["total"] * 0.5  # the best path's band is in it (of its neighbours)
+    assert a.safety_factor == pytest.approx(a.yield_strength_Pa / a.max_von_mises_Pa)
+    assert "reduced model" in a.notes[0] and "measured on" in a.notes[0]
+    # the command line: the same answer, said to be live
+    doc = json.loads(cli_in_process("analyze", "concept1", "--mesh-size", "3mm", "--set", "flexure_thickness=2.15mm",
+                                    "--fidelity", "live", "--json", ok=True).stdout)
+    assert doc["answered_by"] == "reduced model" and doc["engagement_rpm"] == pytest.approx(a.engagement_rpm)
+
+
+@pytest.mark.slow
+def test_outside_every_region_live_falls_back_to_the_fe_and_says_so(built):
+    d = live(flexure_thickness="2.6mm")
+    a = live_analysis(d, build=False)
+    assert a.answered_by == "FE (fallback)" and any("no reduced model holds this design" in n for n in a.notes)
+    assert a.engagement_rpm > 0 and a.errors["engagement_rpm"]["discretisation"] is not None
