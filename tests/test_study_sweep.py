@@ -190,8 +190,10 @@ def test_kill_9_loses_no_finished_point_and_the_rerun_computes_only_the_rest(tmp
         _kill_group(proc.pid)
     before = {h: (s, t) for h, s, t in _rows(store)}  # what survived (at least the 3 seen)
     assert len(before) >= 3
+    # the rerun in its own process (--workers 0): which points it computes is decided from the
+    # store before any is sent, the same on a cluster (the kill above is what needs one)
     rerun = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", str(spec), "--out", str(out),
-                            "--no-charts", "--json", "--workers", "2"], env=_env(), capture_output=True,
+                            "--no-charts", "--json", "--workers", "0"], env=_env(), capture_output=True,
                            text=True, timeout=300)
     assert rerun.returncode == 0, rerun.stderr[-3000:]
     s = json.loads(rerun.stdout)
