@@ -9,6 +9,15 @@ import pytest
 # test runs everything on the best path.
 os.environ.setdefault("CLUTCHFEM_FIDELITY", "fast")
 
+# One BLAS thread in every process of the run (this one, the xdist workers, the processes the
+# tests start; the study tests' environments and Dask's nannies already set it).  Two workers
+# on two cores are the run's parallelism: a threaded OpenBLAS on top spins on busy cores, and
+# the dense solves of small systems then take 25x the CPU (measured: the held-contact walk of
+# the 1 mm clearance case in tests/support/solver_edges.py, 15.5 s -> 0.6 s).  Set before
+# numpy loads OpenBLAS (it reads the variable once); the answers are the same.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
 
 @pytest.fixture(autouse=True, scope="session")
 def _isolated_cache(tmp_path_factory, request):

@@ -53,13 +53,15 @@ def test_every_design_command_takes_fidelity(name):
 @pytest.mark.slow
 def test_a_study_command_runs_on_the_fidelity_it_is_given():
     """`tolerance --fidelity best` under a fast session default: the nominal design's
-    engagement is the best path's (the thick model's), not the fast one's."""
+    engagement is the best path's (the thick model's), not the fast one's.  On a 6 mm mesh (was
+    3 mm): the two paths' engagements differ by 2.22 % there (2.21 % on 3 mm), the test's
+    CPU 32 s -> 15 s."""
     r = CliRunner().invoke(app, ["tolerance", "concept4", "--tol", "flexure_thickness=+-0.05mm", "--n", "8",
-                                 "--no-shifts", "--mesh-size", "3mm", "--workers", "0", "--fidelity", "best", "--json"])
+                                 "--no-shifts", "--mesh-size", "6mm", "--workers", "0", "--fidelity", "best", "--json"])
     assert r.exit_code == 0, r.output
     nominal = json.loads(r.stdout)["nominal"]["engagement_rpm"]
-    ms = cf.MeshSettings.preset("best", size=3e-3)
+    ms = cf.MeshSettings.preset("best", size=6e-3)
     best = cf.analyze(cf.Design.from_concept("concept4", mesh=ms, fidelity="best"), errors=False).engagement_rpm
-    fast = cf.analyze(cf.Design.from_concept("concept4", mesh=cf.MeshSettings.preset("fast", size=3e-3),
+    fast = cf.analyze(cf.Design.from_concept("concept4", mesh=cf.MeshSettings.preset("fast", size=6e-3),
                                              fidelity="fast"), errors=False).engagement_rpm
     assert nominal == pytest.approx(best, rel=1e-9) and abs(best / fast - 1) > 0.01

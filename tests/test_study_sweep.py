@@ -190,8 +190,10 @@ def test_kill_9_loses_no_finished_point_and_the_rerun_computes_only_the_rest(tmp
         _kill_group(proc.pid)
     before = {h: (s, t) for h, s, t in _rows(store)}  # what survived (at least the 3 seen)
     assert len(before) >= 3
+    # the rerun in its own process (--workers 0): which points it computes is decided from the
+    # store before any is sent, the same on a cluster (the kill above is what needs one)
     rerun = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", str(spec), "--out", str(out),
-                            "--no-charts", "--json", "--workers", "2"], env=_env(), capture_output=True,
+                            "--no-charts", "--json", "--workers", "0"], env=_env(), capture_output=True,
                            text=True, timeout=300)
     assert rerun.returncode == 0, rerun.stderr[-3000:]
     s = json.loads(rerun.stdout)
@@ -281,7 +283,9 @@ def test_example_spec_runs_as_it_is(tmp_path):
     assert ex.returncode == 0 and "[vary.params]" in ex.stdout
     spec = tmp_path / "example.toml"
     spec.write_text(ex.stdout)
-    run = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", str(spec), "--json", "--workers", "2"],
+    # in the study's own process (--workers 0): what runs as it is is the spec; a study on a
+    # local cluster of 2 workers runs in the kill -9, Ctrl-C and dying-worker tests above
+    run = subprocess.run([sys.executable, "-m", "clutchfem.cli", "study", str(spec), "--json", "--workers", "0"],
                          env=_env(), cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr[-3000:]
     assert "Traceback" not in run.stderr

@@ -12,6 +12,7 @@ from clutchfem.core import ParameterError
 from clutchfem.geometry import default_free
 from clutchfem.targets import Targets
 from clutchfem.targets.optimization import better, make_space
+from support.cli import cli_in_process
 from support.pictures import agrees, rule
 
 CLI = [sys.executable, "-m", "clutchfem.cli"]
@@ -80,22 +81,31 @@ def test_targets_and_space_refuse_bad_input():
 @pytest.mark.parametrize("method", ["gradient", "pattern"])
 def test_optimize_json_params_are_confirmed_by_analyze(tmp_path, method):
     """A small search (two free parameters, coarse mesh, targets the start misses on slip) and the
-    check the issue asks for: `analyze --set` with the printed parameters meets every target."""
+    check the issue asks for: `analyze --set` with the printed parameters meets every target.
+
+    In this process's workers (--workers 0): the local-cluster path of optimize runs in
+    test_infeasible_targets_name_the_binding_constraint.  Budgets: the gradient method
+    converges in 22 designs (of 40); the pattern search's incumbent is feasible from its 11th
+    evaluation on (start: slip 8278 rpm > 8150), so 20 evaluations (was 40; measured twice:
+    feasible, 1.59 mm x 19 mm, slip 8059 rpm, confirmed by analyze) test the same mechanics
+    at half the cost.  The optimize run stays a real process (its --json standard output
+    holds nothing else); the confirming analyze runs in this process (support/cli.py)."""
+    budget = "40" if method == "gradient" else "20"
     r = run("optimize", "concept4", "--free", "flexure_thickness,flexure_length", "--slip-rpm-max", "8150",
-            "--safety-factor-min", "0.5", "--sample", "4", "--max-evals", "40", "--mesh-size", SIZE, "--json",
-            "--method", method)
+            "--safety-factor-min", "0.5", "--sample", "4", "--max-evals", budget, "--mesh-size", SIZE, "--json",
+            "--method", method, "--workers", "0")
     res = json.loads(r.stdout)
     assert res["feasible"], res["message"]
     assert res["message"].startswith("gradient method") == (method == "gradient")
     if method == "gradient":  # progress in designs of the budget (refusals count)
-        assert "of at most 40 designs, " in r.stderr, r.stderr
+        assert f"of at most {budget} designs, " in r.stderr, r.stderr
     assert res["evaluations_total"] >= 5 and res["seconds"] > 0
     assert set(res["params"]) >= {"flexure_thickness", "flexure_length"}
     assert all(v.endswith("mm") for v in res["params"].values())
     start = [c for c in res["constraints"] if c["key"] == "slip_rpm"][0]
     assert start["value"] <= 8150
     sets = [x for k, v in res["params"].items() for x in ("--set", f"{k}={v}")]
-    an = json.loads(run("analyze", "concept4", *sets, "--mesh-size", SIZE, "--json").stdout)
+    an = json.loads(cli_in_process("analyze", "concept4", *sets, "--mesh-size", SIZE, "--json", ok=True).stdout)
     assert an["engagement_rpm_with_ripple"] >= an["requirements"]["engagement_limit_rpm"]
     assert an["slip_rpm"] <= 8150
     assert an["safety_factor"] >= 0.5

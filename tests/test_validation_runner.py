@@ -1,11 +1,10 @@
-"""Validation runner: lazy module loading, warnings, Markdown report, rich table, run time."""
+"""Validation runner: lazy module loading, warnings, Markdown report, rich table (its run time: benchmarks/bench_validation.py)."""
 
 from __future__ import annotations
 
 import json
 import re
 import sys
-import time
 import types
 import warnings
 from pathlib import Path
@@ -207,13 +206,12 @@ def test_report_run_does_not_run_modules_again(monkeypatch, tmp_path):
 
 
 @pytest.mark.slow
-def test_full_run_is_fast(tmp_path):
-    """Everything that exists (all four modules when present) in well under 60 s."""
-    t0 = time.perf_counter()
+def test_full_run_writes_the_report(tmp_path):
+    """Everything that exists (all four modules when present) runs and is reported.  Its run
+    time (well under 60 s) is measured in benchmarks/bench_validation.py, not asserted here."""
     with warnings.catch_warnings():  # other engineers' modules may be missing: not our test
         warnings.simplefilter("ignore", runner.ValidationModuleWarning)
         runner.write_report(tmp_path / "out", tmp_path / "validation.md")
-    assert time.perf_counter() - t0 < 60.0
     assert (tmp_path / "validation.md").stat().st_size > 1000
 
 
