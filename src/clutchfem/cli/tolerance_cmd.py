@@ -28,6 +28,8 @@ def tolerance(
                              rich_help_panel="Tolerances"),
     seed: int = typer.Option(1, "--seed", help="random seed (the same seed draws the same parts)",
                              rich_help_panel="Tolerances"),
+    check: int = typer.Option(8, "--check", help="with --fidelity live: parts also analysed by the full FE, and the "
+                              "agreement reported", rich_help_panel="Tolerances"),
     shifts: bool = typer.Option(True, "--shifts/--no-shifts", help="also shift each toleranced length by +-0.2 and "
                                 "+-0.5 mm alone (the thesis's '0.2-0.5 mm' question)", rich_help_panel="Tolerances"),
     safety_factor_min: str = typer.Option("1.5", "--safety-factor-min", help="spec: minimum safety factor",
@@ -74,7 +76,11 @@ def tolerance(
                       model_error, cost, n, seed, o.workers, o.scheduler, o.out, o.json_)
             return
         n = 64 if n is None else n
-        res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf),
+        if o.fidelity != "live" and check != 8:
+            raise ParameterError("check", check, "an option of --fidelity live (the parts on the reduced model, a "
+                                 "check sample through the FE)", "option --check")
+        live = {"model": "live", "check": check} if o.fidelity == "live" else {}
+        res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), **live,
                   shifts=shifts, workers=o.workers, scheduler=o.scheduler, log=lambda m: err.print(escape(m)))
         if o.out is not None:
             wrote(write_report(res, o.out, design=base, run={"tolerances_si": tols, "n": n, "dist": dist, "seed": seed},
@@ -90,7 +96,7 @@ def tolerance(
 
 
 def _print_tolerance(res):
-    t = Table(title=escape(f"{res.concept}: {res.n} parts ({res.dist})"))
+    t = Table(title=escape(f"{res.concept}: {res.n} parts ({res.dist}; answered by the {res.answered_by})"))
     t.add_column("answer")
     t.add_column("nominal", justify="right")
     t.add_column("mean +- sd", justify="right")

@@ -124,6 +124,14 @@ class EngineCurve:
         object.__setattr__(self, "_interp", PchipInterpolator(rpm, tq, extrapolate=False))
 
     # ---- constructors ---------------------------------------------------------------
+    @property
+    def is_default(self) -> bool:
+        """Whether this is the built-in curve (:meth:`default`): the same speeds, torques and
+        idle speed."""
+        d = self.default()
+        return (np.array_equal(self.rpm, d.rpm) and np.array_equal(self.torque, d.torque)
+                and self.idle_rpm == d.idle_rpm)
+
     @classmethod
     def default(cls) -> "EngineCurve":
         """ASSUMED curve of the 56.5 cc Husqvarna 357 XP (3.40 N m max at 8000 rpm)."""

@@ -363,5 +363,7 @@ def local_cluster(n_workers: int):
 
     with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
         return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                            dashboard_address=None, scheduler_kwargs={"allowed_failures": 0},
+                            # its HTTP server (health routes) on a free port: two local clusters at once
+                            # (two test workers, two commands) no longer race for 8787 and warn
+                            dashboard_address=":0", scheduler_kwargs={"allowed_failures": 0},
                             silence_logs=logging.CRITICAL)

@@ -195,7 +195,10 @@ class Settings:
 # ---------------------------------------------------------------------------------------
 #: parts of the package that only present results (they do not change an answer)
 _PRESENTATION = ("cli/", "app/", "studies/", "targets/", "tolerances/", "guidelines/", "reduced/", "validation/",
-                 "report/", "export/", "cutting/", "fe/vtu.py", "core/figures.py", "core/jsonio.py", "loadcase/record.py")
+                 "report/", "export/", "cutting/", "fe/vtu.py", "core/figures.py", "core/jsonio.py", "loadcase/record.py",
+                 # the study engine's machinery (scheduling, store, batches): not the row of a design
+                 "evaluation/cluster.py", "evaluation/store.py", "evaluation/runner.py", "evaluation/batch.py",
+                 "evaluation/sensitivity.py", "evaluation/hashing.py")
 
 
 @lru_cache(maxsize=None)

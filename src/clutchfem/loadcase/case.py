@@ -29,6 +29,7 @@ import numpy as np
 
 from ..contact import DrumContact, contact_modulus, lazy, smooth_lcp, solve_lcp
 from ..core import SolverError, brentq, rad_s_to_rpm, rpm_to_rad_s
+from ..fe import one_blas_thread
 from ..softening import Ritz, Softening, get_softening
 from .checks import check_numerics, condition_estimate, equilibrium
 from .operating import parse_rpm
@@ -142,13 +143,16 @@ class LoadCase:
         if Cd is not None:  # elastic drum: G + C_d
             G = lazy(lambda idx, G=G: G(idx) + Cd[:, idx])
         try:
-            if beyond:  # several complementary solutions: the one the drum holds (see _check_held)
-                self._omega_now = omega
-                lam, act = self._held_state(G, q, active0)
-            else:
-                lam, act = solve_lcp(G, q, active0)
-                if self.contact.smoothing > 0:  # the smoothed law, from the exact state
-                    lam, act = smooth_lcp(G, q, lam, self.contact.smoothing)
+            # loops of small dense solves: one BLAS thread (threaded BLAS gains nothing on them
+            # and, on a busy 2-core machine, cost ~25x the CPU: clutchfem.fe.one_blas_thread)
+            with one_blas_thread():
+                if beyond:  # several complementary solutions: the one the drum holds (see _check_held)
+                    self._omega_now = omega
+                    lam, act = self._held_state(G, q, active0)
+                else:
+                    lam, act = solve_lcp(G, q, active0)
+                    if self.contact.smoothing > 0:  # the smoothed law, from the exact state
+                        lam, act = smooth_lcp(G, q, lam, self.contact.smoothing)
         except SolverError as exc:
             if beyond:
                 raise

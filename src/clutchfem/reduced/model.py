@@ -95,6 +95,21 @@ class ReducedModel:
         Answer name -> its measured error on held-out designs: ``n``, ``p95_rel``,
         ``max_rel``, ``mean_rel``, ``within`` (the share of held-out designs whose FE answer
         the live band holds).
+
+    Examples
+    --------
+    Fitted to study rows (here made by hand: the engagement speed of six designs of a
+    one-parameter region) and measured on two others:
+
+    >>> import json, clutchfem as cf
+    >>> from clutchfem.reduced import ReducedModel, Region
+    >>> r = Region.around(cf.Design.from_concept("concept1", fidelity="live"), free=["flexure_thickness"])
+    >>> row = lambda t: {"status": "ok", "point_json": json.dumps({"flexure_thickness": t}),
+    ...                  "engagement_rpm": 2.0e6 * t, "engagement_err_rpm": 20.0}
+    >>> m = ReducedModel.fit(r, [row(t) for t in (2.1e-3, 2.13e-3, 2.17e-3, 2.2e-3, 2.26e-3, 2.3e-3)])
+    >>> acc = m.measure([row(2.15e-3), row(2.25e-3)])
+    >>> bool(acc["engagement_rpm"]["max_rel"] < 1e-3), acc["engagement_rpm"]["within"]
+    (True, 1.0)
     """
 
     region: Region
@@ -106,9 +121,11 @@ class ReducedModel:
     info: dict = field(default_factory=dict)
 
     @classmethod
-    def fit(cls, region: Region, rows: list[dict], *, seed: int = 0) -> "ReducedModel":
+    def fit(cls, region: Region, rows: list[dict], *, seed: int = 0, like: "ReducedModel | None" = None
+            ) -> "ReducedModel":
         """Fit to the study rows of the region's training designs (each row's ``point_json``
-        holds its parameters)."""
+        holds its parameters); ``like``: a model of the same region whose kernels are kept
+        (:meth:`AnswerModel.fit`)."""
         t0 = time.perf_counter()
         U = np.array([region.unit_of(json.loads(r["point_json"])) for r in rows])
         ok = np.array([r.get("status") == "ok" for r in rows])
@@ -118,7 +135,8 @@ class ReducedModel:
             y = np.array([row_value(r, a) if r.get("status") == "ok" else None for r in rows], dtype=float)
             have = np.isfinite(y)
             if have.sum() >= region.dim + 2:  # a trend (d + 1 coefficients) and one more
-                models[a] = AnswerModel.fit(U[have], y[have], seed=seed)
+                models[a] = AnswerModel.fit(U[have], y[have], seed=seed,
+                                            like=like.models.get(a) if like is not None else None)
         m = cls(region=region, models=models, status=status, U=U, rows=list(rows))
         m.info = {"fit_s": time.perf_counter() - t0, "n_train": len(rows), "n_ok": int(ok.sum())}
         return m

@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import qmc
 
+from ..clutch import EngineCurve
 from ..core import ParameterError, dumps, param_bounds, round12
 from ..evaluation import EvalSettings, model_version
 from ..geometry import default_free, get_concept
@@ -119,6 +120,8 @@ class Region:
                 x0, x1 = max(v - h, a), min(v + h, b)
             lo.append(round12(x0))
             hi.append(round12(x1))
+        if isinstance(engine, EngineCurve) and engine.is_default:
+            engine = None  # the built-in curve given as an object is the built-in curve: one key for both
         settings = EvalSettings.from_design(design, engine=engine, requirements=requirements)
         base = {n: float(getattr(design.params, n)) for n in names}
         return cls(settings=settings, names=tuple(names), lo=tuple(lo), hi=tuple(hi), base=base)

@@ -78,10 +78,14 @@ class AnswerModel:
     alpha: np.ndarray
     amplitude: float
     lengths: np.ndarray
+    noise: float = 0.0
 
     @classmethod
-    def fit(cls, U: np.ndarray, y: np.ndarray, seed: int = 0) -> "AnswerModel":
-        """Fit to the unit-box points ``U`` (n, d) and their positive answers ``y`` (n,)."""
+    def fit(cls, U: np.ndarray, y: np.ndarray, seed: int = 0, like: "AnswerModel | None" = None) -> "AnswerModel":
+        """Fit to the unit-box points ``U`` (n, d) and their positive answers ``y`` (n,);
+        ``like``: a model of the same answer whose kernel (amplitude, lengths, noise) is kept
+        instead of fitted again (a refit with more designs of the same region: the
+        hyper-parameters move little, the maximum likelihood costs most of a fit)."""
         U = np.asarray(U, dtype=float)
         z = np.log(np.asarray(y, dtype=float))
         A = np.hstack([np.ones((len(U), 1)), U])
@@ -91,14 +95,18 @@ class AnswerModel:
         scale = float(np.var(r)) or 1e-12
         kernel = (ConstantKernel(scale, (1e-6 * scale, 1e3 * scale)) * Matern(np.ones(d), (1e-2, 1e3), nu=2.5)
                   + WhiteKernel(1e-6 * scale, (1e-12 * scale, 1e-1 * scale)))
-        gp = GaussianProcessRegressor(kernel, normalize_y=False, n_restarts_optimizer=RESTARTS,
-                                      random_state=seed)
+        if like is not None:
+            kernel = (ConstantKernel(like.amplitude, "fixed") * Matern(like.lengths, "fixed", nu=2.5)
+                      + WhiteKernel(like.noise, "fixed"))
+        gp = GaussianProcessRegressor(kernel, normalize_y=False, n_restarts_optimizer=0 if like else RESTARTS,
+                                      optimizer=None if like else "fmin_l_bfgs_b", random_state=seed)
         with warnings.catch_warnings():  # a length at its bound: that dimension is (nearly) linear
             warnings.simplefilter("ignore", ConvergenceWarning)
             gp.fit(U, r)
         k = gp.kernel_
         return cls(trend=trend, X=np.array(gp.X_train_), alpha=np.array(gp.alpha_).ravel(),
-                   amplitude=float(k.k1.k1.constant_value), lengths=np.atleast_1d(k.k1.k2.length_scale).astype(float))
+                   amplitude=float(k.k1.k1.constant_value), lengths=np.atleast_1d(k.k1.k2.length_scale).astype(float),
+                   noise=float(k.k2.noise_level))
 
     def predict(self, U: np.ndarray) -> np.ndarray:
         """The answers at the unit-box points ``U`` (m, d): the trend and the process's mean,

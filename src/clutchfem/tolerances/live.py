@@ -23,10 +23,11 @@ from ..analysis import idle_speed
 from ..core import param_bounds
 from ..core import values as V
 from ..evaluation import evaluate_many
+from ..loadcase import Design
 from ..reduced import reduce
 from ..reduced.live import MAIN
 
-__all__ = ["SIGMAS", "agreement", "live_rows", "region_ranges"]
+__all__ = ["SIGMAS", "agreement", "live_parts", "live_rows", "region_ranges"]
 
 #: the region around a normal tolerance reaches this many of its sigmas (the tolerance is 3)
 SIGMAS = 4.0
@@ -43,6 +44,18 @@ def region_ranges(P, nominal: dict, half: dict, dist: str) -> dict:
         a, b = nominal[n] - w, nominal[n] + w
         out[n] = (max(a, lo) if lo is not None else a, min(b, hi) if hi is not None else b)
     return out
+
+
+def live_parts(settings, names: list[str], nominal, half, dist: str, D, workers=None):
+    """(rows, model): the Monte Carlo parts ``nominal + D`` (n, k deviations of ``names``) of the
+    design of ``settings`` on the reduced model of the region around its tolerance box."""
+    P = type(settings.params())
+    nom = dict(zip(names, map(float, nominal)))
+    ranges = region_ranges(P, nom, dict(zip(names, map(float, half))), dist)
+    op = settings.operating_point().replace(fidelity="live")
+    design = Design.from_concept(settings.concept, settings.params(), op, settings.mesh_settings())
+    values = [dict(zip(names, map(float, nominal + d))) for d in D]
+    return live_rows(design, settings, values, ranges, workers=workers)
 
 
 def live_rows(design, settings, values: list[dict], ranges: dict, *, workers=None, progress: bool = False):

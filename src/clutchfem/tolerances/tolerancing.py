@@ -62,6 +62,7 @@ from ..core import InputError, ParameterError, clean
 from ..core import values as V
 from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from ..targets import Targets, best_estimate, correction_ratios
+from .live import agreement, live_parts
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -223,6 +224,10 @@ class ToleranceResult:
     #: answer key -> the factor analyze's error step puts on the nominal design's answer (best
     #: path), applied to every part's answer before the spec check ({}: none)
     corrections: dict = field(default_factory=dict)
+    #: what answered the parts: "FE", or "reduced model" (then ``agreement``: the check parts the
+    #: FE also analysed, the largest relative difference per answer and the verdicts that differ)
+    answered_by: str = "FE"
+    agreement: dict | None = None
 
     @property
     def out_any(self) -> dict:
@@ -236,7 +241,8 @@ class ToleranceResult:
                       "spec": [{"name": a, "key": b, "limit": c, "sense": d} for a, b, c, d in self.spec],
                       "out_of_spec": self.out_of_spec, "statuses": self.statuses, "stats": self.stats,
                       "ranking": self.ranking, "shifts": self.shifts, "seconds": self.seconds,
-                      "notes": self.notes, "corrections": self.corrections, "samples": [_strip(r) for r in self.rows],
+                      "notes": self.notes, "corrections": self.corrections, "answered_by": self.answered_by,
+                      "agreement": self.agreement, "samples": [_strip(r) for r in self.rows],
                       "method": {"sampling": "independent pseudo-random draws; normal: tolerance = +-3 sigma "
                                              "(ASSUMED Cp = 1); uniform: over +-tolerance",
                                  "share_ci": "Wilson score interval, 95 %",
@@ -380,14 +386,15 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
         r["d"] = dict(zip(names, dd))
     tg = targets or Targets(nom["engagement_limit_rpm"], None, nom["slip_limit_rpm"], 1.5)
     spec = tg.constraints()
-    if live:
-        agree = agreement(rows[:n_check], fe_rows, spec, _in_spec)
     ratios = correction_ratios(best_estimate(settings)) if settings.operating_point().fidelity == "best" else {}
     ok_rows = [r for r in rows if r["status"] == "ok"]
-    for r in [nom] + ok_rows:  # the parts' answers as analyze reports them (module docstring, "Spec")
+    fe_parts = [r for r in ok_rows if r.get("answered_by") != "reduced model"]  # (live: corrected already)
+    for r in [nom] + fe_parts + (fe_rows if live else []):  # the answers as analyze reports them ("Spec")
         for key, f in ratios.items():
             if r.get(key) is not None:
                 r[key] = r[key] * f
+    if live:
+        agree = agreement(rows[:n_check], fe_rows, spec, _in_spec)
     statuses: dict = {}
     for r in rows:
         statuses[r["status"]] = statuses.get(r["status"], 0) + 1
@@ -453,7 +460,16 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
                          f"{rk['unexplained_sd'] * rk['scale']:.3g} {rk['unit']}) is not linear in the dimensions: mesh "
                          "noise (the mesh changes with every part) or a non-linear response; the SRC ranking is "
                          "indicative only (a finer --mesh-size, or Sobol indices for a non-linear response)")
+    if live:
+        notes.append(f"parts answered by the reduced model of {rmodel.region.describe()} ({rmodel.info.get('n_train')} "
+                     f"best-path designs; its largest error on {rmodel.info.get('n_held_out')} held-out ones: "
+                     + ", ".join(f"{k} {100 * v['max_rel']:.2g} %" for k, v in rmodel.accuracy.items()
+                                 if k in ("engagement_rpm", "slip_rpm", "max_von_mises_Pa") and "max_rel" in v)
+                     + f"); {agree['n']} of them also through the FE: largest differences "
+                     + ", ".join(f"{k} {100 * v:.2g} %" for k, v in agree["largest_rel"].items() if v is not None)
+                     + f", {agree['verdicts_differ']} verdict(s) differ")
     return ToleranceResult(concept=settings.concept, tolerances=dict(tolerances), dist=dist, n=n, seed=seed,
                            nominal=nom, rows=rows, spec=spec, out_of_spec=out, statuses=statuses, stats=stats,
                            ranking=ranking, shifts=shift_rows, seconds=time.perf_counter() - t0, notes=notes,
-                           settings=settings, corrections=ratios)
+                           settings=settings, corrections=ratios, answered_by="reduced model" if live else "FE",
+                           agreement=agree)
