@@ -4,6 +4,8 @@ own folder under the app's output folder."""
 
 from __future__ import annotations
 
+import errno
+import socket
 import tempfile
 from pathlib import Path
 
@@ -16,7 +18,7 @@ __all__ = ["serve_app"]
 
 
 def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool = True, out: str | Path | None = None,
-          title: str = "clutchfem") -> None:
+              title: str = "clutchfem", started=None) -> None:
     """Run the live design app until interrupted.
 
     Parameters
@@ -29,6 +31,11 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
         Open a browser tab on the page.
     out : path, optional
         The folder of the tabs' files (reports, downloads); default: a new temporary folder.
+    title : str
+        The page's title.
+    started : callable, optional
+        Called once the port and the folder are checked, just before the server starts (the
+        command line prints the address there: never for a port it cannot have).
 
     Returns
     -------
@@ -41,9 +48,30 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
     >>> cf.serve_app  # doctest: +ELLIPSIS
     <function serve_app at ...>
     """
-    if not (isinstance(port, int) and 1 <= port <= 65535):
+    if isinstance(port, bool) or not (isinstance(port, int) and 1 <= port <= 65535):
         raise InputError(f"port {port!r}: a TCP port in 1..65535")
+    check_port(host, port)
     root = Path(out) if out is not None else Path(tempfile.mkdtemp(prefix="clutchfem-app-"))
-    root.mkdir(parents=True, exist_ok=True)
+    if root.exists() and not root.is_dir():
+        raise InputError(f"out {root}: is a file, not a folder (the folder of the tabs' reports and downloads)")
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"out {root}: cannot make the folder ({exc.strerror or exc})") from None
+    if started is not None:
+        started()
     ui.run(lambda: build_page(root), host=host, port=port, title=title, show=open_browser, reload=False,
            show_welcome_message=False, uvicorn_logging_level="warning", favicon="\u2699")
+
+
+def check_port(host: str, port: int) -> None:
+    """Refuse, before the server starts, a port another program listens on (or the address
+    cannot be bound at all), naming it and the way out."""
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    with socket.socket(family, socket.SOCK_STREAM) as s:
+        try:
+            s.bind((host, port))
+        except OSError as exc:
+            what = "is in use (another app, or another program)" if exc.errno in (errno.EADDRINUSE,) else \
+                f"cannot be listened on ({exc.strerror or exc})"
+            raise InputError(f"{host}:{port} {what}: give another --port (e.g. --port {port + 1})") from None

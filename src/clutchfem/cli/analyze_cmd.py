@@ -36,7 +36,7 @@ def fatigue_groups() -> dict:
 
 @O.takes("concept", "set_", "mesh", "mesh_size", "drum_radius", "thickness", "mu", "rotation", "material",
          "drum_wall", "drum_state", "softening", "fidelity", "formulation", "layers", "engine", "idle_rpm",
-         "a", "b", "out", "json_")
+         "a", "b", "out", "json_", live=True)
 def analyze(
     o,
     rpm: str = typer.Option(None, "--rpm", help="speeds in rpm to tabulate, e.g. 0:14000:125 (default: 0..engine "

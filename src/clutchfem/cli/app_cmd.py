@@ -28,7 +28,8 @@ def app(
         if host not in ("127.0.0.1", "localhost", "::1"):
             err.print(f"[yellow]listening on {host}:{port}: anyone who can reach this address can run analyses "
                       "and download their files[/]")
-        err.print(f"clutchfem app on http://{host if host != '0.0.0.0' else '127.0.0.1'}:{port} (Ctrl-C stops it)")
-        serve_app(host, port, open_browser=not no_browser, out=out)
+        serve_app(host, port, open_browser=not no_browser, out=out,
+                  started=lambda: err.print(f"clutchfem app on http://{host if host != '0.0.0.0' else '127.0.0.1'}:"
+                                            f"{port} (Ctrl-C stops it)"))
     except ClutchfemError as exc:
         fail(exc)

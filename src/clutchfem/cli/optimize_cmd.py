@@ -55,12 +55,13 @@ def optimize(
     tol: List[str] = typer.Option([], "--tol", help="robust design: tolerance name=+-value with its unit, e.g. "
                                   "flexure_thickness=+-0.05mm (repeat per dimension); every target then holds for "
                                   "the --yield share of parts", rich_help_panel="Robust design"),
-    yield_: str = typer.Option("0.99", "--yield", help="share of made parts that must meet every target (with --tol)",
+    yield_: Optional[str] = typer.Option(None, "--yield", help="share of made parts that must meet every target (with --tol)",
                                rich_help_panel="Robust design"),
-    dist: str = typer.Option("normal", "--dist", help="normal (tolerance = +-3 sigma, ASSUMED) or uniform",
+    dist: Optional[str] = typer.Option(None, "--dist", help="normal (default: tolerance = +-3 sigma, ASSUMED) or uniform",
                              rich_help_panel="Robust design"),
-    model_error: bool = typer.Option(True, "--model-error/--no-model-error", help="add each answer's model-error "
-                                     "band (as +-2 sigma) to its spread", rich_help_panel="Robust design"),
+    model_error: Optional[bool] = typer.Option(None, "--model-error/--no-model-error", help="add each answer's "
+                                               "model-error band (as +-2 sigma) to its spread (default: added)",
+                                               rich_help_panel="Robust design"),
     check: int = typer.Option(0, "--check", help="Monte Carlo parts through remeshed designs to check the robust "
                               "design's yield (0: none)", rich_help_panel="Robust design"),
     rounds: Optional[int] = typer.Option(None, "--rounds", help="shifted-limit rounds at most after the deterministic "
@@ -75,6 +76,16 @@ def optimize(
     try:
         o.scheduler = check_cluster(o.workers, o.scheduler)
         check_out_dir(o.out)
+        robust_only = [(opt, v) for opt, v in (("--yield", yield_), ("--dist", dist), ("--rounds", rounds),
+                                               ("--check", check or None),
+                                               ("--model-error" if model_error else "--no-model-error",
+                                                None if model_error is None else model_error)) if v is not None]
+        if robust_only and not tol:  # said before any design is meshed: an option that does not apply
+            opt, v = robust_only[0]
+            raise ParameterError(opt.lstrip("-").replace("-", "_").replace("no_", ""), v, "an option of the robust "
+                                 "design only: give the tolerances with --tol name=+-value", f"option {opt}")
+        yield_, dist = yield_ or "0.99", dist or "normal"
+        model_error = True if model_error is None else model_error
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
         s, base = study_settings(o.concept, o.set_, o.mesh_size, o.mu, o.engine, o.idle_rpm, o.a, o.b, o.out, sf, o.fidelity)
         t0 = Targets.defaults(s, sf, objective)

@@ -117,11 +117,17 @@ SHARED: dict[str, tuple] = {
 }
 
 
-def takes(*names: str):
+#: the commands a live design (``--fidelity live``: the reduced model) answers; the others
+#: need the FE and refuse it, naming the fidelity that does
+LIVE_COMMANDS = ("analyze", "tolerance")
+
+
+def takes(*names: str, live: bool = False):
     """A command that takes the shared options ``names`` (:data:`SHARED`, in this order) before
     its own: typer sees them in the command's signature (arguments, ``--help`` panels), and the
     function receives them as one namespace, its first parameter ``o`` (``o.concept``,
-    ``o.set_``, ...), followed by its own options."""
+    ``o.set_``, ...), followed by its own options.  ``live``: the command answers
+    ``--fidelity live`` (else it is refused as a usage error, before any work)."""
     unknown = [n for n in names if n not in SHARED]
     if unknown:
         raise KeyError(f"not shared options: {unknown}")
@@ -136,6 +142,9 @@ def takes(*names: str):
         @functools.wraps(fn)
         def command(**given):
             o = SimpleNamespace(**{n: given.pop(n) for n in names})
+            if not live and str(getattr(o, "fidelity", None) or "").strip().lower() == "live":
+                raise typer.BadParameter(f"live (the reduced model) answers {' and '.join(LIVE_COMMANDS)} only; "
+                                         f"this command needs the FE: best (default) or fast", param_hint="'--fidelity'")
             return fn(o, **given)
 
         del command.__wrapped__  # typer reads the signature below, not the function's own

@@ -16,7 +16,7 @@ from .common import check_cluster, check_out_dir, console, err, fail, quantity, 
 
 
 @O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "idle_rpm", "a", "b", "workers",
-         "scheduler", "out", "json_")
+         "scheduler", "out", "json_", live=True)
 def tolerance(
     o,
     tol: List[str] = typer.Option(..., "--tol", help="tolerance name=+-value with its unit, e.g. "
@@ -58,6 +58,9 @@ def tolerance(
         if seed < 0:
             raise ParameterError("seed", seed, "an integer >= 0 (the same seed draws the same parts)", "option --seed")
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
+        if o.fidelity != "live" and check != 8:  # said before the design is meshed
+            raise ParameterError("check", check, "an option of --fidelity live (the parts on the reduced model, a "
+                                 "check sample through the FE)", "option --check")
         given = [(opt, v) for opt, v in (("--yield", yield_), ("--cost", " ".join(cost)),
                                      ("--no-model-error", "given" if not model_error else "")) if v]
         if given and not allocate:
@@ -76,9 +79,6 @@ def tolerance(
                       model_error, cost, n, seed, o.workers, o.scheduler, o.out, o.json_)
             return
         n = 64 if n is None else n
-        if o.fidelity != "live" and check != 8:
-            raise ParameterError("check", check, "an option of --fidelity live (the parts on the reduced model, a "
-                                 "check sample through the FE)", "option --check")
         live = {"model": "live", "check": check} if o.fidelity == "live" else {}
         res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), **live,
                   shifts=shifts, workers=o.workers, scheduler=o.scheduler, log=lambda m: err.print(escape(m)))

@@ -42,7 +42,7 @@ __all__ = ["DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "reduc
 
 log = logging.getLogger("clutchfem")
 
-#: training designs of a default build (BENCHMARKS.md section 22: accuracy against designs)
+#: training designs of a default build (BENCHMARKS.md section 24: accuracy against designs)
 DEFAULT_N = 120
 #: held-out designs the model's error is measured on
 DEFAULT_HELD_OUT = 30

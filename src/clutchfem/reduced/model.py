@@ -17,7 +17,7 @@ engine's maximum torque) and the requirement checks.
   (:meth:`ReducedModel.measure`: designs drawn apart from the training ones, never fitted
   to), per answer; the 95th percentile is reported beside it.  An answer whose measured
   error is over :data:`UNUSABLE` is not given live at all (the contact arc, which jumps
-  between a tip contact and a spread one: BENCHMARKS.md section 22).
+  between a tip contact and a spread one: BENCHMARKS.md section 24).
 
 An answer the FE does not give at a design (no slip speed: the clutch holds at start or
 never engages; no fatigue data) is not given live either where one of the nearest training
@@ -57,7 +57,7 @@ NEIGHBOURS = 3
 #: new designs by construction)
 QUANTILE = 0.95
 #: an answer whose measured error is above this is not given live (the FE is asked): the
-#: contact arc jumps between a tip contact and a spread one (BENCHMARKS.md section 22)
+#: contact arc jumps between a tip contact and a spread one (BENCHMARKS.md section 24)
 UNUSABLE = 0.10
 
 

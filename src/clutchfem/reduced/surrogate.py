@@ -2,7 +2,7 @@
 the classifier of where the full FE answers at all.
 
 **Why non-intrusive, and why a Gaussian process** (issue 36; the measurements are in
-BENCHMARKS.md, section 22).  The answers of the best path are the end of a long chain: a mesh
+BENCHMARKS.md, section 24).  The answers of the best path are the end of a long chain: a mesh
 of the design's geometry, the thick plane model, the elastic drum, the pre-stress softening,
 the exact contact with friction, the error step's corrections (geometric non-linearity,
 Richardson's extrapolation of the peak, one more mesh level where the band asks for it).  A
@@ -135,7 +135,7 @@ class StatusModel:
     (the divergence speed is a smooth function of the dimensions, so its level set is a
     smooth surface); on concept 4's default region it told 40 held-out designs apart
     without a miss (a Gaussian-process classifier missed 3 at the same threshold,
-    BENCHMARKS.md section 22).
+    BENCHMARKS.md section 24).
 
     Examples
     --------

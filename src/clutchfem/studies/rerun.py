@@ -63,7 +63,7 @@ def fingerprint(spec_path: str | Path, spec_text: str | None = None) -> str | No
     be read (then no rerun is served from a summary)."""
     spec_path = Path(spec_path)
     try:
-        text = spec_text if spec_text is not None else spec_path.read_text(encoding="utf-8")
+        text = spec_text if spec_text is not None else spec_path.read_text(encoding="utf-8-sig")
         raw = tomllib.loads(text)
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
         return None

@@ -71,7 +71,7 @@ def load_study(path: str | Path) -> StudySpec:
         raise InputError(f"study spec {path}: file not found (write one with `clutchfem study --example > "
                          f"{path.name}`)")
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (Windows editors) is no TOML error
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"study spec {path}: cannot be read as UTF-8 text ({exc})") from None
     return parse_spec(text, source=str(path), base=path.parent)
@@ -105,6 +105,7 @@ def toml_context(text: str, message: str) -> str:
 
 def parse_spec(text: str, source: str = "<text>", base: Path | None = None) -> StudySpec:
     """Validate the TOML ``text`` of a spec (see module docstring)."""
+    text = text.removeprefix("\ufeff")  # a byte-order mark that a reader left in the text
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
