@@ -127,3 +127,28 @@ def test_outside_every_region_live_falls_back_to_the_fe_and_says_so(built):
     a = live_analysis(d, build=False)
     assert a.answered_by == "FE (fallback)" and any("no reduced model holds this design" in n for n in a.notes)
     assert a.engagement_rpm > 0 and a.errors["engagement_rpm"]["discretisation"] is not None
+
+
+@pytest.mark.slow
+def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built):
+    from clutchfem.app.figures import torque_chart
+    from clutchfem.app.session import DesignSession
+
+    s = DesignSession("concept1")
+    s.mesh = MESH
+    assert s.set_value("fidelity", "live") is None and s.set_value("flexure_thickness", 2.15) is None
+    out = s.run()
+    assert out.live and not out.design.meshed and out.seconds < 1.0
+    same = cf.analyze(live(flexure_thickness="2.15mm"))
+    assert out.analysis.engagement_rpm == same.engagement_rpm and out.analysis.slip_rpm == same.slip_rpm
+    chart = torque_chart(out.analysis)  # the engine curve and the live torque point (no FE curve)
+    assert [x["name"].split()[0] for x in chart["series"]] == ["engine", "clutch"]
+    shown, off = s.verify(out)
+    fe = cf.analyze(out.fe_design, errors=False)
+    band = out.analysis.errors["engagement_rpm"]["total"]
+    assert (abs(fe.engagement_rpm - out.analysis.engagement_rpm) > band) == any("engagement" in o for o in off)
+    assert (shown is out) == (not off)
+    # outside every region: the FE answers at once (no build of minutes), saying why
+    assert s.set_value("flexure_thickness", 2.6) is None
+    out = s.run()
+    assert not out.live and out.analysis.answered_by == "FE (fallback)" and "no reduced model holds" in out.analysis.notes[-1]

@@ -112,8 +112,13 @@ def torque_chart(an, pinned=None) -> dict:
     the engine curve, engagement and slip markers, the requirement bands."""
     c = an.curves
     req = an.requirements
-    series = [_line("engine (full throttle)", c["rpm"], c["engine_torque_Nm"], "#444444", width=1.5),
-              _line(f"clutch (FE) {an.label or an.design}", c["rpm"], c["fe_torque_Nm"], "#1f77b4")]
+    series = [_line("engine (full throttle)", c["rpm"], c["engine_torque_Nm"], "#444444", width=1.5)]
+    if "fe_torque_Nm" in c:
+        series.append(_line(f"clutch (FE) {an.label or an.design}", c["rpm"], c["fe_torque_Nm"], "#1f77b4"))
+    else:  # a live answer: the torque at the rpm of max engine torque only (the curve needs the FE)
+        series.append({"type": "scatter", "name": f"clutch (live) {an.label or an.design}", "symbolSize": 10,
+                       "itemStyle": {"color": "#1f77b4"},
+                       "data": [[float(an.rpm_max_engine_torque), float(an.torque_at_max_engine_torque_Nm)]]})
     marks = []
     if an.engagement_rpm is not None:
         marks.append({"xAxis": float(an.engagement_rpm), "name": f"engagement {an.engagement_rpm:.0f} rpm",
@@ -129,7 +134,7 @@ def torque_chart(an, pinned=None) -> dict:
               {"xAxis": float(c["rpm"].max())}]]
     series[0]["markArea"] = {"silent": True, "itemStyle": {"color": "rgba(220,50,47,0.07)"},
                              "label": {"color": "#999", "fontSize": 10}, "data": bands}
-    if pinned is not None:
+    if pinned is not None and "fe_torque_Nm" in pinned.curves:
         p = pinned.curves
         series.append(_line(f"pinned {pinned.label or pinned.design}", p["rpm"], p["fe_torque_Nm"], "#ff7f0e",
                             dashed=True))

@@ -28,8 +28,9 @@ from .studies_panel import StudiesPanel
 
 __all__ = ["build_page"]
 
-#: wait after the last change before an analysis starts [s]
+#: wait after the last change before an analysis starts [s] (the model ``live``: its own, shorter)
 DEBOUNCE_S = 0.15
+LIVE_DEBOUNCE_S = 0.05
 #: wait after the answers before the part picture and the error bands start [s]
 EXTRAS_DELAY_S = 0.5
 #: largest uploaded engine CSV / mesh [bytes]
@@ -271,7 +272,7 @@ class DesignPage(StudiesPanel, Downloads):
         self.pending = asyncio.get_event_loop().create_task(self.refresh(self.s.generation))
 
     async def refresh(self, gen: int) -> None:
-        await asyncio.sleep(DEBOUNCE_S)
+        await asyncio.sleep(LIVE_DEBOUNCE_S if self.s.op.fidelity == "live" else DEBOUNCE_S)
         async with self.running:
             if gen != self.s.generation:  # changed again while waiting: a newer run follows
                 return
@@ -301,12 +302,33 @@ class DesignPage(StudiesPanel, Downloads):
             await self.update_field(gen)
             if gen != self.s.generation:
                 return
+            if out.live:
+                await self.check_live(gen, out)
+                return
             bands = await run.io_bound(self.s.error_bands, out)
             if bands is None or gen != self.s.generation:
                 return
             self.bands = bands
             self.show(gen)
             self.status.set_text(f"{out.label}: answers in {out.seconds:.2f} s, with error bands")
+
+    async def check_live(self, gen: int, out) -> None:
+        """The FE check of live answers (:meth:`~.session.DesignSession.verify`): they stay
+        where the FE lies in their bands, else the FE's replace them and the page says so."""
+        self.status.set_text(f"{out.label}: live answers in {out.seconds:.3f} s; FE check ...")
+        shown, off = await run.io_bound(self.s.verify, out)
+        if gen != self.s.generation:
+            return
+        if off:
+            self.outcome, self.bands = shown, shown.analysis.errors
+            self.show(gen)
+            ui.notify("the FE differs from the live answers by more than their bands and replaced them: "
+                      + "; ".join(off), type="warning", multi_line=True)
+            self.status.set_text(f"{out.label}: FE answers (they replaced the live ones: {len(off)} outside the "
+                                 f"band), FE in {shown.seconds:.2f} s")
+        else:
+            self.status.set_text(f"{out.label}: live answers in {out.seconds:.3f} s; the FE check ({shown.label}) "
+                                 "lies in every band")
 
     def show(self, gen: int) -> None:
         out = self.outcome
@@ -339,7 +361,7 @@ class DesignPage(StudiesPanel, Downloads):
 
         def work():
             res = self.s.field(out, rpm)
-            png, info = field_png(out.design, res, rpm)
+            png, info = field_png(out.fe_design, res, rpm)
             return res, png, info
 
         got = await run.io_bound(work)

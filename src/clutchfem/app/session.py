@@ -11,6 +11,13 @@ The analysis is run in two passes so that the screen follows a slider: the answe
 the error estimate first (``analyze(errors=False)``: ~0.15 s in process for concept 4 on the
 default mesh, ~0.1 s more when the mesh is new), then the error bands (the design again on
 a mesh twice as fine: ~0.3 s) that update the table when they arrive.
+
+With the model ``live`` the first pass answers from the reduced model of a cached region that
+holds the design (milliseconds, no mesh, its bands in the answers), and the second pass is the
+full FE of the same design on the best path (:meth:`DesignSession.verify`): its answers
+replace the live ones where they differ by more than the live band, and the page says so.
+Where no reduced model holds the design the app does not build one (minutes: ``clutchfem
+reduce`` does) and the FE answers, saying why.
 """
 
 from __future__ import annotations
@@ -18,7 +25,8 @@ from __future__ import annotations
 import math
 import threading
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import cached_property
 from pathlib import Path
 from typing import Any, Literal, get_args, get_origin
 
@@ -66,6 +74,17 @@ class Outcome:
     design: Design
     rows: list[tuple[str, str, str]] = field(default_factory=list)  # (answer, value, verdict)
     seconds: float = 0.0
+
+    @property
+    def live(self) -> bool:
+        """Answered by the reduced model (the FE check follows)."""
+        return self.analysis.answered_by == "reduced model"
+
+    @cached_property
+    def fe_design(self) -> Design:
+        """The design the FE solves (a live design's best-path twin: the field, the check)."""
+        d = self.design
+        return d.with_fidelity("best") if d.op.fidelity == "live" else d
 
 
 def _is_choice(P, name: str) -> bool:
@@ -133,8 +152,9 @@ class DesignSession:
                                    group="operating point"))
                 continue
             if name == "fidelity":
-                out.append(Control(name, "model: best (best estimate) | fast (2-D, ~half the time)", "choice", "", v,
-                                   choices=("best", "fast"), group="operating point"))
+                out.append(Control(name, "model: best (best estimate) | fast (2-D, ~half the time) | live (the "
+                                   "reduced model of a built region, checked by the FE)", "choice", "", v,
+                                   choices=("best", "fast", "live"), group="operating point"))
                 continue
             if name == "drum_wall":  # the wall used: the fidelity's when not set (best: 2 mm), 0 rigid
                 w = self.op.drum_wall_m
@@ -244,14 +264,54 @@ class DesignSession:
                                    self.mesh if self.mesh is not None else MeshSettings.preset(self.op.fidelity))
 
     def run(self) -> Outcome:
-        """The fast pass: the design meshed and analysed without the error estimate."""
+        """The first pass: the live answers (model ``live``, a reduced model holding the
+        design), else the design meshed and analysed without the error estimate."""
         t0 = time.perf_counter()
         with self.lock:
             d = self.design()
-        an = analyze(d, engine=self.engine, requirements=self.requirements, errors=False)
+        an = None
+        if d.op.fidelity == "live":
+            from ..reduced import find, live_analysis
+
+            if d.params is not None and find(d, engine=self.engine, requirements=self.requirements) is not None:
+                an = live_analysis(d, engine=self.engine, requirements=self.requirements, build=False)
+            if an is None or an.answered_by != "reduced model":
+                why = (an.notes[-1] if an is not None else "no reduced model holds this design (`clutchfem reduce "
+                       f"{d.name} --set ...` builds one around it: minutes)")
+                an = analyze(d.with_fidelity("best"), engine=self.engine, requirements=self.requirements,
+                             errors=False)
+                an.notes.append(f"answered by the FE (best path), not live: {why}")
+                an = replace(an, answered_by="FE (fallback)")
+        else:
+            an = analyze(d, engine=self.engine, requirements=self.requirements, errors=False)
         out = Outcome(an, design_label(d), d, answer_rows(an), time.perf_counter() - t0)
         self.last = out
         return out
+
+    def verify(self, outcome: Outcome) -> tuple[Outcome, list[str]]:
+        """The second pass of a live outcome: the full FE of its design (best path, no error
+        study) and the answers where it differs from the live one by more than the live band
+        (each "answer: FE x, live y +- band"); the outcome to show is the live one when they
+        agree, else the FE's with the live bands (the page says which)."""
+        t0 = time.perf_counter()
+        fe = analyze(outcome.fe_design, engine=self.engine, requirements=self.requirements,
+                     errors=False)
+        live = outcome.analysis
+        off = []
+        for q in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
+            got, want = getattr(live, q), getattr(fe, q)
+            band = (live.errors.get(q) or {}).get("total")
+            if want is None or got is None or band is None or abs(got - want) > band:
+                off.append(f"{q}: FE {want}, live {got} +- {band}")
+        if not off:
+            return outcome, []
+        fe.notes.append("the FE replaced the live answers: " + "; ".join(off))
+        fe_out = Outcome(replace(fe, errors=live.errors), outcome.label, outcome.design, answer_rows(fe, live.errors),
+                         time.perf_counter() - t0)
+        fe_out.__dict__["fe_design"] = outcome.fe_design
+        if self.last is outcome:
+            self.last = fe_out
+        return fe_out, off
 
     def error_bands(self, outcome: Outcome) -> dict:
         """The second pass: the error of the main answers of ``outcome`` (its design on a mesh
@@ -266,8 +326,9 @@ class DesignSession:
                           targets={q: math.inf for q in ACCURACY_TARGET})
 
     def field(self, outcome: Outcome, rpm: float):
-        """The state at ``rpm`` (a one-speed sweep of the outcome's design, the same load case)."""
-        return outcome.design.sweep([float(rpm)])
+        """The state at ``rpm`` (a one-speed sweep of the outcome's design, the same load case;
+        a live design's on the best path)."""
+        return outcome.fe_design.sweep([float(rpm)])
 
     def pin(self) -> None:
         self.pinned = self.last

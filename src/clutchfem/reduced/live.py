@@ -141,13 +141,19 @@ def _answers(design, model, engine, req, idle_rpm, v: dict, band: dict, why: dic
                   shoe_character="not computed (live)", shoe_character_per_shoe=[], mu=float(design.op.mu),
                   mu_sensitivity={}, torque_models_at_max_engine_torque_Nm={"fe_torque_Nm": t},
                   contact_arc_at_max_engine_torque_deg=v.get("contact_arc_deg", math.nan), requirements=checks,
-                  engine=eng_info, coupling={}, curves=pd.DataFrame(columns=["rpm", "torque_Nm"]), first_touch=None,
+                  engine=eng_info, coupling={}, curves=_engine_only(engine), first_touch=None,
                   warnings=warnings, notes=notes,
                   part={"mass_kg": mass} if math.isfinite(mass) else {}, analytical_available=False,
                   inputs=_inputs(design, model, eng_info, req), label=design_label(design),
                   fatigue_safety_factor=v.get("fatigue_safety_factor"), errors=errors,
                   answered_by="reduced model", region_key=reg.key())
     return an
+
+
+def _engine_only(engine: EngineCurve) -> pd.DataFrame:
+    """The curves of a live answer: the engine's only (the clutch's against rpm needs the FE)."""
+    rpm = np.linspace(*map(float, engine.rpm_range), 61)
+    return pd.DataFrame({"rpm": rpm, "engine_torque_Nm": np.asarray(engine.torque_at(rpm), float)})
 
 
 LIVE.append(live_analysis)
