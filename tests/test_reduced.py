@@ -76,6 +76,24 @@ def test_status_model_tells_the_answered_designs_from_the_others():
     assert StatusModel.fit(U, np.ones(len(U), bool)).probability(test).min() == 1.0
 
 
+@pytest.mark.parametrize("a", [0.05, -0.05])
+def test_the_band_holds_every_held_out_design_even_with_no_fe_band(a):
+    """The own error is measured relative to the FE's value; the band is relative to the live
+    one: |live - FE| <= own |FE| = own/(1 - own) |live| holds on the design of the largest
+    error too (an answer without a best-path band, like the mass, rests on it alone)."""
+    import json
+
+    from clutchfem.reduced import ReducedModel
+
+    r = Region.around(live(), free=["flexure_thickness"])
+    lo, hi = r.bounds("flexure_thickness")
+    row = lambda t: {"status": "ok", "point_json": json.dumps({"flexure_thickness": t}),  # noqa: E731
+                     "engagement_rpm": 1e3 * np.exp(a * np.sin(3e4 * t))}  # wiggly: errors of percent
+    m = ReducedModel.fit(r, [row(t) for t in np.linspace(lo, hi, 5)])
+    acc = m.measure([row(t) for t in np.linspace(lo, hi, 13)[1:-1:2]])
+    assert acc["engagement_rpm"]["max_rel"] > 1e-2 and acc["engagement_rpm"]["within"] == 1.0
+
+
 # -- the build and the live answers ---------------------------------------------------------
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):

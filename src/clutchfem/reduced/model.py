@@ -179,7 +179,10 @@ class ReducedModel:
                 why = np.where(why == "", f"its reduced model's measured error is {100 * own:.0f} %", why)
             v = np.where(why == "", v, np.nan)
             out["value"][a] = v
-            out["band"][a] = np.abs(v) * (fe_band + (own if math.isfinite(own) else np.inf))
+            # the own error is relative to the FE's value: |live - FE| <= own |FE| <= own/(1 - own) |live|
+            # (1 + 1e-12: the design of the largest error sits on the band's edge, up to round-off)
+            rel = own / (1.0 - own) * (1.0 + 1e-12) if math.isfinite(own) and own < 1.0 else np.inf
+            out["band"][a] = np.abs(v) * (fe_band + rel)
             out["why"][a] = why
         return out
 
