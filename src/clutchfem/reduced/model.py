@@ -33,6 +33,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core import ParameterError
+from ..geometry import get_concept
 from .region import Region
 from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel
 
@@ -50,6 +52,8 @@ ANSWERS: dict[str, tuple[str, float, str, str | None]] = {
     "mass_kg": ("part_mass_g", 1e-3, "kg", None),
     "shoe_mass_kg": ("shoe_mass_g", 1e-3, "kg", None),
 }
+#: the step of the reduced model's derivatives (a share of each free parameter's box width)
+DERIVATIVE_STEP = 1e-3
 #: the nearest training designs a live answer's best-path band and availability come from
 NEIGHBOURS = 3
 #: the quantile of the held-out relative errors reported beside the largest (the band takes the
@@ -184,6 +188,62 @@ class ReducedModel:
             rel = own / (1.0 - own) * (1.0 + 1e-12) if math.isfinite(own) and own < 1.0 else np.inf
             out["band"][a] = np.abs(v) * (fe_band + rel)
             out["why"][a] = why
+        return out
+
+    def sensitivities(self, design, names=None, *, h: float = DERIVATIVE_STEP):
+        """Derivatives of the live answers of ``design`` (a concept's design in the region)
+        with respect to the free parameters ``names`` (default: all): central
+        differences of the fitted model over ``h`` of each parameter's box width (one-sided at
+        the box's faces), in SI per SI unit, as :func:`clutchfem.sensitivities` gives them from
+        morphed FE designs (a :class:`~clutchfem.evaluation.Sensitivities`; the methods say
+        "reduced model").  The model is smooth by construction (a Matern 5/2 process on a
+        linear trend), so where the FE answers have a kink at a contact event these are the
+        slopes of the smoothed answer: the FE derivatives see the kink (``kinks``), these do not.
+        The safety factor's derivative follows from the peak's."""
+        from ..evaluation import Sensitivities
+
+        reg = self.region
+        names = list(reg.names) if names is None else list(names)
+        bad = [n for n in names if n not in reg.names]
+        if bad:
+            raise ParameterError("names", bad, f"free parameters of the region: {', '.join(reg.names)}",
+                                 "reduced model sensitivities")
+        values = design.params.model_dump()
+        if design.name != reg.concept or not reg.contains(values):
+            raise ParameterError("design", design.label, f"a {reg.concept} design in the region ({reg.describe()})",
+                                 "reduced model sensitivities")
+        u0 = reg.unit_of(values)
+        rows = [u0]
+        for n in names:
+            i = reg.names.index(n)
+            up, um = u0.copy(), u0.copy()
+            up[i], um[i] = min(u0[i] + h, 1.0), max(u0[i] - h, 0.0)
+            rows += [um, up]
+        pred = self.predict(np.array(rows))["value"]
+        ys = float(design.op.material.yield_strength)
+        base = {a: float(v[0]) for a, v in pred.items()}
+        out = Sensitivities(concept=reg.concept, base=base, values={}, steps={}, units={}, derivatives={}, methods={},
+                            notes=[f"derivatives of the reduced model of {reg.describe()} (central differences over "
+                                   f"{h:g} of each width); its own error per answer: " + ", ".join(
+                                       f"{a} {100 * self.own_error(a):.2g} %" for a in pred
+                                       if math.isfinite(self.own_error(a)))])
+        P = get_concept(reg.concept).Params
+        for k, n in enumerate(names):
+            i = reg.names.index(n)
+            width = reg.hi[i] - reg.lo[i]
+            im, ip = 1 + 2 * k, 2 + 2 * k
+            dx = (rows[ip][i] - rows[im][i]) * width
+            der = {a: float((v[ip] - v[im]) / dx) if np.isfinite(v[ip]) and np.isfinite(v[im]) else None
+                   for a, v in pred.items()}
+            peak, dpeak = base.get("max_von_mises_Pa"), der.get("max_von_mises_Pa")
+            if math.isfinite(ys) and peak and dpeak is not None:
+                der["safety_factor"] = -ys / peak**2 * dpeak
+            out.values[n] = reg.lo[i] + u0[i] * width
+            out.steps[n] = h * width
+            out.units[n] = P.unit(n)
+            out.kinds[n] = "parameter"
+            out.derivatives[n] = der
+            out.methods[n] = ("central" if 0 < rows[im][i] and rows[ip][i] < 1 else "one-sided") + ", reduced model"
         return out
 
     # -- its own error ----------------------------------------------------------------------
