@@ -1,6 +1,8 @@
 """Start-up cost of the faces: ``import clutchfem`` (the public API, imported lazily),
 ``clutchfem --help`` (the command line answers without loading the FE stack) and the first
-use of ``cf.analyze`` (the FE stack itself).  Minimum and median of N fresh interpreters.
+use of ``cf.analyze`` (the FE stack itself), and the time to the first line a design command
+shows on a terminal (``clutchfem analyze concept4 ...`` in a pseudo-terminal: its spinner,
+which starts before the FE stack is loaded).  Minimum and median of N fresh interpreters.
 
     .venv/bin/python benchmarks/bench_import.py [--n 9]
 """
@@ -29,6 +31,25 @@ def _time(cmd: list[str], n: int) -> list[float]:
     return out
 
 
+def _first_output(cmd: list[str], n: int) -> list[float]:
+    """Seconds from the start of ``cmd`` to its first byte on a pseudo-terminal (then killed)."""
+    import pty
+    import select
+
+    out = []
+    for _ in range(n):
+        leader, follower = pty.openpty()
+        t0 = time.perf_counter()
+        proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=follower, stderr=follower)
+        os.close(follower)
+        ready, _, _ = select.select([leader], [], [], 30.0)
+        out.append(time.perf_counter() - t0 if ready else float("inf"))
+        proc.kill()
+        proc.wait()
+        os.close(leader)
+    return out
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=9)
@@ -39,7 +60,9 @@ def main(argv=None) -> None:
             ("python -c 'import clutchfem'", _time([py, "-c", "import clutchfem"], args.n)),
             ("python -c 'import clutchfem as cf; cf.Design' (the FE stack)",
              _time([py, "-c", "import clutchfem as cf; cf.Design"], args.n)),
-            ("clutchfem --help", _time([py, "-m", "clutchfem.cli", "--help"], args.n))]
+            ("clutchfem --help", _time([py, "-m", "clutchfem.cli", "--help"], args.n)),
+            ("clutchfem analyze concept4: its first line on a terminal",
+             _first_output([py, "-m", "clutchfem.cli", "analyze", "concept4"], args.n))]
     print(f"machine: {platform.machine()} {os.cpu_count()} cores, Python {platform.python_version()}, "
           f"{time.strftime('%Y-%m-%d %H:%M')}, load {os.getloadavg()[0]:.1f}")
     for name, t in rows:

@@ -145,6 +145,11 @@ def takes(*names: str, live: bool = False):
             if not live and str(getattr(o, "fidelity", None) or "").strip().lower() == "live":
                 raise typer.BadParameter(f"live (the reduced model) answers {' and '.join(LIVE_COMMANDS)} only; "
                                          f"this command needs the FE: best (default) or fast", param_hint="'--fidelity'")
+            if "concept" in names:  # a design command: the spinner first, then the FE stack (~1.5 s)
+                from .common import working
+
+                with working(f"{fn.__name__}: loading the FE stack"):
+                    import clutchfem.analysis  # noqa: F401
             return fn(o, **given)
 
         del command.__wrapped__  # typer reads the signature below, not the function's own
