@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import sys
 from collections import Counter
 from typing import Any, Callable, Union
 
@@ -58,16 +59,28 @@ class _SuperLU:
 _BLOCK = 16
 
 
+#: the BLAS libraries of this process (threadpoolctl), scanned again only when modules were
+#: imported since (a new module may bring a new BLAS): (module count, controller)
+_BLAS: list = [0, None]
+
+
 def one_blas_thread():
-    """Context: one BLAS thread inside (threadpoolctl), or nothing if it is not installed.
-    Loops of many small dense products or triangular solves (multi-column solves here, the
-    heat model's time steps) gain nothing from threaded BLAS and are up to ~1000x slower when
-    the cores are shared (measured on a 2-core machine)."""
+    """Context: one BLAS thread inside (threadpoolctl), or nothing if it is not installed or
+    every BLAS already runs one thread.  Loops of many small dense products or triangular
+    solves (multi-column solves here, the heat model's time steps) gain nothing from threaded
+    BLAS and are up to ~1000x slower when the cores are shared (measured on a 2-core machine).
+    The libraries are scanned once, not on every call: a scan costs ~2 ms, a design calls this
+    ~140 times (~30 % of its CPU when it scanned each time)."""
     try:
-        from threadpoolctl import threadpool_limits
+        from threadpoolctl import ThreadpoolController
     except ImportError:  # optional: without it the default BLAS threading applies
         return contextlib.nullcontext()
-    return threadpool_limits(1, user_api="blas")
+    if _BLAS[1] is None or _BLAS[0] != len(sys.modules):
+        _BLAS[:] = [len(sys.modules), ThreadpoolController().select(user_api="blas")]
+    blas = _BLAS[1]
+    if all(lib.num_threads == 1 for lib in blas.lib_controllers):
+        return contextlib.nullcontext()
+    return blas.limit(limits=1)
 
 
 #: size up to which CHOLMOD's simplicial factorisation is used (above it CHOLMOD chooses):
