@@ -4,8 +4,6 @@ model-error band eats the margin, the FE allocation against robust.spreads, and 
 
 import json
 import math
-import subprocess
-import sys
 from statistics import NormalDist
 
 import numpy as np
@@ -19,7 +17,6 @@ from clutchfem.tolerances import allocate_linear, joint_yield
 from clutchfem.tolerances.robust import spreads
 from support.cli import cli_in_process
 
-CLI = [sys.executable, "-m", "clutchfem.cli"]
 PHI = NormalDist()
 #: concept 4's robust design (BENCHMARKS.md section 18)
 ROB = ("hub_radius=11.84mm", "shoe_arc=97.6deg", "shoe_thickness=6.5mm", "flexure_length=18.44mm",
@@ -246,11 +243,12 @@ def test_fe_allocation_meets_the_spread_of_robust_design(coarse):
 
 @pytest.mark.slow
 def test_cli_allocate(tmp_path):
-    args = CLI + ["tolerance", "concept4", *sum((["--set", x] for x in ROB), []), "--mesh-size", "3mm",
-                  "--tol", "flexure_thickness=+-0.05mm", "--tol", "clearance=+-0.02mm", "--allocate",
-                  "--yield", "0.95", "--workers", "0"]
-    r = subprocess.run(args + ["--out", str(tmp_path), "--json", "--n", "8"], capture_output=True, text=True,
-                       timeout=600)
+    """Both runs in this process (support/cli.py): the allocation document, the files and the
+    table are the point, not the process (was two interpreters)."""
+    args = ["tolerance", "concept4", *sum((["--set", x] for x in ROB), []), "--mesh-size", "3mm",
+            "--tol", "flexure_thickness=+-0.05mm", "--tol", "clearance=+-0.02mm", "--allocate",
+            "--yield", "0.95", "--workers", "0"]
+    r = cli_in_process(*args, "--out", str(tmp_path), "--json", "--n", "8")
     assert r.returncode == 0, r.stderr[-2000:]
     doc = json.loads(r.stdout)
     # --n: a Monte Carlo check of the allocated widths (8 parts: only that it ran on those widths)
@@ -265,8 +263,7 @@ def test_cli_allocate(tmp_path):
     assert all(d["allocated"] > 0 and d["binds"] for d in al["dims"])
     assert sorted(al["ranking"]) == ["clearance", "flexure_thickness"]
     # the table: every width with its unit
-    t = subprocess.run(args + ["--no-model-error"], capture_output=True, text=True, timeout=600,
-                       env={**__import__("os").environ, "COLUMNS": "200"})
+    t = cli_in_process(*args, "--no-model-error", env={"COLUMNS": "200"})
     assert t.returncode == 0, t.stderr[-2000:]
     assert "0.05 mm" in t.stdout and "0.02 mm" in t.stdout and "rpm" in t.stdout
     assert "model error left out" in t.stdout and "tighten first" in t.stdout

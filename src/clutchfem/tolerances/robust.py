@@ -342,7 +342,7 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
     --------
     >>> import clutchfem as cf
     >>> d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
-    >>> r = cf.robust_optimize(d, {"flexure_thickness": "0.05mm"}, free=["flexure_thickness"], max_evals=4,
+    >>> r = cf.robust_optimize(d, {"flexure_thickness": "0.05mm"}, free=["flexure_thickness"], max_evals=2,
     ...                        rounds=1, model_error=False, workers=0)
     >>> r.margins["engagement_rpm_with_ripple"] > 0      # the engagement limit moved up [rpm]
     True
