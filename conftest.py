@@ -1,5 +1,6 @@
 import os
 import re
+import sys
 
 import pytest
 
@@ -33,6 +34,17 @@ def _isolated_cache(tmp_path_factory, request):
     d.mkdir(exist_ok=True)
     os.environ["CLUTCHFEM_CACHE"] = str(d)
     yield
+
+
+@pytest.fixture(autouse=True)
+def _no_rows_from_another_test():
+    """Each test evaluates its own designs: the study engine's in-process rows of recent
+    designs (clutchfem.evaluation.batch.RECENT_ROWS) are not shared between tests, so a test
+    about a failure or a worker never gets another test's answer instead."""
+    yield
+    batch = sys.modules.get("clutchfem.evaluation.batch")
+    if batch is not None:
+        batch.RECENT_ROWS.clear()
 
 
 #: a doctest whose example calls one of these meshes, solves, runs designs or draws: the fast

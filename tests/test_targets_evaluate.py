@@ -54,3 +54,26 @@ def test_workers_are_checked():
     with pytest.raises(ParameterError):
         with shared_cluster(2, "tcp://127.0.0.1:1"):
             pass
+
+
+@pytest.mark.slow
+def test_a_design_asked_for_again_in_this_process_is_not_solved_again(tmp_path, monkeypatch):
+    """Without a store of the caller's, a design this process already evaluated (same hash:
+    design, settings, model version) is served from its recent rows; with a store the design
+    is evaluated into it, as the caller asked."""
+    import clutchfem.evaluation.batch as batch
+
+    s = EvalSettings("concept4", mesh_size=6e-3)
+    pt = {"flexure_thickness": "1.72mm"}
+    first = evaluate_many([pt], s, workers=0)[0]
+    assert first["status"] == "ok" and first["design_hash"] in batch.RECENT_ROWS
+
+    def no_solve(*a, **k):
+        raise AssertionError("solved again")
+
+    monkeypatch.setattr(batch, "run_points", no_solve)
+    again = evaluate_many([pt, {"flexure_thickness": "9mm"}], s, workers=0)
+    assert [r["status"] for r in again] == ["ok", "refused"]
+    assert {k: v for k, v in again[0].items() if k != "i"} == {k: v for k, v in first.items() if k != "i"}
+    with pytest.raises(AssertionError, match="solved again"):  # a store of the caller's: into it
+        evaluate_many([pt], EvalSettings("concept4", mesh_size=6e-3, store=str(tmp_path / "r.sqlite")), workers=0)

@@ -39,6 +39,8 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from cachetools import LRUCache
+
 from ..clutch import EngineCurve
 from ..core import InputError, ParameterError, changed_texts, exact_text
 from ..geometry import MeshSettings, get_concept
@@ -57,6 +59,11 @@ ANSWERS = {
 }
 
 _ACTIVE: dict = {"scheduler": None, "workers": None}
+#: the study rows of the designs this process evaluated without a store of its own, by design
+#: hash (the hash covers the design, its settings and the model version): a design asked for
+#: again (a sensitivity's base in a tolerance, an allocation and a robust round; a search
+#: returning to a point) is not solved again
+RECENT_ROWS: LRUCache = LRUCache(maxsize=4096)
 log = logging.getLogger("clutchfem")
 
 
@@ -316,19 +323,26 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
     if todo:
         tmp = None
         store = settings.store
-        if store is None:
+        keys = [design_hash(vals[i], st) for i in todo]
+        by_key = {}
+        if store is None:  # no store of the caller's: the rows of this process's recent designs serve
+            by_key = {k: dict(RECENT_ROWS[k]) for k in keys if k in RECENT_ROWS}
             tmp = tempfile.TemporaryDirectory(prefix="clutchfem-targets-")
             store = str(Path(tmp.name) / "results.sqlite")
         try:
-            sched = _ACTIVE.get("scheduler")
-            w = None if sched else (workers if workers is not None else _ACTIVE.get("workers"))
-            run_points([vals[i] for i in todo], st, store, workers=w, scheduler=sched, progress=progress,
-                       source="clutchfem.evaluation", desc="designs")
-            version = model_version(settings.concept)
-            keys = [design_hash(vals[i], st) for i in todo]
-            with ResultStore(store, COLUMNS) as rs:
-                df = rs.frame(version, sorted(set(keys)))
-            by_key = {r["design_hash"]: r for r in json.loads(df.to_json(orient="records"))}
+            new = [i for i, k in zip(todo, keys) if k not in by_key]
+            if new:
+                sched = _ACTIVE.get("scheduler")
+                w = None if sched else (workers if workers is not None else _ACTIVE.get("workers"))
+                run_points([vals[i] for i in new], st, store, workers=w, scheduler=sched, progress=progress,
+                           source="clutchfem.evaluation", desc="designs")
+                version = model_version(settings.concept)
+                with ResultStore(store, COLUMNS) as rs:
+                    df = rs.frame(version, sorted({k for k in keys if k not in by_key}))
+                for r in json.loads(df.to_json(orient="records")):
+                    by_key[r["design_hash"]] = r
+                    if r.get("status") == "ok":
+                        RECENT_ROWS[r["design_hash"]] = dict(r)
             for i, k in zip(todo, keys):
                 r = by_key.get(k)
                 rows[i] = from_study_row(r, points[i]) if r is not None else {
