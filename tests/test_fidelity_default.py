@@ -34,9 +34,12 @@ def test_the_shipped_default_is_the_best_estimate(monkeypatch):
 @pytest.mark.slow
 def test_analyze_cli_default_is_the_corrected_best_estimate(monkeypatch):
     """`clutchfem analyze concept4` with nothing set: the thick model on the 2 mm elastic
-    drum, the peak stress corrected (non-linearity and mesh extrapolation)."""
+    drum, the peak stress corrected (non-linearity and mesh extrapolation).  On a 6 mm mesh
+    (was 2.5 mm; the best path's tests use 6 mm): the same corrections are made there
+    (measured 2.5 mm / 6 mm: extrapolation +1.61 % / +1.45 %, non-linearity +1.08 % / +1.08 %),
+    the CPU of the command 11.2 s -> 7.2 s."""
     monkeypatch.delenv(FIDELITY_ENV, raising=False)
-    r = CliRunner().invoke(app, ["analyze", "concept4", "--mesh-size", "2.5mm", "--json"])
+    r = CliRunner().invoke(app, ["analyze", "concept4", "--mesh-size", "6mm", "--json"])
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["inputs"]["model"]["formulation"] == "thick" and d["inputs"]["model"]["drum_wall_m"] == 0.002
@@ -55,8 +58,10 @@ def test_a_study_command_runs_on_the_fidelity_it_is_given():
     """`tolerance --fidelity best` under a fast session default: the nominal design's
     engagement is the best path's (the thick model's), not the fast one's.  On a 6 mm mesh (was
     3 mm): the two paths' engagements differ by 2.22 % there (2.21 % on 3 mm), the test's
-    CPU 32 s -> 15 s."""
-    r = CliRunner().invoke(app, ["tolerance", "concept4", "--tol", "flexure_thickness=+-0.05mm", "--n", "8",
+    CPU 32 s -> 15 s.  The narrowest tolerance the command takes (+-5 um, samples snapped to
+    1 um): the nominal and its 8 parts are 5 distinct designs (+-0.05 mm: 8), and what is
+    checked is the nominal's answer."""
+    r = CliRunner().invoke(app, ["tolerance", "concept4", "--tol", "flexure_thickness=+-5um", "--n", "8",
                                  "--no-shifts", "--mesh-size", "6mm", "--workers", "0", "--fidelity", "best", "--json"])
     assert r.exit_code == 0, r.output
     nominal = json.loads(r.stdout)["nominal"]["engagement_rpm"]

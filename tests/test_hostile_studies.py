@@ -25,6 +25,7 @@ from clutchfem.studies import SpecError, geometry_dirs, parse_spec
 from clutchfem.targets import Targets
 from clutchfem.targets.optimization import make_space
 from clutchfem.tolerances import parse_tolerance, tolerance
+from support.cli import cli_in_process
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE = """
@@ -137,6 +138,11 @@ def _study(spec: Path, out: Path, *extra: str, env: dict | None = None) -> tuple
     return json.loads(r.stdout), r.stderr
 
 
+def _study_here(spec: Path, out: Path, *extra: str, env: dict | None = None) -> dict:
+    """The same command in this process: for the runs whose JSON is checked, not what they load."""
+    return json.loads(cli_in_process("study", spec, "--out", out, "--json", *extra, env=env, ok=True).stdout)
+
+
 @pytest.mark.slow
 def test_a_rerun_of_a_finished_study_loads_no_fe_stack_and_resumes_when_anything_changed(tmp_path):
     spec = tmp_path / "s.toml"
@@ -145,14 +151,16 @@ def test_a_rerun_of_a_finished_study_loads_no_fe_stack_and_resumes_when_anything
     spec.write_text(BASE.replace('"3mm"', '"6mm"') + '[errors]\nsample = 0\n[vary]\n[vary.params]\n'
                     'flexure_thickness = {values = ["1.6mm", "1.7mm"]}\n')
     out = tmp_path / "out"
-    first, _ = _study(spec, out, "--no-charts")
+    # the runs whose JSON alone is checked run in this process (a process start and the FE
+    # stack's imports each, ~2 s); the two whose imports are checked (LOADED) are processes
+    first = _study_here(spec, out, "--no-charts")
     assert (first["computed"], first["ok"]) == (2, 2) and first["fingerprint"]
     again, err = _study(spec, out, "--no-charts")
     assert (again["computed"], again["skipped"], again["ok"]) == (0, 2, 2)
     assert again["scheduler"].startswith("nothing to compute")
     assert "LOADED []" in err  # no scipy, scikit-fem, gmsh or matplotlib
     # charts asked for but never drawn: the normal path (which draws them)
-    assert not _study(spec, out)[0]["scheduler"].startswith("nothing")
+    assert not _study_here(spec, out)["scheduler"].startswith("nothing")
     # the spec changed (a comment): the normal path, which resumes (nothing to compute)
     spec.write_text(spec.read_text() + "# a comment\n")
     changed, err = _study(spec, out, "--no-charts")
@@ -160,7 +168,7 @@ def test_a_rerun_of_a_finished_study_loads_no_fe_stack_and_resumes_when_anything
     # a row deleted from the store: computed again
     with sqlite3.connect(out / "results.sqlite") as db:
         db.execute("DELETE FROM results WHERE rowid = (SELECT min(rowid) FROM results)")
-    assert _study(spec, out, "--no-charts")[0]["computed"] == 1
+    assert _study_here(spec, out, "--no-charts")["computed"] == 1
     # the session's default fidelity changed (the spec does not set it): the points are other
     # designs, computed, not served from the finished summary
-    assert _study(spec, out, "--no-charts", env={"CLUTCHFEM_FIDELITY": "best"})[0]["computed"] == 2
+    assert _study_here(spec, out, "--no-charts", env={"CLUTCHFEM_FIDELITY": "best"})["computed"] == 2

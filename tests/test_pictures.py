@@ -7,6 +7,7 @@ annotated numbers are compared with the JSON of the same run (the design-to-targ
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -129,10 +130,14 @@ flexure_thickness = {{values = ["1.6mm", "1.8mm", "2.2mm"]}}
 @pytest.mark.slow
 def test_guideline_charts(tmp_path):
     """The design point's value in each one-at-a-time panel and each elasticity bar's label
-    are the JSON's; the inactive profile controls are not studied, and the chart says so."""
+    (the parameters' and the operating input's) are the JSON's; the inactive profile controls
+    are not studied, and the chart says so.  One operating input (mu; the idle speed's bars
+    are drawn the same way) and no error estimate of the design point (no chart shows it)."""
     d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size=SIZE))
-    gs = GuidelineSettings.from_design(d, params=["flexure_thickness", "clearance"], points=3)
-    g = cf.draw_guideline_charts(cf.run_guidelines(gs, tmp_path, workers=0, progress=False))
+    gs = GuidelineSettings.from_design(d, params=["flexure_thickness", "clearance"], points=3, inputs=["mu"])
+    g = cf.draw_guideline_charts(cf.run_guidelines(dataclasses.replace(gs, errors=False), tmp_path, workers=0,
+                                                   progress=False))
+    assert g.inputs == ["mu"]
     doc = json.loads((tmp_path / "guidelines.json").read_text())
     assert not any(r["parameter"].startswith("table_c") for r in doc["elasticities"])
     assert any("table_c0..table_c16" in n for n in doc["notes"])
@@ -146,7 +151,9 @@ def test_guideline_charts(tmp_path):
     agrees(oat, r"contact arc at max engine torque \[deg\]: design point", base["contact_arc_deg"])
     el = rule(tmp_path / "elasticities.png")
     for ax, (col, _) in zip(el["axes"], ANSWERS):
-        for name, label in zip(g.ranking, ax["texts"]):
+        names = [*g.ranking, *g.inputs]  # the bars, top down
+        assert len(ax["texts"]) == len(names), (col, ax["texts"])
+        for name, label in zip(names, ax["texts"]):
             e = next(r["E"] for r in doc["elasticities"] if r["parameter"] == name and r["answer"] == col)
             assert float(label) == pytest.approx(round(e, 2), abs=0.0051), (col, name)
 

@@ -2,7 +2,8 @@
 analysis, and the step check tells a smooth derivative from mesh noise.
 
 * ``clutchfem guidelines concept4 --params flexure_thickness --inputs mu --remeshed-check
-  --json`` (coarse mesh, in process): the remeshed check's E against
+  --json`` (coarse mesh, ``--workers 0``, the command run in the test's process: what is
+  checked is its JSON and files, not a process): the remeshed check's E against
   ``analyze(Design.from_concept(...))`` at x0 (1 -+ h): the same numbers; the elasticity
   itself (morphed) within the remeshed check's own agreement rule of it;
 * physics: engagement rises with flexure thickness at less than beam theory's t^1.5
@@ -16,10 +17,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 
@@ -27,13 +24,7 @@ from clutchfem.analysis import analyze
 from clutchfem.geometry import MeshSettings, get_concept
 from clutchfem.guidelines.elasticity import elasticity, fd_values
 from clutchfem.loadcase import Design
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def _env() -> dict:
-    paths = [str(ROOT / "src"), *filter(None, os.environ.get("PYTHONPATH", "").split(os.pathsep))]
-    return {**os.environ, "PYTHONPATH": os.pathsep.join(paths), "OPENBLAS_NUM_THREADS": "1"}
+from support.cli import cli_in_process
 
 
 def _answers(an) -> dict:
@@ -46,11 +37,9 @@ def _answers(an) -> dict:
 @pytest.mark.slow
 def test_guideline_elasticities_equal_finite_differences_of_single_design_analysis(tmp_path):
     h = 0.02
-    run = subprocess.run([sys.executable, "-m", "clutchfem.cli", "guidelines", "concept4", "--params",
-                          "flexure_thickness", "--mesh-size", "3mm", "--workers", "0", "--points", "3",
-                          "--step", str(h), "--inputs", "mu", "--remeshed-check", "--out", str(tmp_path / "g"),
-                          "--json"],
-                         env=_env(), capture_output=True, text=True, timeout=300)
+    run = cli_in_process("guidelines", "concept4", "--params", "flexure_thickness", "--mesh-size", "3mm", "--workers",
+                         "0", "--points", "3", "--step", str(h), "--inputs", "mu", "--remeshed-check", "--out",
+                         tmp_path / "g", "--json")
     assert run.returncode == 0, run.stderr[-3000:]
     doc = json.loads(run.stdout)
     assert doc["ranking"] == ["flexure_thickness"] and doc["operating_inputs"] == ["mu"]
