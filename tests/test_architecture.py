@@ -102,6 +102,16 @@ def test_import_clutchfem_loads_no_numerical_library():
     assert r.stdout.strip() == "", f"import clutchfem loaded {r.stdout.strip()}"
 
 
+def test_analyze_does_not_load_the_reduced_models_machinery():
+    """``cf.analyze`` registers the live path (``clutchfem.reduced.live``) but loads its
+    machinery (scikit-learn, the study engine's store and cluster) only for a live design."""
+    code = ("import sys, clutchfem as cf; cf.analyze; import clutchfem.analysis as a; "
+            "heavy = [m for m in ('sklearn', 'distributed', 'sqlite3') if m in sys.modules]; "
+            "print(len(a.LIVE), ','.join(heavy))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert r.stdout.strip() == "1", f"cf.analyze loaded {r.stdout.strip()}"
+
+
 @pytest.mark.parametrize("rel", ["__init__.py"])
 def test_public_api_lists_its_names(rel):
     import clutchfem
