@@ -355,7 +355,8 @@ def test_concept4_3d_cli_json(tmp_path):
     """``clutchfem solve concept4 --formulation 3d --json`` answers; the 3-D
     engagement lies between plane stress and plane strain (on a 4 mm mesh with one layer
     through the half thickness: 4169 < 4278 < 4371 rpm; 4169 < 4264 < 4371 on the default
-    mesh and layers, at three times the cost)."""
+    mesh and layers, at three times the cost).  Without the error estimate (its finer mesh is
+    not the point; the engagement is the same): the 3-D solve 6.6 -> 3.2 s CPU."""
     import json
 
     from typer.testing import CliRunner
@@ -365,7 +366,8 @@ def test_concept4_3d_cli_json(tmp_path):
     out = {}
     for form in ("plane-stress", "plane-strain", "3d"):
         r = CliRunner().invoke(app, ["solve", "concept4", "--formulation", form,
-                                     "--rpm", "5000,8000", "--mesh-size", "4mm", "--layers", "1", "--json"])
+                                     "--rpm", "5000,8000", "--mesh-size", "4mm", "--layers", "1", "--json",
+                                     "--no-errors"])
         assert r.exit_code == 0, r.output
         out[form] = json.loads(r.stdout)["engagement_rpm"]
     print(f"\nconcept4 engagement: {out}")

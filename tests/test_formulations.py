@@ -17,15 +17,26 @@ from clutchfem.cli import app
 from clutchfem.core import ParameterError
 from clutchfem.fe import estimate_3d
 
-#: a coarse mesh (the answers are not the point here; every step running is)
-COARSE = cf.MeshSettings(size="6mm", flexure_factor=1.0, contact_factor=0.5, fillet_factor=1.0)
+#: a coarse mesh (the answers are not the point here; every step running is): the coarsest
+#: the settings allow but for the contact surface, which keeps ~8 elements per shoe
+#: (3843 unknowns in 3-D with one layer, 6957 on the 6 mm mesh with 1 mm fillets used before:
+#: [exact-3d] 11.2 -> 5.6 s CPU, engagement 4232 -> 4259 rpm)
+COARSE = cf.MeshSettings(size="10mm", flexure_factor=2.0, contact_factor=0.5, fillet_factor=2.0)
+#: the 6 mm mesh whose 16 layers pass a 2 GB limit (COARSE's fit in it)
+MESH_6MM = cf.MeshSettings(size="6mm", flexure_factor=1.0, contact_factor=0.5, fillet_factor=1.0)
+#: few output speeds (the answers do not depend on them: slip and engagement are found on the
+#: steps' own grids, the stress and fatigue states are solved at the engine's two reporting
+#: speeds, which every grid includes); the default 250 rpm steps cost a per-speed
+#: factorisation each with the exact softenings: 22.5 -> 14.5 s CPU for [prestress-exact-3d]
+RPM = "0:14000:3500"
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("formulation", ["auto", "plane-stress", "plane-strain", "thick", "3d"])
 @pytest.mark.parametrize("softening", ["prestress", "ritz", "exact", "off", "prestress-exact"])
 def test_every_formulation_and_softening_through_analyze(formulation, softening):
-    d = cf.Design.from_concept("concept4", formulation=formulation, softening=softening, layers=1, mesh=COARSE)
+    d = cf.Design.from_concept("concept4", formulation=formulation, softening=softening, layers=1, mesh=COARSE,
+                               rpm=RPM)
     a = cf.analyze(d, errors=False)
     assert a.engagement_rpm is not None and 3000 < a.engagement_rpm < 6000
     assert a.slip_rpm is not None and a.max_von_mises_Pa > 0
@@ -35,7 +46,7 @@ def test_every_formulation_and_softening_through_analyze(formulation, softening)
 
 @pytest.mark.slow
 def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components():
-    d = cf.Design.from_concept("concept4", formulation="3d", layers=1, mesh=COARSE)
+    d = cf.Design.from_concept("concept4", formulation="3d", layers=1, mesh=COARSE, rpm=RPM)
     a = cf.analyze(d, errors=False)
     assert d.model.stress.points.shape[0] == 3 and len(d.model.stress.element) == d.model.stress.points.shape[1]
     assert a.fatigue["worst_xy_m"] is not None and len(a.fatigue["worst_xy_m"]) == 2
@@ -44,39 +55,39 @@ def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components():
 @pytest.mark.slow
 @pytest.mark.parametrize("formulation", ["3d", "thick", "plane-strain"])
 def test_a_study_runs_every_formulation(tmp_path, formulation):
-    op = cf.OperatingPoint(formulation=formulation, layers=1)
-    d = cf.Design.from_concept("concept4", operating=op, mesh=cf.MeshSettings(size="6mm"))
+    op = cf.OperatingPoint(formulation=formulation, layers=1, rpm=RPM)
+    d = cf.Design.from_concept("concept4", operating=op, mesh=COARSE)
     df = cf.run_grid(d, {"flexure_thickness": [1.75e-3]}, store=tmp_path / "s.sqlite", workers=0).frame
     assert list(df["status"]) == ["ok"], df["message"].tolist()
 
 
 @pytest.mark.slow
 def test_a_study_runs_the_exact_prestress_and_the_smoothed_contact(tmp_path):
-    op = cf.OperatingPoint(softening="prestress-exact", contact_smoothing="1um")
-    d = cf.Design.from_concept("concept4", operating=op, mesh=cf.MeshSettings(size="6mm"))
+    op = cf.OperatingPoint(softening="prestress-exact", contact_smoothing="1um", rpm=RPM)
+    d = cf.Design.from_concept("concept4", operating=op, mesh=COARSE)
     df = cf.run_grid(d, {"flexure_thickness": [1.75e-3]}, store=tmp_path / "s.sqlite", workers=0).frame
     assert list(df["status"]) == ["ok"], df["message"].tolist()
 
 
 def test_layers_past_the_memory_limit_are_refused_before_building(monkeypatch):
     monkeypatch.setenv("CLUTCHFEM_MAX_MEMORY_GB", "2")
-    cm = cf.Design.from_concept("concept4", mesh=COARSE, fidelity="fast").cm
+    cm = cf.Design.from_concept("concept4", mesh=MESH_6MM, fidelity="fast").cm
     n1, m1 = estimate_3d(cm.n_nodes, 1)
     n16, m16 = estimate_3d(cm.n_nodes, 16)
     assert n16 == 3 * 33 * cm.n_nodes and m16 > m1 > 0
     with pytest.raises(ParameterError, match=r"layers.*GB.*limit 2\.0 GB"):
-        cf.Design.from_concept("concept4", formulation="3d", layers=16, mesh=COARSE)
+        cf.Design.from_concept("concept4", formulation="3d", layers=16, mesh=MESH_6MM)
     r = CliRunner().invoke(app, ["analyze", "concept4", "--formulation", "3d", "--layers", "16"])
     assert r.exit_code == 2 and "layers" in r.output and "GB" in r.output and "Traceback" not in r.output
     # the estimate is an upper bound of the unknowns the model really has
-    d = cf.Design.from_concept("concept4", formulation="3d", layers=1, mesh=COARSE)
+    d = cf.Design.from_concept("concept4", formulation="3d", layers=1, mesh=MESH_6MM)
     assert d.model.ndofs == n1
 
 
 @pytest.mark.slow
 def test_cli_analyze_3d_json():
     r = CliRunner().invoke(app, ["analyze", "concept4", "--formulation", "3d", "--layers", "1", "--mesh-size", "6mm",
-                                 "--json"])
+                                 "--rpm", RPM, "--json"])
     assert r.exit_code == 0, r.output
     doc = json.loads(r.output.strip().splitlines()[-1])
     assert doc["inputs"]["model"]["formulation"] == "3d" and np.isfinite(doc["max_von_mises_Pa"])
@@ -87,7 +98,8 @@ def test_cli_drum_wall_rigid_and_its_model_form_term():
     """``--drum-wall rigid`` (the help's LENGTH|rigid) gives the rigid drum on the best path,
     whose model-form band then carries the rigid-drum term again; a wall below the ring
     model's range is refused naming the option."""
-    r = CliRunner().invoke(app, ["analyze", "concept4", "--fidelity", "best", "--drum-wall", "rigid", "--json"])
+    r = CliRunner().invoke(app, ["analyze", "concept4", "--fidelity", "best", "--drum-wall", "rigid", "--rpm", RPM,
+                                 "--json"])
     assert r.exit_code == 0, r.output
     doc = json.loads(r.output.strip().splitlines()[-1])
     assert doc["inputs"]["model"]["drum_wall_m"] is None and doc["inputs"]["model"]["formulation"] == "thick"

@@ -75,6 +75,16 @@ CONCEPT = Dropped()
 '''
 
 
+#: a pytest plugin writing the node id of every item collected to $ZZ_COLLECTED
+COLLECTED_PLUGIN = '''import os
+
+
+def pytest_itemcollected(item):
+    with open(os.environ["ZZ_COLLECTED"], "a") as f:
+        f.write(item.nodeid + "\\n")
+'''
+
+
 @pytest.mark.slow
 def test_a_dropped_concept_is_tested(tmp_path):
     """A concept file in a geometries folder ($CLUTCHFEM_GEOMETRIES here) gets every
@@ -84,12 +94,19 @@ def test_a_dropped_concept_is_tested(tmp_path):
     import sys
 
     (tmp_path / "conceptzz.py").write_text(DROPPED_CONCEPT)
-    env = {**os.environ, "CLUTCHFEM_GEOMETRIES": str(tmp_path)}
-    cmd = [sys.executable, "-m", "pytest", "-p", "no:xdist", "-p", "no:cacheprovider", __file__]
+    # one pytest process both collects (every item it collects is written to a file by a
+    # plugin, before -k deselects) and runs two of the dropped concept's tests
+    (tmp_path / "zz_collected.py").write_text(COLLECTED_PLUGIN)
+    collected = tmp_path / "collected.txt"
+    env = {**os.environ, "CLUTCHFEM_GEOMETRIES": str(tmp_path), "ZZ_COLLECTED": str(collected),
+           "PYTHONPATH": os.pathsep.join(filter(None, [str(tmp_path), os.environ.get("PYTHONPATH")]))}
+    cmd = [sys.executable, "-m", "pytest", "-p", "no:xdist", "-p", "no:cacheprovider", "-p", "zz_collected",
+           __file__]
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # PYTHONPATH=src is relative
-    got = subprocess.run([*cmd, "--collect-only", "-q"], env=env, capture_output=True, text=True, cwd=root)
-    assert got.returncode == 0, got.stdout + got.stderr
-    ids = {line.split("::", 1)[1] for line in got.stdout.splitlines() if "conceptzz" in line}
+    run = subprocess.run([*cmd, "-q", "-k", "conceptzz and (documented or checked_before_gmsh)"],
+                         env=env, capture_output=True, text=True, cwd=root)
+    assert run.returncode == 0, run.stdout + run.stderr  # the whole file collected, and the two ran
+    ids = {line.split("::", 1)[1] for line in collected.read_text().splitlines() if "conceptzz" in line}
     for test in ("test_concept_is_documented", "test_parameter_space_builds_or_fails_clearly",
                  "test_range_corners_build_or_fail_clearly", "test_range_corners_are_checked_before_gmsh",
                  "test_mesh_mass_properties_equal_occ", "test_order2_boundary_tags_on_the_exact_curves",
@@ -98,9 +115,7 @@ def test_a_dropped_concept_is_tested(tmp_path):
         assert f"{test}[conceptzz]" in ids, test
     assert {"test_defaults_build_sector_and_full[minus-conceptzz]",
             "test_other_profiles_build[linear-conceptzz]"} <= ids
-    run = subprocess.run([*cmd, "-q", "-k", "conceptzz and (documented or checked_before_gmsh)"],
-                         env=env, capture_output=True, text=True, cwd=root)
-    assert run.returncode == 0 and "2 passed" in run.stdout, run.stdout + run.stderr
+    assert "2 passed" in run.stdout, run.stdout + run.stderr
 
 
 # --------------------------------------------------------------------------------------

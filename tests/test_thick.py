@@ -114,7 +114,8 @@ def test_thick_stress_against_3d_at_the_fillet():
 def test_thick_runs_the_whole_analysis():
     """fidelity 'best' through analyze: the thick model, the elastic drum, the
     fatigue step on 6 stress components, the bands and the drum-wall sensitivity."""
-    d = cf.Design.from_concept("concept1", mesh=COARSE, fidelity="best")
+    # few output speeds (the answers checked do not depend on them): 5.5 -> 4.9 s CPU
+    d = cf.Design.from_concept("concept1", mesh=COARSE, fidelity="best", rpm="0:14000:3500")
     a = cf.analyze(d)
     assert a.inputs["model"]["formulation"] == "thick" and a.inputs["model"]["drum_wall_m"] == 0.002
     assert a.fatigue_safety_factor is not None and a.fatigue_safety_factor > 0
