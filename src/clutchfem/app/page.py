@@ -285,7 +285,7 @@ class DesignPage(StudiesPanel, Downloads):
                 return
             if out is None or gen != self.s.generation:
                 return
-            self.outcome, self.bands = out, {}
+            self.outcome, self.bands = out, (out.analysis.errors if out.live else {})  # live: its bands
             self.show(gen)
             self.status.set_text(f"{out.label}: answers in {out.seconds:.2f} s; error bands ...")
         # the part picture and the error bands follow once the designer pauses: a change in
@@ -315,7 +315,8 @@ class DesignPage(StudiesPanel, Downloads):
     async def check_live(self, gen: int, out) -> None:
         """The FE check of live answers (:meth:`~.session.DesignSession.verify`): they stay
         where the FE lies in their bands, else the FE's replace them and the page says so."""
-        self.status.set_text(f"{out.label}: live answers in {out.seconds:.3f} s; FE check ...")
+        self.status.set_text(f"{out.label}: live answers in {out.seconds:.3f} s; the FE check (best path with its "
+                             "error step) ...")
         shown, off = await run.io_bound(self.s.verify, out)
         if gen != self.s.generation:
             return

@@ -289,26 +289,28 @@ class DesignSession:
         return out
 
     def verify(self, outcome: Outcome) -> tuple[Outcome, list[str]]:
-        """The second pass of a live outcome: the full FE of its design (best path, no error
-        study) and the answers where it differs from the live one by more than the live band
-        (each "answer: FE x, live y +- band"); the outcome to show is the live one when they
-        agree, else the FE's with the live bands (the page says which)."""
+        """The second pass of a live outcome: the full FE of its design on the best path with
+        its error step (the answers the reduced model was built from: the corrected peak, the
+        bands) and the answers where it differs from the live one by more than the live band
+        (each "answer: FE x, live y +- band", in the answer's unit); the outcome to show is the
+        live one when they agree, else the FE's with its own bands (the page says which)."""
         t0 = time.perf_counter()
-        fe = analyze(outcome.fe_design, engine=self.engine, requirements=self.requirements,
-                     errors=False)
+        fe = analyze(outcome.fe_design, engine=self.engine, requirements=self.requirements)
         live = outcome.analysis
         off = []
         for q in ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa"):
             got, want = getattr(live, q), getattr(fe, q)
             band = (live.errors.get(q) or {}).get("total")
             if want is None or got is None or band is None or abs(got - want) > band:
-                off.append(f"{q}: FE {want}, live {got} +- {band}")
+                unit, f = {"max_von_mises_Pa": ("MPa", 1e-6), "torque_at_max_engine_torque_Nm": ("N m", 1.0)}.get(
+                    q, ("rpm", 1.0))
+                show = (lambda x: "none" if x is None else f"{x * f:.4g} {unit}")  # noqa: E731
+                off.append(f"{q}: FE {show(want)}, live {show(got)} +- {show(band)}")
+        fe_out = Outcome(fe, outcome.label, outcome.design, answer_rows(fe), time.perf_counter() - t0)
+        fe_out.__dict__["fe_design"] = outcome.fe_design
         if not off:
             return outcome, []
         fe.notes.append("the FE replaced the live answers: " + "; ".join(off))
-        fe_out = Outcome(replace(fe, errors=live.errors), outcome.label, outcome.design, answer_rows(fe, live.errors),
-                         time.perf_counter() - t0)
-        fe_out.__dict__["fe_design"] = outcome.fe_design
         if self.last is outcome:
             self.last = fe_out
         return fe_out, off
