@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import statistics
 import tempfile
 import time
@@ -82,7 +81,8 @@ def _table(title: str, acc: dict) -> None:
             print(f"  status: FE answered {v['fe_answers']} of {v['n']}; told apart {100 * v['agree']:.0f} %")
             continue
         print(f"  {a_:32s} n={v['n']:3d}  mean {100 * v['mean_rel']:.3f} %  p95 {100 * v['p95_rel']:.3f} %  "
-              f"max {100 * v['max_rel']:.3f} %  band holds FE {100 * v.get('within', math.nan):.0f} %")
+              f"max {100 * v['max_rel']:.3f} %  " + ("not given live (over 10 %)" if v.get("within") is None else
+                                                  f"band holds FE {100 * v['within']:.0f} %"))
 
 
 def cost(m, concept: str) -> dict:
