@@ -190,7 +190,7 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     model = ReducedModel.fit(region, rows_train, seed=seed)
     model.measure(rows_test)
     accuracy = model.accuracy
-    final = ReducedModel.fit(region, rows, seed=seed, like=model)  # the same kernels, every design
+    final = ReducedModel.fit(region, rows, seed=seed, like=model)  # every design, its kernels the start
     final.accuracy = accuracy
     final.info.update(n_train=n, n_held_out=held_out, build_s=time.perf_counter() - t0,
                       fe_designs=len(rows), fe_ok=sum(r.get("status") == "ok" for r in rows),
