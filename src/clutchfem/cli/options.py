@@ -149,7 +149,7 @@ def takes(*names: str, live: bool = False):
                 from .common import working
 
                 with working(f"{fn.__name__}: loading the FE stack"):
-                    import clutchfem.analysis  # noqa: F401
+                    from .. import analyze  # noqa: F401
             return fn(o, **given)
 
         del command.__wrapped__  # typer reads the signature below, not the function's own

@@ -22,6 +22,7 @@ it did not make is never touched.
 
 from __future__ import annotations
 
+import importlib.metadata
 import json
 import logging
 import os
@@ -30,7 +31,6 @@ import time
 from pathlib import Path
 
 import platformdirs
-import sklearn
 from cachetools import LRUCache, cached
 
 from ..core import InputError, ParameterError, dumps
@@ -72,6 +72,11 @@ def _read(path: Path, mtime: float) -> dict | None:
         return None
 
 
+def _sklearn_version() -> str:
+    """The installed scikit-learn's version (from its metadata: no import)."""
+    return importlib.metadata.version("scikit-learn")
+
+
 def load(region: Region) -> ReducedModel | None:
     """The finished reduced model of ``region`` from the cache, or None (read once per process
     while the file is unchanged)."""
@@ -81,7 +86,7 @@ def load(region: Region) -> ReducedModel | None:
     except OSError:
         return None
     doc = _read(path, mtime)
-    if not doc or doc.get("sklearn") != sklearn.__version__ or doc.get("key") != region.key():
+    if not doc or doc.get("sklearn") != _sklearn_version() or doc.get("key") != region.key():
         return None
     return doc["model"]
 
@@ -197,6 +202,6 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
                       compute_s=res.compute_s, workers=res.workers)
     tmp = folder / "model.pkl.tmp"
     with open(tmp, "wb") as fh:
-        pickle.dump({"model": final, "key": region.key(), "sklearn": sklearn.__version__}, fh)
+        pickle.dump({"model": final, "key": region.key(), "sklearn": _sklearn_version()}, fh)
     tmp.replace(folder / "model.pkl")
     return final

@@ -27,6 +27,8 @@ import pandas as pd
 from ..analysis import LIVE, Analysis, Requirements, analyze, idle_speed
 from ..clutch import EngineCurve
 from ..loadcase import design_inputs, design_label
+from .build import find, reduce
+from .model import ANSWERS
 
 __all__ = ["MAIN", "live_analysis"]
 
@@ -48,10 +50,6 @@ def live_analysis(design, *, engine: EngineCurve | None = None, requirements: Re
     reduced model of a cached region that holds it, built first if there is none (module
     docstring); where the reduced model cannot answer, the FE's (said in ``answered_by`` and
     the notes)."""
-    # here, not at import: every ``cf.analyze`` loads this module (to register it), and the
-    # reduced model's machinery (the study engine's store, scikit-learn) costs ~0.8 s to import
-    from .build import find, reduce
-
     given = engine  # the region's key knows the built-in curve as "none given"
     engine = EngineCurve.of(engine)
     req = requirements or Requirements()
@@ -81,8 +79,6 @@ def _fallback(design, engine, req, idle_rpm, why: str) -> Analysis:
 
 
 def _answers(design, model, engine, req, idle_rpm, v: dict, band: dict, why: dict) -> Analysis:
-    from .model import ANSWERS
-
     idle, idle_assumed = idle_speed(engine, idle_rpm)
     hi = float(engine.rpm_range[1])
     ys = float(design.op.material.yield_strength)

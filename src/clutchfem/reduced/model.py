@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import ParameterError
+from ..evaluation import Sensitivities
 from ..geometry import get_concept
 from .region import Region
 from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel
@@ -200,8 +201,6 @@ class ReducedModel:
         linear trend), so where the FE answers have a kink at a contact event these are the
         slopes of the smoothed answer: the FE derivatives see the kink (``kinks``), these do not.
         The safety factor's derivative follows from the peak's."""
-        from ..evaluation import Sensitivities
-
         reg = self.region
         names = list(reg.names) if names is None else list(names)
         bad = [n for n in names if n not in reg.names]

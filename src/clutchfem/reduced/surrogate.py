@@ -40,10 +40,6 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from sklearn.exceptions import ConvergenceWarning
-from sklearn.gaussian_process import GaussianProcessRegressor
-from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
-from sklearn.linear_model import LogisticRegression
 
 __all__ = ["OK_PROBABILITY", "AnswerModel", "StatusModel", "quadratic_features"]
 
@@ -88,6 +84,11 @@ class AnswerModel:
         region: the hyper-parameters move little, the restarts cost most of a fit).  Measured
         on concept 4 (BENCHMARKS.md section 24): keeping that kernel fixed instead doubled the
         engagement's error on new designs (p95 0.23 -> 0.47 %)."""
+        # scikit-learn (~0.6 s to import) only to fit: a fitted model answers with numpy alone
+        from sklearn.exceptions import ConvergenceWarning
+        from sklearn.gaussian_process import GaussianProcessRegressor
+        from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
+
         U = np.asarray(U, dtype=float)
         z = np.log(np.asarray(y, dtype=float))
         A = np.hstack([np.ones((len(U), 1)), U])
@@ -161,6 +162,9 @@ class StatusModel:
         ok = np.asarray(ok, dtype=bool)
         if ok.all() or not ok.any():
             return cls(constant=float(ok.all()))
+        from sklearn.exceptions import ConvergenceWarning
+        from sklearn.linear_model import LogisticRegression
+
         clf = LogisticRegression(C=10.0, max_iter=20000, random_state=seed)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ConvergenceWarning)
