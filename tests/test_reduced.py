@@ -148,7 +148,7 @@ def test_outside_every_region_live_falls_back_to_the_fe_and_says_so(built):
 
 
 @pytest.mark.slow
-def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built):
+def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built, tmp_path):
     from clutchfem.app.figures import torque_chart
     from clutchfem.app.session import DesignSession
 
@@ -170,6 +170,11 @@ def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built
     assert s.set_value("flexure_thickness", 2.6) is None
     out = s.run()
     assert not out.live and out.analysis.answered_by == "FE (fallback)" and "no reduced model holds" in out.analysis.notes[-1]
+    # an uploaded part has no parameters to reduce over: refused, naming the model
+    s.set_part(out.design.cm.write_msh(tmp_path / "part.msh"))
+    s.set_value("drum_radius", 34.4)
+    with pytest.raises(cf.ParameterError, match="fidelity.*best or fast for an uploaded part"):
+        s.run()
 
 
 @pytest.mark.slow
@@ -192,3 +197,8 @@ def test_the_reduced_models_derivatives_match_the_morphed_finite_differences(bui
     assert s.derivatives["flexure_thickness"]["safety_factor"] > 0  # a thicker flexure: a lower peak
     with pytest.raises(cf.ParameterError, match="in the region"):
         find(d).sensitivities(live(flexure_thickness="2.6mm"))
+    for kw, name in (({"names": ["clearance"]}, "names"), ({"h": 0.0}, "h"), ({"h": float("nan")}, "h"),
+                     ({"h": True}, "h")):
+        with pytest.raises(cf.ParameterError) as e:
+            find(d).sensitivities(d, **kw)
+        assert e.value.name == name

@@ -270,6 +270,9 @@ class DesignSession:
         with self.lock:
             d = self.design()
         an = None
+        if d.op.fidelity == "live" and d.params is None:
+            raise ParameterError("fidelity", "live", "best or fast for an uploaded part: the model live is a reduced "
+                                 "model over a concept's parameters", "your part")
         if d.op.fidelity == "live":
             from ..reduced import find, live_analysis
 

@@ -202,6 +202,9 @@ class ReducedModel:
         slopes of the smoothed answer: the FE derivatives see the kink (``kinks``), these do not.
         The safety factor's derivative follows from the peak's."""
         reg = self.region
+        if isinstance(h, bool) or not isinstance(h, (int, float)) or not 0 < h <= 0.25:
+            raise ParameterError("h", h, "a step in (0, 0.25] of each parameter's box width", "reduced model "
+                                 "sensitivities")
         names = list(reg.names) if names is None else list(names)
         bad = [n for n in names if n not in reg.names]
         if bad:
