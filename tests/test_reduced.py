@@ -159,6 +159,11 @@ def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built
     assert out.live and not out.design.meshed and out.seconds < 1.0
     same = cf.analyze(live(flexure_thickness="2.15mm"))
     assert out.analysis.engagement_rpm == same.engagement_rpm and out.analysis.slip_rpm == same.slip_rpm
+    arc = next(r for r in out.rows if r[0].startswith("contact arc"))  # never "nan deg"
+    given = out.analysis.contact_arc_at_max_engine_torque_deg is not None and np.isfinite(
+        out.analysis.contact_arc_at_max_engine_torque_deg)
+    assert arc[1:] == ((f"{out.analysis.contact_arc_at_max_engine_torque_deg:.3g} deg", "") if given
+                       else ("-", "not given live (the FE gives it)"))
     chart = torque_chart(out.analysis)  # the engine curve and the live torque point (no FE curve)
     assert [x["name"].split()[0] for x in chart["series"]] == ["engine", "clutch"]
     shown, off = s.verify(out)

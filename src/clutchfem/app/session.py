@@ -356,6 +356,10 @@ def _material_key(m) -> str:
     return "titanium" if "ti" in n.split("-")[0] else "aluminium" if "alumin" in n else "51CrV4"
 
 
+def _finite(x) -> bool:
+    return x is not None and isinstance(x, (int, float)) and math.isfinite(x)
+
+
 def _f(x, unit: str, digits: int = 4) -> str:
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "-"
@@ -390,7 +394,10 @@ def answer_rows(an: Analysis, errors: dict | None = None) -> list[tuple[str, str
          + f" (safety factor {an.safety_factor:.2f}, >= 1.5)"),
         ("fatigue safety factor", "-" if an.fatigue_safety_factor is None else f"{an.fatigue_safety_factor:.2f}",
          "" if an.fatigue_safety_factor is None else ("PASS" if an.fatigue_safety_factor >= 1 else "FAIL")),
-        ("contact arc per shoe at max torque", f"{an.contact_arc_at_max_engine_torque_deg:.1f} deg", ""),
+        ("contact arc per shoe at max torque", _f(an.contact_arc_at_max_engine_torque_deg, "deg", 3)
+         if _finite(an.contact_arc_at_max_engine_torque_deg) else "-",
+         "not given live (the FE gives it)" if an.answered_by == "reduced model"
+         and not _finite(an.contact_arc_at_max_engine_torque_deg) else ""),
         ("part mass", "-" if not (an.part or {}).get("mass_kg") else f"{an.part['mass_kg'] * 1e3:.1f} g", ""),
         ("shoe character", an.shoe_character, ""),
     ]
