@@ -6,6 +6,7 @@ artefact (``test-artifacts/app.png``).  And the session logic without a browser.
 
 from __future__ import annotations
 
+import re
 import zipfile
 from pathlib import Path
 
@@ -79,13 +80,15 @@ def test_live_design_in_a_real_browser(server):
         expect(page.locator("[data-testid=answers] tr", has_text="engagement speed (static)")).to_contain_text(
             f"{want.engagement_rpm:.0f} rpm", timeout=60_000)
         assert _engagement(page) != before
-        # out of range: the refusal at the parameter, the last valid design stays
+        expect(status).to_contain_text("with error bands", timeout=60_000)
+        # out of range: the refusal at the parameter, the last valid design stays, greyed and said
         box.fill("9")
         box.press("Enter")
         expect(page.locator("[data-testid=msg-flexure_thickness]")).to_contain_text("[0.5 mm, 4 mm]", timeout=20_000)
         assert _engagement(page) == f"{want.engagement_rpm:.0f} rpm"
+        expect(status).to_contain_text("answers of the last valid design (greyed); flexure_thickness = 9 mm refused")
+        expect(page.locator("[data-testid=answers]")).to_have_class(re.compile("opacity-50"))
         # pin and compare: a pinned column with the difference
-        expect(status).to_contain_text("with error bands", timeout=60_000)
         page.locator("[data-testid=pin]").click()
         other = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="1.9mm"), errors=False)
         box.fill("1.9")

@@ -185,6 +185,12 @@ class DesignPage(StudiesPanel, Downloads):
                 w.value = value
         msg = self.s.set_value(name, value)
         self.messages[name].set_text(msg or "")
+        if msg is not None and self.outcome is not None:  # the answers on screen are another design's: say so
+            self.answers.classes(add="opacity-50")
+            unit = next((c.unit for c in self.s.controls() if c.name == name), "")
+            shown = f"{value:g} {unit}".strip() if isinstance(value, (int, float)) else str(value)
+            self.status.set_text(f"{self.outcome.label}: answers of the last valid design (greyed); {name} = {shown} "
+                                 "refused, see the message under it")
         if msg is None:
             if name in ("profile", "fidelity"):  # other parameters become active; the drum wall used changes
                 self.values.clear()
@@ -345,6 +351,7 @@ class DesignPage(StudiesPanel, Downloads):
                 r["pinned"] = v
                 r["delta"] = _delta(r["value"], v)
         self.answers.rows = rows
+        self.answers.classes(remove="opacity-50")  # the answers of the design on the panel
         self.answers.update()
         self.warnings.clear()
         with self.warnings:
