@@ -219,10 +219,13 @@ class Concept4Params(ConceptParams):
             self.fail("flexure_length", "a beam that reaches the shoe's root line")
         if lay.r_l0 > r_si - 0.3e-3 or lay.r_u0 > 0.5 * (r_si + r_so):
             Lmax = self._max_length()
-            self.fail("flexure_length", f"<= {Lmax * 1e3:.2f} mm for this hub radius and flexure angle "
-                                        "(the beam must end below the shoe's inner surface, radius "
-                                        f"{r_si * 1e3:.2f} mm; now its end spans {lay.r_l0 * 1e3:.2f}-"
-                                        f"{lay.r_u0 * 1e3:.2f} mm)")
+            self.fail("flexure_length", f"<= {Lmax * 1e3:.2f} mm with hub_radius {rh * 1e3:.3g} mm, flexure_angle "
+                                        f"{self.flexure_angle:.3g} deg, flexure_thickness "
+                                        f"{self.flexure_thickness * 1e3:.3g} mm and flexure_taper "
+                                        f"{self.flexure_taper:.3g} (the beam must end below the shoe's inner "
+                                        f"surface, radius {r_si * 1e3:.2f} mm; now its end spans "
+                                        f"{lay.r_l0 * 1e3:.2f}-{lay.r_u0 * 1e3:.2f} mm): shorten the flexure or "
+                                        "change one of those")
         if lay.r_l0 < rh + 1.0e-3:
             self.fail("flexure_length", f"longer: the beam's root end must stay >= 1 mm outside the hub "
                                         f"(inner edge meets the root line at {lay.r_l0 * 1e3:.2f} mm)")

@@ -67,3 +67,15 @@ def test_the_app_refuses_a_port_in_use_and_an_out_that_is_a_file(tmp_path):
         s.bind(("127.0.0.1", 0))
         free = s.getsockname()[1]
     assert "is a file, not a folder" in refused("app", "--no-browser", "--port", str(free), "--out", str(f))
+
+
+def test_a_coupled_limit_names_the_parameter_the_user_changed():
+    """Concept 4's beam-end rule is on flexure_length but a thicker flexure breaks it: the
+    refusal names the thickness (and the other inputs of the limit) with their values."""
+    import clutchfem as cf
+
+    with pytest.raises(cf.ParameterError) as e:
+        cf.Design.from_concept("concept4", flexure_thickness="2.4mm")
+    msg = str(e.value)
+    assert e.value.name == "flexure_length" and "flexure_thickness 2.4 mm" in msg
+    assert "hub_radius 12 mm" in msg and "flexure_angle 30 deg" in msg and "<= 18.50 mm" in msg
