@@ -48,7 +48,7 @@ def working(what: str):
         # refresh at once: a stage shorter than the refresh tick is still shown (and seen by tests)
         yield lambda text: bar.update(task, description=escape(f"{what}: {text}"), refresh=True)
 
-__all__ = ["working", "check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
+__all__ = ["names_from", "ranges_from", "working", "check_cluster", "check_out_dir", "console", "design_from", "engine_from", "err", "fail", "material_from",
            "operating_point", "quantity", "requirements_from", "build_geometry", "geometry_table", "print_settings", "study_settings", "wrote"]
 
 
@@ -319,6 +319,28 @@ def print_settings(groups, option: str) -> None:
     for row in describe_groups(groups):
         t.add_row(*(escape(x) for x in row))
     console.print(t)
+
+
+def names_from(text: Optional[str]) -> Optional[list[str]]:
+    """A comma-separated list of names (``--free a,b``), or None when not given."""
+    return [x.strip() for x in text.split(",") if x.strip()] if text else None
+
+
+def ranges_from(P, items) -> dict:
+    """``--range name=LO:HI`` items as ``name -> (lo, hi)`` in SI (each bound with its unit),
+    refusing a malformed item or a name the parameter set ``P`` does not have."""
+    ranges = {}
+    for item in items:
+        name, _, r = item.partition("=")
+        if ":" not in r:
+            raise ParameterError("range", item, "name=LO:HI (e.g. flexure_thickness=1.6mm:2.0mm)", "option --range")
+        name = name.strip()
+        if name not in P.model_fields:
+            raise ParameterError(name, item, "a parameter of the concept; known: " + ", ".join(P.model_fields),
+                                 "option --range")
+        lo, hi = r.split(":", 1)
+        ranges[name] = (P.parse_value(name, lo), P.parse_value(name, hi))
+    return ranges
 
 
 def tolerances_from(P, items) -> dict:

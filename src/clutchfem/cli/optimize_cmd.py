@@ -18,7 +18,9 @@ from .common import (
     console,
     err,
     fail,
+    names_from,
     quantity,
+    ranges_from,
     study_settings,
     tolerances_from,
     wrote,
@@ -101,18 +103,8 @@ def optimize(
         t = Targets(lo, hi, slip if slip is not None else t0.slip_rpm_max, sf, objective,
                     fatigue_min=quantity("--fatigue-min", fatigue_min, "-", above=0.0))
         P = type(base.params)
-        names = [x.strip() for x in free.split(",") if x.strip()] if free else None
-        ranges = {}
-        for item in range_:
-            if "=" not in item or ":" not in item.split("=", 1)[1]:
-                raise ParameterError("range", item, "name=LO:HI (e.g. flexure_thickness=1mm:3mm)", "option --range")
-            n, r = item.split("=", 1)
-            n = n.strip()
-            if n not in P.model_fields:
-                raise ParameterError(n, item, "a parameter of the concept; known: " + ", ".join(P.model_fields),
-                                     "option --range")
-            lo_s, hi_s = r.split(":", 1)
-            ranges[n] = (P.parse_value(n, lo_s), P.parse_value(n, hi_s))
+        names = names_from(free)
+        ranges = ranges_from(P, range_)
         robust = None
         if tol:
             robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, o.workers,

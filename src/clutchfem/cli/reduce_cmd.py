@@ -9,9 +9,20 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from .. import ClutchfemError, ParameterError
+from .. import ClutchfemError
 from . import options as O
-from .common import check_cluster, console, design_from, engine_from, fail, operating_point, quantity, requirements_from
+from .common import (
+    check_cluster,
+    console,
+    design_from,
+    engine_from,
+    fail,
+    names_from,
+    operating_point,
+    quantity,
+    ranges_from,
+    requirements_from,
+)
 
 
 @O.takes("concept", "set_", "mesh_size", "mu", "engine", "a", "b", "workers", "scheduler", "json_")
@@ -41,19 +52,8 @@ def reduce(
         req = requirements_from(o.a, o.b)
         design = design_from(o.concept, o.set_, None, op=operating_point(mu=o.mu, fidelity="live"),
                              mesh_size=o.mesh_size, mesh_allowed=False)
-        P = type(design.params)
-        ranges = {}
-        for item in range_:
-            name, _, r = item.partition("=")
-            if ":" not in r:
-                raise ParameterError("range", item, "name=LO:HI (e.g. flexure_thickness=1.6mm:2.0mm)", "option --range")
-            lo, hi = r.split(":", 1)
-            name = name.strip()
-            if name not in P.model_fields:
-                raise ParameterError(name, item, "a parameter of the concept; known: " + ", ".join(P.model_fields),
-                                     "option --range")
-            ranges[name] = (P.parse_value(name, lo), P.parse_value(name, hi))
-        names = [x.strip() for x in free.split(",") if x.strip()] if free else None
+        ranges = ranges_from(type(design.params), range_)
+        names = names_from(free)
         m = run(design, span=s, ranges=ranges or None, free=names, n=n, held_out=held_out, engine=eng,
                 requirements=req, workers=o.workers, scheduler=o.scheduler, progress=True)
         if o.json_:
