@@ -28,13 +28,23 @@ class Downloads:
             return False
         return True
 
+    async def _of_record(self):
+        """The outcome whose answers go into a file: ``analyze``'s (corrected, with bands).  A
+        first pass still on screen is completed first (:meth:`~.session.DesignSession.complete`),
+        so that no file carries the uncorrected design-mesh values without bands."""
+        out = self.outcome
+        if not out.live and not out.analysis.errors:
+            out = await run.io_bound(self.s.complete, out)
+        return out
+
     async def dl_report(self) -> None:
         if not self._ready():
             return
-        out = self.dir / f"{self.outcome.label}-report"
-        files = await run.io_bound(lambda: write_report(self.outcome.design, out, engine=self.s.engine,
+        rec = await self._of_record()
+        out = self.dir / f"{rec.label}-report"
+        files = await run.io_bound(lambda: write_report(rec.design, out, engine=self.s.engine,
                                                          requirements=self.s.requirements, errors=False,
-                                                         analysis=self.outcome.analysis))
+                                                         analysis=rec.analysis))
         if files:
             ui.download(out / "report.html", f"{self.outcome.label}-report.html")
 
@@ -74,9 +84,10 @@ class Downloads:
         if d.params is None:
             ui.notify("cutting files come from a concept design (an uploaded part is already CAD)")
             return
+        rec = await self._of_record()
         out = self.dir / f"{self.outcome.label}-cutting"
         try:
-            res = await run.io_bound(lambda: export(d, out, analysis=self.outcome.analysis))
+            res = await run.io_bound(lambda: export(d, out, analysis=rec.analysis))
         except ClutchfemError as e:
             ui.notify(str(e), type="negative", multi_line=True)
             return

@@ -293,7 +293,8 @@ class DesignPage(StudiesPanel, Downloads):
                 return
             self.outcome, self.bands = out, (out.analysis.errors if out.live else {})  # live: its bands
             self.show(gen)
-            self.status.set_text(f"{out.label}: answers in {out.seconds:.2f} s; error bands ...")
+            self.status.set_text(f"{out.label}: first pass in {out.seconds:.2f} s; the answers of analyze (corrected, "
+                                 "with error bands) ...")
         # the part picture and the error bands follow once the designer pauses: a change in
         # the meantime skips them (they never hold up the next answers)
         if self.extras is not None and not self.extras.done():
@@ -311,12 +312,13 @@ class DesignPage(StudiesPanel, Downloads):
             if out.live:
                 await self.check_live(gen, out)
                 return
-            bands = await run.io_bound(self.s.error_bands, out)
-            if bands is None or gen != self.s.generation:
+            full = await run.io_bound(self.s.complete, out)
+            if full is None or gen != self.s.generation:
                 return
-            self.bands = bands
+            self.outcome, self.bands = full, full.analysis.errors
             self.show(gen)
-            self.status.set_text(f"{out.label}: answers in {out.seconds:.2f} s, with error bands")
+            self.status.set_text(f"{out.label}: the answers of analyze, with error bands (first pass in "
+                                 f"{out.seconds:.2f} s, these in {full.seconds:.2f} s)")
 
     async def check_live(self, gen: int, out) -> None:
         """The FE check of live answers (:meth:`~.session.DesignSession.verify`): they stay

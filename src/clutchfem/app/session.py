@@ -9,8 +9,10 @@ value leaves the last valid design on screen.
 
 The analysis is run in two passes so that the screen follows a slider: the answers without
 the error estimate first (``analyze(errors=False)``: ~0.15 s in process for concept 4 on the
-default mesh, ~0.1 s more when the mesh is new), then the error bands (the design again on
-a mesh twice as fine: ~0.3 s) that update the table when they arrive.
+default mesh, ~0.1 s more when the mesh is new), marked "(first pass)" on each value, then
+the design analysed exactly as ``clutchfem analyze`` does (:meth:`DesignSession.complete`: the
+corrected answers and their bands, seconds) that replace them when they arrive: the page ends
+on the answers of ``analyze`` and ``report`` for the same design (one answer set).
 
 With the model ``live`` the first pass answers from the reduced model of a cached region that
 holds the design (milliseconds, no mesh, its bands in the answers), and the second pass is the
@@ -32,7 +34,7 @@ from typing import Any, Literal, get_args, get_origin
 
 import numpy as np
 
-from ..analysis import ACCURACY_TARGET, Analysis, Requirements, analyze, error_step
+from ..analysis import Analysis, Requirements, analyze
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, ParameterError, format_quantity, param_bounds, resolution
 from ..geometry import MeshSettings, concepts, get_concept
@@ -318,17 +320,19 @@ class DesignSession:
             self.last = fe_out
         return fe_out, off
 
-    def error_bands(self, outcome: Outcome) -> dict:
-        """The second pass: the error of the main answers of ``outcome`` (its design on a mesh
-        twice as fine and the measured model-form terms)."""
-        an = outcome.analysis
-        values = {"engagement_rpm": an.engagement_rpm, "slip_rpm": an.slip_rpm,
-                  "torque_at_max_engine_torque_Nm": an.torque_at_max_engine_torque_Nm,
-                  "max_von_mises_Pa": an.max_von_mises_Pa}
-        # the bands of the values shown (the design mesh's): no answer is re-computed on a finer
-        # mesh to meet its accuracy target here, as analyze does (clutchfem.analysis.refinement)
-        return error_step(outcome.design, self.engine, values, an.engagement_rpm, an.slip_rpm,
-                          targets={q: math.inf for q in ACCURACY_TARGET})
+    def complete(self, outcome: Outcome) -> Outcome:
+        """The second pass of an FE outcome: the design analysed as ``analyze`` analyses it
+        (:func:`~clutchfem.analysis.analyze` with its error step: the corrected answers --
+        non-linearity, mesh extrapolation, refinement to the accuracy target -- and their
+        bands), so that the page ends on the answers ``clutchfem analyze`` and ``report`` give
+        for the same design, not on the first pass's design-mesh values (issue 37: one answer
+        set).  The first pass is marked as such on the page until this replaces it."""
+        t0 = time.perf_counter()
+        an = analyze(outcome.design, engine=self.engine, requirements=self.requirements)
+        out = Outcome(an, outcome.label, outcome.design, answer_rows(an), time.perf_counter() - t0)
+        if self.last is outcome:
+            self.last = out
+        return out
 
     def field(self, outcome: Outcome, rpm: float):
         """The state at ``rpm`` (a one-speed sweep of the outcome's design, the same load case;
@@ -366,15 +370,22 @@ def _f(x, unit: str, digits: int = 4) -> str:
     return format_quantity(x, unit, digits)
 
 
+#: the mark of a first-pass value (the design mesh's, uncorrected, no band) until analyze's replaces it
+FIRST_PASS = " (first pass)"
+
+
 def answer_rows(an: Analysis, errors: dict | None = None) -> list[tuple[str, str, str]]:
-    """(answer, value with its unit and band, verdict) of the main answers."""
+    """(answer, value with its unit and band, verdict) of the main answers.  An FE analysis
+    without its error step (the page's first pass) marks the answers that ``analyze`` corrects
+    and bands with :data:`FIRST_PASS`: they are not yet the answers of record."""
     errors = errors if errors is not None else (an.errors or {})
     req = an.requirements
+    first = not errors and an.answered_by != "reduced model"
 
     def band(key: str, unit: str, scale: float = 1.0, fmt: str = ".0f") -> str:
         e = errors.get(key) or {}
         if e.get("total") is None:
-            return ""
+            return FIRST_PASS if first else ""
         return f" +- {e['total'] * scale:{fmt}} {unit}"
 
     eng = an.engagement_rpm
