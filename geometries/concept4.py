@@ -218,6 +218,8 @@ class Concept4Params(ConceptParams):
         if not (math.isfinite(lay.r_l0) and math.isfinite(lay.r_u0)):
             self.fail("flexure_length", "a beam that reaches the shoe's root line")
         if lay.r_l0 > r_si - 0.3e-3 or lay.r_u0 > 0.5 * (r_si + r_so):
+            if self.quiet():  # a feasibility probe: the limit's value is not read
+                self.fail("flexure_length", "shorter")
             Lmax = self._max_length()
             self.fail("flexure_length", f"<= {Lmax * 1e3:.2f} mm with hub_radius {rh * 1e3:.3g} mm, flexure_angle "
                                         f"{self.flexure_angle:.3g} deg, flexure_thickness "

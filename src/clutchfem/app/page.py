@@ -23,7 +23,7 @@ from nicegui import run, ui
 from ..core import ClutchfemError
 from .downloads import Downloads
 from .figures import field_png, pressure_chart, torque_chart
-from .session import DesignSession, answer_rows
+from .session import FIRST_PASS, DesignSession, answer_rows
 from .studies_panel import StudiesPanel
 
 __all__ = ["build_page"]
@@ -53,6 +53,8 @@ class DesignPage(StudiesPanel, Downloads):
         self.secondary = asyncio.Lock()
         self.outcome = None
         self.bands: dict = {}
+        self.range_labels: dict = {}
+        self.ranges_task = None
         self.field_rpm = 8000.0
         self.field_res = None
         self.pinned_res = None
@@ -129,7 +131,8 @@ class DesignPage(StudiesPanel, Downloads):
                                   on_change=lambda e, n=c.name: self.on_edit(n, e.value)).props(
                         f"dense data-testid=num-{c.name}").classes("w-24")
                 rng = "" if c.lo is None else f"{c.lo:g}..{c.hi:g}{(' ' + c.unit) if c.unit else ''}"
-                ui.label(f"{c.name}{unit}: {c.label} ({rng})").classes("text-xs text-gray-600")
+                self.range_labels[c.name] = (ui.label(f"{c.name}{unit}: {c.label} ({rng})").classes(
+                    "text-xs text-gray-600").props(f"data-testid=range-{c.name}"), f"{c.name}{unit}: {c.label}", c)
                 self.widgets[c.name] = (s, n)
             self.messages[c.name] = ui.label("").classes("text-xs text-red-600").props(
                 f"data-testid=msg-{c.name}")
@@ -198,6 +201,30 @@ class DesignPage(StudiesPanel, Downloads):
                 self.messages.clear()
                 self.panel.refresh()
             self.schedule()
+
+    def schedule_ranges(self) -> None:
+        """Recompute the sliders' feasible ranges (the others' values cut them) off the loop."""
+        if self.ranges_task is not None and not self.ranges_task.done():
+            self.ranges_task.cancel()
+        self.ranges_task = asyncio.get_event_loop().create_task(self.update_ranges(self.s.generation))
+
+    async def update_ranges(self, gen: int) -> None:
+        """Each slider spans what the concept's rules allow with the other parameters as they
+        are; its label states the declared range and, where a rule cuts it, the feasible one."""
+        await asyncio.sleep(DEBOUNCE_S)
+        feas = await run.io_bound(self.s.feasible)
+        if gen != self.s.generation:
+            return
+        for name, (lo, hi) in feas.items():
+            if name not in self.range_labels or name not in self.widgets:
+                continue
+            label, head, c = self.range_labels[name]
+            unit = f" {c.unit}" if c.unit else ""
+            cut = abs(lo - c.lo) > 1e-9 * max(1.0, abs(c.lo)) or abs(hi - c.hi) > 1e-9 * max(1.0, abs(c.hi))
+            label.set_text(f"{head} ({c.lo:g}..{c.hi:g}{unit}" + (f"; with the others now {lo:.4g}..{hi:.4g}{unit}"
+                                                                  if cut else "") + ")")
+            slider = self.widgets[name][0]
+            slider.props(f"min={lo:.6g} max={hi:.6g}")
 
     def on_concept(self, name: str) -> None:
         try:
@@ -273,6 +300,7 @@ class DesignPage(StudiesPanel, Downloads):
 
     # -- the analysis ----------------------------------------------------------------------
     def schedule(self) -> None:
+        self.schedule_ranges()
         if self.pending is not None and not self.pending.done():
             self.pending.cancel()
         self.pending = asyncio.get_event_loop().create_task(self.refresh(self.s.generation))
@@ -389,7 +417,7 @@ def _delta(a: str, b: str) -> str:
     """Difference of two shown values with the same unit (the leading number and the unit
     after it, before any band), else ''."""
     def parse(t: str):
-        head = t.split(" +-")[0].split()
+        head = t.split(" +-")[0].replace(FIRST_PASS, "").split()
         return float(head[0]), " ".join(head[1:])
 
     try:

@@ -64,6 +64,9 @@ class Control:
     choices: tuple = ()
     integer: bool = False
     group: str = "geometry"
+    #: the range the concept's rules allow with the other parameters as they are (display unit;
+    #: None: not computed or the declared range itself)
+    feasible: tuple[float, float] | None = None
 
 
 @dataclass
@@ -143,6 +146,26 @@ class DesignSession:
                 continue
             out.append(self._control(P, name, getattr(self.params, name), f.description or name, "geometry"))
         return out + self._op_controls()
+
+    def feasible(self) -> dict[str, tuple[float, float]]:
+        """The range each numeric geometry parameter may take with the others as they are (in
+        its display unit: the declared range cut by the concept's coupled rules,
+        :meth:`~clutchfem.core.params.ParamSet.feasible_range`), for the sliders.  Tens of ms
+        a parameter when a rule cuts it: the page calls it off the event loop."""
+        if self.part is not None:
+            return {}
+        with self.lock:
+            params = self.params
+        P, values, out = type(params), params.model_dump(), {}
+        for c in self.controls():
+            if c.kind != "number" or c.group != "geometry":
+                continue
+            lo, hi = P.feasible_range(values, c.name)
+            if lo is None:
+                continue
+            f = _SHOW.get(P.unit(c.name), ("", 1.0))[1]
+            out[c.name] = (lo * f, hi * f)
+        return out
 
     def _op_controls(self) -> list[Control]:
         out = []
