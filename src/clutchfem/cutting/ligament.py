@@ -73,7 +73,7 @@ class Ligament:
     >>> from clutchfem.cutting import Ligament
     >>> lg = Ligament(1.35e-3, (26.6e-3, -1.35e-3), (26.6e-3, 0.0), "flexure 0", 3)
     >>> lg.text()
-    'thinnest ligament 1.35 mm (flexure 0, at r = 26.63 mm, -1.5 deg) x3'
+    'thinnest ligament 1.35 mm (flexure 0, at r = 26.61 mm, -1.5 deg) x3'
     """
 
     width: float
