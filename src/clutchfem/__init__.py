@@ -127,6 +127,8 @@ _GROUPS: dict[str, dict[str, str]] = {
         "ExportResult": "clutchfem.cutting",
         "ProcessRules": "clutchfem.cutting",
         "CuttingError": "clutchfem.cutting",
+        "thinnest_ligament": "clutchfem.cutting",
+        "Ligament": "clutchfem.cutting",
     },
     "Checks, the app and the machine": {
         "validate": "clutchfem.validation",
@@ -205,7 +207,16 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         parse_quantity,
         tune_malloc,
     )
-    from .cutting import CuttingError, ExportResult, ProcessRules, design_from_run, design_from_study, export
+    from .cutting import (
+        CuttingError,
+        ExportResult,
+        Ligament,
+        ProcessRules,
+        design_from_run,
+        design_from_study,
+        export,
+        thinnest_ligament,
+    )
     from .durability import (
         DrumThermal,
         FatigueLoads,

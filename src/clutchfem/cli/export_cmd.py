@@ -5,14 +5,25 @@ row (``--study DIR --row HASH``)."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import List, Optional
 
 import typer
 from rich.markup import escape
 
 from .. import ClutchfemError, InputError, ParameterError
 from . import options as O
-from .common import check_out_dir, console, design_from, engine_from, err, fail, quantity, working, wrote
+from .common import (
+    check_out_dir,
+    console,
+    design_from,
+    engine_from,
+    err,
+    fail,
+    quantity,
+    tolerances_from,
+    working,
+    wrote,
+)
 
 PANEL = "Cutting"
 
@@ -52,6 +63,9 @@ def export(
                                 "+- --kerf-error (and the process's taper)", rich_help_panel=PANEL),
     kerf_error: Optional[str] = typer.Option(None, "--kerf-error", metavar="LENGTH", help="kerf error for --as-cut, "
                                              "e.g. 0.02mm (default: the process's)", rich_help_panel=PANEL),
+    tol: List[str] = typer.Option([], "--tol", help="a tolerance on the drawing: name=+-value with its unit, e.g. "
+                                  "flexure_thickness=+-0.02mm (printed on the dimensions equal to that parameter)",
+                                  rich_help_panel=O.OUTPUT),
     no_analysis: bool = typer.Option(False, "--no-analysis", help="draw the sheet without the predicted answers "
                                      "(faster)", rich_help_panel=PANEL),
 ):
@@ -93,11 +107,13 @@ def export(
             design = design_from_study(study, row, ms)
         else:
             design = design_from(o.concept, o.set_, None, mesh_size=o.mesh_size, mesh_allowed=False)
+        tols = tolerances_from(type(design.params), tol) if tol and design.params is not None else None
         err.print(escape(f"{design.name}: outline, features and checks ..."))
         with working(f"export {design.name}") as stage:  # a spinner with the elapsed time (issue 24)
             stage("outline, checks, files" + ("" if no_analysis else " and the analysis"))
             res = run(design, o.out, dxf=dxf, step=step, drawing=drawing, process=process, units=units,
-                      analyze_design=not no_analysis, as_cut=as_cut, kerf_error=kerr, engine=eng, **limits)
+                      analyze_design=not no_analysis, as_cut=as_cut, kerf_error=kerr, engine=eng, tolerances=tols,
+                      **limits)
         wrote(res.files)
         if o.json_:
             print(dumps(res.to_json()))
@@ -115,6 +131,8 @@ def _print(res) -> None:
     for kind, feats in res.features.items():
         for f in feats[:3]:
             console.print(f"  {kind}: {escape(f.text())}")
+    if res.ligament is not None:
+        console.print(f"  {escape(res.ligament.text())}")
     if res.rules is None:
         console.print("[yellow]no process chosen: nominal contour only, no manufacturability check (--process)[/]")
     else:

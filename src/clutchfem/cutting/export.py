@@ -35,6 +35,7 @@ from ..loadcase import Design, design_hash, design_inputs, design_label
 from .ascut import as_cut as run_as_cut
 from .dxf import UNITS, write_dxf
 from .features import CuttingError, check, measure
+from .ligament import thinnest_ligament
 from .offset import offset_loops
 from .outline import part_outline
 from .rules import ProcessRules
@@ -90,6 +91,8 @@ class ExportResult:
     units: str = "mm"
     outline: object = None
     toolpath: list | None = None
+    #: the thinnest section of the part (:mod:`.ligament`)
+    ligament: object = None
 
     def to_json(self) -> dict:
         return clean({
@@ -101,6 +104,7 @@ class ExportResult:
                                                         "limits_m": self.rules.limits(self.thickness_m)},
             "features": {k: [f.to_json() for f in v] for k, v in self.features.items()},
             "violations": self.violations, "as_cut": self.as_cut,
+            "thinnest_ligament": None if self.ligament is None else self.ligament.to_json(),
             "answers": None if self.analysis is None else {
                 "engagement_rpm": self.analysis.engagement_rpm, "slip_rpm": self.analysis.slip_rpm,
                 "max_von_mises_Pa": self.analysis.max_von_mises_Pa, "errors": self.analysis.errors}})
@@ -125,7 +129,7 @@ def _target(path, out, default_name: str, option: str, suffixes) -> Path | None:
 def export(design, out=None, *, dxf=None, step=None, drawing=None, process: str | None = None, kerf=None,
            min_inside_radius=None, min_slot=None, min_web=None, units: str = "mm", analysis=None,
            analyze_design: bool = True, as_cut: bool = False, kerf_error=None, mesh_size=None,
-           engine: EngineCurve | None = None) -> ExportResult:
+           engine: EngineCurve | None = None, tolerances: dict | None = None) -> ExportResult:
     """Cutting files, manufacturability check and drawing sheet of a concept design.
 
     Parameters
@@ -152,6 +156,9 @@ def export(design, out=None, *, dxf=None, step=None, drawing=None, process: str 
         process's) and its taper (``mesh_size``: element size of those meshes).
     engine : EngineCurve, optional
         Full-throttle torque curve for the slip speed (default: built-in, ASSUMED shape).
+    tolerances : dict, optional
+        ``{parameter: half-width}`` in the parameter's SI unit (``--tol``): printed on the
+        drawing's dimensions that equal that parameter.
 
     Returns
     -------
@@ -187,6 +194,7 @@ def export(design, out=None, *, dxf=None, step=None, drawing=None, process: str 
     p = design.params
     outline = part_outline(design.concept, p)
     features = measure(outline)
+    ligament = thinnest_ligament(outline)
     violations = check(features, rules, p.thickness) if rules is not None else []
     if violations:
         raise CuttingError(violations, rules)
@@ -222,11 +230,14 @@ def export(design, out=None, *, dxf=None, step=None, drawing=None, process: str 
         files.append(path)
     area = outline.area
     result = ExportResult(label, h, files, area, p.thickness, volume, area * p.thickness * rho,
-                          outline.max_radius(), features, rules, violations, an, ascut, units, outline, toolpath)
+                          outline.max_radius(), features, rules, violations, an, ascut, units, outline, toolpath,
+                          ligament)
     if f_draw is not None:
         paths = [f_draw] + ([f_draw.with_suffix(".png")] if f_draw.suffix.lower() != ".png" else [])
         files += draw_sheet(paths, outline=outline, features=features, rules=rules, toolpath=toolpath, label=label,
-                            design_hash=h, material=mat, analysis=an, as_cut=ascut, units=units)
+                            design_hash=h, material=mat, analysis=an, as_cut=ascut, units=units,
+                            mass_kg=result.mass_kg, tolerances=tolerances, fidelity=_fidelity(design, an),
+                            ligament=ligament)
     folders = sorted({f.parent for f in files})
     record = {**design_inputs(design), "design_hash": h, "label": label}
     for folder in folders:
@@ -237,3 +248,15 @@ def export(design, out=None, *, dxf=None, step=None, drawing=None, process: str 
     result.files = files
     return result
 
+
+
+def _fidelity(design, an) -> str:
+    """The model the drawing's answers came from, in words (issue 37: never a fixed "FE,
+    plane stress")."""
+    if an is None:
+        return ""
+    op = design.op
+    wall = op.drum_wall_m
+    by = getattr(an, "answered_by", "FE")
+    return (f"{by}, fidelity {op.fidelity}: {op.model_formulation} model, "
+            + ("rigid drum" if wall is None else f"elastic drum {wall * 1e3:g} mm wall") + "; ± error band")

@@ -1,16 +1,28 @@
-"""The drawing sheet for review (A3 landscape, PDF/SVG/PNG, pyplot-free matplotlib): the part
-at scale with its key dimensions, the parameter table, the process and tolerances, the
-measured features and the predicted answers with their bands.
+"""The workshop drawing (A3 landscape, PDF/SVG/PNG, pyplot-free matplotlib).
 
-Left: the whole part in the final frame (every shoe), the drum circle it runs in (dash-dot),
-the tool path (thin red, when a process is chosen), dimensions of the outer radius (drum
-radius minus clearance), the drum and the bore, and callouts at the smallest inside radius,
-slot and web with their sizes.  Right: the concept's parameters (as in ``--set``), the
-process rules and the general tolerance, the predicted answers (engagement static and with
-ripple, slip, peak stress and safety factor at the engine's maximum speed, part mass), each
-with its error band, the as-cut table when computed, and the title block (label, hash,
-material, thickness, unit, date, clutchfem version).  Dimensions are in the sheet's unit
-(mm, or inches with ``units="in"``).
+Laid out as a workshop expects (ISO 5457 frame, ISO 7200 title block, first-angle
+projection, ISO 129 dimensions), drawn in sheet millimetres on one axes:
+
+* the **main view**: the whole part at a standard scale (2:1 for the ~69 mm parts), viewed
+  from the engine side, centre lines, the drum (dash-dot, for reference), the tool path
+  (thin red, with a process), and the dimensions that need the axis: bore, every radius
+  about it, the shoe arc, the pitch of the shoes, the beam's angular position;
+* the **side view** (to the right, first-angle) with the plate thickness;
+* **detail A**: shoe 0's flexure at a larger standard scale, with the beam's length,
+  thickness at both ends and angle, every fillet and slot-end round, the measured webs and
+  slots and the thinnest ligament (:mod:`.ligament`);
+* the **notes** (general tolerances, material and heat treatment, the DXF as the geometry
+  master, reference dimensions), the **predicted answers** with their error bands and the
+  fidelity they came from (the model that answered, never a fixed "FE, plane stress"), and
+  the **title block**: title, drawing number (= the design hash), material, mass, scale,
+  units, projection symbol, date, general tolerances, clutchfem version.
+
+Each feature is dimensioned once (:mod:`.dimensions`), with its ``--tol`` tolerance where
+given; every label is horizontal (never upside down), placed outside the part's material and
+clear of the other labels, views and blocks, with a leader to its feature.  The SVG keeps
+its text as text (``svg.fonttype = "none"``) and the PDF embeds TrueType (Type 42) fonts,
+so both are searchable; each dimension is an SVG group ``dim:<key>``, each title-block field
+``title:<field>``.
 """
 
 from __future__ import annotations
@@ -20,16 +32,28 @@ import math
 from pathlib import Path
 
 import numpy as np
+from matplotlib import rc_context
+from matplotlib.patches import Arc, Circle, FancyArrowPatch, Polygon, Rectangle
+from matplotlib.path import Path as MPath
+from matplotlib.transforms import Bbox
 
 from .._version import __version__
 from ..core import figure
-from ..geometry import fmt_param_value
+from .dimensions import dimensions as make_dimensions
 
-A3 = (16.54, 11.69)
-
-
-def _u(x_m: float, units: str, digits: int = 3) -> str:
-    return f"{x_m / 0.0254:.{digits + 1}f} in" if units == "in" else f"{x_m * 1e3:.{digits}f} mm"
+#: sheet size [mm] (A3 landscape) and the frame (ISO 5457: 20 mm filing margin, 10 mm others)
+SHEET = (420.0, 297.0)
+FRAME = (20.0, 10.0, 410.0, 287.0)
+MM = 1 / 25.4
+#: standard scales (ISO 5455), largest first
+SCALES = (10.0, 5.0, 2.0, 1.0, 0.5, 0.2)
+#: text sizes [pt]: dimensions, tables, headings
+FS_DIM, FS_TAB, FS_HEAD = 8.5, 7.0, 9.0
+#: the title block, notes and answers column and the detail box [mm]
+TB = (238.0, 10.0, 410.0, 62.0)
+COL_X = 240.0
+DETAIL_BOX = (238.0, 166.0, 410.0, 287.0)
+MAIN_BOX = (20.0, 10.0, 236.0, 287.0)
 
 
 def _band(an, key: str, scale: float = 1.0, unit: str = "rpm", fmt: str = ".0f") -> str:
@@ -38,149 +62,529 @@ def _band(an, key: str, scale: float = 1.0, unit: str = "rpm", fmt: str = ".0f")
     if v is None:
         return "-"
     tot = e.get("total")
-    return f"{v * scale:{fmt}} {unit}" + (f" +- {tot * scale:{fmt}}" if tot is not None else "")
+    return f"{v * scale:{fmt}} {unit}" + (f" ± {tot * scale:{fmt}} {unit}" if tot is not None else "")
+
+
+def _scale_text(s: float) -> str:
+    return f"{s:g}:1" if s >= 1 else f"1:{1 / s:g}"
+
+
+class _Sheet:
+    """The drawing being built: one axes in sheet millimetres, the obstacles labels avoid."""
+
+    def __init__(self, units: str):
+        self.fig, _ = figure(1, 1, figsize=(SHEET[0] * MM, SHEET[1] * MM))
+        self.fig.clear()
+        ax = self.fig.add_axes([0, 0, 1, 1])
+        ax.set_xlim(0, SHEET[0])
+        ax.set_ylim(0, SHEET[1])
+        ax.set_aspect("equal")
+        ax.axis("off")
+        self.ax = ax
+        self.units = units
+        self.renderer = self.fig.canvas.get_renderer()
+        self.taken: list[Bbox] = []  # label boxes placed
+        self.blocks: list[Bbox] = []  # areas no label may enter
+        self.material: list[tuple[MPath, Bbox | None]] = []  # filled part regions (clip box)
+        self.lines: list[MPath] = []  # drawn part outlines and dimension lines
+        self.queue: list = []  # label placements, made once every line is drawn
+
+    def line(self, xs, ys, gid=None, **kw):
+        """A thin drawn line that labels keep clear of."""
+        kw.setdefault("color", "black")
+        kw.setdefault("lw", 0.35)
+        self.ax.plot(xs, ys, gid=gid, **kw)
+        self.lines.append(MPath(np.column_stack([xs, ys])))
+
+    def arrow(self, a, b, gid, style="<|-|>", lw=0.45, color="black"):
+        self.ax.add_patch(FancyArrowPatch(a, b, arrowstyle=style, mutation_scale=6, lw=lw, color=color, shrinkA=0,
+                                          shrinkB=0, gid=gid))
+        self.lines.append(MPath([a, b]))
+
+    def arc(self, c, r, a0, a1, gid):
+        """An arc (angles in rad, a0 < a1) of a dimension line."""
+        self.ax.add_patch(Arc(c, 2 * r, 2 * r, theta1=math.degrees(a0), theta2=math.degrees(a1), lw=0.45, gid=gid))
+        t = np.linspace(a0, a1, 60)
+        self.lines.append(MPath(np.column_stack([c[0] + r * np.cos(t), c[1] + r * np.sin(t)])))
+
+    def later(self, *args, **kw):
+        self.queue.append((args, kw))
+
+    def flush(self):
+        for args, kw in self.queue:
+            self.place(*args, **kw)
+        self.queue = []
+
+    # -- text -------------------------------------------------------------------------
+    def text(self, x, y, s, *, size=FS_TAB, gid=None, **kw):
+        t = self.ax.text(x, y, s, fontsize=size, gid=gid, **kw)
+        return t
+
+    def extent(self, t) -> Bbox:
+        return t.get_window_extent(self.renderer).transformed(self.ax.transData.inverted())
+
+    def free(self, box: Bbox, region: Bbox) -> bool:
+        """Is ``box`` (sheet mm, with a margin) inside ``region`` and clear of labels, blocks,
+        outlines and material?"""
+        m = box.expanded(1.0, 1.0).padded(0.8)
+        if not (region.x0 <= box.x0 and box.x1 <= region.x1 and region.y0 <= box.y0 and box.y1 <= region.y1):
+            return False
+        if any(m.overlaps(b) for b in self.taken) or any(box.overlaps(b) for b in self.blocks):
+            return False
+        if any(p.intersects_bbox(m, filled=False) for p in self.lines):
+            return False
+        for path, clip in self.material:
+            b = m if clip is None else Bbox.intersection(m, clip)
+            if b is not None and path.intersects_bbox(b, filled=True):
+                return False
+        return True
+
+    def place(self, s: str, anchor, direction: float, region: Bbox, *, gid: str, start: float = 4.0,
+              color="black", arrow_from_text=True, arrow=True, leader=True, size=FS_DIM):
+        """A horizontal label near ``anchor`` (sheet mm), searched outward along
+        ``direction`` (rad) and fanned to either side, in the first free place; a leader (with
+        an arrowhead at the anchor) joins them.  Returns the Text."""
+        t = self.text(0, 0, s, size=size, gid=gid, ha="center", va="center", color=color)
+        w = self.extent(t)
+        hw, hh = 0.5 * w.width, 0.5 * w.height
+        ax0, ay0 = anchor
+        best = None
+        for dist in np.arange(start, 90.0, 2.0):
+            for dev in (0, 10, -10, 20, -20, 30, -30, 45, -45, 60, -60, 80, -80, 100, -100, 130, -130, 180):
+                a = direction + math.radians(dev)
+                cx = ax0 + (dist + hw * abs(math.cos(a)) + hh * abs(math.sin(a))) * math.cos(a)
+                cy = ay0 + (dist + hw * abs(math.cos(a)) + hh * abs(math.sin(a))) * math.sin(a)
+                box = Bbox.from_extents(cx - hw, cy - hh, cx + hw, cy + hh)
+                if self.free(box, region) and (not leader or self._leader_clear(anchor, box)):
+                    best = (cx, cy, box)
+                    break
+            if best is not None:
+                break
+        if best is None:  # no free place: the far corner of the region (never silently on the part)
+            cx, cy = region.x0 + hw + 1, region.y1 - hh - 1
+            best = (cx, cy, Bbox.from_extents(cx - hw, cy - hh, cx + hw, cy + hh))
+        cx, cy, box = best
+        t.set_position((cx, cy))
+        self.taken.append(box)
+        if leader:
+            end = _box_point(box, anchor)
+            self.ax.add_patch(FancyArrowPatch(end, anchor, arrowstyle="-|>" if arrow else "-", mutation_scale=6,
+                                              lw=0.45, color=color, shrinkA=0, shrinkB=0, gid=gid + "/leader"))
+        return t
+
+    def _leader_clear(self, anchor, box: Bbox) -> bool:
+        """The leader does not cross another label."""
+        end = _box_point(box, anchor)
+        seg = MPath([anchor, end])
+        return not any(seg.intersects_bbox(b.padded(0.3), filled=True) for b in self.taken)
+
+
+def _box_point(box: Bbox, p) -> tuple[float, float]:
+    """The point of ``box``'s edge (middle of its left or right side, or top/bottom) nearest
+    the leader's direction from ``p``."""
+    cx, cy = 0.5 * (box.x0 + box.x1), 0.5 * (box.y0 + box.y1)
+    if p[0] < box.x0:
+        return (box.x0 - 0.5, cy)
+    if p[0] > box.x1:
+        return (box.x1 + 0.5, cy)
+    return (cx, box.y0 - 0.5 if p[1] < cy else box.y1 + 0.5)
 
 
 def draw_sheet(paths, *, outline, features, rules, toolpath, label: str, design_hash: str, material: str,
-               analysis=None, as_cut=None, units: str = "mm", violations=()) -> list[Path]:
-    """Draw the sheet once and save it to every path in ``paths`` (.pdf, .svg, .png)."""
-    fig, _ = figure(1, 1, figsize=A3)
-    fig.clear()
-    ax = fig.add_axes([0.02, 0.06, 0.56, 0.88])
-    s = 1e3 if units == "mm" else 1 / 0.0254
-    p = outline.params
-    for lp in outline.loops:
-        xy = lp.points(spacing=0.05e-3) * s
-        xy = np.vstack([xy, xy[:1]])
-        ax.plot(xy[:, 0], xy[:, 1], color="black", lw=0.9)
-    for lp in toolpath or ():
-        xy = lp.points(spacing=0.05e-3) * s
-        xy = np.vstack([xy, xy[:1]])
-        ax.plot(xy[:, 0], xy[:, 1], color="#c0392b", lw=0.4, ls="-")
-    R = p.drum_radius * s
-    th = np.linspace(0, 2 * np.pi, 721)
-    ax.plot(R * np.cos(th), R * np.sin(th), color="#888", lw=0.6, ls="-.")
-    ax.plot([-1.2 * R, 1.2 * R], [0, 0], color="#aaa", lw=0.4, ls="-.")
-    ax.plot([0, 0], [-1.2 * R, 1.2 * R], color="#aaa", lw=0.4, ls="-.")
-    ro = outline.max_radius()
-    a = math.radians(200)
-    _dim(ax, (0, 0), (ro * s * math.cos(a), ro * s * math.sin(a)), f"R {_u(ro, units)} (drum - clearance)")
-    a = math.radians(135)
-    _dim(ax, (0, 0), (R * math.cos(a), R * math.sin(a)), f"drum R {_u(p.drum_radius, units)}", color="#777")
-    rb = p.bore_radius * s
-    ax.annotate(f"bore Ø {_u(2 * p.bore_radius, units)}", (rb * math.cos(-0.8), rb * math.sin(-0.8)),
-                (0.45 * R, -0.55 * R), fontsize=8, arrowprops={"arrowstyle": "->", "lw": 0.6})
-    callouts = []
-    for kind, feats in features.items():
-        useful = [f for f in feats if not f.where.startswith("bore") and (kind != "inside radius" or f.detail == "fillet")]
-        callouts += useful[:1]
-    callouts.sort(key=lambda f: f.at[0])
-    n = len(callouts)
-    for k, f in enumerate(callouts):  # a row of labels under the part, in the order of their x
-        x, y = f.at[0] * s, f.at[1] * s
-        tx = (-1.0 + 2.0 * k / max(n - 1, 1)) * R if n > 1 else 0.0
-        ty = -1.38 * R - 0.14 * R * (k % 2)
-        ax.annotate(f.text(), (x, y), (tx, ty), fontsize=7.5, color="#1f4e79", ha="center", va="top",
-                    arrowprops={"arrowstyle": "->", "lw": 0.5, "color": "#1f4e79"})
-        ax.plot([x], [y], "o", ms=3, color="#1f4e79")
-    ax.set_aspect("equal")
-    lim = 1.75 * R
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, 1.3 * R)
-    ax.axis("off")
-    ax.set_title(f"{label}: the whole part, {outline.thickness * 1e3:g} mm thick, viewed from the engine side "
-                 f"(ccw rotation)\nunit {units}; black: part (DXF layers OUTER/INNER/BORE)"
-                 + ("; red: tool path (kerf-compensated)" if toolpath else "")
-                 + "; dash-dot: drum", fontsize=9)
-    _tables(fig, outline, rules, label, design_hash, material, analysis, as_cut, units, violations)
+               analysis=None, as_cut=None, units: str = "mm", violations=(), mass_kg: float | None = None,
+               tolerances: dict | None = None, fidelity: str = "", ligament=None, date: str | None = None,
+               title: str | None = None) -> list[Path]:
+    """Draw the workshop drawing once and save it to every path in ``paths`` (.pdf, .svg,
+    .png); text stays text in the PDF and SVG (module docstring)."""
+    fig = build_sheet(outline=outline, features=features, rules=rules, toolpath=toolpath, label=label,
+                      design_hash=design_hash, material=material, analysis=analysis, as_cut=as_cut, units=units,
+                      violations=violations, mass_kg=mass_kg, tolerances=tolerances, fidelity=fidelity,
+                      ligament=ligament, date=date, title=title)
     out = []
-    for path in paths:
-        path = Path(path)
-        fig.savefig(path, dpi=110 if path.suffix.lower() == ".png" else 150)
-        out.append(path)
+    with rc_context({"svg.fonttype": "none", "pdf.fonttype": 42, "ps.fonttype": 42, "svg.hashsalt": design_hash}):
+        for path in paths:
+            path = Path(path)
+            fig.savefig(path, dpi=110 if path.suffix.lower() == ".png" else 150,
+                        metadata=None if path.suffix.lower() == ".png" else {"Title": f"{label} {design_hash}"})
+            out.append(path)
     return out
 
 
-def _dim(ax, p0, p1, text: str, color: str = "black") -> None:
-    ax.annotate("", p1, p0, arrowprops={"arrowstyle": "<->", "lw": 0.6, "color": color})
-    ax.text(0.5 * (p0[0] + p1[0]), 0.5 * (p0[1] + p1[1]), text, fontsize=7, color=color, ha="center",
-            va="bottom", rotation=math.degrees(math.atan2(p1[1] - p0[1], p1[0] - p0[0])) % 180 - 0,
-            rotation_mode="anchor")
+def build_sheet(*, outline, features, rules, toolpath, label: str, design_hash: str, material: str, analysis=None,
+                as_cut=None, units: str = "mm", violations=(), mass_kg: float | None = None,
+                tolerances: dict | None = None, fidelity: str = "", ligament=None, date: str | None = None,
+                title: str | None = None):
+    """The drawing as a matplotlib Figure (A3 in sheet millimetres; :func:`draw_sheet` saves it)."""
+    sh = _Sheet(units)
+    ax = sh.ax
+    dims = make_dimensions(outline, features, ligament, tolerances)
+    # -- frame, centring marks ----------------------------------------------------------
+    x0, y0, x1, y1 = FRAME
+    ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, lw=1.4, gid="frame"))
+    for x, y, dx, dy in ((0.5 * (x0 + x1), y0, 0, -5), (0.5 * (x0 + x1), y1, 0, 5), (x0, 0.5 * (y0 + y1), -5, 0),
+                         (x1, 0.5 * (y0 + y1), 5, 0)):
+        ax.plot([x, x + dx], [y, y + dy], color="black", lw=1.0)
+    sh.blocks += [Bbox.from_extents(*TB), Bbox.from_extents(TB[0], TB[3], x1, DETAIL_BOX[1])]
+    # -- main view -----------------------------------------------------------------------
+    R_env = outline.max_radius()
+    drum = float(getattr(outline.params, "drum_radius", R_env))
+    scale = next(s for s in SCALES if 2 * drum * 1e3 * s <= 150.0) if units else 1.0
+    cx, cy = 100.0, 160.0
+    k_main = scale * 1e3
+
+    def to_main(q):
+        q = np.asarray(q, float)
+        return np.column_stack([cx + k_main * q[..., 0], cy + k_main * q[..., 1]]) if q.ndim > 1 else \
+            np.array([cx + k_main * q[0], cy + k_main * q[1]])
+
+    outer_path = None
+    for lp in outline.loops:
+        xy = to_main(lp.points(spacing=0.05e-3))
+        xy = np.vstack([xy, xy[:1]])
+        ax.plot(xy[:, 0], xy[:, 1], color="black", lw=0.9, gid=f"outline:main:{lp.layer}")
+        sh.lines.append(MPath(xy))
+        if outer_path is None:
+            outer_path = MPath(xy, closed=True)
+    sh.material.append((outer_path, None))
+    for lp in toolpath or ():
+        xy = to_main(lp.points(spacing=0.05e-3))
+        ax.plot(*np.vstack([xy, xy[:1]]).T, color="#c0392b", lw=0.3)
+    Rd = drum * k_main
+    ax.add_patch(Circle((cx, cy), Rd, fill=False, lw=0.4, ls=(0, (12, 3, 2, 3)), color="#777"))
+    ext = Rd + 5
+    for a, b in (((cx - ext, cy), (cx + ext, cy)), ((cx, cy - ext), (cx, cy + ext))):
+        ax.plot(*zip(a, b), color="#555", lw=0.35, ls=(0, (12, 3, 2, 3)))
+    region_main = Bbox.from_extents(FRAME[0] + 1, FRAME[1] + 1, MAIN_BOX[2] - 30, FRAME[3] - 9)
+    ax.text(cx, FRAME[3] - 5, f"{label}: view from the engine side   scale {_scale_text(scale)}",
+            ha="center", va="center", fontsize=FS_HEAD, gid="view:main")
+    # -- side view (first angle: the view from the left is drawn on the right) -----------
+    t_mm = outline.thickness * k_main
+    sx = MAIN_BOX[2] - 14
+    top, bot = cy + R_env * k_main, cy - R_env * k_main
+    side = np.array([[sx - t_mm / 2, bot], [sx + t_mm / 2, bot], [sx + t_mm / 2, top], [sx - t_mm / 2, top],
+                     [sx - t_mm / 2, bot]])
+    ax.plot(side[:, 0], side[:, 1], color="black", lw=0.9, gid="outline:side")
+    sh.lines.append(MPath(side))
+    sh.material.append((MPath(side, closed=True), None))
+    rb = float(getattr(outline.params, "bore_radius", 0.0)) * k_main
+    for yy in (cy - rb, cy + rb):
+        ax.plot([sx - t_mm / 2, sx + t_mm / 2], [yy, yy], color="black", lw=0.5, ls=(0, (3, 2)))
+    ax.plot([sx - t_mm / 2 - 4, sx + t_mm / 2 + 4], [cy, cy], color="#555", lw=0.35, ls=(0, (12, 3, 2, 3)))
+    region_side = Bbox.from_extents(sx - 30, FRAME[1] + 1, MAIN_BOX[2] + 1, FRAME[3] - 9)
+    # -- detail A ------------------------------------------------------------------------
+    det = [d for d in dims if d.view == "detail"]
+    win = _detail_window(outline, dims, ligament)
+    k_det, dwin, to_det = None, None, None
+    if win is not None and det:
+        bw, bh = DETAIL_BOX[2] - DETAIL_BOX[0] - 50, DETAIL_BOX[3] - DETAIL_BOX[1] - 42
+        wx, wy = win[2] - win[0], win[3] - win[1]
+        s_det = next((s for s in SCALES if wx * 1e3 * s <= bw and wy * 1e3 * s <= bh), SCALES[-1])
+        k_det = s_det * 1e3
+        dcx, dcy = 0.5 * (DETAIL_BOX[0] + DETAIL_BOX[2]), 0.5 * (DETAIL_BOX[1] + DETAIL_BOX[3]) - 3
+        mx, my = 0.5 * (win[0] + win[2]), 0.5 * (win[1] + win[3])
+
+        def to_det(q):
+            q = np.asarray(q, float)
+            if q.ndim > 1:
+                return np.column_stack([dcx + k_det * (q[:, 0] - mx), dcy + k_det * (q[:, 1] - my)])
+            return np.array([dcx + k_det * (q[0] - mx), dcy + k_det * (q[1] - my)])
+
+        dwin = Bbox.from_extents(dcx - 0.5 * wx * k_det, dcy - 0.5 * wy * k_det, dcx + 0.5 * wx * k_det,
+                                 dcy + 0.5 * wy * k_det)
+        ax.add_patch(Rectangle((dwin.x0, dwin.y0), dwin.width, dwin.height, fill=False, lw=0.35,
+                               ls=(0, (6, 2)), color="#555"))
+        for lp in outline.loops:
+            xy = to_det(lp.points(spacing=0.01e-3))
+            inside = (xy[:, 0] >= dwin.x0) & (xy[:, 0] <= dwin.x1) & (xy[:, 1] >= dwin.y0) & (xy[:, 1] <= dwin.y1)
+            for run in _runs(inside):
+                seg = xy[run]
+                ax.plot(seg[:, 0], seg[:, 1], color="black", lw=0.9, gid=f"outline:detail:{lp.layer}")
+                sh.lines.append(MPath(seg))
+            if lp.layer == "OUTER":
+                xy = np.vstack([xy, xy[:1]])
+                sh.material.append((MPath(xy, closed=True), dwin))
+        ax.text(dcx, DETAIL_BOX[3] - 5, f"DETAIL A   scale {_scale_text(s_det)}", ha="center", va="center",
+                fontsize=FS_HEAD, weight="bold", gid="view:detail")
+        # the detail's window marked on the main view
+        c0 = to_main((mx, my))
+        rr = 0.5 * math.hypot(wx, wy) * k_main + 1.5
+        ax.add_patch(Circle(tuple(c0), rr, fill=False, lw=0.5, color="#555"))
+        sh.place("A", (c0[0] + rr * math.cos(math.radians(-60)), c0[1] + rr * math.sin(math.radians(-60))),
+                 math.radians(-60), region_main, gid="view:detail-mark", start=2.0, arrow=False, size=FS_HEAD)
+        region_det = Bbox.from_extents(DETAIL_BOX[0] + 1, DETAIL_BOX[1] + 1, DETAIL_BOX[2] - 1, DETAIL_BOX[3] - 9)
+    # -- dimensions ----------------------------------------------------------------------
+    ang_r = {"shoe_arc": 7.0, "tip_gap": 7.0, "pitch": 14.0, "flexure_position": 14.0}
+    for d in dims:
+        gid = f"dim:{d.key}"
+        txt = d.text(units)
+        if d.view == "side":
+            y = bot - 7
+            sh.arrow((sx - t_mm / 2, y), (sx + t_mm / 2, y), gid + "/line")
+            for xx in (sx - t_mm / 2, sx + t_mm / 2):
+                sh.line([xx, xx], [bot - 1, y - 2])
+            sh.later(txt, (sx, y - 1.0), -math.pi / 2, region_side, gid=gid, start=1.0, leader=False)
+            continue
+        if d.view == "main" or to_det is None:
+            _dim_main(sh, d, txt, gid, to_main, k_main, R_env, region_main, ang_r, cx, cy)
+        else:
+            _dim_detail(sh, d, txt, gid, to_det, k_det, region_det, dwin, outline)
+    sh.flush()
+    # -- notes, answers, title block -------------------------------------------------------
+    y = _notes(sh, outline, rules, material, units, violations, ligament, dims)
+    _answers(sh, analysis, fidelity, ligament, as_cut, mass_kg, material, y - 5)
+    _title_block(sh, title or f"Clutch part {label}", design_hash, material, mass_kg, scale, units,
+                 date or _dt.date.today().isoformat(), _general_tolerance(rules, units), outline)
+    return sh.fig
 
 
-def _tables(fig, outline, rules, label, design_hash, material, an, as_cut, units, violations) -> None:
-    p = outline.params
-    P = type(p)
-    rows = []
-    for name in P.model_fields:
-        if name.startswith("table_c") and p.profile != "table":
-            continue
-        if name == "clearance_tip" and p.profile != "linear":
-            continue
-        if name in ("eccentricity", "eccentric_angle") and p.profile != "eccentric":
-            continue
-        rows.append(f"{name} = {fmt_param_value(p, name)}")
-    y = 0.95
-    fig.text(0.60, y, "Design parameters (--set)", fontsize=9, weight="bold")
-    col = 0
-    for k, r in enumerate(rows):
-        fig.text(0.60 + 0.19 * col, y - 0.018 * (1 + k % 20), r, fontsize=7, family="monospace")
-        if k % 20 == 19:
-            col += 1
-    y -= 0.018 * (min(len(rows), 20) + 2)
-    fig.text(0.60, y, "Process and tolerances", fontsize=9, weight="bold")
-    lines = []
+def _runs(mask):
+    """Index arrays of the consecutive True stretches of ``mask`` (cyclic)."""
+    idx = np.nonzero(mask)[0]
+    if len(idx) == 0:
+        return []
+    splits = np.nonzero(np.diff(idx) > 1)[0] + 1
+    runs = np.split(idx, splits)
+    if len(runs) > 1 and runs[0][0] == 0 and runs[-1][-1] == len(mask) - 1:
+        runs[0] = np.concatenate([runs[-1], runs[0]])
+        runs.pop()
+    return [r for r in runs if len(r) > 1]
+
+
+def _detail_window(outline, dims, ligament):
+    """The part region of detail A [m]: shoe 0's flexure zone with the detail dimensions'
+    anchors, and a margin; None if the part has no flexure zone."""
+    pts = [s.point(np.linspace(0, 1, 9)) for s in outline.segments() if s.tag.split("/")[0].split("+")[0]
+           in ("flexure_0",)]
+    if not pts:
+        return None
+    P = np.vstack(pts)
+    for d in dims:
+        if d.view == "detail" and d.kind == "length":
+            P = np.vstack([P, [d.anchor[:2], d.anchor[2:4]]])
+    x0, y0 = P.min(axis=0)
+    x1, y1 = P.max(axis=0)
+    m = 0.08 * max(x1 - x0, y1 - y0) + 0.5e-3
+    return (x0 - m, y0 - m, x1 + m, y1 + m)
+
+
+def _outward(p, c) -> float:
+    return math.atan2(p[1] - c[1], p[0] - c[0])
+
+
+def _dim_main(sh, d, txt, gid, to_main, k, R_env, region, ang_r, cx, cy) -> None:
+    if d.kind in ("diameter", "radius"):
+        c = np.array(d.anchor[:2])
+        r, a = d.anchor[2], d.anchor[3]
+        p_arc = to_main(c + r * np.array([math.cos(a), math.sin(a)]))
+        c_s = to_main(c)
+        if d.kind == "radius":
+            sh.arrow(tuple(c_s), tuple(p_arc), gid + "/line", style="-|>")
+        else:
+            q_arc = to_main(c - r * np.array([math.cos(a), math.sin(a)]))
+            sh.arrow(tuple(q_arc), tuple(p_arc), gid + "/line")
+        sh.later(txt, tuple(p_arc), _outward(p_arc, (cx, cy)), region, gid=gid, start=R_env * k - r * k + 4,
+                 arrow=False)
+        return
+    if d.kind == "angle":
+        c0, c1 = d.anchor[2], d.anchor[3]
+        rr = R_env * k + ang_r.get(d.key, 7.0)
+        sh.arc((cx, cy), rr, c0, c1, gid + "/arc")
+        for a, tip in ((c0, c1), (c1, c0)):
+            p = np.array([cx + rr * math.cos(a), cy + rr * math.sin(a)])
+            sgn = 1 if tip > a else -1
+            tdir = np.array([-math.sin(a), math.cos(a)]) * sgn
+            sh.arrow(tuple(p + 2.5 * tdir), tuple(p), gid + "/arrow", style="-|>")
+            # extension lines from the part's rim; the beam's position from the axis (centre line)
+            r_from = 0.0 if d.key == "flexure_position" and abs(a) > 1e-9 else R_env * k + 1
+            sh.line([cx + r_from * math.cos(a), cx + (rr + 2) * math.cos(a)],
+                    [cy + r_from * math.sin(a), cy + (rr + 2) * math.sin(a)],
+                    ls="-" if r_from else (0, (12, 3, 2, 3)))
+        am = 0.5 * (c0 + c1)
+        pm = (cx + rr * math.cos(am), cy + rr * math.sin(am))
+        sh.later(txt, pm, am, region, gid=gid, start=1.5, arrow=False)
+        return
+    # a width in the main view (the shoe's radial thickness): arrows from outside, pointing in
+    a, b = to_main(d.anchor[:2]), to_main(d.anchor[2:4])
+    e = (b - a) / np.linalg.norm(b - a)
+    sh.arrow(tuple(a - 5 * e), tuple(a), gid + "/arrow", style="-|>")
+    sh.arrow(tuple(b + 5 * e), tuple(b), gid + "/arrow", style="-|>")
+    sh.later(txt, tuple(b + 5 * e), _outward(b, (cx, cy)), region, gid=gid, start=1.0, arrow=False)
+
+
+def _dim_detail(sh, d, txt, gid, to_det, k, region, dwin, outline) -> None:
+    ax = sh.ax
+    mid = np.array([0.5 * (dwin.x0 + dwin.x1), 0.5 * (dwin.y0 + dwin.y1)])
+    if d.kind == "radius" and d.key.startswith("fillet"):
+        c = np.array(d.anchor[:2])
+        r, a = d.anchor[2], d.anchor[3]
+        p = to_det(c + r * np.array([math.cos(a), math.sin(a)]))
+        cs = to_det(c)
+        # leader along the radius, from the centre's side (ISO 129: arrow on the arc)
+        ax.add_patch(FancyArrowPatch(tuple(cs), tuple(p), arrowstyle="-|>", mutation_scale=6, lw=0.45,
+                                     shrinkA=0, shrinkB=0, gid=gid + "/line"))
+        sh.later(txt, tuple(cs), _outward(cs, p), region, gid=gid, start=2.0, arrow=False)
+        return
+    if d.kind == "radius":  # a point on the root face at radius r (reference)
+        r = d.anchor[2]
+        ang = 0.0
+        p = to_det(np.array([r * math.cos(ang), r * math.sin(ang)]))
+        ax.plot([p[0]], [p[1]], "o", ms=1.8, color="black")
+        sh.later(txt, tuple(p), math.pi / 2, region, gid=gid, start=3.0)
+        return
+    if d.kind == "angle":
+        c = to_det(d.anchor[:2])
+        a0, a1 = d.anchor[2], d.anchor[3]
+        rr = 14.0
+        for a in (a0, a1):
+            sh.line([c[0], c[0] + (rr + 3) * math.cos(a)], [c[1], c[1] + (rr + 3) * math.sin(a)])
+        sh.arc(tuple(c), rr, a0, a1, gid + "/arc")
+        for a, sgn in ((a0, 1), (a1, -1)):
+            p = c + rr * np.array([math.cos(a), math.sin(a)])
+            tdir = sgn * np.array([-math.sin(a), math.cos(a)])
+            sh.arrow(tuple(p + 2.5 * tdir), tuple(p), gid + "/arrow", style="-|>")
+        am = 0.5 * (a0 + a1)
+        sh.later(txt, tuple(c + rr * np.array([math.cos(am), math.sin(am)])), am, region, gid=gid, start=1.5,
+                 arrow=False)
+        return
+    a, b = to_det(d.anchor[:2]), to_det(d.anchor[2:4])
+    if np.allclose(a, b):  # a measured web or slot: its place
+        ax.plot([a[0]], [a[1]], "o", ms=1.8, color="black")
+        sh.later(txt, tuple(a), _outward(a, mid), region, gid=gid, start=3.0)
+        return
+    v = b - a
+    L = float(np.linalg.norm(v))
+    e = v / L
+    nrm = np.array([-e[1], e[0]])
+    if d.key == "flexure_length":  # an aligned dimension beside the beam, on its hub side
+        side = 1.0 if float(nrm @ (np.asarray(to_det((0.0, 0.0))) - a)) > 0 else -1.0
+        off = side * (0.5 * outline.params.flexure_thickness * max(1.0, getattr(outline.params, "flexure_taper", 1.0))
+                      * k + 9.0)
+        pa, pb = a + off * nrm, b + off * nrm
+        for p, q in ((a, pa), (b, pb)):  # extension lines, a small gap from the part, 2 mm past the line
+            g0, g1 = p + 0.1 * (q - p), q + np.sign(off) * 2 * nrm
+            sh.line([g0[0], g1[0]], [g0[1], g1[1]])
+        sh.arrow(tuple(pa), tuple(pb), gid + "/line")
+        m = 0.5 * (pa + pb)
+        sh.later(txt, tuple(m), math.atan2(off * nrm[1], off * nrm[0]), region, gid=gid, start=1.0, arrow=False)
+        return
+    # a short width across material: arrows from outside pointing in, the line carried on
+    ext = 6.0
+    sh.arrow(tuple(a - ext * e), tuple(a), gid + "/arrow", style="-|>")
+    sh.arrow(tuple(b + ext * e), tuple(b), gid + "/arrow", style="-|>")
+    sh.line([a[0], b[0]], [a[1], b[1]])
+    end = b + ext * e if float((b + ext * e - mid) @ (b + ext * e - mid)) > float((a - ext * e - mid) @ (a - ext * e - mid)) \
+        else a - ext * e
+    sh.later(txt, tuple(end), _outward(end, mid), region, gid=gid, start=1.0, arrow=False)
+
+
+def _general_tolerance(rules, units) -> str:
+    if rules is None:
+        return "ISO 2768-mK"
+    t = rules.tolerance * 1e3 if units == "mm" else rules.tolerance / 0.0254
+    return f"contour ±{t:g} {units} ({rules.process}); ISO 2768-mK otherwise"
+
+
+def _notes(sh, outline, rules, material, units, violations, ligament, dims) -> float:
+    y = DETAIL_BOX[1] - 2
+    sh.text(COL_X, y - 3, "NOTES", size=FS_HEAD, weight="bold", va="center")
+    lines = [f"1. General tolerances: {_general_tolerance(rules, units)}; angles ±0.5° unless stated.",
+             f"2. Material: {material}.",
+             "3. Cut from the DXF (layers OUTER, BORE"
+             + (", TOOLPATH kerf-compensated" if rules is not None else "") + "): the DXF is the geometry;",
+             "    dimensions are for inspection. Deburr all edges, do not round the contact face.",
+             f"4. ( ): reference dimension. 3x: on each of the {getattr(outline.params, 'n_shoes', 1)} shoes. "
+             f"Unit {units}.",
+             ]
+    if ligament is not None:
+        lines.append(f"5. Thinnest ligament {_len(ligament.width, units)} {units} ({ligament.where}, r = "
+                     f"{_len(ligament.radius, units)} {units}): no nicks or burrs there.")
     if rules is not None:
         lim = rules.limits(outline.thickness)
-        lines += [f"{rules.process}: kerf {_u(rules.kerf, units)} (tool path offset {_u(rules.kerf / 2, units)})",
-                  f"limits: inside radius >= {_u(lim['min_inside_radius'], units)}, slot >= "
-                  f"{_u(lim['min_slot'], units)}, web >= {_u(lim['min_web'], units)}",
-                  f"profile tolerance +- {_u(rules.tolerance, units)}; kerf error +- {_u(rules.kerf_error, units)}"
-                  + (f"; taper {_u(rules.taper, units)}" if rules.taper else ""),
-                  rules.sources()]
-    else:
-        lines += ["no process chosen: nominal contour only, no manufacturability check (--process)"]
-    lines += [f"general tolerance of the contour: +- {_u(rules.tolerance if rules else 0.05e-3, units)}; "
-              f"thickness {_u(outline.thickness, units)} (plate)",
-              f"contact surface (shoe outer profile): R {_u(outline.max_radius(), units)} to the axis; "
-              f"clearance to the drum {_u(p.clearance, units)}"]
+        lines.append(f"6. {rules.process}: kerf {_len(rules.kerf, units)} {units}; limits: inside radius >= "
+                     f"{_len(lim['min_inside_radius'], units)}, slot >= {_len(lim['min_slot'], units)}, web >= "
+                     f"{_len(lim['min_web'], units)} {units}.")
     lines += [f"NOT CUTTABLE: {v}" for v in violations]
     for k, t in enumerate(lines):
-        fig.text(0.60, y - 0.018 * (k + 1), t, fontsize=7, color="#c0392b" if t.startswith("NOT") else "black")
-    y -= 0.018 * (len(lines) + 2)
-    fig.text(0.60, y, "Predicted answers (FE, plane stress; +- error band: discretisation + model form)",
-             fontsize=9, weight="bold")
-    ans = []
+        sh.text(COL_X, y - 8 - 4.2 * k, t, size=FS_TAB - 0.5, va="center", gid=f"note:{k + 1}",
+                color="#c0392b" if t.startswith("NOT") else "black")
+    return y - 8 - 4.2 * len(lines)
+
+
+def _len(x: float, units: str) -> str:
+    v = x * 1e3 if units == "mm" else x / 0.0254
+    return f"{v:.3f}".rstrip("0").rstrip(".")
+
+
+def _answers(sh, an, fidelity, ligament, as_cut, mass_kg, material, y: float) -> None:
+    head = "PREDICTED ANSWERS" + (f" ({fidelity})" if fidelity else "")
+    sh.text(COL_X, y, head, size=FS_HEAD - 0.5, weight="bold", va="center", gid="answers:head")
+    rows = []
     if an is not None:
-        ans = [f"engagement (static): {_band(an, 'engagement_rpm')}",
-               f"engagement with 2-stroke ripple: {an.engagement_rpm_with_ripple:.0f} rpm"
-               if an.engagement_rpm_with_ripple is not None else "engagement with ripple: never engages",
-               f"slip speed (drum held, full throttle): {_band(an, 'slip_rpm')}" if an.slip_rpm is not None
-               else f"slip: {an.slip_status}",
-               f"peak von Mises at {an.max_engine_rpm:.0f} rpm: {_band(an, 'max_von_mises_Pa', 1e-6, 'MPa')}; "
-               f"safety factor {an.safety_factor:.2f}",
-               f"part mass {an.part['mass_kg'] * 1e3:.1f} g ({material})"]
+        rows = [("engagement (static)", _band(an, "engagement_rpm")),
+                ("engagement with 2-stroke ripple", "never engages" if an.engagement_rpm_with_ripple is None
+                 else f"{an.engagement_rpm_with_ripple:.0f} rpm"),
+                ("slip speed (drum held, full throttle)", _band(an, "slip_rpm") if an.slip_rpm is not None
+                 else an.slip_status),
+                (f"peak von Mises at {an.max_engine_rpm:.0f} rpm", _band(an, "max_von_mises_Pa", 1e-6, "MPa")),
+                ("safety factor (yield / peak)", f"{an.safety_factor:.2f}")]
     else:
-        ans = ["not analysed (export without --analysis)"]
-    for k, t in enumerate(ans):
-        fig.text(0.60, y - 0.018 * (k + 1), t, fontsize=7)
-    y -= 0.018 * (len(ans) + 2)
+        rows = [("answers", "not analysed (export --no-analysis)")]
+    if ligament is not None:
+        rows.append(("thinnest ligament", f"{ligament.width * 1e3:.3f} mm at r = {ligament.radius * 1e3:.2f} mm, "
+                                          f"{ligament.angle_deg:.1f}° ({ligament.where})"))
+    if mass_kg is not None:
+        rows.append(("part mass", f"{mass_kg * 1e3:.1f} g"))
+    for k, (a, b) in enumerate(rows):
+        yy = y - 5 - 4.0 * k
+        sh.text(COL_X, yy, a, size=FS_TAB, va="center", gid=f"answer:{k + 1}:name")
+        sh.text(COL_X + 58, yy, b, size=FS_TAB, va="center", gid=f"answer:{k + 1}")
     if as_cut:
-        fig.text(0.60, y, "As cut (kerf error; same STEP mesh pipeline for every row)", fontsize=9, weight="bold")
-        band = as_cut.get("band") or {}
-        head = (f"{'variant':<26}{'engagement':>14}{'slip':>14}{'mass':>10}")
-        fig.text(0.60, y - 0.018, head, fontsize=7, family="monospace")
-        for k, r in enumerate(as_cut["rows"]):
+        yy = y - 5 - 4.0 * len(rows) - 1
+        for r in as_cut["rows"]:
             e = "-" if r["engagement_rpm"] is None else f"{r['engagement_rpm']:.0f} rpm"
             sl = "-" if r["slip_rpm"] is None else f"{r['slip_rpm']:.0f} rpm"
-            fig.text(0.60, y - 0.018 * (k + 2), f"{r['variant']:<26}{e:>14}{sl:>14}{r['mass_kg'] * 1e3:>8.1f} g",
-                     fontsize=7, family="monospace")
-        if band:
-            fig.text(0.60, y - 0.018 * (len(as_cut["rows"]) + 2),
-                     f"discretisation band of this pipeline: engagement +- {band['engagement_rpm'] or 0:.0f} rpm, "
-                     f"slip +- {band['slip_rpm'] or 0:.0f} rpm", fontsize=7)
-    fig.text(0.60, 0.05, f"{label}   design hash {design_hash}   concept {outline.concept}   unit {units}",
-             fontsize=8, weight="bold")
-    fig.text(0.60, 0.032, f"material {material}", fontsize=7)
-    fig.text(0.60, 0.015, f"clutchfem {__version__}   {_dt.date.today().isoformat()}   "
-             "drawing for review: the DXF/STEP files are the geometry", fontsize=7, color="#555")
+            sh.text(COL_X, yy, f"as cut, {r['variant']}: engagement {e}, slip {sl}, mass {r['mass_kg'] * 1e3:.1f} g",
+                    size=FS_TAB - 0.5, va="center")
+            yy -= 3.6
+    sh.blocks.append(Bbox.from_extents(TB[0], TB[3], FRAME[2], DETAIL_BOX[1]))
+
+
+def _title_block(sh, title, design_hash, material, mass_kg, scale, units, date, gen_tol, outline) -> None:
+    ax = sh.ax
+    x0, y0, x1, y1 = TB
+    ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, lw=1.0))
+    rows = [y1 - 12, y1 - 22, y1 - 32, y1 - 42]
+    for y in rows:
+        ax.plot([x0, x1], [y, y], color="black", lw=0.5)
+
+    def field(xa, xb, ya, yb, caption, value, key, size=FS_TAB + 0.5, **kw):
+        ax.plot([xa, xa], [ya, yb], color="black", lw=0.5) if xa > x0 else None
+        sh.text(xa + 1.2, yb - 2.2, caption, size=5.0, color="#444", va="center")
+        sh.text(xa + 1.2, 0.5 * (ya + yb) - 1.2, value, size=size, va="center", gid=f"title:{key}", **kw)
+
+    field(x0, x1, rows[0], y1, "TITLE", title, "title", size=FS_HEAD + 1, weight="bold")
+    field(x0, x0 + 100, rows[1], rows[0], "DRAWING NO. (design hash)", design_hash, "drawing_number",
+          family="monospace")
+    field(x0 + 100, x1, rows[1], rows[0], "MASS", "-" if mass_kg is None else f"{mass_kg * 1e3:.1f} g", "mass")
+    field(x0, x1, rows[2], rows[1], "MATERIAL AND HEAT TREATMENT", material, "material", size=FS_TAB)
+    field(x0, x0 + 32, rows[3], rows[2], "SCALE", _scale_text(scale), "scale")
+    field(x0 + 32, x0 + 56, rows[3], rows[2], "UNITS", units, "units")
+    field(x0 + 56, x0 + 92, rows[3], rows[2], "PROJECTION", "", "projection")
+    _projection_symbol(ax, x0 + 74, 0.5 * (rows[3] + rows[2]) - 1.0)
+    field(x0 + 92, x0 + 127, rows[3], rows[2], "DATE", date, "date")
+    field(x0 + 127, x1, rows[3], rows[2], "THICKNESS", f"{_len(outline.thickness, units)} {units}", "thickness")
+    field(x0, x0 + 118, y0, rows[3], "GENERAL TOLERANCES", gen_tol, "general_tolerances", size=FS_TAB - 0.5)
+    field(x0 + 118, x1, y0, rows[3], "SHEET / SOFTWARE", f"1/1  clutchfem {__version__}", "software",
+          size=FS_TAB - 0.5)
+
+
+def _projection_symbol(ax, x, y) -> None:
+    """ISO 128 / ISO 5456-2 first-angle projection symbol (truncated cone), ~4 mm high."""
+    h = 4.0
+    # the cone seen from the front, small end on the left; its view from the left (the small
+    # end: both circles visible) is drawn on the right: first angle
+    ax.add_patch(Polygon([(x - 7, y - h / 4), (x - 1, y - h / 2), (x - 1, y + h / 2), (x - 7, y + h / 4)],
+                         closed=True, fill=False, lw=0.5, gid="projection:first-angle"))
+    ax.add_patch(Circle((x + 4, y), h / 2, fill=False, lw=0.5))
+    ax.add_patch(Circle((x + 4, y), h / 4, fill=False, lw=0.5))
+    ax.plot([x - 8, x + 7], [y, y], color="black", lw=0.25, ls=(0, (6, 1.5, 1, 1.5)))
