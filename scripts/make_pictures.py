@@ -140,9 +140,9 @@ def fields(a, out: Path, work: Path) -> None:
 
 
 def export(a, out: Path, work: Path) -> None:
-    run(["export", "concept1", *mesh_args(a), "--process", "wire-edm", "--as-cut", "--kerf-error", "0.02mm",
+    run(["export", "concept4", *mesh_args(a), "--process", "wire-edm", "--tol", "flexure_thickness=+-0.02mm",
          "--out", str(work / "export")])
-    copy(one(work / "export", "*_drawing.png"), out, "export_drawing_sheet.png")
+    copy(one(work / "export", "*_drawing.png"), out, "export_workshop_drawing.png")
 
 
 def main(argv=None) -> int:
