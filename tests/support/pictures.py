@@ -1,6 +1,7 @@
 """Checks of the picture rule (:mod:`clutchfem.core.figures`) on a written PNG.
 
-* :func:`rule` -- the PNG carries its record; no legend covers a data point; every axes that
+* :func:`rule` -- the PNG carries its record; no legend covers a data point; no text leaves
+  the figure and no annotation its axes; every axes that
   shows numbers on an axis names its quantity with a unit ``[...]`` (in the axis label or
   the title) or is a plain count or index;
 * :func:`number` -- the number a picture shows after a label (a regular expression), with the
@@ -36,6 +37,7 @@ def rule(png, *, units_exempt: tuple[str, ...] = ()) -> dict:
     rec = figure_record(png)
     assert rec is not None, f"{png}: no clutchfem record (drawn without core.figures.save_figure)"
     assert all(n == 0 for n in rec["legend_covers"]), f"{png}: a legend covers data points {rec['legend_covers']}"
+    assert not rec.get("clipped", []), f"{png}: texts a reader sees cut: {rec['clipped']}"
     for ax in rec["axes"]:
         for tick, label in (("xticks", "xlabel"), ("yticks", "ylabel")):
             if not ax[tick] or not ax[label] or any(e in ax[label] for e in units_exempt):

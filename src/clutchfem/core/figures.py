@@ -11,8 +11,9 @@ designer uses (MPa, mm, rpm, N m), marks the answer it exists to show, keeps leg
 data and agrees with the tables to the digits it shows.  :func:`save_figure` makes the last two
 checkable: it stores in the PNG (a ``tEXt`` chunk ``clutchfem``, JSON) the texts a reader
 sees -- per axes its title, axis labels, annotations and legend entries, and the figure's
-own texts and legends -- and, per legend, how many data points it covers (lines sampled
-along their segments, scatter points; inside the axes only).  :func:`figure_record` reads it back
+own texts and legends -- per legend, how many data points it covers (lines sampled along
+their segments, scatter points; inside the axes only), and the texts a reader would see cut
+(:func:`clipped_texts`: leaving the figure, or an annotation leaving its axes; issue 37).  :func:`figure_record` reads it back
 (the tests compare the annotated numbers with the answers' JSON).  :func:`tag_png` adds the
 same record to a PNG drawn by another library (pyvista's renders).
 """
@@ -84,6 +85,56 @@ def _data_points(ax):
     return p[inside]
 
 
+def _ticklabels(ax):
+    """The tick labels an axes draws (those of ticks inside its view)."""
+    out = []
+    for axis in (ax.xaxis, ax.yaxis):
+        if not axis.get_visible():
+            continue
+        lo, hi = sorted(axis.get_view_interval())
+        span = (hi - lo) or 1.0
+        for loc, lab in zip(axis.get_majorticklocs(), axis.get_majorticklabels()):
+            if lo - 1e-9 * span <= loc <= hi + 1e-9 * span:
+                out.append(lab)
+    return out
+
+
+def clipped_texts(fig, tol: float = 1.0) -> list[str]:
+    """The texts of a drawn ``fig`` that a reader sees cut: any text (titles, axis and tick
+    labels, legends, annotations, the figure's own) whose box leaves the figure, and any text
+    placed on an axes' data (``ax.text``, ``ax.annotate``) whose box leaves that axes; each as
+    "'text': leaves the figure|its axes" (``tol`` pixels of slack)."""
+    r = fig.canvas.get_renderer()
+    fb = fig.bbox
+
+    def out_of(e, b) -> bool:
+        return e.x0 < b.x0 - tol or e.x1 > b.x1 + tol or e.y0 < b.y0 - tol or e.y1 > b.y1 + tol
+
+    texts = list(fig.texts) + [t for lg in fig.legends for t in lg.get_texts()]
+    on_axes = []
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        texts += [ax.xaxis.label, ax.yaxis.label] + _ticklabels(ax)
+        texts += [ax.title, ax._left_title, ax._right_title] if hasattr(ax, "_left_title") else []
+        leg = ax.get_legend()
+        texts += list(leg.get_texts()) if leg is not None and leg.get_visible() else []
+        on_axes += [(t, ax) for t in ax.texts]
+    bad = []
+    for t in texts + [t for t, _ in on_axes]:
+        if not t.get_visible() or not t.get_text().strip():
+            continue
+        e = t.get_window_extent(r)
+        if e.width <= 0:
+            continue
+        if out_of(e, fb):
+            bad.append(f"{t.get_text()!r}: leaves the figure")
+    for t, ax in on_axes:
+        if t.get_visible() and t.get_text().strip() and out_of(t.get_window_extent(r), ax.bbox):
+            bad.append(f"{t.get_text()!r}: leaves its axes")
+    return bad
+
+
 def describe(fig) -> dict:
     """What ``fig`` shows (module docstring): its texts and, per legend, the data points under it.
     Draws the figure (the legends' places are known after a draw)."""
@@ -117,7 +168,7 @@ def describe(fig) -> dict:
     fig_texts = ([sup] if sup else []) + [t for t in _texts(fig.texts) if t != sup]
     return {"figure": fig_texts, "axes": axes,
             "figure_legends": [_texts(lg.get_texts()) for lg in fig.legends if lg.get_visible()],
-            "legend_covers": covered}
+            "legend_covers": covered, "clipped": clipped_texts(fig)}
 
 
 def save_figure(fig, path, dpi: int = 110, **kw) -> Path:
