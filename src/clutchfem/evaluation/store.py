@@ -109,6 +109,7 @@ class ResultStore:
             self._run("ALTER TABLE results RENAME TO results_before_context")
             self._run(f"CREATE TABLE results ({cols}, PRIMARY KEY ({', '.join(key)}))")
             self._run(f"INSERT INTO results ({names}) SELECT {names} FROM results_before_context")
+            self._run("UPDATE results SET context_hash = '' WHERE context_hash IS NULL")
             self._run("DROP TABLE results_before_context")
             self._run("COMMIT")
         except BaseException:
@@ -153,8 +154,8 @@ class ResultStore:
     # -- writing --------------------------------------------------------------------------
     def put(self, row: dict) -> None:
         """Insert or replace one row and commit it (durable when this returns)."""
-        if self.context is not None and row.get("context_hash") is None:
-            row = {**row, "context_hash": self.context}
+        if "context_hash" in self.names and row.get("context_hash") is None:  # ('' not NULL: NULLs never collide)
+            row = {**row, "context_hash": self.context or ""}
         vals = [row.get(c) for c in self.names]
         marks = ", ".join("?" for _ in self.names)
         cols = ", ".join(f'"{c}"' for c in self.names)
