@@ -57,20 +57,24 @@ def test_a_cache_size_that_is_no_size_is_refused(raw, monkeypatch):
 def test_the_cache_evicts_the_least_recently_used_entries_down_to_its_bound(tmp_path, monkeypatch):
     monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path))
     d = cache_dir()
+
+    def entry(i):  # an entry's name: <concept>-<24 hex digits of its key>
+        return f"concept1-{i:024x}"
+
     old = time.time() - 3600
     for i in range(10):  # 10 entries of 100 kB, entry i last used i minutes after `old`
         for suffix, size in ((".msh", 90_000), (".json", 5_000), (".groups.msh", 5_000)):
-            p = d / f"c-{i:02d}{suffix}"
+            p = d / f"{entry(i)}{suffix}"
             p.write_bytes(b"x" * size)
             os.utime(p, (old + 60 * i, old + 60 * i))
     assert len(cache_entries(d)) == 10 and sum(e.size for e in cache_entries(d)) == 1_000_000
     assert evict(2_000_000, d) == (0, 0)  # under the bound: nothing goes
     n, freed = evict(500_000, d)  # down to 80 % of the bound, oldest first
     left = [e.name for e in cache_entries(d)]
-    assert (n, freed) == (6, 600_000) and left == ["c-06", "c-07", "c-08", "c-09"]
-    (d / "c-10.json").write_text("{}")  # used now: never evicted, even over the bound
-    assert "c-10" in [e.name for e in cache_entries(d)] and evict(1, d)[0] == 4
-    assert [e.name for e in cache_entries(d)] == ["c-10"]
+    assert (n, freed) == (6, 600_000) and left == [entry(i) for i in (6, 7, 8, 9)]
+    (d / f"{entry(10)}.json").write_text("{}")  # used now: never evicted, even over the bound
+    assert entry(10) in [e.name for e in cache_entries(d)] and evict(1, d)[0] == 4
+    assert [e.name for e in cache_entries(d)] == [entry(10)]
     assert clear_cache(d)[0] == 1 and cache_entries(d) == []
 
 

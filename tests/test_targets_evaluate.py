@@ -4,7 +4,7 @@ the order of the points, the design evaluated is the one `--set` builds from the
 import pytest
 
 from clutchfem.core import ParameterError
-from clutchfem.evaluation import EvalSettings, evaluate_many
+from clutchfem.evaluation import EvalSettings, context_hash, evaluate_many
 from clutchfem.evaluation.batch import shared_cluster
 
 SIZE = 2.4e-3
@@ -66,7 +66,7 @@ def test_a_design_asked_for_again_in_this_process_is_not_solved_again(tmp_path, 
     s = EvalSettings("concept4", mesh_size=6e-3)
     pt = {"flexure_thickness": "1.72mm"}
     first = evaluate_many([pt], s, workers=0)[0]
-    assert first["status"] == "ok" and first["design_hash"] in batch.RECENT_ROWS
+    assert first["status"] == "ok" and (first["design_hash"], context_hash(s.study())) in batch.RECENT_ROWS
 
     def no_solve(*a, **k):
         raise AssertionError("solved again")

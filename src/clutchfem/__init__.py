@@ -38,6 +38,7 @@ _GROUPS: dict[str, dict[str, str]] = {
         "draw_concept": "clutchfem.geometry",
         "MeshSettings": "clutchfem.geometry",
         "Design": "clutchfem.loadcase",
+        "DesignIdentity": "clutchfem.loadcase",
         "OperatingPoint": "clutchfem.loadcase",
         "parse_rpm": "clutchfem.loadcase",
         "morph": "clutchfem.loadcase",
@@ -136,6 +137,7 @@ _GROUPS: dict[str, dict[str, str]] = {
         "serve_app": "clutchfem.app",
         "cache_dir": "clutchfem.mesh",
         "cache_entries": "clutchfem.mesh",
+        "cache_foreign_files": "clutchfem.mesh",
         "cache_limit": "clutchfem.mesh",
         "clear_cache": "clutchfem.mesh",
         "tune_malloc": "clutchfem.core",
@@ -229,8 +231,8 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
     from .fe import write_vtk
     from .geometry import MeshSettings, broken_concepts, concepts, draw_concept, get_concept
     from .guidelines import GuidelineResult, GuidelineSettings, run_guidelines
-    from .loadcase import Design, OperatingPoint, SweepResult, model_warnings, morph, parse_rpm
-    from .mesh import cache_dir, cache_entries, cache_limit, clear_cache
+    from .loadcase import Design, DesignIdentity, OperatingPoint, SweepResult, model_warnings, morph, parse_rpm
+    from .mesh import cache_dir, cache_entries, cache_foreign_files, cache_limit, clear_cache
     from .reduced import ReducedModel, Region, reduce
     from .report import (
         default_design_report,

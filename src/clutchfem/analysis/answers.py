@@ -229,6 +229,9 @@ class Analysis:
     #: file-name stem that tells this design apart from others in one folder
     inputs: dict = field(default_factory=dict)
     label: str = ""
+    #: the design's identity hash (clutchfem.loadcase.identity; 12 hex): the same design gives the
+    #: same hash in every face (analyze, solve, report, export, the app, a study row)
+    design_hash: str = ""
     #: crankshaft whirl with this clutch on the overhang (clutchfem.clutch.crankshaft.WhirlAnswer.to_json)
     whirl: dict = field(default_factory=dict)
     #: error estimate of the main answers (clutchfem.accuracy): per answer the discretisation

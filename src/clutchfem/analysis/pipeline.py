@@ -258,6 +258,6 @@ def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, f
                     first_touch=res.first_touch, warnings=warnings, notes=notes, part=part,
                     analytical_available=bool(coupling.get("kind")), first_touch_angle_deg=res.first_touch_angle_deg,
                     inputs={**design_inputs(design), "engine": eng_info, "requirements": {"a": req.a, "b": req.b}},
-                    label=design_label(design), whirl=wh.to_json(), fatigue_safety_factor=fat.safety_factor,
+                    label=design_label(design), design_hash=design.hash, whirl=wh.to_json(), fatigue_safety_factor=fat.safety_factor,
                     fatigue_location=fat.location, fatigue_governing_cycle=fat.governing_cycle,
                     fatigue=fat.to_json(), errors=err, contact_sets=sets)

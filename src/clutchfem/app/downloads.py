@@ -14,7 +14,15 @@ from ..fe import write_vtk
 from ..loadcase import design_inputs
 from ..report import write_report
 
-__all__ = ["Downloads"]
+__all__ = ["Downloads", "inputs_document"]
+
+
+def inputs_document(outcome) -> dict:
+    """The app's ``inputs.json`` of an outcome: the inputs of the design whose answers are
+    shown (:func:`clutchfem.loadcase.design_inputs`, its ``design_hash`` included: the hash
+    ``analyze``, ``solve``, ``report``, ``export`` and a study row give the same design), its
+    label and who answered (the reduced model, the FE)."""
+    return {**design_inputs(outcome.design), "label": outcome.label, "answered_by": outcome.analysis.answered_by}
 
 
 class Downloads:
@@ -50,7 +58,7 @@ class Downloads:
 
     def dl_inputs(self) -> None:
         if self._ready():
-            ui.download(dumps(design_inputs(self.outcome.design), indent=1).encode(), f"{self.outcome.label}-inputs.json")
+            ui.download(dumps(inputs_document(self.outcome), indent=1).encode(), f"{self.outcome.label}-inputs.json")
 
     def dl_msh(self) -> None:
         if not self._ready():

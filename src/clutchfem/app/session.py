@@ -306,8 +306,8 @@ class DesignSession:
             if an is None or an.answered_by != "reduced model":
                 why = (an.notes[-1] if an is not None else "no reduced model holds this design (`clutchfem reduce "
                        f"{d.name} --set ...` builds one around it: minutes)")
-                an = analyze(d.with_fidelity("best"), engine=self.engine, requirements=self.requirements,
-                             errors=False)
+                d = d.with_fidelity("best")  # (the answers, the name and the downloads are this design's)
+                an = analyze(d, engine=self.engine, requirements=self.requirements, errors=False)
                 an.notes.append(f"answered by the FE (best path), not live: {why}")
                 an = replace(an, answered_by="FE (fallback)")
         else:
@@ -334,7 +334,8 @@ class DesignSession:
                     q, ("rpm", 1.0))
                 show = (lambda x: "none" if x is None else f"{x * f:.4g} {unit}")  # noqa: E731
                 off.append(f"{q}: FE {show(want)}, live {show(got)} +- {show(band)}")
-        fe_out = Outcome(fe, outcome.label, outcome.design, answer_rows(fe), time.perf_counter() - t0)
+        fe_out = Outcome(fe, design_label(outcome.fe_design), outcome.fe_design, answer_rows(fe),
+                         time.perf_counter() - t0)
         fe_out.__dict__["fe_design"] = outcome.fe_design
         if not off:
             return outcome, []

@@ -19,6 +19,7 @@ from .common import (
     engine_from,
     err,
     fail,
+    operating_point,
     quantity,
     tolerances_from,
     working,
@@ -28,7 +29,7 @@ from .common import (
 PANEL = "Cutting"
 
 
-@O.takes("concept", "set_", "mesh_size", "engine", "out", "json_")
+@O.takes("concept", "set_", "mesh_size", "fidelity", "engine", "out", "json_")
 def export(
     o,
     from_: Optional[Path] = typer.Option(None, "--from", metavar="DIR", help="the design of a run folder's "
@@ -85,13 +86,18 @@ def export(
                   quantity(f"--{k.replace('_', '-')}", v, "m", 0.0, 1.0)
                   for k, v in (("kerf", kerf), ("min_inside_radius", min_inside_radius), ("min_slot", min_slot),
                                ("min_web", min_web))}
+        kerr = quantity("--kerf-error", kerf_error, "m", 0.0, 1e-3)
+        if kerr is not None and not as_cut:  # (an option that does not apply is refused, not dropped)
+            raise InputError(f"option --kerf-error {kerf_error} applies to --as-cut (the part analysed cut with "
+                             "that kerf error): add --as-cut, or leave --kerf-error out")
         try:
-            ProcessRules.of(process or "custom", **limits) if (process or any(v is not None for v in limits.values())) \
-                else None
+            rules = ProcessRules.of(process or "custom", **limits) \
+                if (process or any(v is not None for v in limits.values())) else None
+            if rules is not None and kerr is not None:  # before any work: the narrow variant is a cut
+                rules.check_kerf_error(kerr)
         except ParameterError as exc:
             raise ParameterError(exc.name, exc.value, exc.allowed, f"option --{exc.name.replace('_', '-')}",
                                  shown=exc.shown) from None
-        kerr = quantity("--kerf-error", kerf_error, "m", 0.0, 1e-3)
         eng, _ = engine_from(o.engine)
         sources = [x for x in (o.concept is not None, from_ is not None, study is not None) if x]
         if len(sources) != 1:
@@ -100,13 +106,17 @@ def export(
             raise InputError("--study DIR and --row HASH go together")
         if o.set_ and o.concept is None:
             raise InputError("--set changes a CONCEPT's parameters; --from/--study read the whole design")
+        if o.fidelity is not None and o.concept is None:
+            raise InputError(f"option --fidelity {o.fidelity} applies to a CONCEPT design; --from/--study read the "
+                             "whole design, its fidelity included")
         ms = None if o.mesh_size is None else MeshSettings(size=MeshSettings.parse_value("size", o.mesh_size))
         if from_ is not None:
             design = design_from_run(from_, ms)
         elif study is not None:
             design = design_from_study(study, row, ms)
         else:
-            design = design_from(o.concept, o.set_, None, mesh_size=o.mesh_size, mesh_allowed=False)
+            design = design_from(o.concept, o.set_, None, op=operating_point(fidelity=o.fidelity),
+                                 mesh_size=o.mesh_size, mesh_allowed=False)
         tols = tolerances_from(type(design.params), tol) if tol and design.params is not None else None
         err.print(escape(f"{design.name}: outline, features and checks ..."))
         with working(f"export {design.name}") as stage:  # a spinner with the elapsed time (issue 24)

@@ -3,6 +3,8 @@ and parameters)."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import typer
 from rich.markup import escape
 from rich.table import Table
@@ -44,8 +46,9 @@ def geometry(
                           escape(row["allowed"]), escape(row["description"]))
             console.print(t)
             return
-        check_out_dir(o.out)
-        info = build_geometry(c, o.set_, o.out, o.mesh_size, o.model, not no_drawing)
+        out = o.out if o.out is not None else Path("out/geometry")  # (the documented default)
+        check_out_dir(out)
+        info = build_geometry(c, o.set_, out, o.mesh_size, o.model, not no_drawing)
         geometry_table([info])
         wrote(info["files"])
     except ClutchfemError as exc:

@@ -12,7 +12,7 @@ from . import options as O
 from .common import check_out_dir, design_from, engine_from, fail, requirements_from, working, wrote
 
 
-@O.takes("concept", "set_", "mesh", "mesh_size", "drum_radius", "thickness", "engine", "a", "b", "out")
+@O.takes("concept", "set_", "mesh", "mesh_size", "drum_radius", "thickness", "fidelity", "engine", "a", "b", "out")
 def report(
     o,
     run_dir: Optional[Path] = typer.Option(None, "--run", help="render a run folder (optimize / tolerance / "
@@ -23,6 +23,7 @@ def report(
     """One-page report (self-contained HTML + Markdown) of a design (CONCEPT or --mesh) or of a
     run folder (--run)."""
     from .. import write_report
+    from .common import operating_point
 
     try:
         if run_dir is not None:
@@ -41,8 +42,8 @@ def report(
         req = requirements_from(o.a, o.b)
         with working(f"report {o.concept or o.mesh}") as stage:
             stage("meshing")
-            design = design_from(o.concept, o.set_, o.mesh, mesh_size=o.mesh_size, drum_radius=o.drum_radius,
-                                 thickness=o.thickness)
+            design = design_from(o.concept, o.set_, o.mesh, op=operating_point(fidelity=o.fidelity),
+                                 mesh_size=o.mesh_size, drum_radius=o.drum_radius, thickness=o.thickness)
             stage("analysis, charts and pictures")
             files = write_report(design, o.out, engine=eng, requirements=req, errors=errors)
         wrote(files)

@@ -57,7 +57,7 @@ def solve(
             stage("discretisation and model-form errors")
             errs = sweep_errors(design, res) if not no_errors and res.contact is not None else {}
         label = design.label
-        doc = {**res.to_json(), "label": label, "warnings": warns, "errors": errs, "inputs": design.inputs()}
+        doc = {**res.to_json(), "label": label, "design_hash": design.hash, "warnings": warns, "errors": errs, "inputs": design.inputs()}
         files, notes = [], []
         if o.out is not None:
             res.curve.to_csv(o.out / f"{label}_curve.csv", index=False)

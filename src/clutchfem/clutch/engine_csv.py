@@ -10,6 +10,10 @@ What is read, and why (issue 24: every one of these used to give a silent wrong 
   ``;`` or tab a decimal comma is read (``2500;1,90``: 1.90 N m, the European format;
   ``.`` then groups thousands: ``2.500``); with ``,`` a row with more fields than the
   header (``2500,1,90``) is refused: decimal commas cannot be told from separators there.
+  A number grouped by thousands separators (``10,000``, quoted or not, in a ``,`` file) is
+  said as such: the way out is to write it without them (``10000``), not another separator.
+* **Plausible speeds.** A speed above :data:`MAX_ENGINE_RPM` (a ``1e7`` typo) is refused
+  naming its row, before any analysis runs into it.
 * **Columns.** The speed column is named ``rpm``, ``speed``, ``engine speed``, ``n``,
   ``drehzahl``, ``omega`` or by its unit alone; the torque column ``torque``, ``moment``,
   ``drehmoment``, ``couple`` or ``torque_<anything>``.  Two candidate columns for one of
@@ -38,13 +42,18 @@ from pathlib import Path
 
 from ..core import InputError, header_unit, header_units
 
-__all__ = ["MAX_BYTES", "MAX_ROWS", "EngineTable", "read_engine_csv"]
+__all__ = ["MAX_BYTES", "MAX_ENGINE_RPM", "MAX_ROWS", "EngineTable", "read_engine_csv"]
 
 #: the most data rows an engine curve file may hold (ASSUMED: a speed sweep at 1.5 rpm
 #: resolution over 0..15 000 rpm; a curve needs a few dozen)
 MAX_ROWS = 10_000
 #: the largest engine curve file read [bytes] (10 000 rows of 20 wide columns fit)
 MAX_BYTES = 8_000_000
+#: the highest speed an engine curve row may give [rpm] (ASSUMED: model engines turn up to about
+#: 40 000 rpm; a higher speed is a typo such as ``1e7`` or a column in another unit)
+MAX_ENGINE_RPM = 60_000.0
+#: a number grouped by thousands separators (``10,000``, ``1,250,000.5``)
+_THOUSANDS = re.compile(r"[-+]?\d{1,3}(,\d{3})+(\.\d*)?")
 #: the rows searched for the header (metadata lines of a dyno export may come first)
 HEADER_ROWS = 20
 
@@ -207,8 +216,17 @@ def read_engine_csv(path: str | Path) -> EngineTable:
     if delim == ",":
         wide = next(((n, r) for n, r in rows if len(r) > width and any(x.strip() for x in r[width:])), None)
         if wide is not None:
-            raise InputError(f"engine curve file {path}, row {wide[0]}: {len(wide[1])} fields under a header of "
-                             f"{width} ({','.join(wide[1])!s}): decimal commas with ',' as the separator cannot be "
+            n, r = wide
+            # (speeds reach thousands: a speed split at its thousands separators; a torque so split is
+            # a decimal comma far likelier)
+            grouped = next((",".join(r[i_rpm:j]) for j in range(len(r), i_rpm + 1, -1)
+                            if _THOUSANDS.fullmatch(",".join(x.strip() for x in r[i_rpm:j]))), None)
+            if grouped is not None:
+                raise InputError(f"engine curve file {path}, row {n}: {len(r)} fields under a header of {width} "
+                                 f"({','.join(r)!s}): {grouped!r} reads as a number with thousands separators "
+                                 f"({grouped.replace(',', '')}); write the numbers without thousands separators")
+            raise InputError(f"engine curve file {path}, row {n}: {len(r)} fields under a header of "
+                             f"{width} ({','.join(r)!s}): decimal commas with ',' as the separator cannot be "
                              "read; save the file with ';' between the columns (the European CSV format)")
     rpm, tq = [], []
     for lineno, r in rows:
@@ -216,8 +234,19 @@ def read_engine_csv(path: str | Path) -> EngineTable:
             rpm.append(_number(r[i_rpm], comma) * units["speed"][1])
             tq.append(_number(r[i_tq], comma) * units["torque"][1])
         except (ValueError, IndexError):
+            cell = next((r[i].strip() for i in (i_rpm, i_tq) if i < len(r) and _THOUSANDS.fullmatch(r[i].strip())),
+                        None)
+            if cell is not None and not comma:
+                raise InputError(f"engine curve file {path}, row {lineno}: {cell!r} is a number with thousands "
+                                 f"separators ({cell.replace(',', '')}); write the numbers without thousands "
+                                 "separators") from None
             raise InputError(f"engine curve file {path}, row {lineno}: expected numbers in columns "
                              f"{cells[i_rpm].strip()!r} and {cells[i_tq].strip()!r}, got {r}") from None
+    top = next(((n, x) for (n, _), x in zip(rows, rpm) if x > MAX_ENGINE_RPM), None)
+    if top is not None:
+        raise InputError(f"engine curve file {path}, row {top[0]}: speed {top[1]:.6g} rpm is above "
+                         f"{MAX_ENGINE_RPM:,.0f} rpm, faster than any engine this clutch fits (a typo, or a "
+                         f"column in another unit?): correct that row")
     if encoding != "UTF-8":
         notes.append(f"read as {encoding} text")
     if delim != ",":

@@ -23,7 +23,7 @@ from typing import Any, ClassVar, Literal, get_args, get_origin
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from .errors import ClutchfemError, ParameterError
-from .units import UnitError, expected_text, format_quantity, parse_quantity
+from .units import MINUS_SIGN, UnitError, format_quantity, parse_quantity
 from .values import param_bounds, resolution
 
 #: set while :meth:`ParamSet.feasible_range` probes values: no coupled-limit advice then
@@ -296,10 +296,10 @@ class ParamSet(BaseModel):
         unit = cls.unit(name)
         try:
             value = parse_quantity(raw, unit)
-        except UnitError:
-            if not _NUMBER_START.match(str(raw)):  # not a number at all
+        except UnitError as exc:
+            if not _NUMBER_START.match(str(raw).replace(MINUS_SIGN, "-")):  # not a number at all
                 raise ParameterError(name, raw, cls.allowed(name), ctx) from None
-            raise ParameterError(name, raw, expected_text(unit), ctx) from None
+            raise ParameterError(name, raw, exc.expected, ctx) from None
         if ann is int:
             if not math.isfinite(value) or value != int(value):
                 raise ParameterError(name, raw, cls.allowed(name), ctx)

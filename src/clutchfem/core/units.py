@@ -79,6 +79,10 @@ _NAMES = {"m": "a length", "deg": "an angle", "Pa": "a stress", "rpm": "a speed"
           "J/(kg K)": "a specific heat", "W": "a power"}
 #: the unit a value of each canonical unit is shown in, with its factor (shown = value * factor)
 DISPLAY: dict[str, tuple[str, float]] = {"m": ("mm", 1e3), "Pa": ("MPa", 1e-6)}
+#: the typographic minus sign (U+2212, what a word processor or a web page puts for "-"): read as "-"
+MINUS_SIGN = "\u2212"
+#: a number written with a decimal comma (``2,4mm``): said as such, not as a wrong unit
+_DECIMAL_COMMA = re.compile(r"\s*([-+]?\d+),(\d+)\s*(.*?)\s*$")
 _NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?inf|nan)\s*(.*?)\s*$", re.IGNORECASE)
 
 
@@ -160,7 +164,12 @@ def parse_quantity(raw, unit: str) -> float:
         return float(raw)
     if not isinstance(raw, str):
         raise UnitError(raw, expected_text(unit))
-    m = _NUMBER.fullmatch(raw)
+    text = raw.replace(MINUS_SIGN, "-")  # the typographic minus (Unicode U+2212) is a minus
+    comma = _DECIMAL_COMMA.fullmatch(text)
+    if comma:
+        raise UnitError(raw, f"a number with a decimal point, not a decimal comma ({comma.group(1)}."
+                             f"{comma.group(2)}{comma.group(3)}); {expected_text(unit)}")
+    m = _NUMBER.fullmatch(text)
     if not m:
         raise UnitError(raw, expected_text(unit))
     number, suffix = m.group(1), m.group(2).strip()

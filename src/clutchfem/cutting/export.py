@@ -24,13 +24,14 @@ file, is refused before any work.
 
 from __future__ import annotations
 
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from .._version import __version__
 from ..analysis import analyze
 from ..clutch import EngineCurve
-from ..core import InputError, ParameterError, clean, write
+from ..core import InputError, ParameterError, clean, parse_quantity, write
 from ..loadcase import Design, design_hash, design_inputs, design_label
 from .ascut import as_cut as run_as_cut
 from .dxf import UNITS, write_dxf
@@ -123,7 +124,24 @@ def _target(path, out, default_name: str, option: str, suffixes) -> Path | None:
         parent = parent.parent
     if not parent.is_dir():
         raise InputError(f"{option} {p}: {parent} is a file, so no folder can be made inside it")
+    writable(p, parent, option)
     return p
+
+
+def writable(p: Path, parent: Path, option: str) -> None:
+    """Refuse ``p`` unless it can be written: the file itself if it exists (opened for
+    appending, nothing changed), else a probe file made and removed in ``parent``, its nearest
+    existing folder (a real write: permission bits, read-only mounts and ``/proc`` alike)."""
+    try:
+        if p.exists():
+            with open(p, "ab"):
+                pass
+        else:
+            with tempfile.NamedTemporaryFile(dir=parent, prefix=".clutchfem-probe-"):
+                pass
+    except OSError as exc:
+        raise InputError(f"{option} {p}: cannot be written ({exc.strerror or exc}); nothing was written: "
+                         "choose a folder you can write to") from None
 
 
 def export(design, out=None, *, dxf=None, step=None, drawing=None, process: str | None = None, kerf=None,
@@ -187,10 +205,19 @@ def export(design, out=None, *, dxf=None, step=None, drawing=None, process: str 
     rules = None
     if process is not None or any(v is not None for v in limits.values()):
         rules = ProcessRules.of(process or "custom", **limits)
+    if kerf_error is not None and not as_cut:
+        raise ParameterError("kerf_error", kerf_error, "None unless as_cut is True (the as-cut analysis is what "
+                             "it is for)", "export")
+    if as_cut and kerf_error is not None:
+        kerf_error = parse_quantity(kerf_error, "m") if isinstance(kerf_error, str) else float(kerf_error)
+        if rules is not None:
+            rules.check_kerf_error(kerf_error)
     label = design_label(design)
     f_dxf = _target(dxf, out, f"{label}.dxf", "--dxf", (".dxf",))
     f_step = _target(step, out, f"{label}.step", "--step", (".step", ".stp"))
     f_draw = _target(drawing, out, f"{label}_drawing.pdf", "--drawing", DRAWING_SUFFIXES)
+    if f_draw is not None and f_draw.suffix.lower() != ".png":  # (its PNG preview beside it)
+        _target(f_draw.with_suffix(".png"), None, "", "--drawing", DRAWING_SUFFIXES)
     p = design.params
     outline = part_outline(design.concept, p)
     features = measure(outline)

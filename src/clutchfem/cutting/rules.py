@@ -96,7 +96,9 @@ class ProcessRules(ParamSet):
         """The rules of ``process`` (``laser``, ``waterjet``, ``wire-edm``; ``custom``: the
         class defaults) with some values changed (``kerf="0.3mm"``).  A kerf given without
         them lifts the smallest inside radius and slot to half the kerf and the kerf (the
-        tool's own size); given explicitly below that, they are refused."""
+        tool's own size); given explicitly below that, they are refused.  A ``min_slot`` or
+        ``min_web`` given replaces the process's rule for it, its multiple of the thickness
+        included (unless that is given too)."""
         if process not in PROCESSES + ("custom",):
             raise ParameterError("process", process, "one of " + ", ".join(repr(p) for p in PROCESSES + ("custom",)),
                                  cls.context)
@@ -107,7 +109,30 @@ class ProcessRules(ParamSet):
             ref = cls()
             base["min_inside_radius"] = max(base.get("min_inside_radius", ref.min_inside_radius), 0.5 * k)
             base["min_slot"] = max(base.get("min_slot", ref.min_slot), k)
+        for k in ("min_slot", "min_web"):  # a limit given is the limit: the process's thickness rule gives way
+            if k in given and f"{k}_per_thickness" not in given:
+                base[f"{k}_per_thickness"] = 0.0
         return cls(process=process, **{**base, **given})
+
+    def check_kerf_error(self, kerf_error: float, context: str = "export") -> float:
+        """``kerf_error`` [m] if an as-cut analysis can mean it: in [0, kerf) (the narrow
+        variant cuts ``kerf - kerf_error`` wide: a cut of zero or negative width is no cut);
+        else a :class:`~clutchfem.ParameterError` naming it (``context``: who asked).
+
+        Examples
+        --------
+        >>> import clutchfem as cf
+        >>> cf.ProcessRules.of("wire-edm").check_kerf_error(0.9e-3)
+        Traceback (most recent call last):
+        ...
+        clutchfem.core.errors.ParameterError: export: parameter 'kerf_error' = 0.9 mm is not allowed: [0, 0.33 mm): below the kerf 0.33 mm of wire-edm (the narrow as-cut variant cuts kerf - error wide; a cut of zero or negative width is no cut)
+        """
+        if not 0.0 <= kerf_error < self.kerf:
+            raise ParameterError("kerf_error", kerf_error, f"[0, {self.kerf * 1e3:g} mm): below the kerf "
+                                 f"{self.kerf * 1e3:g} mm of {self.process} (the narrow as-cut variant cuts kerf - "
+                                 "error wide; a cut of zero or negative width is no cut)", context,
+                                 shown=f"{kerf_error * 1e3:g} mm")
+        return kerf_error
 
     def limits(self, thickness: float) -> dict:
         """The effective limits [m] for a plate of ``thickness`` [m]: the larger of the

@@ -14,14 +14,16 @@
 from __future__ import annotations
 
 import json
+import logging
 from pathlib import Path
 
 from ..core import InputError, Material
 from ..evaluation import COLUMNS, STORE_NAME, ResultStore
 from ..geometry import MeshSettings, get_concept
-from ..loadcase import Design, OperatingPoint, design_hash
+from ..loadcase import Design, OperatingPoint, design_hash, model_version
 
 #: where each run kind keeps its design in inputs.json
+log = logging.getLogger("clutchfem")
 KEYS = ("final_design", "after", "nominal_design")
 
 
@@ -80,6 +82,9 @@ def design_from_run(folder, mesh: MeshSettings | None = None) -> Design:
         doc = json.loads(path.read_text())
     except (OSError, ValueError) as exc:
         raise InputError(f"--from {path}: not a readable JSON document ({exc})") from None
+    if not isinstance(doc, dict):
+        raise InputError(f"--from {path}: not a run's record (a JSON object with the design's concept and "
+                         f"parameters), but a JSON {type(doc).__name__}")
     record = next((doc[k] for k in KEYS if isinstance(doc.get(k), dict) and doc[k]), doc)
     d = _design(record, f"--from {path}", mesh)
     want = record.get("design_hash")
@@ -104,7 +109,8 @@ def design_from_study(folder, row: str, mesh: MeshSettings | None = None) -> Des
     Returns
     -------
     Design
-        The concept, the point's full parameter set and its operating point.
+        The concept, the point's full parameter set and its operating point: the row's design
+        hash under the row's model version (a row of another version is said with both hashes).
 
     Examples
     --------
@@ -134,6 +140,8 @@ def design_from_study(folder, row: str, mesh: MeshSettings | None = None) -> Des
     if hit["design_hash"].nunique() > 1:
         raise InputError(f"--row {row}: {hit['design_hash'].nunique()} rows match; give more digits ("
                          + ", ".join(sorted(hit["design_hash"].unique())[:5]) + ")")
+    hit = hit.assign(_now=hit["model_version"] != model_version(hit.iloc[0]["design"] or None)).sort_values("_now")
+    want = str(hit.iloc[0]["design_hash"])  # (a row of this model version first)
     inputs = json.loads(hit.iloc[0]["inputs_json"])
     settings = inputs.get("settings") or {}
     record = {"concept": settings.get("concept"), "params": inputs.get("params"), "op": inputs.get("op"),
@@ -141,4 +149,13 @@ def design_from_study(folder, row: str, mesh: MeshSettings | None = None) -> Des
     if not record["concept"] or not record["params"]:
         raise InputError(f"--row {row}: the row has no concept parameters (status {hit.iloc[0]['status']}; a "
                          "refused point or a --mesh study)")
-    return _design(record, f"--study {store} --row {row}", mesh)
+    d = _design(record, f"--study {store} --row {row}", mesh)
+    if mesh is None and d.hash != want:
+        rv = hit.iloc[0]["model_version"]
+        said = (f"--study {store} --row {row}: the design read back has hash {d.hash} (model version "
+                f"{d.identity.model_version}), the row {want} (model version {rv})")
+        if rv == d.identity.model_version:  # one design, one model: one hash, or the row is not this design
+            raise InputError(said + ": the row's inputs do not rebuild its design (a store edited by hand?)")
+        log.warning(said + ": the row was computed by another model version, the files carry this version's "
+                    "hash (run the study again to bring its rows to this version)")
+    return d

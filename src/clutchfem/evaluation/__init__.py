@@ -27,6 +27,7 @@ _NAMES: dict[str, str] = {
     "check_scheduler": "cluster",
     "ClusterError": "cluster",
     "COLUMNS": "point",
+    "context_hash": "hashing",
     "design_hash": "hashing",
     "ERROR_COLUMNS": "point",
     "EvalSettings": "batch",

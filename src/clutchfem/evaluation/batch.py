@@ -46,7 +46,7 @@ from ..core import InputError, ParameterError, changed_texts, exact_text
 from ..geometry import MeshSettings, get_concept
 from ..loadcase import Design, OperatingPoint
 from .cluster import check_scheduler, local_cluster, workers_machine_holds
-from .hashing import design_hash
+from .hashing import context_hash, design_hash
 from .point import COLUMNS, Settings, model_version
 from .runner import run_points
 from .store import STORE_NAME, ResultStore
@@ -59,8 +59,8 @@ ANSWERS = {
 }
 
 _ACTIVE: dict = {"scheduler": None, "workers": None}
-#: the study rows of the designs this process evaluated without a store of its own, by design
-#: hash (the hash covers the design, its settings and the model version): a design asked for
+#: the study rows of the designs this process evaluated without a store of its own, by (design
+#: hash, context hash): the design with its model version, the engine and requirements: a design asked for
 #: again (a sensitivity's base in a tolerance, an allocation and a robust round; a search
 #: returning to a point) is not solved again
 RECENT_ROWS: LRUCache = LRUCache(maxsize=4096)
@@ -323,10 +323,11 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
     if todo:
         tmp = None
         store = settings.store
+        ctx = context_hash(st)
         keys = [design_hash(vals[i], st) for i in todo]
         by_key = {}
         if store is None:  # no store of the caller's: the rows of this process's recent designs serve
-            by_key = {k: dict(RECENT_ROWS[k]) for k in keys if k in RECENT_ROWS}
+            by_key = {k: dict(RECENT_ROWS[k, ctx]) for k in keys if (k, ctx) in RECENT_ROWS}
             tmp = tempfile.TemporaryDirectory(prefix="clutchfem-targets-")
             store = str(Path(tmp.name) / "results.sqlite")
         try:
@@ -337,12 +338,12 @@ def evaluate_many(points: list[dict], settings: EvalSettings, workers: int | Non
                 run_points([vals[i] for i in new], st, store, workers=w, scheduler=sched, progress=progress,
                            source="clutchfem.evaluation", desc="designs")
                 version = model_version(settings.concept)
-                with ResultStore(store, COLUMNS) as rs:
+                with ResultStore(store, COLUMNS, context=ctx) as rs:
                     df = rs.frame(version, sorted({k for k in keys if k not in by_key}))
                 for r in json.loads(df.to_json(orient="records")):
                     by_key[r["design_hash"]] = r
                     if r.get("status") == "ok":
-                        RECENT_ROWS[r["design_hash"]] = dict(r)
+                        RECENT_ROWS[r["design_hash"], ctx] = dict(r)
             for i, k in zip(todo, keys):
                 r = by_key.get(k)
                 rows[i] = from_study_row(r, points[i]) if r is not None else {

@@ -40,24 +40,22 @@ import tempfile
 import time
 import traceback
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-import gmsh
-import skfem
-
-from .._version import __version__
 from ..analysis import Requirements, analyze
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, GeometryError, InputError, MeshError, ParameterError, dumps, tune_malloc
 from ..geometry import MeshSettings, get_concept
-from ..loadcase import Design, OperatingPoint
-from ..mesh import load_user_geometry, mesh_concept, morph_or_mesh, source_hash
+from ..loadcase import Design, OperatingPoint, model_version
+from ..mesh import load_user_geometry, mesh_concept, morph_or_mesh
 
 #: the row: (column, SQL type, meaning with unit).  The store creates its table from it.
 COLUMNS: tuple[tuple[str, str, str], ...] = (
-    ("design_hash", "TEXT", "SHA-256 (16 hex) of the defining inputs (clutchfem.study.hashing)"),
+    ("design_hash", "TEXT", "the design's identity hash (12 hex, clutchfem.loadcase.identity): the hash analyze, "
+                            "solve, report, export and the app give the same design"),
+    ("context_hash", "TEXT", "what the study adds to the design (engine curve, idle speed, requirement factors, "
+                             "morph reference), 12 hex: a row is keyed by design, context and model version"),
     ("model_version", "TEXT", "clutchfem version + hash of the model's source (answers change with it)"),
     ("status", "TEXT", "ok | refused | failed"),
     ("message", "TEXT", "why refused / the error of a failed point"),
@@ -190,37 +188,6 @@ class Settings:
         return doc
 
 
-# ---------------------------------------------------------------------------------------
-# model version
-# ---------------------------------------------------------------------------------------
-#: parts of the package that only present results (they do not change an answer)
-_PRESENTATION = ("cli/", "app/", "studies/", "targets/", "tolerances/", "guidelines/", "reduced/", "validation/",
-                 "report/", "export/", "cutting/", "fe/vtu.py", "core/figures.py", "core/jsonio.py", "loadcase/record.py",
-                 # the study engine's machinery (scheduling, store, batches): not the row of a design
-                 "evaluation/cluster.py", "evaluation/store.py", "evaluation/runner.py", "evaluation/batch.py",
-                 "evaluation/sensitivity.py", "evaluation/hashing.py")
-
-
-@lru_cache(maxsize=None)
-def model_version(concept: str | None = None) -> str:
-    """``<clutchfem version>+<12 hex>``: a hash of every source file that shapes an answer
-    (the package without its presentation modules, plus this adapter), the concept's
-    geometry source and the gmsh and scikit-fem versions.  Stored results are reused only
-    under the same model version, so editing the core never serves stale answers."""
-    root = Path(__file__).resolve().parents[1]
-    h = hashlib.sha256()
-    files = []
-    for f in sorted(root.rglob("*.py")):
-        rel = f.relative_to(root).as_posix()
-        if rel.startswith(_PRESENTATION):
-            continue
-        files.append(rel)
-        h.update(rel.encode())
-        h.update(f.read_bytes())
-    if concept:
-        h.update(source_hash(get_concept(concept)).encode())
-    h.update(f"gmsh {gmsh.__version__} scikit-fem {getattr(skfem, '__version__', '?')}".encode())
-    return f"{__version__}+{h.hexdigest()[:12]}"
 
 
 # ---------------------------------------------------------------------------------------
@@ -310,7 +277,8 @@ def evaluate(point: dict, settings: Settings, design_hash: str = "", errors: boo
             name = settings.design_name
         t_mesh = time.perf_counter() - t
         t = time.perf_counter()
-        design = Design(cm, op, params=params, name=name)
+        design = Design(cm, op, params=params, name=name, concept=concept if params is not None else None,
+                        mesh_settings=ms if params is not None else None)
         t_design = time.perf_counter() - t
         engine = settings.engine if settings.engine is not None else EngineCurve.default()
         t = time.perf_counter()

@@ -56,7 +56,7 @@ from tqdm import tqdm
 
 from ..core import ClutchfemError, InputError
 from .cluster import check_scheduler, rows_on_dask, workers_machine_holds
-from .hashing import design_hash
+from .hashing import context_hash, design_hash
 from .point import COLUMNS, Settings, evaluate, failed_row, model_version
 from .store import ResultStore, StoreLocked
 
@@ -95,6 +95,9 @@ class RunResult:
     error_keys: tuple[str, ...] = field(repr=False, default=())
     #: points as listed (repeats of one design are computed and counted once: ``points``)
     listed: int | None = None
+    #: the study context of the rows (:func:`~clutchfem.evaluation.hashing.context_hash`): open the
+    #: store with it to read this run's rows (``ResultStore(store, COLUMNS, context=...)``)
+    context_hash: str | None = None
 
     @property
     def designs_per_min(self) -> float | None:
@@ -171,7 +174,8 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
             keys.append(h)
             tasks[h] = p
     want_errors = {hashes[i] for i in error_points}
-    store = ResultStore(store_path, COLUMNS)
+    ctx = context_hash(settings)
+    store = ResultStore(store_path, COLUMNS, context=ctx)
     try:
         finished = store.select(version, keys, ["status", "errors_estimated"])
         todo = [h for h in keys if h not in finished or (retry_failed and finished[h][0] == "failed")
@@ -240,7 +244,7 @@ def run_points(points: list[dict], settings: Settings, store_path: str | Path, *
     res = RunResult(points=len(keys), listed=len(points), computed=computed, skipped=len(keys) - len(todo), store=Path(store_path),
                     model_version=version, wall_s=time.perf_counter() - t_start, compute_s=compute_s,
                     workers=n_workers, scheduler=label, keys=tuple(keys), interrupted=interrupted,
-                    error_keys=tuple(h for h in keys if h in want_errors), **c)
+                    error_keys=tuple(h for h in keys if h in want_errors), context_hash=ctx, **c)
     if interrupted:
         raise StudyInterrupted(res)
     return res

@@ -25,7 +25,13 @@ second study writing the same file): every statement is retried for up to
 what to do (nothing finished is lost: the rows already committed stay, a rerun resumes).
 
 The table's columns come from the caller (:data:`clutchfem.evaluation.point.COLUMNS`); a store
-written by an older version gains any new columns on open (``ALTER TABLE ADD COLUMN``).
+written by an older version gains any new columns on open (``ALTER TABLE ADD COLUMN``), and a
+table keyed without ``context_hash`` is rebuilt with it in its key (the old rows kept).
+
+A row is keyed by its design (``design_hash``, the design's identity), its study context
+(``context_hash``: engine, idle speed, requirement factors, morph reference; see
+:mod:`.hashing`) and the model version: one design checked against two engines is two rows.
+A store opened with ``context=...`` reads and writes only the rows of that context.
 """
 
 from __future__ import annotations
@@ -45,6 +51,8 @@ log = logging.getLogger("clutchfem")
 #: file name of the store inside a study's output folder
 STORE_NAME = "results.sqlite"
 _KEY = ("design_hash", "model_version")
+#: the key of a store whose columns hold the study context (:func:`.hashing.context_hash`)
+_CONTEXT_KEY = ("design_hash", "context_hash", "model_version")
 #: seconds a statement waits for a lock another program holds on the store
 LOCK_WAIT_S = 30.0
 
@@ -58,25 +66,33 @@ def _locked(exc: Exception) -> bool:
 
 
 class ResultStore:
-    """Rows keyed by (design_hash, model_version); see module docstring."""
+    """Rows keyed by (design_hash, context_hash, model_version); see module docstring.
 
-    def __init__(self, path: str | Path, columns: Iterable[tuple[str, str, str]]):
+    ``context``: read and write only the rows of this study context (a
+    :func:`~clutchfem.evaluation.hashing.context_hash`; None: every row)."""
+
+    def __init__(self, path: str | Path, columns: Iterable[tuple[str, str, str]], context: str | None = None):
         self.path = Path(path)
         self.columns = [(c, t) for c, t, *_ in columns]
         names = [c for c, _ in self.columns]
         for k in _KEY:
             if k not in names:
                 raise ValueError(f"store columns must include {k}")
+        key = _CONTEXT_KEY if "context_hash" in names else _KEY
+        self.context = context if "context_hash" in names else None
         try:
             self.db = sqlite3.connect(self.path, timeout=0.5, isolation_level=None)
             self._run("PRAGMA journal_mode=WAL")
             self._run("PRAGMA synchronous=NORMAL")
             cols = ", ".join(f'"{c}" {t}' for c, t in self.columns)
-            self._run(f"CREATE TABLE IF NOT EXISTS results ({cols}, PRIMARY KEY (design_hash, model_version))")
-            have = {r[1] for r in self._run("PRAGMA table_info(results)").fetchall()}
+            self._run(f"CREATE TABLE IF NOT EXISTS results ({cols}, PRIMARY KEY ({', '.join(key)}))")
+            info = self._run("PRAGMA table_info(results)").fetchall()
+            have = {r[1] for r in info}
             for c, t in self.columns:
                 if c not in have:
                     self._run(f'ALTER TABLE results ADD COLUMN "{c}" {t}')
+            if key == _CONTEXT_KEY and "context_hash" not in {r[1] for r in info if r[5]}:
+                self._rekey(cols, key)
             self._run("CREATE TABLE IF NOT EXISTS runs (run INTEGER PRIMARY KEY AUTOINCREMENT, "
                       "started_at REAL, finished_at REAL, source TEXT, model_version TEXT, points INTEGER, "
                       "todo INTEGER, computed INTEGER, outcome TEXT, spec TEXT)")
@@ -84,6 +100,32 @@ class ResultStore:
             raise InputError(f"result store {self.path}: not a usable SQLite file ({exc}); move it away or "
                              "choose another --out") from None
         self.names = names
+
+    def _rekey(self, cols: str, key: tuple[str, ...]) -> None:
+        """Rebuild a table of an older version keyed without ``context_hash`` (rows kept)."""
+        names = ", ".join(f'"{c}"' for c, _ in self.columns)
+        self._run("BEGIN IMMEDIATE")
+        try:
+            self._run("ALTER TABLE results RENAME TO results_before_context")
+            self._run(f"CREATE TABLE results ({cols}, PRIMARY KEY ({', '.join(key)}))")
+            self._run(f"INSERT INTO results ({names}) SELECT {names} FROM results_before_context")
+            self._run("UPDATE results SET context_hash = '' WHERE context_hash IS NULL")
+            self._run("DROP TABLE results_before_context")
+            self._run("COMMIT")
+        except BaseException:
+            self._run("ROLLBACK")
+            raise
+
+    def _where(self, model_version: str | None) -> tuple[str, list]:
+        """The WHERE clause of one model version (None: any) in this store's context."""
+        conds, args = [], []
+        if model_version is not None:
+            conds.append("model_version = ?")
+            args.append(model_version)
+        if self.context is not None:
+            conds.append("context_hash = ?")
+            args.append(self.context)
+        return (" WHERE " + " AND ".join(conds) if conds else ""), args
 
     def _run(self, sql: str, args=()):
         """``db.execute`` retried while another program holds a lock (module docstring)."""
@@ -112,6 +154,8 @@ class ResultStore:
     # -- writing --------------------------------------------------------------------------
     def put(self, row: dict) -> None:
         """Insert or replace one row and commit it (durable when this returns)."""
+        if "context_hash" in self.names and row.get("context_hash") is None:  # ('' not NULL: NULLs never collide)
+            row = {**row, "context_hash": self.context or ""}
         vals = [row.get(c) for c in self.names]
         marks = ", ".join("?" for _ in self.names)
         cols = ", ".join(f'"{c}"' for c in self.names)
@@ -130,7 +174,8 @@ class ResultStore:
     # -- reading --------------------------------------------------------------------------
     def finished(self, model_version: str, keys: Iterable[str] | None = None) -> dict[str, str]:
         """{design_hash: status} of the stored rows of ``model_version`` (among ``keys``)."""
-        cur = self._run("SELECT design_hash, status FROM results WHERE model_version = ?", (model_version,))
+        where, args = self._where(model_version)
+        cur = self._run(f"SELECT design_hash, status FROM results{where}", args)
         got = {h: s for h, s in cur}
         if keys is None:
             return got
@@ -139,17 +184,16 @@ class ResultStore:
     def select(self, model_version: str, keys: Iterable[str], columns: list[str]) -> dict[str, tuple]:
         """{design_hash: (values of ``columns``)} of the stored rows of ``model_version`` among ``keys``."""
         cols = ", ".join(f'"{c}"' for c in columns)
-        cur = self._run(f"SELECT design_hash, {cols} FROM results WHERE model_version = ?", (model_version,))
+        where, args = self._where(model_version)
+        cur = self._run(f"SELECT design_hash, {cols} FROM results{where}", args)
         got = {r[0]: tuple(r[1:]) for r in cur}
         return {k: got[k] for k in keys if k in got}
 
     def frame(self, model_version: str | None = None, keys: Iterable[str] | None = None):
         """The rows as a pandas DataFrame (of one model version, and only ``keys`` if given,
         in the order of ``keys``)."""
-        q, args = "SELECT * FROM results", []
-        if model_version is not None:
-            q += " WHERE model_version = ?"
-            args.append(model_version)
+        where, args = self._where(model_version)
+        q = f"SELECT * FROM results{where}"
         df = self._retry(lambda: pd.read_sql_query(q, self.db, params=args))
         if keys is not None:
             order = {k: i for i, k in enumerate(keys)}

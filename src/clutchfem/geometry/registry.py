@@ -127,7 +127,7 @@ def get_concept(name: str) -> Concept:
     """
     allc = concepts()
     if not isinstance(name, str):
-        raise ParameterError("concept", name, "a concept name (text), one of " + ", ".join(allc))
+        raise ParameterError("concept", name, "a concept name (text: '4' or 'concept4'), one of " + ", ".join(allc))
     key = name.strip().lower()
     for cand in (key, f"concept{key}", key.replace("_", ".")):
         if cand in allc:

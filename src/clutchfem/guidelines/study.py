@@ -120,7 +120,7 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     run = run_points(points, gs.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
                      progress=progress, source=f"guidelines {gs.concept}", desc="guidelines",
                      error_points=[0] if gs.errors else [])
-    with ResultStore(out / STORE_NAME, COLUMNS) as st:
+    with ResultStore(out / STORE_NAME, COLUMNS, context=run.context_hash) as st:
         df = st.frame(run.model_version, run.keys)
     by_hash = {r["design_hash"]: r for r in df.to_dict("records")}
     base_row = by_hash.get(design_hash({}, gs.settings))

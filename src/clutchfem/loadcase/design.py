@@ -20,10 +20,11 @@ import numpy as np
 from ..contact import DrumContact, DrumWall, RingDrum, contact_nodes
 from ..core import ParameterError, UnitError, as_bool, as_path, parse_quantity
 from ..fe import ExtrusionSettings, FEModel, FEModel3D, FEModelThick, Solver, ThickSettings, check_3d_size
-from ..geometry import MeshSettings, get_concept
+from ..geometry import Concept, MeshSettings, get_concept
 from ..mesh import ClutchMesh, load_user_geometry, mesh_concept
 from ..softening import get_softening
 from .case import LoadCase, sweep
+from .identity import DesignIdentity, design_identity
 from .operating import OperatingPoint
 from .record import design_hash, design_inputs, design_label
 
@@ -193,7 +194,7 @@ class Design:
         >>> round(d.case().engagement_rpm, -1) > 3000
         True
         """
-        c = get_concept(concept) if isinstance(concept, str) else concept
+        c = concept if isinstance(concept, Concept) else get_concept(concept)  # (anything else refused, named)
         geometry, op_values = split_values(c, values)
         if params is not None and not isinstance(params, c.Params):
             raise ParameterError("params", type(params).__name__, f"a {c.Params.__name__} of {c.name} (or None)")
@@ -348,9 +349,25 @@ class Design:
         return design_label(self)
 
     @property
+    def identity(self) -> "DesignIdentity":
+        """The design's identity (:mod:`clutchfem.loadcase.identity`): the document of
+        everything that defines its answers (concept, full parameters, operating point with
+        material, fidelity and model settings, mesh settings, code version) and its hash,
+        computed in that one place and carried by every file, JSON, report, drawing, app
+        download and study row of this design.  Needs no mesh.
+
+        Examples
+        --------
+        >>> import clutchfem as cf
+        >>> d = cf.Design.from_concept("concept4", flexure_thickness="1.9mm", fidelity="live")
+        >>> d.identity.hash == d.hash == d.inputs()["design_hash"], d.label == f"concept4-{d.hash}"
+        (True, True)
+        """
+        return design_identity(self)
+
+    @property
     def hash(self) -> str:
-        """12 hex digits of SHA-256 over the inputs that define the answers (:meth:`inputs`,
-        versions included; not the file's path)."""
+        """12 hex digits of SHA-256 over the design's :attr:`identity` (not a file's path)."""
         return design_hash(self)
 
     def inputs(self) -> dict:

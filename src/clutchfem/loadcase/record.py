@@ -2,8 +2,8 @@
 
 :func:`design_inputs` records what defines an answer: the concept and every parameter (or
 the user mesh file and its SHA-256), the mesh settings and size, the operating point
-(material included), and the software versions.  :func:`design_hash` is a short stable hash
-of the defining part (no timings, no paths of caches), and :func:`design_label` a file-name
+(material included), the software versions and the design hash.  :func:`design_hash` is the
+hash of the design's identity (:mod:`.identity`, the one place it is computed), and :func:`design_label` a file-name
 stem that tells two designs in one folder apart: the concept name alone at its defaults,
 the name plus the hash otherwise.
 """
@@ -11,9 +11,6 @@ the name plus the hash otherwise.
 from __future__ import annotations
 
 import hashlib
-import json
-from functools import lru_cache
-from pathlib import Path
 
 import gmsh
 import skfem
@@ -21,6 +18,8 @@ import skfem
 from .._version import __version__
 from ..core import clean
 from ..geometry import MeshSettings
+from .identity import design_identity, identity_of
+from .operating import OperatingPoint
 
 
 def _file_sha256(path) -> str | None:
@@ -39,8 +38,9 @@ def design_inputs(design) -> dict:
     not been meshed (a live answer needs no mesh) records its mesh settings, not the mesh."""
     meshed = getattr(design, "meshed", True)
     cm = design.cm if meshed else None
-    d: dict = {"name": design.name, "clutchfem": __version__, "gmsh": gmsh.__version__,
-               "scikit-fem": getattr(skfem, "__version__", "?")}
+    ident = design_identity(design)
+    d: dict = {"name": design.name, "design_hash": ident.hash, "model_version": ident.model_version,
+               "clutchfem": __version__, "gmsh": gmsh.__version__, "scikit-fem": getattr(skfem, "__version__", "?")}
     if design.params is not None:
         d["concept"] = design.name
         d["params"] = design.params.model_dump()
@@ -66,31 +66,19 @@ def design_inputs(design) -> dict:
 
 
 def design_hash(design) -> str:
-    """12 hex digits of SHA-256 over the defining inputs (versions included)."""
-    d = design_inputs(design)
-    d.pop("name", None)
-    if "mesh_file" in d:  # the content defines it, not where the file lies
-        d["mesh_file"] = Path(d["mesh_file"]).name
-    return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:12]
+    """12 hex digits of SHA-256 over the design's identity (:mod:`.identity`: parameters,
+    operating point, mesh settings, code version): ``design.identity.hash``."""
+    return design_identity(design).hash
 
 
 def design_label(design) -> str:
-    """File-name stem: the concept name at its defaults (parameters, operating point and mesh
-    settings), else the name plus the design hash."""
-    default = False
+    """File-name stem: the concept name at its defaults (parameters, operating point but the
+    speeds asked for, and mesh settings: ``concept4``, or ``concept4-fast`` at the other
+    fidelity's defaults), else the name plus the design hash (``concept4-3fa9c2d41e77``)."""
+    ident = design_identity(design)
     if design.params is not None:
-        params0, op0 = _defaults(type(design.params), type(design.op))
-        mesh0 = MeshSettings.preset(design.op.fidelity, model="sector").model_dump()
-        # the other fidelity at its defaults is a default design too (its own name tag)
-        same_op = design.op == op0 or design.op == op0.replace(fidelity=design.op.fidelity)
-        ms = design.cm.mesh_settings if getattr(design, "meshed", True) else design.mesh_settings.model_dump()
-        default = design.params == params0 and same_op and dict(ms) == mesh0
-        if default and design.op.fidelity != op0.fidelity:
-            return f"{design.name}-{design.op.fidelity}"
-    return design.name if default else f"{design.name}-{design_hash(design)}"
-
-
-@lru_cache(maxsize=64)
-def _defaults(params_type, op_type):
-    """The default parameter set and operating point (frozen: built once)."""
-    return params_type(), op_type()
+        fid = design.op.fidelity
+        if ident.hash == identity_of(design.concept, {}, OperatingPoint(fidelity=fid),
+                                     MeshSettings.preset(fid, model="sector")).hash:
+            return design.name if fid == OperatingPoint().fidelity else f"{design.name}-{fid}"
+    return f"{design.name}-{ident.hash}"

@@ -20,7 +20,7 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.picture` -- a quick picture of a mesh with its named boundary groups.
 """
 
-from .cache import CacheEntry, cache_dir, cache_entries, cache_limit, clear_cache, evict
+from .cache import CacheEntry, cache_dir, cache_entries, cache_foreign_files, cache_limit, clear_cache, evict
 from .cad import import_planar, step_unit
 from .clutch_mesh import ClutchMesh, named_boundary
 from .convert import check_orientation, meshio_to_skfem, read_msh
@@ -58,7 +58,7 @@ from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_len
 __all__ = ["draw_mesh", "GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
            "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
-           "bore_centre", "cache_entries", "chain_loops", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
+           "bore_centre", "cache_entries", "cache_foreign_files", "chain_loops", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",
            "loops_to_occ", "orient_loops", "step_length_unit", "step_unit", "cache_dir", "cache_key",
            "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",

@@ -7,7 +7,7 @@ and what ``clutchfem cache`` shows and clears.
   ``%LOCALAPPDATA%\\clutchfem\\Cache``) plus ``meshes``.  A variable that points to a file
   (or a folder that cannot be made) is refused naming the variable.
 * **Entries.** One per cache key: ``<concept>-<key>.msh`` (read back), ``.json`` (its
-  side-car) and ``.groups.msh`` (the named groups, for the user).  An entry's last use is
+  side-car) and ``.groups.msh`` (the named groups, for the user), ``<key>`` 24 hex digits.  An entry's last use is
   its side-car's modification time, touched on every cache hit (access times are not
   reliable: many file systems are mounted ``noatime``).
 * **Bound.** ``$CLUTCHFEM_CACHE_SIZE`` (``"500MB"``, ``"2GB"``; default :data:`DEFAULT_SIZE`
@@ -17,6 +17,11 @@ and what ``clutchfem cache`` shows and clears.
   are deleted until it holds 80 % of the bound; an entry used in the last
   :data:`KEEP_RECENT_S` seconds is never evicted (a study's other worker processes may be
   reading it).
+* **Only what it wrote.** The folder carries a marker (:data:`MARKER`) written when the
+  cache first uses it; a folder without the marker that holds files the cache did not write
+  (anything but entries, lock files and its own temporary files) is refused, naming them,
+  before anything is written or deleted.  Eviction and ``clutchfem cache --clear`` delete
+  entries only (files named as above), never another file put there later.
 * **Concurrent writers.** Processes that mesh the same design at once (a study's workers,
   the test suite's xdist workers sharing one cache) take the entry's lock
   (:func:`entry_lock`, a ``flock`` on ``.locks/<entry>.lock``): the first meshes, the
@@ -47,8 +52,8 @@ except ImportError:  # pragma: no cover - Windows: no entry lock (module docstri
 
 from ..core import InputError
 
-__all__ = ["DEFAULT_SIZE", "KEEP_RECENT_S", "CacheEntry", "cache_dir", "cache_entries", "cache_limit", "clear_cache",
-           "entry_lock", "evict", "touch"]
+__all__ = ["DEFAULT_SIZE", "KEEP_RECENT_S", "MARKER", "CacheEntry", "cache_dir", "cache_entries", "cache_limit",
+           "clear_cache", "entry_lock", "evict", "cache_foreign_files", "touch"]
 
 #: default bound of the mesh cache [bytes] (module docstring)
 DEFAULT_SIZE = 1_000_000_000
@@ -56,6 +61,12 @@ DEFAULT_SIZE = 1_000_000_000
 KEEP_RECENT_S = 600.0
 #: the folder of the entries' lock files, inside the cache folder
 LOCKS = ".locks"
+#: the marker file of a folder the cache owns (module docstring)
+MARKER = ".clutchfem-mesh-cache"
+#: the prefix of the cache's temporary files (a write interrupted leaves one: the cache's own)
+TMP_PREFIX = ".clutchfem-tmp-"
+#: a file of a cache entry: ``<concept>-<24 hex>`` and one of its suffixes
+_ENTRY = re.compile(r"(?P<name>[A-Za-z0-9_.+]+-[0-9a-f]{24})(?P<suffix>\.groups\.msh|\.msh|\.json)")
 _UNITS = {"": 1, "b": 1, "kb": 1e3, "mb": 1e6, "gb": 1e9, "tb": 1e12, "kib": 1024, "mib": 1024 ** 2,
           "gib": 1024 ** 3}
 
@@ -101,7 +112,41 @@ def cache_dir() -> Path:
                          "to a folder you can write") from None
     if not os.access(d, os.W_OK | os.X_OK):
         raise InputError(f"{where}: no permission to write in {d}; point CLUTCHFEM_CACHE to a folder you can write")
+    if not (d / MARKER).is_file():
+        others = cache_foreign_files(d)
+        if others:
+            names = ", ".join(p.name for p in others[:4]) + (", ..." if len(others) > 4 else "")
+            raise InputError(f"{where}: {d} holds {len(others)} file(s) the mesh cache did not write ({names}); "
+                             "the cache deletes what it wrote and shares its folder with nothing: point "
+                             "CLUTCHFEM_CACHE to a folder of its own, or move those files")
+        try:
+            (d / MARKER).write_text("clutchfem mesh cache: clutchfem deletes the cached meshes in this folder (and "
+                                    "nothing else); see clutchfem cache\n")
+        except OSError as exc:
+            raise InputError(f"{where}: cannot write in {d} ({exc.strerror or exc}); point CLUTCHFEM_CACHE to a "
+                             "folder you can write") from None
     return d
+
+
+def _own(name: str) -> bool:
+    """Whether a file name is one the cache writes (an entry's, its marker, a temporary file)."""
+    return bool(_ENTRY.fullmatch(name)) or name in (MARKER, LOCKS) or name.startswith(TMP_PREFIX)
+
+
+def cache_foreign_files(d: Path) -> list[Path]:
+    """The files and folders of ``d`` the mesh cache did not write (sorted).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from clutchfem.mesh.cache import cache_foreign_files
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> for f in ("concept4-0123456789abcdef01234567.msh", "my notes.txt"):
+    ...     _ = (d / f).write_text("x")
+    >>> [p.name for p in cache_foreign_files(d)]
+    ['my notes.txt']
+    """
+    return sorted(Path(e.path) for e in os.scandir(d) if not _own(e.name))
 
 
 def cache_limit() -> int:
@@ -152,21 +197,21 @@ def cache_entries(d: Path | None = None) -> list[CacheEntry]:
     --------
     >>> import clutchfem as cf, tempfile, pathlib
     >>> d = pathlib.Path(tempfile.mkdtemp())
-    >>> for f in ("concept1-ab12.msh", "concept1-ab12.json", "concept1-ab12.groups.msh"):
+    >>> for f in ("concept1-ab12ab12ab12ab12ab12ab12.msh", "concept1-ab12ab12ab12ab12ab12ab12.json",
+    ...           "concept1-ab12ab12ab12ab12ab12ab12.groups.msh", "mine.msh"):
     ...     _ = (d / f).write_text("x" * 10)
-    >>> [(e.name, len(e.files), e.size) for e in cf.cache_entries(d)]
-    [('concept1-ab12', 3, 30)]
+    >>> [(e.name, len(e.files), e.size) for e in cf.cache_entries(d)]   # (not mine.msh: the cache did not write it)
+    [('concept1-ab12ab12ab12ab12ab12ab12', 3, 30)]
     """
     d = cache_dir() if d is None else d
     groups: dict[str, list] = {}
     for e in os.scandir(d):
         if not e.is_file():
             continue
-        name = e.name
-        for suffix in (".groups.msh", ".msh", ".json", ".json.tmp"):
-            if name.endswith(suffix):
-                name = name[:-len(suffix)]
-                break
+        m = _ENTRY.fullmatch(e.name)
+        if m is None:  # another file: not the cache's to count or delete
+            continue
+        name = m.group("name")
         try:
             st = e.stat()
         except OSError:
@@ -237,7 +282,8 @@ def evict(limit: int | None = None, d: Path | None = None) -> tuple[int, int]:
 
 def clear_cache(d: Path | None = None) -> tuple[int, int]:
     """Delete every entry of the cache (``clutchfem cache --clear``): the next design of each
-    concept is meshed again.
+    concept is meshed again.  Only the cache's entries go (module docstring): any other file
+    in the folder stays.
 
     Parameters
     ----------
@@ -253,14 +299,19 @@ def clear_cache(d: Path | None = None) -> tuple[int, int]:
     --------
     >>> import clutchfem as cf, tempfile, pathlib
     >>> d = pathlib.Path(tempfile.mkdtemp())
-    >>> for f in ("concept4-cd34.msh", "concept4-cd34.json"):
+    >>> for f in ("concept4-cd34cd34cd34cd34cd34cd34.msh", "concept4-cd34cd34cd34cd34cd34cd34.json", "mine.txt"):
     ...     _ = (d / f).write_text("x" * 10)
-    >>> cf.clear_cache(d), cf.cache_entries(d)
-    ((1, 20), [])
+    >>> cf.clear_cache(d), cf.cache_entries(d), [p.name for p in d.iterdir()]
+    ((1, 20), [], ['mine.txt'])
     """
+    d = cache_dir() if d is None else d
     entries = cache_entries(d)
     for e in entries:
         _unlink((*e.files, _lock_file(e)))
+    now = time.time()
+    for e in os.scandir(d):  # temporary files of interrupted writes (not of one running now)
+        if e.name.startswith(TMP_PREFIX) and e.is_file() and now - e.stat().st_mtime > KEEP_RECENT_S:
+            _unlink((Path(e.path),))
     return len(entries), sum(e.size for e in entries)
 
 

@@ -48,7 +48,7 @@ from ..geometry import (
     occ_tolerances,
     source_files,
 )
-from .cache import cache_dir, entry_lock, evict, touch
+from .cache import TMP_PREFIX, cache_dir, entry_lock, evict, touch
 from .clutch_mesh import ClutchMesh, groups_msh_path
 from .convert import meshio_to_skfem, read_msh
 from .highorder import guard_high_order, optimise_high_order
@@ -214,7 +214,7 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
 
 
 def _atomic_write(path: Path) -> None:
-    fd, tmp = tempfile.mkstemp(suffix=".msh", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=TMP_PREFIX, suffix=".msh", dir=path.parent)
     os.close(fd)
     gmsh.write(tmp)
     os.replace(tmp, path)
@@ -223,7 +223,7 @@ def _atomic_write(path: Path) -> None:
 def _atomic_write_text(path: Path, text: str) -> None:
     """Write ``path`` through a temporary file of its own and an atomic rename: a reader sees
     the old file or the whole new one, and two writers never share a temporary file."""
-    fd, tmp = tempfile.mkstemp(suffix=".json.tmp", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=TMP_PREFIX, suffix=".json.tmp", dir=path.parent)
     try:
         with os.fdopen(fd, "w") as f:
             f.write(text)

@@ -186,7 +186,7 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     store = folder / STORE_NAME
     res = run_points(points, st, store, workers=workers, scheduler=scheduler, progress=progress,
                      source=f"reduce {region.concept}", desc="reduce", error_points=list(range(len(points))))
-    with ResultStore(store, COLUMNS) as rs:
+    with ResultStore(store, COLUMNS, context=res.context_hash) as rs:
         df = rs.frame(res.model_version, list(res.keys))
     by_key = {r["design_hash"]: r for r in json.loads(df.to_json(orient="records"))}
     keys = list(res.keys)  # in point order (repeats counted once)

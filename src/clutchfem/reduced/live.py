@@ -144,7 +144,7 @@ def _answers(design, model, engine, req, idle_rpm, v: dict, band: dict, why: dic
                   engine=eng_info, coupling={}, curves=_engine_only(engine), first_touch=None,
                   warnings=warnings, notes=notes,
                   part={"mass_kg": mass} if math.isfinite(mass) else {}, analytical_available=False,
-                  inputs=_inputs(design, model, eng_info, req), label=design_label(design),
+                  inputs=_inputs(design, model, eng_info, req), label=design_label(design), design_hash=design.hash,
                   fatigue_safety_factor=v.get("fatigue_safety_factor"), errors=errors,
                   answered_by="reduced model", region_key=reg.key())
     return an

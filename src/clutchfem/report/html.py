@@ -91,7 +91,7 @@ class Page:
         return clean({"kind": self.kind, "title": self.title, "subtitle": self.subtitle, "verdicts": self.verdicts,
                       "headline": self.headline, "hero": [blk(f) for f in self.hero],
                       "sections": [{"title": t, "blocks": [blk(b) for b in bs]} for t, bs in self.sections],
-                      "inputs": self.inputs})
+                      "design_hash": (self.inputs or {}).get("design_hash"), "inputs": self.inputs})
 
     @classmethod
     def from_json(cls, d: dict) -> "Page":

@@ -137,7 +137,9 @@ def design_page(an, design, engine, folder: Path, concept=None, params=None, sf_
     sections.append(("Details: errors, parameters, material, operating point", details))
     if an.notes:
         sections.append(("Notes", [Text("", list(an.notes))]))
-    return Page(title=f"{an.design}: clutch answers", subtitle=f"design {name}; every number with its unit; "
+    h = an.design_hash or (an.inputs or {}).get("design_hash")
+    return Page(title=f"{an.design}: clutch answers", subtitle=f"design {name} (design hash {h}); every number with "
+                f"its unit; "
                 f"requirement factors and engine curve as noted", verdicts=design_verdicts(an, sf_min),
                 headline=[list(r) for r in summary_rows(an)], hero=[Figure("torque vs engine speed", torque.name)],
                 sections=sections, inputs=an.inputs, kind="design")

@@ -111,7 +111,7 @@ def run_grid(design, vary: dict, *, store: str | Path, engine=None, requirements
     points = [dict(zip(names, combo)) for combo in itertools.product(*(list(vary[n]) for n in names))]
     res = run_points(points, settings, store, workers=workers, scheduler=scheduler, progress=progress,
                      source=f"run_grid {design.name}")
-    with ResultStore(store, COLUMNS) as st:
+    with ResultStore(store, COLUMNS, context=res.context_hash) as st:
         df = st.frame(res.model_version, res.keys)
     keyed = [design_hash(p, settings) for p in points]
     df = df.set_index("design_hash").loc[keyed].reset_index()

@@ -172,7 +172,7 @@ def error_summary(frame) -> dict:
 def table(spec, res: RunResult):
     """This spec's rows (point order) with one column per varied input, in the units of the
     charts (lengths in mm: ``flexure_thickness [mm]``), before the answers."""
-    with ResultStore(res.store, COLUMNS) as st:
+    with ResultStore(res.store, COLUMNS, context=res.context_hash) as st:
         df = st.frame(res.model_version, res.keys)
     cols = {}
     for a in spec.axes:

@@ -52,7 +52,7 @@ import time
 from dataclasses import dataclass, field
 from statistics import NormalDist
 
-from ..core import InputError, ParameterError, clean
+from ..core import InputError, ParameterError, clean, format_quantity
 from ..core import values as V
 from ..evaluation import EvalSettings, sensitivities
 from ..geometry import get_concept
@@ -369,6 +369,14 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
             name, half = parse_tolerance(P, f"{n}=+-{float(t)!r}")
             half = float(t)
         tols[name] = half
+        lo, hi = V.param_bounds(P, name)
+        if lo is not None and hi is not None and 2.0 * half >= hi - lo:  # said before any search
+            unit = P.unit(name)
+            show = (lambda x: format_quantity(x, unit))  # noqa: E731
+            raise ParameterError(name, t, f"a tolerance half-width below {show(0.5 * (hi - lo))}, half the "
+                                 f"parameter's range [{show(lo)}, {show(hi)}]: a tolerance box of +-{show(half)} "
+                                 "is wider than the range, no nominal value keeps every part inside it", "option --tol",
+                                 shown=f"+-{show(half)}")
     nominal = targets or Targets.defaults(settings)
     m = len(nominal.constraints())
     z = NormalDist().inv_cdf(1.0 - (1.0 - yield_target) / m)
