@@ -129,14 +129,15 @@ def cache_dir_of(root: Path) -> Path:
 def test_cache_command_shows_and_clears_in_json(tmp_path):
     env = {"CLUTCHFEM_CACHE": str(tmp_path)}
     (tmp_path / "meshes").mkdir()
-    (tmp_path / "meshes" / "concept1-abc.msh").write_bytes(b"x" * 1000)
-    (tmp_path / "meshes" / "concept1-abc.json").write_text("{}")
+    (tmp_path / "meshes" / "concept1-0123456789abcdef01234567.msh").write_bytes(b"x" * 1000)
+    (tmp_path / "meshes" / "concept1-0123456789abcdef01234567.json").write_text("{}")
     r = _cli("cache", "--json", env=env)
     assert r.returncode == 0, r.stderr
     assert '"entries": 1' in r.stdout and str(tmp_path / "meshes") in r.stdout
     r = _cli("cache", "--clear", "--json", env=env)
     assert r.returncode == 0 and '"entries": 0' in r.stdout and "deleted 1 cached meshes" in r.stderr
-    assert list((tmp_path / "meshes").iterdir()) == []
+    # only the cache's own marker stays (it says whose folder this is)
+    assert [p.name for p in (tmp_path / "meshes").iterdir()] == [".clutchfem-mesh-cache"]
     f = tmp_path / "afile"
     f.write_text("")
     r = _cli("cache", env={"CLUTCHFEM_CACHE": str(f)})

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .features import _parameter
+from .features import parameter_of
 
 
 @dataclass(frozen=True)
@@ -178,7 +178,7 @@ def dimensions(outline, features=None, ligament=None, tolerances: dict | None = 
                              ref, t))
 
     def param_of(size: float, kind: str) -> str:
-        return _parameter(p, size, kind).split(" or ")[0]
+        return parameter_of(p, size, kind).split(" or ")[0]
 
     # the bore
     bore = [s for lp in outline.loops if lp.layer == "BORE" for s in lp.segments]

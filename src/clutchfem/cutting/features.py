@@ -111,7 +111,7 @@ _WORDS = {"inside radius": ("fillet", "radius", "round"), "slot": ("slot", "gap"
           "web": ("thickness", "width")}
 
 
-def _parameter(params, size: float, kind: str) -> str:
+def parameter_of(params, size: float, kind: str) -> str:
     """The concept's length parameters equal to ``size`` (1e-6 relative), those whose name
     fits the feature's kind first; inert ones (a table value of a non-table profile) left out."""
     if params is None or size <= 0:
@@ -160,7 +160,7 @@ def _smallest(found, kind: str, params) -> list[Feature]:
         size, where, at, detail = min(items, key=lambda x: x[0])
         n = len({w for s, w, _, _ in items if abs(s - size) <= 1e-9 + 1e-6 * size})
         out.append(Feature(kind, float(size), where, (float(at[0]), float(at[1])), n,
-                           _parameter(params, size, kind), detail))
+                           parameter_of(params, size, kind), detail))
     return sorted(out, key=lambda f: f.size)
 
 

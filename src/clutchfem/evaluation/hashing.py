@@ -27,7 +27,7 @@ import json
 
 from ..core import ParameterError
 from ..geometry import MeshSettings, get_concept
-from ..loadcase import OperatingPoint, identity_of
+from ..loadcase import USER_THICKNESS, OperatingPoint, identity_of
 from ..loadcase.identity import normalised
 from .point import split_point
 
@@ -73,8 +73,6 @@ def design_hash(point: dict, settings) -> str:
         return identity_of(get_concept(settings.concept), {**dict(settings.fixed), **geo}, op, mesh).hash
     sha = hashlib.sha256(settings.mesh_bytes).hexdigest() if settings.mesh_bytes else None
     if isinstance(op, OperatingPoint) and op.thickness is None:  # (a user mesh's default thickness)
-        from ..loadcase import USER_THICKNESS
-
         op = op.replace(thickness=USER_THICKNESS)
     return identity_of(None, None, op, {}, mesh_sha256=sha).hash
 

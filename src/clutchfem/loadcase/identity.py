@@ -224,14 +224,24 @@ def identity_of(concept, params: dict | None = None, op: OperatingPoint | dict |
     return DesignIdentity(hashlib.sha256(text.encode()).hexdigest()[:12], doc)
 
 
+def file_sha256(path) -> str | None:
+    """The SHA-256 of a file's bytes (None if it cannot be read): a user mesh's identity."""
+    try:
+        h = hashlib.sha256()
+        with open(path, "rb") as fh:
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                h.update(block)
+        return h.hexdigest()
+    except OSError:
+        return None
+
+
 def design_identity(design) -> DesignIdentity:
     """The identity of a :class:`~clutchfem.loadcase.Design` (meshed or not: the mesh is not
     needed; a user mesh is named by its content)."""
     if design.params is not None:
         return identity_of(design.concept, design.params.model_dump(), design.op, design.mesh_settings)
-    from .record import _file_sha256
-
     cm = design.cm
     op = design.op.replace(drum_radius=design.drum_radius, thickness=design.thickness)
     return identity_of(None, None, op, dict(getattr(cm, "mesh_settings", None) or {}),
-                       mesh_sha256=_file_sha256(cm.source))
+                       mesh_sha256=file_sha256(cm.source))

@@ -10,27 +10,14 @@ the name plus the hash otherwise.
 
 from __future__ import annotations
 
-import hashlib
-
 import gmsh
 import skfem
 
 from .._version import __version__
 from ..core import clean
 from ..geometry import MeshSettings
-from .identity import design_identity, identity_of
+from .identity import design_identity, file_sha256, identity_of
 from .operating import OperatingPoint
-
-
-def _file_sha256(path) -> str | None:
-    try:
-        h = hashlib.sha256()
-        with open(path, "rb") as fh:
-            for block in iter(lambda: fh.read(1 << 20), b""):
-                h.update(block)
-        return h.hexdigest()
-    except OSError:
-        return None
 
 
 def design_inputs(design) -> dict:
@@ -49,7 +36,7 @@ def design_inputs(design) -> dict:
             d["mesh_morphed_from"] = dict(cm.morph["reference"])
     else:
         d["mesh_file"] = cm.source
-        d["mesh_sha256"] = _file_sha256(cm.source)
+        d["mesh_sha256"] = file_sha256(cm.source)
     if cm is not None:
         d["mesh"] = {"elements": cm.n_elements, "nodes": cm.n_nodes, "model": "sector" if cm.sector_angle else "full"}
     op = design.op.model_dump()

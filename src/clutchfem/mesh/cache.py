@@ -136,6 +136,17 @@ def _own(name: str) -> bool:
 def cache_foreign_files(d: Path) -> list[Path]:
     """The files and folders of ``d`` the mesh cache did not write (sorted).
 
+    Parameters
+    ----------
+    d : Path
+        The cache's mesh folder.
+
+    Returns
+    -------
+    list of Path
+        Every entry whose name is not one the cache writes (``<concept>-<24 hex>.<ext>`` and
+        its marker): the cache neither deletes nor evicts these and refuses to share the folder.
+
     Examples
     --------
     >>> import tempfile, pathlib
