@@ -16,7 +16,7 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``), :f
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
 :func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`, :func:`sensitivities`,
 :func:`robust_optimize`, :func:`allocate_tolerances`, :func:`yield_front`,
-:func:`compensate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
+:func:`compensate`.  Calibration to measured parts: :func:`calibrate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
 :func:`write_report`, :func:`torque_speed_plot`.  Cutting: :func:`export` (DXF, STEP, drawing sheet,
 manufacturability check, as-cut analysis), :class:`ProcessRules`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
 """
@@ -107,6 +107,12 @@ _GROUPS: dict[str, dict[str, str]] = {
         "Allocation": "clutchfem.tolerances",
         "yield_front": "clutchfem.tolerances",
         "YieldFront": "clutchfem.tolerances",
+    },
+    "Calibration to measured parts": {
+        "calibrate": "clutchfem.calibration",
+        "Calibration": "clutchfem.calibration",
+        "parse_measured": "clutchfem.calibration",
+        "parse_uncertain": "clutchfem.calibration",
     },
     "Output": {
         "write_report": "clutchfem.report",
@@ -253,4 +259,5 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         tolerance,
         yield_front,
     )
+    from .calibration import Calibration, calibrate, parse_measured, parse_uncertain
     from .validation import ValidationRun, validate
