@@ -81,7 +81,7 @@ def main() -> None:
     allid = [r[n]["inside"] for r in rows for n in ("flexure_thickness", "mu") if r[n]["identified"]]
     print(f"coverage over identified inputs: {100 * np.mean(allid):.1f} % of {len(allid)}; consistent parts "
           f"{sum(r['consistent'] for r in rows)} of {len(rows)}; one calibration (2 measurements, 2 inputs, emcee "
-          f"32 x 2500): median {np.median(times):.1f} s, max {max(times):.1f} s")
+          f"32 x 5000): median {np.median(times):.1f} s, max {max(times):.1f} s")
     # emcee against Laplace on the first part's measurements
     meas = [f"engagement={model.models['engagement_rpm'].predict(model.region.unit_of(rows[0]['truth']))[0]:.1f}"
             f"rpm+-{U_ENG:g}rpm",

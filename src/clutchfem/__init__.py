@@ -195,6 +195,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
     from .accuracy import sweep_errors
     from .analysis import Analysis, Requirements, SlipHeatRun, analyze, check_speeds, slip_heat
     from .app import serve_app
+    from .calibration import Calibration, calibrate, parse_measured, parse_uncertain
     from .clutch import EngineCurve
     from .core import (
         ClutchfemError,
@@ -259,5 +260,4 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         tolerance,
         yield_front,
     )
-    from .calibration import Calibration, calibrate, parse_measured, parse_uncertain
     from .validation import ValidationRun, validate

@@ -20,8 +20,8 @@ posterior of the inputs given the measurements (:mod:`.inference`) and reports:
 * the ranked explanations: the inputs by how far the data moved them from their prior
   (in prior standard deviations).
 
-**Method**: emcee (the default; 32 walkers x 2500 steps, 500 discarded, on the reduced model:
-seconds) or ``laplace`` (the mode and the Hessian: a normal, for a posterior near Gaussian;
+**Method**: emcee (the default; 32 walkers x 5000 steps, 500 discarded, on the reduced model:
+seconds; a chain shorter than 50 autocorrelation times is noted) or ``laplace`` (the mode and the Hessian: a normal, for a posterior near Gaussian;
 refused where the Hessian is not positive definite).  Checked against each other in
 docs/calibration.md.
 """
@@ -192,7 +192,7 @@ def _as_uncertain(uncertain, design) -> list[Uncertain]:
 
 def calibrate(design, measured, uncertain, *, model=None, method: str = "emcee", n: int | None = None,
               held_out: int = 10, engine=None, requirements=None, workers: int | None = None,
-              progress: bool = False, seed: int = 0, steps: int = 2500) -> Calibration:
+              progress: bool = False, seed: int = 0, steps: int = 5000) -> Calibration:
     """The uncertain inputs of a part as built, given what the rig measured on it.
 
     Parameters
@@ -310,6 +310,9 @@ def calibrate(design, measured, uncertain, *, model=None, method: str = "emcee",
                                  "of -log posterior at its mode is not positive definite: a ridge or a mode on the "
                                  "prior's edge)", "calibration")
     info["sample_s"] = time.perf_counter() - t1
+    if method == "emcee" and not info["chain_long_enough"]:
+        notes.append(f"the chain ({steps - info['burn']} steps kept) is shorter than 50 autocorrelation times "
+                     f"({info['autocorr_steps']:.0f} steps each): the intervals are rough; more --steps")
     prior_S = np.column_stack([u.sample(np.random.default_rng(seed + 1), len(S)) for u in U])
     posterior, corr = _summary(U, S, prior_S)
     z_best, s_best, ans_best, _ = post.residuals(mode[None, :])

@@ -40,6 +40,7 @@ measured there.
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
@@ -195,7 +196,7 @@ class Posterior:
         return mu + sd * best.x
 
 
-def emcee_samples(post: Posterior, *, seed: int = 0, walkers: int = 32, steps: int = 2500, burn: int = 500,
+def emcee_samples(post: Posterior, *, seed: int = 0, walkers: int = 32, steps: int = 5000, burn: int = 500,
                   thin: int = 5) -> tuple[np.ndarray, dict]:
     """(samples (n, k), info): emcee's affine-invariant ensemble sampler (Goodman & Weare's
     stretch move), the walkers started from prior draws where the posterior is finite,
@@ -211,11 +212,18 @@ def emcee_samples(post: Posterior, *, seed: int = 0, walkers: int = 32, steps: i
     s.random_state = np.random.RandomState(seed).get_state()
     s.run_mcmc(p0, steps, progress=False)
     chain = s.get_chain(discard=burn, thin=thin, flat=True)
-    tau = s.get_autocorr_time(discard=burn, quiet=True)
+    lg = logging.getLogger("emcee")
+    level = lg.level
+    lg.setLevel(logging.ERROR)  # its "chain shorter than 50 tau" warning: reported in info instead
+    try:
+        tau = s.get_autocorr_time(discard=burn, quiet=True)
+    finally:
+        lg.setLevel(level)
     n_eff = float((steps - burn) * walkers / np.max(tau))
     return chain, {"method": "emcee", "walkers": walkers, "steps": steps, "burn": burn, "thin": thin,
                    "acceptance": float(np.mean(s.acceptance_fraction)), "autocorr_steps": float(np.max(tau)),
-                   "effective_samples": n_eff, "evaluations": walkers * steps}
+                   "effective_samples": n_eff, "evaluations": walkers * steps,
+                   "chain_long_enough": bool(steps - burn >= 50 * np.max(tau))}
 
 
 def laplace(post: Posterior, *, seed: int = 0, n: int = 8000, mode: np.ndarray | None = None

@@ -19,9 +19,9 @@ from typer._click.exceptions import ClickException  # typer vendors click (its B
 
 from .. import __version__
 from .analyze_cmd import analyze
-from .calibrate_cmd import calibrate
 from .app_cmd import app as app_command
 from .cache_cmd import cache
+from .calibrate_cmd import calibrate
 from .compensate_cmd import compensate
 from .demo_cmd import demo
 from .export_cmd import export

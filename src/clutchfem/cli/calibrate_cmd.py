@@ -13,8 +13,17 @@ from rich.table import Table
 
 from .. import ClutchfemError, ParameterError
 from . import options as O
-from .common import check_out_dir, console, design_from, engine_from, fail, operating_point, quantity, \
-    requirements_from, wrote
+from .common import (
+    check_out_dir,
+    console,
+    design_from,
+    engine_from,
+    fail,
+    operating_point,
+    quantity,
+    requirements_from,
+    wrote,
+)
 
 
 @O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "a", "b", "workers", "out", "json_", live=True)
@@ -41,6 +50,8 @@ def calibrate(
     held_out: int = typer.Option(10, "--held-out", help="designs its own error is measured on",
                                  rich_help_panel="Reduced model"),
     seed: int = typer.Option(0, "--seed", help="the sampler's seed", rich_help_panel="Calibration"),
+    steps: int = typer.Option(5000, "--steps", help="emcee's steps per walker (500 discarded)",
+                              rich_help_panel="Calibration"),
 ):
     """Calibrate to measured parts: the posterior of the uncertain inputs given the rig's
     measurements (on the reduced model of a region holding the priors), the calibrated answers
@@ -78,7 +89,7 @@ def calibrate(
             raise ParameterError("measured", None, "at least one --measured NAME=VALUE+-U (or --torque-csv)",
                                  "option --measured")
         res = run(design, meas, uncertain, method=method, n=n, held_out=held_out, engine=eng, requirements=req,
-                  workers=o.workers, progress=not o.json_, seed=seed)
+                  workers=o.workers, progress=not o.json_, seed=seed, steps=steps)
         if o.out is not None:
             wrote(res.write_figures(o.out))
         if o.json_:
