@@ -113,6 +113,8 @@ _GROUPS: dict[str, dict[str, str]] = {
         "Calibration": "clutchfem.calibration",
         "parse_measured": "clutchfem.calibration",
         "parse_uncertain": "clutchfem.calibration",
+        "check_measurements": "clutchfem.calibration",
+        "torque_from_csv": "clutchfem.calibration",
     },
     "Output": {
         "write_report": "clutchfem.report",
@@ -195,7 +197,14 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
     from .accuracy import sweep_errors
     from .analysis import Analysis, Requirements, SlipHeatRun, analyze, check_speeds, slip_heat
     from .app import serve_app
-    from .calibration import Calibration, calibrate, parse_measured, parse_uncertain
+    from .calibration import (
+        Calibration,
+        calibrate,
+        check_measurements,
+        parse_measured,
+        parse_uncertain,
+        torque_from_csv,
+    )
     from .clutch import EngineCurve
     from .core import (
         ClutchfemError,

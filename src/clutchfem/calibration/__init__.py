@@ -12,7 +12,7 @@ It stands on the reduced model (:mod:`clutchfem.reduced`), beside the tolerances
 """
 
 from .calibrate import Calibration, calibrate
-from .inputs import Measurement, Uncertain, parse_measured, parse_uncertain, torque_from_csv
+from .inputs import Measurement, Uncertain, check_measurements, parse_measured, parse_uncertain, torque_from_csv
 
-__all__ = ["Calibration", "Measurement", "Uncertain", "calibrate", "parse_measured", "parse_uncertain",
+__all__ = ["Calibration", "Measurement", "Uncertain", "calibrate", "check_measurements", "parse_measured", "parse_uncertain",
            "torque_from_csv"]

@@ -46,7 +46,7 @@ from ..core import InputError, ParameterError, param_bounds, parse_quantity
 from ..core.units import UnitError
 from ..reduced import OPERATING_AXES
 
-__all__ = ["ANSWER_OF", "SIMILARITY", "Measurement", "Uncertain", "parse_measured", "parse_uncertain",
+__all__ = ["ANSWER_OF", "SIMILARITY", "Measurement", "Uncertain", "check_measurements", "parse_measured", "parse_uncertain",
            "torque_from_csv"]
 
 #: measurement name -> (the reduced model's answer, unit, what it is)
@@ -357,7 +357,26 @@ def parse_measured(text: str, *, design=None) -> Measurement:
 
 def check_measurements(measured: list[Measurement]) -> None:
     """Refuse a set of measurements that contradict each other (a slip speed below the
-    engagement speed: a clutch slips only once it holds)."""
+    engagement speed: a clutch slips only once it holds).
+
+    Parameters
+    ----------
+    measured : list of Measurement
+
+    Returns
+    -------
+    None
+        Or a :class:`~clutchfem.ParameterError` naming the contradicting measurement.
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> cf.check_measurements([cf.parse_measured("engagement=4191rpm+-25rpm"), cf.parse_measured("slip=7512rpm+-40rpm")])
+    >>> cf.check_measurements([cf.parse_measured("engagement=4191rpm+-25rpm"), cf.parse_measured("slip=4000rpm+-40rpm")])
+    Traceback (most recent call last):
+    ...
+    clutchfem.core.errors.ParameterError: option --measured: parameter 'slip' = 'slip=4000rpm+-40rpm' is not allowed: a slip speed above the measured engagement speed (engagement=4191rpm+-25rpm): a clutch slips only once it has engaged
+    """
     eng = [m for m in measured if m.name in ("engagement", "engagement_ripple")]
     slip = [m for m in measured if m.name == "slip"]
     for s in slip:
@@ -370,7 +389,21 @@ def check_measurements(measured: list[Measurement]) -> None:
 def torque_from_csv(path, rpm: float, sd: float) -> Measurement:
     """The measured torque at ``rpm`` from a torque-speed curve in a CSV file (the engine
     curve's reader, :func:`clutchfem.clutch.engine_csv.read_engine_csv`: the units from the
-    header), linearly interpolated; ``sd`` its standard uncertainty [N m].
+    header), linearly interpolated.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file (a speed and a torque column, units in the header).
+    rpm : float
+        The speed to read the torque at [rpm] (the engine's maximum-torque speed).
+    sd : float
+        The torque's standard uncertainty [N m].
+
+    Returns
+    -------
+    Measurement
+        ``torque`` at ``rpm``.
 
     Examples
     --------

@@ -57,16 +57,14 @@ def calibrate(
     measurements (on the reduced model of a region holding the priors), the calibrated answers
     with bands, and the measurements no input within its prior explains."""
     from .. import calibrate as run
-    from .. import dumps
-    from ..calibration import torque_from_csv
+    from .. import check_measurements, dumps, parse_measured, torque_from_csv
 
     try:
         check_out_dir(o.out)
         if seed < 0:
             raise ParameterError("seed", seed, "an integer >= 0", "option --seed")
-        from ..calibration.inputs import ANSWER_OF, check_measurements, parse_measured
-
-        check_measurements([parse_measured(m) for m in measured if m.split("=")[0].split("@")[0].strip() in ANSWER_OF])
+        answers = ("engagement", "engagement_ripple", "slip")  # the speeds checked against each other, before any work
+        check_measurements([parse_measured(m) for m in measured if m.split("=")[0].strip() in answers])
         eng, _ = engine_from(o.engine)
         req = requirements_from(o.a, o.b)
         fid = o.fidelity or "best"
@@ -100,10 +98,13 @@ def calibrate(
         fail(exc)
 
 
-def _q(v: float, unit: str) -> str:
-    from ..calibration.calibrate import show
+#: SI unit -> (the unit shown, its factor)
+_SHOWN = {"m": ("mm", 1e3), "Pa": ("MPa", 1e-6), "kg": ("g", 1e3), "-": ("", 1.0)}
 
-    return show(v, unit)
+
+def _q(v: float, unit: str) -> str:
+    u, sc = _SHOWN.get(unit, (unit, 1.0))
+    return f"{v * sc:.4g} {u}".rstrip()
 
 
 def _print(res) -> None:
@@ -126,12 +127,10 @@ def _print(res) -> None:
     a = Table(title="the calibrated part against the measurements")
     for c in ("answer", "drawn design", "calibrated (95 %)", "measured"):
         a.add_column(c, justify="left" if c == "answer" else "right")
-    from ..calibration.calibrate import REPORTED
-
-    for k, v in res.answers.items():
-        label, unit, sc = REPORTED[k]
-        meas = "" if v["measured"] is None else f"{v['measured'] * sc:.4g} {unit}"
-        a.add_row(escape(label), escape(f"{v['nominal'] * sc:.4g} {unit}" if v["nominal"] is not None else "-"),
+    for v in res.answers.values():
+        unit, sc = _SHOWN.get(v["unit"], (v["unit"], 1.0))
+        meas = "" if v["measured"] is None else _q(v["measured"], v["unit"])
+        a.add_row(escape(v["label"]), escape(_q(v["nominal"], v["unit"]) if v["nominal"] is not None else "-"),
                   escape(f"{v['mean'] * sc:.4g} [{v['ci95'][0] * sc:.4g}, {v['ci95'][1] * sc:.4g}] {unit}"),
                   escape(meas))
     console.print(a)
