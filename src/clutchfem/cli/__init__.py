@@ -21,6 +21,7 @@ from .. import __version__
 from .analyze_cmd import analyze
 from .app_cmd import app as app_command
 from .cache_cmd import cache
+from .calibrate_cmd import calibrate
 from .compensate_cmd import compensate
 from .demo_cmd import demo
 from .export_cmd import export
@@ -50,6 +51,9 @@ _COMMANDS = [
     (tolerance, "tolerance", "Design to targets",
      "clutchfem tolerance concept4 --tol flexure_thickness=+-0.05mm --tol clearance=+-0.02mm --n 100"),
     (compensate, "compensate", "Design to targets", "clutchfem compensate concept4 --rpm 8000 --out out/comp"),
+    (calibrate, "calibrate", "Design to targets",
+     "clutchfem calibrate concept1 --measured engagement=4191rpm+-25rpm --measured slip=7512rpm+-40rpm "
+     "--uncertain mu=0.1:0.35 --uncertain flexure_thickness=+-0.1mm"),
     (export, "export", "Design to targets",
      "clutchfem export concept4 --process wire-edm --dxf part.dxf --step part.step --drawing part.pdf"),
     (reduce, "reduce", "Studies", "clutchfem reduce concept4 --workers 2   (then: clutchfem analyze concept4 --fidelity live)"),

@@ -29,6 +29,7 @@ _NAMES: dict[str, str] = {
     "reduce": "build",
     "ReducedModel": "model",
     "OK_PROBABILITY": "surrogate",
+    "OPERATING_AXES": "region",
     "Region": "region",
     "SPAN": "region",
     "StatusModel": "surrogate",

@@ -109,7 +109,7 @@ def find(design, *, engine=None, requirements=None) -> ReducedModel | None:
                                    engine=engine, requirements=requirements)
         except ParameterError:
             continue
-        if region.key() != doc.get("key") or not region.contains(design.params.model_dump()):
+        if region.key() != doc.get("key") or not region.contains(region.design_values(design)):
             continue
         model = load(region)
         if model is not None:

@@ -58,7 +58,7 @@ def live_analysis(design, *, engine: EngineCurve | None = None, requirements: Re
         if not build:
             return _fallback(design, engine, req, idle_rpm, "no reduced model holds this design (build=False)")
         model = reduce(design, engine=given, requirements=req, progress=progress)
-    values = design.params.model_dump()
+    values = model.region.design_values(design)
     u = model.region.unit_of(values)[None, :]
     pred = model.predict(u)
     v = {a: float(pred["value"][a][0]) for a in pred["value"]}

@@ -36,7 +36,7 @@ import numpy as np
 from ..core import ParameterError
 from ..evaluation import Sensitivities
 from ..geometry import get_concept
-from .region import Region
+from .region import OPERATING_AXES, Region
 from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel
 
 __all__ = ["ANSWERS", "NEIGHBOURS", "ReducedModel"]
@@ -210,7 +210,7 @@ class ReducedModel:
         if bad:
             raise ParameterError("names", bad, f"free parameters of the region: {', '.join(reg.names)}",
                                  "reduced model sensitivities")
-        values = design.params.model_dump()
+        values = reg.design_values(design)
         if design.name != reg.concept or not reg.contains(values):
             raise ParameterError("design", design.label, f"a {reg.concept} design in the region ({reg.describe()})",
                                  "reduced model sensitivities")
@@ -242,7 +242,7 @@ class ReducedModel:
                 der["safety_factor"] = -ys / peak**2 * dpeak
             out.values[n] = reg.lo[i] + u0[i] * width
             out.steps[n] = h * width
-            out.units[n] = P.unit(n)
+            out.units[n] = OPERATING_AXES[n] if n in OPERATING_AXES else P.unit(n)
             out.kinds[n] = "parameter"
             out.derivatives[n] = der
             out.methods[n] = ("central" if 0 < rows[im][i] and rows[ip][i] < 1 else "one-sided") + ", reduced model"

@@ -39,12 +39,15 @@ from ..core import ParameterError, dumps, param_bounds, round12
 from ..evaluation import EvalSettings, model_version
 from ..geometry import default_free, get_concept
 
-__all__ = ["SPAN", "Region"]
+__all__ = ["OPERATING_AXES", "SPAN", "Region"]
 
 #: the default half-width of the region, relative to each free parameter's value (module docstring)
 SPAN = 0.05
 #: a parameter at 0: the half-width as a share of its declared range
 ZERO_SPAN = 0.1
+#: the operating point's real-valued fields a region may hold as free axes (module docstring):
+#: name -> the unit it is given in
+OPERATING_AXES: dict[str, str] = {"mu": "-", "drum_wall": "m"}
 
 @dataclass(frozen=True)
 class Region:
@@ -91,8 +94,13 @@ class Region:
             raise ParameterError("span", span, "a relative half-width in (0, 0.5] (0.05: +-5 % of each "
                                  "parameter)", "reduced model")
         P = type(design.params)
+        O = type(design.op)
         names = list(free) if free is not None else default_free(P)
         continuous = [n for n, f in P.model_fields.items() if f.annotation is float and None not in param_bounds(P, n)]
+        continuous += list(OPERATING_AXES)
+        if "drum_wall" in names and design.op.drum_wall is None:
+            raise ParameterError("drum_wall", None, "an elastic drum's wall (the design's drum is rigid: no wall to "
+                                 "vary; set drum_wall)", "reduced model")
         for n in names:
             if n not in continuous:
                 raise ParameterError(n, None, f"a continuous parameter of {design.name} with a declared range: "
@@ -106,17 +114,18 @@ class Region:
                 names.append(n)
         lo, hi = [], []
         for n in names:
-            a, b = param_bounds(P, n)
+            C = O if n in OPERATING_AXES else P
+            a, b = param_bounds(C, n)
             if n in ranges:
                 r = ranges[n]
                 try:
-                    x0, x1 = (P.parse_value(n, v) if isinstance(v, str) else float(v) for v in r)
+                    x0, x1 = (C.parse_value(n, v) if isinstance(v, str) else float(v) for v in r)
                 except (TypeError, ValueError):
                     raise ParameterError(n, r, "a range (lo, hi) in the parameter's unit", "option --range") from None
                 if not (x0 < x1) or (a is not None and x0 < a) or (b is not None and x1 > b):
                     raise ParameterError(n, r, f"lo < hi within the declared range [{a:g}, {b:g}]", "option --range")
             else:
-                v = float(getattr(design.params, n))
+                v = float(getattr(design.op if n in OPERATING_AXES else design.params, n))
                 h = span * abs(v) if v != 0 else ZERO_SPAN * (b - a)
                 x0, x1 = max(v - h, a), min(v + h, b)
             lo.append(round12(x0))
@@ -124,7 +133,7 @@ class Region:
         if isinstance(engine, EngineCurve) and engine.is_default:
             engine = None  # the built-in curve given as an object is the built-in curve: one key for both
         settings = EvalSettings.from_design(design, engine=engine, requirements=requirements)
-        base = {n: float(getattr(design.params, n)) for n in names}
+        base = {n: float(getattr(design.op if n in OPERATING_AXES else design.params, n)) for n in names}
         return cls(settings=settings, names=tuple(names), lo=tuple(lo), hi=tuple(hi), base=base)
 
     @property
@@ -139,6 +148,13 @@ class Region:
         """(lo, hi) of free parameter ``name``."""
         j = self.names.index(name)
         return self.lo[j], self.hi[j]
+
+    def design_values(self, design) -> dict:
+        """The values (SI) of ``design`` on the region's axes and its other parameters: its
+        concept parameters and, for an operating axis (``mu``), its operating point's."""
+        values = design.params.model_dump()
+        values.update({n: float(getattr(design.op, n)) for n in self.names if n in OPERATING_AXES})
+        return values
 
     def unit_of(self, values: dict) -> np.ndarray:
         """The free parameters of ``values`` (name -> SI; the base design's where missing) on
@@ -169,7 +185,7 @@ class Region:
     def admissible(self, values: dict) -> bool:
         """Whether the concept's rules admit the design of ``values`` on the base."""
         try:
-            self.settings.params(values)
+            self.settings.params({n: v for n, v in values.items() if n not in OPERATING_AXES})
         except ParameterError:
             return False
         return True
@@ -201,6 +217,7 @@ class Region:
         box has the same region)."""
         canon = self.settings.study().canonical()
         canon["fixed"] = {k: v for k, v in canon["fixed"].items() if k not in self.names}  # the free ones vary
+        canon["op"] = {k: v for k, v in canon["op"].items() if k not in self.names}  # a free operating axis too
         doc = {"concept": self.concept, "names": list(self.names), "lo": list(self.lo), "hi": list(self.hi),
                "settings": canon, "version": model_version(self.concept)}
         return hashlib.sha256(dumps(doc, sort_keys=True).encode()).hexdigest()[:16]
@@ -210,7 +227,7 @@ class Region:
         P = get_concept(self.concept).Params
         parts = []
         for n, lo, hi in zip(self.names, self.lo, self.hi):
-            u = P.unit(n)
+            u = OPERATING_AXES[n] if n in OPERATING_AXES else P.unit(n)
             sc, su = (1e3, "mm") if u == "m" else (1.0, "" if u in ("-", "") else u)
             parts.append(f"{n} {lo * sc:.4g}..{hi * sc:.4g} {su}".rstrip())
         return ", ".join(parts)

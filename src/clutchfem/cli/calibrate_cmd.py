@@ -1,0 +1,147 @@
+"""``clutchfem calibrate``: which inputs of a part as built explain what the test rig
+measured (the posterior of the uncertain inputs on the reduced model), and which
+measurements none explains."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from .. import ClutchfemError, ParameterError
+from . import options as O
+from .common import (
+    check_out_dir,
+    console,
+    design_from,
+    engine_from,
+    fail,
+    operating_point,
+    quantity,
+    requirements_from,
+    wrote,
+)
+
+
+@O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "a", "b", "workers", "out", "json_", live=True)
+def calibrate(
+    o,
+    measured: List[str] = typer.Option([], "--measured", help="a measurement NAME=VALUE+-U with units (U: one "
+                                       "standard uncertainty): engagement=4191rpm+-25rpm, slip=7512rpm+-40rpm, "
+                                       "torque@SPEED=V+-U, mass=..., or a measured dimension "
+                                       "flexure_thickness=2.26mm+-0.01mm; repeat", rich_help_panel="Calibration"),
+    uncertain: List[str] = typer.Option(..., "--uncertain", help="an uncertain input of the part as built: "
+                                        "mu=0.1:0.35 (uniform), flexure_thickness=+-0.1mm (normal about the drawn "
+                                        "value, +-3 sigma), mu=0.2+-0.06; E and density by similarity; repeat",
+                                        rich_help_panel="Calibration"),
+    torque_csv: Optional[Path] = typer.Option(None, "--torque-csv", help="a measured torque-speed curve (CSV, units "
+                                              "in the header as an engine curve's): its torque at the engine's "
+                                              "maximum-torque speed is a measurement (with --torque-sd)",
+                                              rich_help_panel="Calibration"),
+    torque_sd: Optional[str] = typer.Option(None, "--torque-sd", help="the standard uncertainty of --torque-csv's "
+                                            "torque, e.g. 0.1Nm", rich_help_panel="Calibration"),
+    method: str = typer.Option("emcee", "--method", help="emcee (sampling) or laplace (a normal at the mode)",
+                               rich_help_panel="Calibration"),
+    n: Optional[int] = typer.Option(None, "--n", help="training designs of the reduced model (default 8 per axis "
+                                    "+ 8)", rich_help_panel="Reduced model"),
+    held_out: int = typer.Option(10, "--held-out", help="designs its own error is measured on",
+                                 rich_help_panel="Reduced model"),
+    seed: int = typer.Option(0, "--seed", help="the sampler's seed", rich_help_panel="Calibration"),
+    steps: int = typer.Option(5000, "--steps", help="emcee's steps per walker (500 discarded)",
+                              rich_help_panel="Calibration"),
+):
+    """Calibrate to measured parts: the posterior of the uncertain inputs given the rig's
+    measurements (on the reduced model of a region holding the priors), the calibrated answers
+    with bands, and the measurements no input within its prior explains."""
+    from .. import calibrate as run
+    from .. import check_measurements, dumps, parse_measured, torque_from_csv
+
+    try:
+        check_out_dir(o.out)
+        if seed < 0:
+            raise ParameterError("seed", seed, "an integer >= 0", "option --seed")
+        answers = ("engagement", "engagement_ripple", "slip")  # the speeds checked against each other, before any work
+        check_measurements([parse_measured(m) for m in measured if m.split("=")[0].strip() in answers])
+        eng, _ = engine_from(o.engine)
+        req = requirements_from(o.a, o.b)
+        fid = o.fidelity or "best"
+        design = design_from(o.concept, o.set_, None, op=operating_point(mu=o.mu, fidelity="live" if fid == "live"
+                                                                          else fid),
+                             mesh_size=o.mesh_size, mesh_allowed=False)
+        meas = list(measured)
+        if torque_csv is not None:
+            sd = quantity("--torque-sd", torque_sd, "N m", above=0.0)
+            if sd is None:
+                raise ParameterError("torque_sd", None, "the standard uncertainty of the curve's torque, e.g. 0.1Nm",
+                                     "option --torque-sd")
+            from .. import EngineCurve
+
+            rpm = float((eng if eng is not None else EngineCurve.default()).rpm_max_torque)
+            meas.append(torque_from_csv(torque_csv, rpm, sd))
+        elif torque_sd is not None:
+            raise ParameterError("torque_sd", torque_sd, "an option of --torque-csv", "option --torque-sd")
+        if not meas:
+            raise ParameterError("measured", None, "at least one --measured NAME=VALUE+-U (or --torque-csv)",
+                                 "option --measured")
+        res = run(design, meas, uncertain, method=method, n=n, held_out=held_out, engine=eng, requirements=req,
+                  workers=o.workers, progress=not o.json_, seed=seed, steps=steps)
+        if o.out is not None:
+            wrote(res.write_figures(o.out))
+        if o.json_:
+            print(dumps(res.to_json()))
+            return
+        _print(res)
+    except ClutchfemError as exc:
+        fail(exc)
+
+
+#: SI unit -> (the unit shown, its factor)
+_SHOWN = {"m": ("mm", 1e3), "Pa": ("MPa", 1e-6), "kg": ("g", 1e3), "-": ("", 1.0)}
+
+
+def _q(v: float, unit: str) -> str:
+    u, sc = _SHOWN.get(unit, (unit, 1.0))
+    return f"{v * sc:.4g} {u}".rstrip()
+
+
+def _print(res) -> None:
+    t = Table(title=escape(f"{res.concept}: the part as built ({res.info['method']}, {res.info['samples']} samples)"))
+    for c in ("input", "prior (95 %)", "posterior mean", "posterior 95 %", "narrowed", "note"):
+        t.add_column(c, justify="left" if c in ("input", "note") else "right")
+    for name, p in res.posterior.items():
+        u = p["unit"]
+        pr = p["prior"]
+        note = "" if p["identified"] else "not identified"
+        if p["trades_off_with"]:
+            tw = p["trades_off_with"]
+            note += ("; " if note else "") + f"trades off with {tw['name']} ({tw['correlation']:+.2f})"
+        if p["at_edge"]:
+            note += ("; " if note else "") + f"at the prior's {p['at_edge']} bound"
+        t.add_row(escape(name), escape(f"{_q(pr['ci95'][0], u)} .. {_q(pr['ci95'][1], u)}"), escape(_q(p["mean"], u)),
+                  escape(f"{_q(p['ci95'][0], u)} .. {_q(p['ci95'][1], u)}"), f"{100 * p['narrowed']:.0f} %",
+                  escape(note))
+    console.print(t)
+    a = Table(title="the calibrated part against the measurements")
+    for c in ("answer", "drawn design", "calibrated (95 %)", "measured"):
+        a.add_column(c, justify="left" if c == "answer" else "right")
+    for v in res.answers.values():
+        unit, sc = _SHOWN.get(v["unit"], (v["unit"], 1.0))
+        meas = "" if v["measured"] is None else _q(v["measured"], v["unit"])
+        a.add_row(escape(v["label"]), escape(_q(v["nominal"], v["unit"]) if v["nominal"] is not None else "-"),
+                  escape(f"{v['mean'] * sc:.4g} [{v['ci95'][0] * sc:.4g}, {v['ci95'][1] * sc:.4g}] {unit}"),
+                  escape(meas))
+    console.print(a)
+    c = Table(title="the check of the fit (best fit within the priors; posterior predictive)")
+    for col in ("measurement", "best fit", "distance", "p", "explained"):
+        c.add_column(col, justify="left" if col == "measurement" else "right")
+    for ch in res.checks:
+        c.add_row(escape(ch["text"]), escape(_q(ch["best_fit"], ch["unit"])), f"{ch['z_best']:+.1f} sigma",
+                  f"{ch['p_predictive']:.3f}", "yes" if ch["explained"] else "NO")
+    console.print(c)
+    for e in res.explanations:
+        console.print(escape(f"- {e}"), soft_wrap=True)
+    for note in res.notes:
+        console.print(f"[dim]note: {escape(note)}[/]", soft_wrap=True)
