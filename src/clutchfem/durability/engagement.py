@@ -140,7 +140,15 @@ class Engagement:
 
     ``status``: 'locks' (the drum caught up), 'never locks' (still slipping at
     ``max_time``: the clutch cannot carry the load at the speed the engine reaches),
-    'never engages' (the clutch transmitted no torque)."""
+    'never engages' (the clutch transmitted no torque).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> r = cf.engagement_transient([0, 4000, 20000], [0.0, 0.0, 20.0])
+    >>> r.status, r.energy_balance < 1e-6, r.to_json()["slip_energy_J"] > 0
+    ('locks', True, True)
+    """
 
     status: str
     time_to_lockup_s: float | None

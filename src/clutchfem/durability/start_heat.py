@@ -44,7 +44,16 @@ GRID = 400
 class StartHeating:
     """The shoe face during one start (:func:`start_heating`): its peak mean patch
     temperature rise [K] and when, the part's share of the friction heat, the heat into the
-    part [J], the mean sliding speed [m/s] and the heat's penetration depth [m]."""
+    part [J], the mean sliding speed [m/s] and the heat's penetration depth [m].
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> s = cf.engagement_transient([0, 20000], [5.0, 5.0], held_engine_rpm=8000, drum_radius=0.0344)
+    >>> h = cf.start_heating(s, patch_length_m=0.01, n_patches=3, thickness_m=0.011, drum_radius_m=0.0344)
+    >>> sorted(h.to_json())[:2]
+    ['fraction_part', 'heat_into_part_J']
+    """
 
     peak_rise_K: float
     peak_time_s: float

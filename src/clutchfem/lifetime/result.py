@@ -1,4 +1,4 @@
-"""What :func:`~clutchfem.life.life` returns: :class:`Life`, the answers against the number of
+"""What :func:`~clutchfem.lifetime.life` returns: :class:`Life`, the answers against the number of
 starts (units in the names), the worn profile, the first misses of the requirements with
 their band, and its JSON (:meth:`Life.to_json`)."""
 
@@ -30,7 +30,7 @@ def _first_miss(starts: np.ndarray, margin: np.ndarray) -> float | None:
 
 @dataclass(frozen=True)
 class Life:
-    """The clutch over its life (:func:`~clutchfem.life.life`): arrays against the number of
+    """The clutch over its life (:func:`~clutchfem.lifetime.life`): arrays against the number of
     starts ``starts`` (one value per wear state), the worn profile along the shoe, the
     requirement misses and their band, the energy balance of the starts.
 

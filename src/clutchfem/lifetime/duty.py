@@ -25,7 +25,7 @@ __all__ = ["DutyCycle"]
 
 
 class DutyCycle(ParamSet):
-    """How the saw is used over its life (ASSUMED defaults: module :mod:`clutchfem.life.duty`).
+    """How the saw is used over its life (ASSUMED defaults: module :mod:`clutchfem.lifetime.duty`).
 
     Parameters
     ----------
