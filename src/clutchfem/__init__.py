@@ -64,6 +64,18 @@ _GROUPS: dict[str, dict[str, str]] = {
         "DrumThermal": "clutchfem.durability",
         "slip_heat": "clutchfem.analysis",
         "SlipHeatRun": "clutchfem.analysis",
+        "DriveLine": "clutchfem.durability",
+        "Engagement": "clutchfem.durability",
+        "engagement_transient": "clutchfem.durability",
+        "StartHeating": "clutchfem.durability",
+        "start_heating": "clutchfem.durability",
+        "WearParams": "clutchfem.durability",
+        "WearRun": "clutchfem.durability",
+        "wear_rate": "clutchfem.durability",
+        "integrate_wear": "clutchfem.durability",
+        "DutyCycle": "clutchfem.lifetime",
+        "Life": "clutchfem.lifetime",
+        "life": "clutchfem.lifetime",
     },
     "Studies": {
         "StudySpec": "clutchfem.studies",
@@ -236,17 +248,27 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         thinnest_ligament,
     )
     from .durability import (
+        DriveLine,
         DrumThermal,
+        Engagement,
         FatigueLoads,
         FatigueParams,
         SlipScenario,
+        StartHeating,
         ThermalEnvironment,
         ThermalMaterial,
+        WearParams,
+        WearRun,
+        engagement_transient,
+        integrate_wear,
+        start_heating,
+        wear_rate,
     )
     from .evaluation import EvalSettings, Sensitivities, StudyInterrupted, check_scheduler, sensitivities
     from .fe import write_vtk
     from .geometry import MeshSettings, broken_concepts, concepts, draw_concept, get_concept
     from .guidelines import GuidelineResult, GuidelineSettings, run_guidelines
+    from .lifetime import DutyCycle, Life, life
     from .loadcase import Design, DesignIdentity, OperatingPoint, SweepResult, model_warnings, morph, parse_rpm
     from .mesh import cache_dir, cache_entries, cache_foreign_files, cache_limit, clear_cache
     from .reduced import ReducedModel, Region, reduce

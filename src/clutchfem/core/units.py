@@ -52,6 +52,7 @@ _TABLE: dict[str, dict[str, tuple[str, str]]] = {
     "W/(m K)": {"W/(m K)": ("1", "0"), "W/mK": ("1", "0"), "W/(mK)": ("1", "0")},
     "J/(kg K)": {"J/(kg K)": ("1", "0"), "J/kgK": ("1", "0"), "J/(kgK)": ("1", "0")},
     "W": {"W": ("1", "0"), "kW": ("1000", "0")},
+    "1/h": {"1/h": ("1", "0"), "/h": ("1", "0"), "1/min": ("60", "0")},
 }
 #: units written in table headers (an engine curve's CSV: ``torque [lbf ft]``, ``speed
 #: (U/min)``), keyed by the compact form :func:`header_unit` reduces a header's unit to
@@ -76,7 +77,8 @@ _HEADER_UNITS: dict[str, dict[str, str]] = {
 _NAMES = {"m": "a length", "deg": "an angle", "Pa": "a stress", "rpm": "a speed", "kg": "a mass",
           "kg/m^3": "a density", "N m": "a torque", "s": "a time", "C": "a temperature", "kg m^2": "an inertia",
           "W/(m^2 K)": "a heat transfer coefficient", "W/(m K)": "a conductivity",
-          "J/(kg K)": "a specific heat", "W": "a power"}
+          "J/(kg K)": "a specific heat", "W": "a power",
+          "1/h": "a rate (events per hour)"}
 #: the unit a value of each canonical unit is shown in, with its factor (shown = value * factor)
 DISPLAY: dict[str, tuple[str, float]] = {"m": ("mm", 1e3), "Pa": ("MPa", 1e-6)}
 #: the typographic minus sign (U+2212, what a word processor or a web page puts for "-"): read as "-"

@@ -7,6 +7,9 @@
   of load cycles, Haigh (Goodman/Gerber) check with a Marin-corrected endurance limit,
   Basquin S-N curve with its knee, Miner's sum over cycle types.
 * :mod:`clutchfem.durability.cycles` -- the service load cycles built from solved FE states.
+* :mod:`clutchfem.durability.engagement` -- the engagement transient of one start (engine,
+  slipping clutch, drum and chain; slip energy, lock-up, droop), :mod:`.start_heat` its
+  shoe-face temperature rise, :mod:`.wear` Archard's wear and its integration over starts.
 * :mod:`clutchfem.durability.location` -- the name of a place in the clutch (zone, flexure
   end, boundary): the worst fatigue point, the hottest points.
 
@@ -15,6 +18,7 @@ Heat and fatigue take plain arrays (contact forces, stress states) and a
 """
 
 from .cycles import FatigueLoads, ServiceStates, ripple_classes, service_cycles
+from .engagement import DriveLine, Engagement, engagement_transient
 from .fatigue import (
                       FatigueParams,
                       FatigueResult,
@@ -42,8 +46,11 @@ from .heat import (
                       write_series,
                       write_vtu,
 )
+from .start_heat import StartHeating, start_heating
+from .wear import WearParams, WearRun, integrate_wear, wear_rate
 
-__all__ = ["DrumThermal", "FatigueLoads", "FatigueParams", "FatigueResult", "HeatPartition", "LoadCycle",
+__all__ = ["DriveLine", "Engagement", "engagement_transient", "StartHeating", "start_heating", "WearParams",
+           "WearRun", "integrate_wear", "wear_rate", "DrumThermal", "FatigueLoads", "FatigueParams", "FatigueResult", "HeatPartition", "LoadCycle",
            "Location", "ServiceStates", "SlipHeatLoad", "SlipHeatResult", "SlipScenario", "ThermalEnvironment",
            "ThermalMaterial", "candidate_points", "endurance_limit", "fatigue_check", "heat_partition",
            "name_location", "render_png", "ripple_classes", "service_cycles", "single_cycle_factor",
