@@ -36,6 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core import ParameterError
+from ..core.figures import figure, save_figure
 from ..reduced import reduce
 from .inference import BAND_SIGMAS, Forward, Posterior, emcee_samples, laplace
 from .inputs import ANSWER_OF, SIMILARITY, Measurement, Uncertain, check_measurements, parse_measured, parse_uncertain
@@ -95,7 +96,11 @@ class Calibration:
 
     Examples
     --------
-    See :func:`calibrate`.
+    What a calibration holds (:func:`calibrate` runs one):
+
+    >>> import clutchfem as cf
+    >>> list(cf.Calibration.__dataclass_fields__)[:5]
+    ['concept', 'uncertain', 'measured', 'posterior', 'answers']
     """
 
     concept: str
@@ -124,8 +129,6 @@ class Calibration:
         """The pictures into folder ``out``: per input its prior and posterior
         (``calibration_inputs.png``), the calibrated answers against the measurements
         (``calibration_answers.png``)."""
-        from ..core.figures import figure, save_figure
-
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
         k = len(self.uncertain)

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..clutch.engine_csv import read_engine_csv
 from ..core import InputError, ParameterError, param_bounds, parse_quantity
 from ..core.units import UnitError
 from ..reduced import OPERATING_AXES
@@ -415,8 +416,6 @@ def torque_from_csv(path, rpm: float, sd: float) -> Measurement:
     >>> m.name, round(m.value, 9), m.at_rpm
     ('torque', 4.0, 6000.0)
     """
-    from ..clutch.engine_csv import read_engine_csv
-
     t = read_engine_csv(path)
     r, q = np.asarray(t.rpm, dtype=float), np.asarray(t.torque, dtype=float)
     if not (r.min() <= rpm <= r.max()):

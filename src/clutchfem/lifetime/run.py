@@ -105,7 +105,7 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
     >>> import clutchfem as cf
     >>> d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
     >>> L = cf.life(d, starts=1000, rebuild_depth=None)
-    >>> L.contact_arc_deg[-1] > L.contact_arc_deg[0], L.energy_balance < 1e-6
+    >>> bool(L.engagement_rpm[-1] >= L.engagement_rpm[0]), L.energy_balance < 1e-6
     (True, True)
     """
     t0 = time.perf_counter()
