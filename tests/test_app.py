@@ -146,3 +146,68 @@ def test_live_design_in_a_real_browser(server):
         page.screenshot(path=str(ARTIFACTS / "app.png"), full_page=True)
         browser.close()
     assert (ARTIFACTS / "app.png").stat().st_size > 50_000
+
+
+def _rss_mb(pid: int) -> float:
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) / 1024
+    raise AssertionError("no VmRSS")
+
+
+#: the server's memory after 200 page requests without a browser [MB] (docs/app.md: a page
+#: that never connects holds its widgets only, no session, no analysis)
+UNCONNECTED_BOUND_MB = 400
+
+
+@pytest.mark.slow
+def test_the_app_as_a_server_without_a_browser(tmp_path):
+    """200 plain page requests (/ and random paths) start no session and no analysis: no tab
+    folder, no mesh written, memory under the stated bound; other paths are a plain 404; an
+    upload larger than its limit is refused by the server (413) before it is read, declared
+    or chunked, and a small one to a page that never connected writes nothing."""
+    import random
+
+    import httpx
+
+    from clutchfem.app.limits import MAX_CSV_BYTES, MAX_PART_BYTES
+
+    out = tmp_path / "app"
+    with app_server(out) as url, httpx.Client(base_url=url, timeout=30) as http:
+        pid = int(next(p.name for p in Path("/proc").iterdir() if p.name.isdigit()
+                       and (p / "cmdline").exists() and str(out).encode() in (p / "cmdline").read_bytes()))
+        before = _rss_mb(pid)
+        rng = random.Random(37)
+        html = ""
+        for i in range(200):
+            if i % 2:
+                r = http.get(f"/{''.join(rng.choices('abcxyz/', k=8)).strip('/') or 'x'}")
+                assert r.status_code == 404 and "no page of this app" in r.text, (r.status_code, r.text[:200])
+            else:
+                r = http.get("/")
+                assert r.status_code == 200
+                html = r.text
+        after = _rss_mb(pid)
+        uploads = sorted(set(re.findall(r"/_nicegui/client/[0-9a-f-]+/upload/\d+", html)))
+        assert len(uploads) == 2, uploads  # the engine CSV's and the part's
+        csv_url, part_url = uploads
+        big = b"rpm,torque\n" + b"5000,10\n" * (5 * (1 << 20) // 8)  # 5 MB
+        r = http.post(csv_url, files={"file": ("engine.csv", big, "text/csv")})
+        assert r.status_code == 413 and f"{MAX_CSV_BYTES / 1024:.0f} kB" in r.text
+        r = http.post(part_url, files={"file": ("part.msh", b"x" * (MAX_PART_BYTES + 1), "text/plain")})
+        assert r.status_code == 413 and f"{MAX_PART_BYTES / 1024:.0f} kB" in r.text
+
+        def chunks():  # no declared length: counted as it arrives
+            for _ in range(40):
+                yield b"5000,10\n" * 16384
+
+        r = http.post(csv_url, content=chunks(), headers={"content-type": "multipart/form-data; boundary=xx"})
+        assert r.status_code == 413
+        r = http.post(csv_url, files={"file": ("engine.csv", b"rpm,torque\n3000,5\n9000,10\n", "text/csv")})
+        assert r.status_code == 200
+        r = http.post("/_nicegui/client/nobody/upload/1", files={"file": ("a.csv", b"1,2\n", "text/csv")})
+        assert r.status_code == 404
+    written = [p for p in out.rglob("*") if p.name != "app.log"]
+    assert written == [], written  # no tab folder, no mesh, no upload written
+    assert "Traceback" not in (out / "app.log").read_text()
+    assert after < UNCONNECTED_BOUND_MB, (before, after)

@@ -9,9 +9,12 @@ import socket
 import tempfile
 from pathlib import Path
 
-from nicegui import ui
+from nicegui import Client, app, ui
+from starlette.requests import Request
+from starlette.responses import PlainTextResponse
 
 from ..core import InputError
+from .limits import UploadLimit
 from .page import build_page
 
 __all__ = ["serve_app"]
@@ -60,8 +63,26 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
         raise InputError(f"out {root}: cannot make the folder ({exc.strerror or exc})") from None
     if started is not None:
         started()
-    ui.run(lambda: build_page(root), host=host, port=port, title=title, show=open_browser, reload=False,
+    register(root)
+    ui.run(host=host, port=port, title=title, show=open_browser, reload=False,
            show_welcome_message=False, uvicorn_logging_level="warning", favicon="\u2699")
+
+
+def register(root: Path) -> None:
+    """The app's one page at ``/``, a plain 404 (no page, no session) for any other path, and
+    the upload limit enforced on the server (:mod:`.limits`)."""
+
+    @ui.page("/")
+    def index(client: Client) -> None:
+        build_page(root, client)
+
+    app.add_exception_handler(404, not_found)
+    app.add_middleware(UploadLimit)
+
+
+async def not_found(request: Request, exc: Exception) -> PlainTextResponse:
+    """Any path but the page and NiceGUI's own: 404, nothing built."""
+    return PlainTextResponse(f"404: {request.url.path} is no page of this app; the app is at /", status_code=404)
 
 
 def check_port(host: str, port: int) -> None:
