@@ -22,9 +22,10 @@ from pathlib import Path
 from nicegui import Client, run, ui
 
 from ..core import ClutchfemError
+from . import limits
 from .downloads import Downloads
 from .figures import field_png, pressure_chart, torque_chart
-from .limits import MAX_CSV_BYTES, MAX_PART_BYTES, MAX_SESSIONS, upload_limits
+from .limits import MAX_CSV_BYTES, MAX_PART_BYTES, upload_limits
 from .session import FIRST_PASS, DesignSession, answer_rows
 from .studies_panel import StudiesPanel
 
@@ -96,7 +97,7 @@ class DesignPage(StudiesPanel, Downloads):
         if self.started or self.closed:
             return
         self.started = True
-        if len(live_tabs) >= MAX_SESSIONS:
+        if len(live_tabs) >= limits.MAX_SESSIONS:
             self.closed = True
             self.status.set_text(too_many_tabs())
             ui.notify(too_many_tabs(), type="negative", multi_line=True, timeout=0)
@@ -494,7 +495,7 @@ def upload_refusal(what: str, size: int, limit: int) -> str | None:
 
 
 def too_many_tabs() -> str:
-    return (f"refused: {MAX_SESSIONS} tabs of this app are open already (the most it analyses at once, to bound its "
+    return (f"refused: {limits.MAX_SESSIONS} tabs of this app are open already (the most it analyses at once, to bound its "
             "memory); close one, or start another app with clutchfem app --port ...")
 
 
@@ -503,7 +504,7 @@ def build_page(out_root: Path, client: Client | None = None) -> DesignPage | Non
     built here: the session's folder and its analysis start when the page connects
     (:meth:`DesignPage.start`); a closed tab is reclaimed (:meth:`DesignPage.close`).  With
     :data:`~.limits.MAX_SESSIONS` tabs live, a refusal page and no session."""
-    if len(live_tabs) >= MAX_SESSIONS:
+    if len(live_tabs) >= limits.MAX_SESSIONS:
         ui.page_title("clutchfem: too many tabs")
         ui.label(too_many_tabs()).props("data-testid=refused")
         return None

@@ -14,6 +14,7 @@ from starlette.requests import Request
 from starlette.responses import PlainTextResponse
 
 from ..core import InputError
+from . import limits
 from .limits import UploadLimit
 from .page import build_page
 
@@ -21,7 +22,7 @@ __all__ = ["serve_app"]
 
 
 def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool = True, out: str | Path | None = None,
-              title: str = "clutchfem", started=None) -> None:
+              title: str = "clutchfem", started=None, max_tabs: int | None = None) -> None:
     """Run the live design app until interrupted.
 
     Parameters
@@ -36,6 +37,9 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
         The folder of the tabs' files (reports, downloads); default: a new temporary folder.
     title : str
         The page's title.
+    max_tabs : int, optional
+        The most tabs analysing at once (default :data:`~clutchfem.app.limits.MAX_SESSIONS`);
+        a further tab gets a refusal page and no session.
     started : callable, optional
         Called once the port and the folder are checked, just before the server starts (the
         command line prints the address there: never for a port it cannot have).
@@ -53,6 +57,10 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
     """
     if isinstance(port, bool) or not (isinstance(port, int) and 1 <= port <= 65535):
         raise InputError(f"port {port!r}: a TCP port in 1..65535")
+    if max_tabs is not None:
+        if isinstance(max_tabs, bool) or not (isinstance(max_tabs, int) and 1 <= max_tabs <= 64):
+            raise InputError(f"max_tabs {max_tabs!r}: an integer in 1..64 (the most tabs analysing at once)")
+        limits.MAX_SESSIONS = max_tabs
     check_port(host, port)
     root = Path(out) if out is not None else Path(tempfile.mkdtemp(prefix="clutchfem-app-"))
     if root.exists() and not root.is_dir():
