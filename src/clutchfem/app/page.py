@@ -495,8 +495,8 @@ def upload_refusal(what: str, size: int, limit: int) -> str | None:
 
 
 def too_many_tabs() -> str:
-    return (f"refused: {limits.MAX_SESSIONS} tabs of this app are open already (the most it analyses at once, to bound its "
-            "memory); close one, or start another app with clutchfem app --port ...")
+    return (f"refused: {limits.MAX_SESSIONS} tabs of this app are open already (the most it analyses at once, to "
+            "bound its memory); close one, or start another app with clutchfem app --port ...")
 
 
 def build_page(out_root: Path, client: Client | None = None) -> DesignPage | None:
