@@ -354,6 +354,8 @@ class DesignPage(StudiesPanel, Downloads):
 
     # -- the analysis ----------------------------------------------------------------------
     def schedule(self) -> None:
+        if self.closed or not self.started:  # not live: no analysis (limits: only a connected page analyses)
+            return
         self.schedule_ranges()
         if self.pending is not None and not self.pending.done():
             self.pending.cancel()
