@@ -68,41 +68,35 @@ class UploadLimit:
                 return await _answer(send, 400, "content-length is not a number")
             if n > cap:
                 return await _answer(send, 413, _too_large(limit))
-        seen = 0
-        refused = False
+        seen, refused, answered = 0, False, False
 
-        async def counted():
+        async def counted():  # the bytes as they arrive: past the cap, the client "went"
             nonlocal seen, refused
+            if refused:
+                return {"type": "http.disconnect"}
             msg = await receive()
             if msg.get("type") == "http.request":
                 seen += len(msg.get("body", b""))
                 if seen > cap:
                     refused = True
-                    raise _TooLarge
+                    return {"type": "http.disconnect"}
             return msg
 
-        started = False
-
-        async def tracked_send(msg):
-            nonlocal started
-            if msg.get("type") == "http.response.start":
-                started = True
-            await send(msg)
+        async def guarded(msg):  # once refused, the route's own answer (an error) becomes the 413
+            nonlocal answered
+            if not refused:
+                return await send(msg)
+            if not answered:
+                answered = True
+                await _answer(send, 413, _too_large(limit))
 
         try:
-            await self.app(scope, counted, tracked_send)
-        except _TooLarge:
-            if not started:
-                await _answer(send, 413, _too_large(limit))
+            await self.app(scope, counted, guarded)
         except Exception:
             if not refused:
                 raise
-            if not started:
-                await _answer(send, 413, _too_large(limit))
-
-
-class _TooLarge(Exception):
-    pass
+        if refused and not answered:
+            await _answer(send, 413, _too_large(limit))
 
 
 def _too_large(limit: int) -> str:
