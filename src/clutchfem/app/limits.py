@@ -3,9 +3,9 @@ the size of an uploaded file, the answer to a path that is no page.
 
 A browser is not needed to reach the server: a page request (``GET /``) builds the page's
 widgets only; the tab's session, its folder and its analysis start when the page's websocket
-connects (a real page in a browser), and a page that never connects is dropped by NiceGUI
-after 60 s.  At most :data:`MAX_SESSIONS` tabs are live at once (a further one gets a
-refusal page, no session); a closed tab's tasks are cancelled, its session and folder
+connects (a real page in a browser); at most :data:`MAX_PENDING` pages wait for it, each at
+most :data:`PENDING_S` (a further request gets a 503).  At most :data:`MAX_SESSIONS` tabs
+are live at once (a further one gets a refusal page, no session); a closed tab's tasks are cancelled, its session and folder
 dropped.  An upload larger than its limit is refused with HTTP 413 before its body is read
 (:class:`UploadLimit`, on the request's declared length and on the bytes as they arrive).
 """
@@ -14,11 +14,15 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["MAX_SESSIONS", "MAX_CSV_BYTES", "MAX_PART_BYTES", "UploadLimit", "upload_limits"]
+__all__ = ["MAX_SESSIONS", "MAX_PENDING", "PENDING_S", "MAX_CSV_BYTES", "MAX_PART_BYTES", "UploadLimit", "upload_limits"]
 
 #: the most tabs analysing at once (each holds one design's meshes and answers: ~150 MB at
 #: the peak of an analysis on the best path): the server stays under BASE + MAX x 150 MB
 MAX_SESSIONS = 8
+#: the most pages built and waiting for their websocket (each ~0.5 MB of widgets, no session)
+MAX_PENDING = 32
+#: a page not connected after this long is dropped [s]
+PENDING_S = 15.0
 #: largest uploaded engine CSV [bytes]
 MAX_CSV_BYTES = 1 << 20
 #: largest uploaded part (.msh / STEP) [bytes]

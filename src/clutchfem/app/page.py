@@ -20,6 +20,7 @@ import tempfile
 from pathlib import Path
 
 from nicegui import Client, run, ui
+from starlette.responses import HTMLResponse
 
 from ..core import ClutchfemError
 from . import limits
@@ -38,6 +39,8 @@ LIVE_DEBOUNCE_S = 0.05
 EXTRAS_DELAY_S = 0.5
 #: the live tabs (connected pages with a session), by NiceGUI client id
 live_tabs: dict[str, "DesignPage"] = {}
+#: the pages built and not yet connected
+pending_pages: dict[str, "DesignPage"] = {}
 
 
 class DesignPage(StudiesPanel, Downloads):
@@ -97,6 +100,7 @@ class DesignPage(StudiesPanel, Downloads):
         if self.started or self.closed:
             return
         self.started = True
+        pending_pages.pop(self.key, None)
         if len(live_tabs) >= limits.MAX_SESSIONS:
             self.closed = True
             self.status.set_text(too_many_tabs())
@@ -118,6 +122,7 @@ class DesignPage(StudiesPanel, Downloads):
         for url in self.uploads:
             upload_limits.pop(url, None)
         live_tabs.pop(self.key, None)
+        pending_pages.pop(self.key, None)
         if self.dir is not None:
             shutil.rmtree(self.dir, ignore_errors=True)
         # the designs, meshes and answers it held: free to be collected (a worker thread still
@@ -501,19 +506,32 @@ def too_many_tabs() -> str:
             "bound its memory); close one, or start another app with clutchfem app --port ...")
 
 
-def build_page(out_root: Path, client: Client | None = None) -> DesignPage | None:
+def build_page(out_root: Path, client: Client | None = None) -> DesignPage | HTMLResponse:
     """The page of one tab (called by NiceGUI for every page request).  Only the widgets are
     built here: the session's folder and its analysis start when the page connects
-    (:meth:`DesignPage.start`); a closed tab is reclaimed (:meth:`DesignPage.close`).  With
-    :data:`~.limits.MAX_SESSIONS` tabs live, a refusal page and no session."""
-    if len(live_tabs) >= limits.MAX_SESSIONS:
-        ui.page_title("clutchfem: too many tabs")
-        ui.label(too_many_tabs()).props("data-testid=refused")
-        return None
+    (:meth:`DesignPage.start`); a page not connected within :data:`~.limits.PENDING_S` is
+    dropped, a closed tab is reclaimed (:meth:`DesignPage.close`).  With
+    :data:`~.limits.MAX_SESSIONS` tabs live, or :data:`~.limits.MAX_PENDING` pages waiting to
+    connect, a refusal (503) and nothing built."""
+    busy = (too_many_tabs() if len(live_tabs) >= limits.MAX_SESSIONS else
+            f"refused: {limits.MAX_PENDING} pages of this app are waiting for their browser to connect; try again in "
+            f"{limits.PENDING_S:.0f} s" if len(pending_pages) >= limits.MAX_PENDING else None)
+    if busy is not None:
+        if client is not None:
+            asyncio.get_event_loop().call_soon(client.delete)
+        return HTMLResponse(f"<!doctype html><title>clutchfem: busy</title><p data-testid=refused>{busy}</p>",
+                            status_code=503)
     page = DesignPage(out_root, client)
     page.build()
     if client is not None:
+        pending_pages[page.key] = page
         client.on_connect(page.start)
         client.on_delete(page.close)
+
+        def drop_if_unconnected() -> None:
+            if not page.started and not client.is_deleted:
+                client.delete()
+
+        asyncio.get_event_loop().call_later(limits.PENDING_S, drop_if_unconnected)
     return page
 

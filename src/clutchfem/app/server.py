@@ -11,7 +11,7 @@ from pathlib import Path
 
 from nicegui import Client, app, ui
 from starlette.requests import Request
-from starlette.responses import PlainTextResponse
+from starlette.responses import PlainTextResponse, Response
 
 from ..core import InputError
 from . import limits
@@ -81,8 +81,9 @@ def register(root: Path) -> None:
     the upload limit enforced on the server (:mod:`.limits`)."""
 
     @ui.page("/")
-    def index(client: Client) -> None:
-        build_page(root, client)
+    def index(client: Client):
+        page = build_page(root, client)
+        return page if isinstance(page, Response) else None
 
     app.add_exception_handler(404, not_found)
     app.add_middleware(UploadLimit)
