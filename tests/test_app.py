@@ -374,3 +374,25 @@ def test_upload_limit_refuses_before_the_body_is_read():
     assert chunked.status_code == 413
     assert small.status_code == 200 and unknown.status_code == 404
     assert got == [900]  # the refused bodies never reached the route
+
+
+@pytest.mark.slow
+def test_a_cancelled_optimisation_stops_at_its_next_step():
+    """The app's cancel: the optimiser's log is its cancellation point; a cancel raised there
+    ends the search (no further design evaluated) instead of being taken for a bad design."""
+    from clutchfem.app.studies_panel import StudyCancelled, StudyProgress
+
+    d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"), fidelity="fast")
+    prog, seen = StudyProgress(40, 1.0), []
+
+    def log(m: str) -> None:  # as the page's: cancelled after the first step
+        seen.append(m)
+        prog.saw(m)
+        prog.cancelled = True
+        raise StudyCancelled("optimisation: cancelled")
+
+    with pytest.raises(StudyCancelled):
+        cf.optimize(d, free=["flexure_thickness"], sample=4, max_evals=12, workers=0, check=False,
+                    method="pattern", log=log)
+    assert len(seen) == 1 and "[1 of at most 12 evaluations" in seen[0], seen
+    assert prog.share() == pytest.approx(1 / 12)

@@ -35,8 +35,9 @@ __all__ = ["StudiesPanel", "StudyCancelled", "StudyProgress", "optimum_summary"]
 OPT_EVALS = 40
 
 
-class StudyCancelled(ClutchfemError):
-    """A study stopped by its cancel button or because its tab went."""
+class StudyCancelled(Exception):
+    """A study stopped by its cancel button or because its tab went (not a ClutchfemError: no
+    handler of the study's own takes it for a refused design)."""
 
 
 class StudyProgress:
