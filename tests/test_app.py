@@ -396,3 +396,30 @@ def test_a_cancelled_optimisation_stops_at_its_next_step():
                     method="pattern", log=log)
     assert len(seen) == 1 and "[1 of at most 12 evaluations" in seen[0], seen
     assert prog.share() == pytest.approx(1 / 12)
+
+
+@pytest.mark.slow
+def test_a_study_in_the_browser_shows_its_time_left_and_cancels(tmp_path, monkeypatch):
+    """The optimisation from the page: a bar with its share done and the time left, a cancel
+    button that stops it (said on the page), no apply button without a result."""
+    from playwright.sync_api import expect, sync_playwright
+
+    monkeypatch.setenv("CLUTCHFEM_FIDELITY", "fast")
+    out = tmp_path / "app"
+    with app_server(out) as url, sync_playwright() as p:
+        browser = launch_chromium(p)
+        page = browser.new_page(viewport={"width": 1500, "height": 1300})
+        page.goto(url)
+        expect(page.locator("[data-testid=status]")).to_contain_text("first pass in", timeout=90_000)
+        page.get_by_text("studies of this design").click()
+        page.locator("[data-testid=study-optimize]").click()
+        log = page.locator("[data-testid=study-log]")
+        expect(log).to_contain_text(re.compile(r"optimisation \(least mass, at most 40 designs\): \d+ %, "
+                                               r"(about \d+ (s|min) left|finishing)"), timeout=30_000)
+        expect(page.locator("[data-testid=study-apply]")).to_be_hidden()
+        page.locator("[data-testid=study-cancel]").click()
+        expect(log).to_contain_text(re.compile(r"cancelled after \d+ s"), timeout=120_000)
+        expect(page.locator("[data-testid=study-cancel]")).to_be_hidden()
+        expect(page.locator("[data-testid=study-apply]")).to_be_hidden()
+        browser.close()
+    assert "Traceback" not in (out / "app.log").read_text()
