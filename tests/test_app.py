@@ -423,3 +423,14 @@ def test_a_study_in_the_browser_shows_its_time_left_and_cancels(tmp_path, monkey
         expect(page.locator("[data-testid=study-apply]")).to_be_hidden()
         browser.close()
     assert "Traceback" not in (out / "app.log").read_text()
+
+
+@pytest.mark.parametrize("bad", ["0", "65"])
+def test_max_tabs_outside_its_range_is_refused_naming_it(bad):
+    from typer.testing import CliRunner
+
+    from clutchfem.cli import app
+
+    r = CliRunner().invoke(app, ["app", "--max-tabs", bad, "--no-browser", "--port", "18999"])
+    assert r.exit_code != 0 and "Traceback" not in r.output
+    assert f"max_tabs {bad}: an integer in 1..64" in r.output
