@@ -161,7 +161,7 @@ UNCONNECTED_BOUND_MB = 64
 
 
 @pytest.mark.slow
-def test_the_app_as_a_server_without_a_browser(tmp_path):
+def test_the_app_as_a_server_without_a_browser(tmp_path, monkeypatch):
     """200 plain page requests (/ and random paths) start no session and no analysis: no tab
     folder, no mesh written, memory under the stated bound; at most MAX_PENDING pages wait
     for their browser (a further request gets a 503); other paths are a plain 404; an
@@ -173,7 +173,8 @@ def test_the_app_as_a_server_without_a_browser(tmp_path):
 
     from clutchfem.app.limits import MAX_CSV_BYTES, MAX_PART_BYTES, MAX_PENDING
 
-    out = tmp_path / "app"
+    out, cache = tmp_path / "app", tmp_path / "cache"
+    monkeypatch.setenv("CLUTCHFEM_CACHE", str(cache))  # the server's mesh cache: an analysis would write there
     with app_server(out) as url, httpx.Client(base_url=url, timeout=30) as http:
         pid = int(next(p.name for p in Path("/proc").iterdir() if p.name.isdigit()
                        and (p / "cmdline").exists() and str(out).encode() in (p / "cmdline").read_bytes()))
@@ -217,6 +218,7 @@ def test_the_app_as_a_server_without_a_browser(tmp_path):
         assert r.status_code == 404
     written = [p for p in out.rglob("*") if p.name != "app.log"]
     assert written == [], written  # no tab folder, no mesh, no upload written
+    assert [p for p in cache.rglob("*") if p.is_file()] == []  # no design meshed
     assert "Traceback" not in (out / "app.log").read_text()
     print(f"server RSS: {before:.0f} MB before, {after:.0f} MB after 200 page requests")
     assert after - before < UNCONNECTED_BOUND_MB, (before, after)
@@ -434,3 +436,37 @@ def test_max_tabs_outside_its_range_is_refused_naming_it(bad):
     r = CliRunner().invoke(app, ["app", "--max-tabs", bad, "--no-browser", "--port", "18999"])
     assert r.exit_code != 0 and "Traceback" not in r.output
     assert f"max_tabs {bad}: an integer in 1..64" in r.output
+
+
+def test_meshing_leaves_sigpipe_ignored():
+    """gmsh.initialize sets SIGPIPE to SIG_DFL process-wide: after a meshing run, a write to a
+    closed socket killed the process (the app's server, when a browser went away); a gmsh
+    session puts it back, from the main thread and from a worker thread."""
+    import ctypes
+    import signal
+    import threading
+
+    from clutchfem.geometry.session import gmsh_session
+
+    libc = ctypes.CDLL(None)
+    libc.signal.restype = ctypes.c_void_p
+    libc.signal.argtypes = [ctypes.c_int, ctypes.c_void_p]
+
+    def disposition():
+        prev = libc.signal(int(signal.SIGPIPE), ctypes.c_void_p(1))
+        libc.signal(int(signal.SIGPIPE), ctypes.c_void_p(prev))
+        return prev
+
+    assert disposition() == 1  # Python's default: ignored
+    with gmsh_session("t1"):
+        assert disposition() == 1
+    assert disposition() == 1
+    worker = threading.Thread(target=_mesh_in_thread, args=(gmsh_session,))
+    worker.start()
+    worker.join()
+    assert disposition() == 1
+
+
+def _mesh_in_thread(gmsh_session) -> None:
+    with gmsh_session("t2"):
+        pass
