@@ -26,8 +26,9 @@ def free_port() -> int:
 
 
 @contextlib.contextmanager
-def app_server(out: Path, timeout: float = 60.0):
-    """``clutchfem app`` on a free port writing into ``out``; yields its URL, stops it after.
+def app_server(out: Path, timeout: float = 60.0, args: tuple[str, ...] = ()):
+    """``clutchfem app`` on a free port writing into ``out`` (with further ``args``); yields
+    its URL, stops it after.
 
     NiceGUI's own test mode keys on PYTEST_* variables: they are left out of its environment."""
     port = free_port()
@@ -36,7 +37,7 @@ def app_server(out: Path, timeout: float = 60.0):
     out.mkdir(parents=True, exist_ok=True)
     log = open(out / "app.log", "wb")  # a file, not a pipe nobody reads: a chatty server never blocks
     proc = subprocess.Popen([sys.executable, "-m", "clutchfem.cli", "app", "--port", str(port), "--no-browser",
-                             "--out", str(out)], env=env, stdout=log, stderr=subprocess.STDOUT)
+                             "--out", str(out), *args], env=env, stdout=log, stderr=subprocess.STDOUT)
     try:
         t0 = time.time()
         while True:

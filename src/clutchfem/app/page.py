@@ -15,35 +15,44 @@ from __future__ import annotations
 import asyncio
 import base64
 import math
+import shutil
 import tempfile
 from pathlib import Path
 
-from nicegui import run, ui
+from nicegui import Client, run, ui
+from starlette.responses import HTMLResponse
 
 from ..core import ClutchfemError
+from . import limits
 from .downloads import Downloads
 from .figures import field_png, pressure_chart, torque_chart
+from .limits import MAX_CSV_BYTES, MAX_PART_BYTES, upload_limits
 from .session import FIRST_PASS, DesignSession, answer_rows
 from .studies_panel import StudiesPanel
 
-__all__ = ["build_page"]
+__all__ = ["build_page", "live_tabs"]
 
 #: wait after the last change before an analysis starts [s] (the model ``live``: its own, shorter)
 DEBOUNCE_S = 0.15
 LIVE_DEBOUNCE_S = 0.05
 #: wait after the answers before the part picture and the error bands start [s]
 EXTRAS_DELAY_S = 0.5
-#: largest uploaded engine CSV / mesh [bytes]
-MAX_CSV_BYTES = 1 << 20
-MAX_MESH_BYTES = 20 << 20
+#: the live tabs (connected pages with a session), by NiceGUI client id
+live_tabs: dict[str, "DesignPage"] = {}
+#: the pages built and not yet connected
+pending_pages: dict[str, "DesignPage"] = {}
 
 
 class DesignPage(StudiesPanel, Downloads):
     """The widgets and handlers of one tab (module docstring)."""
 
-    def __init__(self, out_root: Path):
-        self.dir = Path(tempfile.mkdtemp(prefix="tab-", dir=out_root))
-        self.s = DesignSession("concept4", self.dir)
+    def __init__(self, out_root: Path, client: Client | None = None):
+        self.out_root = out_root
+        self.client = client
+        self.dir: Path | None = None  # the tab's folder: made when the page connects
+        self.s = DesignSession("concept4")
+        self.started = self.closed = False
+        self.uploads: list[str] = []
         self.values: dict[str, object] = {}
         self.widgets: dict[str, tuple] = {}
         self.messages: dict[str, ui.label] = {}
@@ -82,7 +91,55 @@ class DesignPage(StudiesPanel, Downloads):
                 self.panel()
             with ui.column().classes("grow"):
                 self.results()
-        asyncio.get_event_loop().call_soon(lambda: self.schedule())
+
+    # -- life of the tab ---------------------------------------------------------------------
+    def start(self) -> None:
+        """The page's websocket connected (a page in a browser): the tab becomes live (its
+        folder, its session counted in :data:`~.limits.MAX_SESSIONS`) and its first analysis
+        starts; a reconnection changes nothing.  Over the limit, the page says so instead."""
+        if self.started or self.closed:
+            return
+        self.started = True
+        pending_pages.pop(self.key, None)
+        if len(live_tabs) >= limits.MAX_SESSIONS:
+            self.closed = True
+            self.status.set_text(too_many_tabs())
+            ui.notify(too_many_tabs(), type="negative", multi_line=True, timeout=0)
+            return
+        live_tabs[self.key] = self
+        self.dir = Path(tempfile.mkdtemp(prefix="tab-", dir=self.out_root))
+        self.s.out_dir = self.dir
+        self.schedule()
+
+    def close(self) -> None:
+        """The tab is gone (closed, or not reconnected in time): its tasks cancelled (a study
+        stops at its next step), its upload routes, session and folder dropped."""
+        self.closed = True
+        self.cancel_study()
+        for task in (self.pending, self.extras, self.ranges_task):
+            if task is not None and not task.done():
+                task.cancel()
+        for url in self.uploads:
+            upload_limits.pop(url, None)
+        live_tabs.pop(self.key, None)
+        pending_pages.pop(self.key, None)
+        if self.dir is not None:
+            shutil.rmtree(self.dir, ignore_errors=True)
+        # the designs, meshes and answers it held: free to be collected (a worker thread still
+        # running keeps its own until it ends; its result is dropped)
+        self.outcome = self.field_res = self.pinned_res = None
+        self.s.last = self.s.pinned = None
+
+    @property
+    def key(self) -> str:
+        return self.client.id if self.client is not None else str(id(self))
+
+    def _upload(self, limit: int, **kw) -> ui.upload:
+        up = ui.upload(max_file_size=limit, auto_upload=True, **kw)
+        url = up.props["url"]
+        upload_limits[url] = limit  # the server refuses a larger body (limits.UploadLimit)
+        self.uploads.append(url)
+        return up
 
     @ui.refreshable
     def panel(self) -> None:
@@ -99,15 +156,16 @@ class DesignPage(StudiesPanel, Downloads):
             ui.number("b: slip < b x rpm of max torque", value=self.s.requirements.b, step=0.05,
                       on_change=lambda e: self.on_requirements(b=e.value)).props("dense debounce=300")
             ui.label(f"engine: {self.s.engine.source}").classes("text-xs")
-            ui.upload(label="engine curve CSV (rpm, torque [N m])", max_file_size=MAX_CSV_BYTES, auto_upload=True,
-                      on_upload=self.on_engine_upload,
-                      on_rejected=lambda: ui.notify(f"refused: larger than {MAX_CSV_BYTES // 1024} kB")).props(
+            self._upload(MAX_CSV_BYTES, label="engine curve CSV (rpm, torque [N m])",
+                         on_upload=self.on_engine_upload,
+                         on_rejected=lambda: ui.notify(f"refused: larger than {MAX_CSV_BYTES // 1024} kB")).props(
                 "dense accept=.csv")
             self.messages["engine"] = ui.label("").classes("text-xs text-red-600")
         with ui.expansion("your own part (.msh / STEP)", value=self.s.part is not None).classes("w-full"):
-            ui.upload(label="part: gmsh .msh (curve groups bore, contact) or STEP; x-y plane, axis at the origin",
-                      max_file_size=MAX_MESH_BYTES, auto_upload=True, on_upload=self.on_part_upload,
-                      on_rejected=lambda: ui.notify(f"refused: larger than {MAX_MESH_BYTES >> 20} MB")).props(
+            self._upload(MAX_PART_BYTES,
+                         label="part: gmsh .msh (curve groups bore, contact) or STEP; x-y plane, axis at the origin",
+                         on_upload=self.on_part_upload,
+                         on_rejected=lambda: ui.notify(f"refused: larger than {MAX_PART_BYTES >> 20} MB")).props(
                 "dense accept=.msh,.step,.stp")
             self.messages["part"] = ui.label("" if self.s.part is None else f"analysing {self.s.part.name}").classes(
                 "text-xs")
@@ -157,16 +215,7 @@ class DesignPage(StudiesPanel, Downloads):
             with ui.column().classes("grow"):
                 self.pressure = ui.echart(torque_chart_placeholder()).classes("w-[40rem] h-72")
         with ui.expansion("studies of this design", value=False).classes("w-full"):
-            with ui.row():
-                ui.button("guidelines", on_click=self.run_guidelines).props("data-testid=study-guidelines")
-                ui.button("tolerances", on_click=self.run_tolerance).props("data-testid=study-tolerance")
-                ui.button("optimise (least mass)", on_click=self.run_optimize).props("data-testid=study-optimize")
-                self.apply_button = ui.button("apply the optimum", on_click=self.apply_optimum)
-                self.apply_button.set_visibility(False)
-            self.progress = ui.linear_progress(value=0.0, show_value=False).classes("w-full")
-            self.progress.set_visibility(False)
-            self.study_log = ui.label("").classes("text-xs")
-            self.study_out = ui.column().classes("w-full")
+            self.study_widgets()
 
     @staticmethod
     def _columns(pinned: bool) -> list[dict]:
@@ -246,6 +295,12 @@ class DesignPage(StudiesPanel, Downloads):
             self.schedule()
 
     async def on_engine_upload(self, e) -> None:
+        if self.dir is None:
+            return
+        msg = upload_refusal("engine curve CSV", e.file.size(), MAX_CSV_BYTES)
+        if msg:
+            self.messages["engine"].set_text(msg)
+            return
         data = await e.file.read()
         path = self.dir / "engine.csv"
         path.write_bytes(data)
@@ -260,6 +315,10 @@ class DesignPage(StudiesPanel, Downloads):
         suffix = Path(name).suffix.lower()
         if suffix not in (".msh", ".step", ".stp"):
             self.messages["part"].set_text(f"refused: {name}: a gmsh .msh or a STEP file (.step, .stp)")
+            return
+        msg = upload_refusal(name, e.file.size(), MAX_PART_BYTES)
+        if msg or self.dir is None:
+            self.messages["part"].set_text(msg or "")
             return
         path = self.dir / f"part{suffix}"
         path.write_bytes(await e.file.read())
@@ -300,6 +359,8 @@ class DesignPage(StudiesPanel, Downloads):
 
     # -- the analysis ----------------------------------------------------------------------
     def schedule(self) -> None:
+        if self.closed or not self.started:  # not live: no analysis (limits: only a connected page analyses)
+            return
         self.schedule_ranges()
         if self.pending is not None and not self.pending.done():
             self.pending.cancel()
@@ -433,7 +494,44 @@ def torque_chart_placeholder() -> dict:
     return {"animation": False, "xAxis": {"type": "value"}, "yAxis": {"type": "value"}, "series": []}
 
 
-def build_page(out_root: Path) -> None:
-    """The page of one tab (called by NiceGUI for every new client)."""
-    DesignPage(out_root).build()
+def upload_refusal(what: str, size: int, limit: int) -> str | None:
+    """The refusal of an uploaded file larger than ``limit`` bytes, else None."""
+    if size <= limit:
+        return None
+    return f"refused: {what} is {size / 1024:.0f} kB, the limit is {limit / 1024:.0f} kB"
+
+
+def too_many_tabs() -> str:
+    return (f"refused: {limits.MAX_SESSIONS} tabs of this app are open already (the most it analyses at once, to "
+            "bound its memory); close one, or start another app with clutchfem app --port ...")
+
+
+def build_page(out_root: Path, client: Client | None = None) -> DesignPage | HTMLResponse:
+    """The page of one tab (called by NiceGUI for every page request).  Only the widgets are
+    built here: the session's folder and its analysis start when the page connects
+    (:meth:`DesignPage.start`); a page not connected within :data:`~.limits.PENDING_S` is
+    dropped, a closed tab is reclaimed (:meth:`DesignPage.close`).  With
+    :data:`~.limits.MAX_SESSIONS` tabs live, or :data:`~.limits.MAX_PENDING` pages waiting to
+    connect, a refusal (503) and nothing built."""
+    busy = (too_many_tabs() if len(live_tabs) >= limits.MAX_SESSIONS else
+            f"refused: {limits.MAX_PENDING} pages of this app are waiting for their browser to connect; try again in "
+            f"{limits.PENDING_S:.0f} s" if len(pending_pages) >= limits.MAX_PENDING else None)
+    if busy is not None:
+        if client is not None:
+            asyncio.get_event_loop().call_soon(client.delete)
+        return HTMLResponse(f"<!doctype html><title>clutchfem: busy</title><p data-testid=refused>{busy}</p>",
+                            status_code=503)
+    page = DesignPage(out_root, client)
+    page.build()
+    if client is not None:
+        pending_pages[page.key] = page
+        client.on_connect(page.start)
+        client.on_delete(page.close)
+
+        def drop_if_unconnected() -> None:
+            if not page.started and not client.is_deleted:
+                client.delete()
+
+        asyncio.get_event_loop().call_later(limits.PENDING_S, drop_if_unconnected)
+    return page
 

@@ -9,16 +9,20 @@ import socket
 import tempfile
 from pathlib import Path
 
-from nicegui import ui
+from nicegui import Client, app, ui
+from starlette.requests import Request
+from starlette.responses import PlainTextResponse, Response
 
 from ..core import InputError
+from . import limits
+from .limits import UploadLimit
 from .page import build_page
 
 __all__ = ["serve_app"]
 
 
 def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool = True, out: str | Path | None = None,
-              title: str = "clutchfem", started=None) -> None:
+              title: str = "clutchfem", started=None, max_tabs: int | None = None) -> None:
     """Run the live design app until interrupted.
 
     Parameters
@@ -33,6 +37,9 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
         The folder of the tabs' files (reports, downloads); default: a new temporary folder.
     title : str
         The page's title.
+    max_tabs : int, optional
+        The most tabs analysing at once (default :data:`~clutchfem.app.limits.MAX_SESSIONS`);
+        a further tab gets a refusal page and no session.
     started : callable, optional
         Called once the port and the folder are checked, just before the server starts (the
         command line prints the address there: never for a port it cannot have).
@@ -50,6 +57,10 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
     """
     if isinstance(port, bool) or not (isinstance(port, int) and 1 <= port <= 65535):
         raise InputError(f"port {port!r}: a TCP port in 1..65535")
+    if max_tabs is not None:
+        if isinstance(max_tabs, bool) or not (isinstance(max_tabs, int) and 1 <= max_tabs <= 64):
+            raise InputError(f"max_tabs {max_tabs!r}: an integer in 1..64 (the most tabs analysing at once)")
+        limits.MAX_SESSIONS = max_tabs
     check_port(host, port)
     root = Path(out) if out is not None else Path(tempfile.mkdtemp(prefix="clutchfem-app-"))
     if root.exists() and not root.is_dir():
@@ -60,8 +71,27 @@ def serve_app(host: str = "127.0.0.1", port: int = 8765, *, open_browser: bool =
         raise InputError(f"out {root}: cannot make the folder ({exc.strerror or exc})") from None
     if started is not None:
         started()
-    ui.run(lambda: build_page(root), host=host, port=port, title=title, show=open_browser, reload=False,
+    register(root)
+    ui.run(host=host, port=port, title=title, show=open_browser, reload=False,
            show_welcome_message=False, uvicorn_logging_level="warning", favicon="\u2699")
+
+
+def register(root: Path) -> None:
+    """The app's one page at ``/``, a plain 404 (no page, no session) for any other path, and
+    the upload limit enforced on the server (:mod:`.limits`)."""
+
+    @ui.page("/")
+    def index(client: Client):
+        page = build_page(root, client)
+        return page if isinstance(page, Response) else None
+
+    app.add_exception_handler(404, not_found)
+    app.add_middleware(UploadLimit)
+
+
+async def not_found(request: Request, exc: Exception) -> PlainTextResponse:
+    """Any path but the page and NiceGUI's own: 404, nothing built."""
+    return PlainTextResponse(f"404: {request.url.path} is no page of this app; the app is at /", status_code=404)
 
 
 def check_port(host: str, port: int) -> None:

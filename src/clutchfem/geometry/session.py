@@ -8,6 +8,7 @@ caller, from concept building to the mesh pipeline and the drawings, imports it 
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import signal
 import threading
 
@@ -29,6 +30,7 @@ def gmsh_session(name: str = "clutchfem"):
         main = threading.current_thread() is threading.main_thread()
         previous = signal.getsignal(signal.SIGINT) if main else None
         gmsh.initialize(interruptible=main)
+        keep_sigpipe_ignored()
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.option.setNumber("General.Verbosity", 1)
@@ -40,5 +42,23 @@ def gmsh_session(name: str = "clutchfem"):
             yield
         finally:
             gmsh.finalize()
+            keep_sigpipe_ignored()
             if previous is not None:
                 signal.signal(signal.SIGINT, previous)
+
+
+def keep_sigpipe_ignored() -> None:
+    """Put SIGPIPE back to ignored where Python has it so (its default): gmsh.initialize sets
+    it to SIG_DFL for the whole process at the C level, from any thread, after which a write
+    to a closed socket or pipe killed the process outright (exit 141, no message): the app's
+    server, meshing in a worker thread, died when a browser went away mid-answer.  Through
+    libc (Python's own ``signal.signal`` works in the main thread only)."""
+    if not hasattr(signal, "SIGPIPE") or signal.getsignal(signal.SIGPIPE) != signal.SIG_IGN:
+        return
+    try:
+        libc = ctypes.CDLL(None)
+        libc.signal.restype = ctypes.c_void_p
+        libc.signal.argtypes = [ctypes.c_int, ctypes.c_void_p]
+        libc.signal(int(signal.SIGPIPE), ctypes.c_void_p(1))  # SIG_IGN
+    except (OSError, AttributeError):  # no C library to call: nothing gmsh could have changed either
+        pass
