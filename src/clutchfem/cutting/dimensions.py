@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .features import parameter_of
+from .features import family_of, parameter_of, zone_of
 
 
 @dataclass(frozen=True)
@@ -116,16 +116,6 @@ def _fmt(v: float, digits: int) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def _zone(tag: str) -> str:
-    if tag.endswith("/bore"):
-        return "bore"
-    return (tag.split("/")[0].split("+")[0] or "part").replace("_", " ")
-
-
-def _family(zone: str) -> str:
-    return " ".join(w for w in zone.split() if not w.isdigit())
-
-
 def _index(zone: str) -> int | None:
     w = zone.split()[-1]
     return int(w) if w.isdigit() else None
@@ -197,8 +187,8 @@ def dimensions(outline, features=None, ligament=None, tolerances: dict | None = 
     ranked: dict[str, list] = {}
     for r, ss in groups.items():
         def role(s):
-            return "contact" if "/contact" in s.tag else _family(_zone(s.tag))
-        best = min(ss, key=lambda s: (prio.get(role(s), 9), _index(_zone(s.tag)) not in (0, None)))
+            return "contact" if "/contact" in s.tag else family_of(zone_of(s.tag))
+        best = min(ss, key=lambda s: (prio.get(role(s), 9), _index(zone_of(s.tag)) not in (0, None)))
         ranked.setdefault(role(best), []).append((r, best))
     names = {"contact": "shoe outer face (contact)", "shoe": "shoe inner face", "flexure": "flexure face", "hub": "hub"}
     used = [math.radians(-60.0)]  # leave the lower right to detail A's mark
@@ -212,23 +202,23 @@ def dimensions(outline, features=None, ligament=None, tolerances: dict | None = 
                 "main", (*s.centre, r, ang), param_of(r, "inside radius"))
     # small arcs of shoe 0's sector: fillets and slot-end rounds, each once
     small = [s for s in segs if s.kind == "arc" and not s.tag.endswith("/bore") and s.radius < 0.25 * drum]
-    sector0 = [s for s in small if _index(_zone(s.tag)) == 0]
-    hub_small = [s for s in small if _index(_zone(s.tag)) is None]
+    sector0 = [s for s in small if _index(zone_of(s.tag)) == 0]
+    hub_small = [s for s in small if _index(zone_of(s.tag)) is None]
     if hub_small and sector0:  # the hub's own fillets nearest to shoe 0's
         ref_ang = np.mean([_mid_angle(s) for s in sector0])
         per = max(1, len(hub_small) // max(n, 1))
         hub_small.sort(key=lambda s: abs(math.remainder(math.atan2(*s.point([0.5])[0][::-1]) - ref_ang, 2 * math.pi)))
         sector0 += hub_small[:per]
     for k, s in enumerate(sector0):
-        copies = sum(1 for t in small if abs(t.radius - s.radius) <= 1e-9 * drum and _family(_zone(t.tag))
-                     == _family(_zone(s.tag)) and _same_shape(s, t))
+        copies = sum(1 for t in small if abs(t.radius - s.radius) <= 1e-9 * drum and family_of(zone_of(t.tag))
+                     == family_of(zone_of(s.tag)) and _same_shape(s, t))
         add(f"fillet:{k + 1}", "radius", s.radius, ("slot-end round" if s.sweep < 0 and _touches(s, segs, "shoe")
-                                                    else "fillet") + f" ({_zone(s.tag)})",
+                                                    else "fillet") + f" ({zone_of(s.tag)})",
             "detail", (*s.centre, s.radius, _mid_angle(s)),
             "fillet_radius" if abs(s.radius - getattr(p, "fillet_radius", -1)) < 1e-9 else "",
             count=max(1, min(copies, n)))
     # shoe arc, pitch, tip gap
-    contact = [s for s in segs if "/contact" in s.tag and _index(_zone(s.tag)) == 0]
+    contact = [s for s in segs if "/contact" in s.tag and _index(zone_of(s.tag)) == 0]
     if contact:
         c0 = contact[0]
         a0 = math.atan2(c0.start[1], c0.start[0])
@@ -248,7 +238,7 @@ def dimensions(outline, features=None, ligament=None, tolerances: dict | None = 
     _beam(p, outline, add)
     # the shoe's radial thickness on its tip face (a reference: the two radii give it)
     if contact:
-        inner = [s for s in segs if s.kind == "arc" and _family(_zone(s.tag)) == "shoe" and "/contact" not in s.tag
+        inner = [s for s in segs if s.kind == "arc" and family_of(zone_of(s.tag)) == "shoe" and "/contact" not in s.tag
                  and math.hypot(*s.centre) < 1e-9 * drum and s.radius < contact[0].radius]
         if inner and contact[0].kind == "arc" and math.hypot(*contact[0].centre) < 1e-9 * drum:
             r_i, r_o = max(s.radius for s in inner), contact[0].radius
@@ -294,7 +284,7 @@ def _touches(s, segs, family: str) -> bool:
     for t in segs:
         if t is s:
             continue
-        if (math.dist(t.start, s.end) < 1e-9 or math.dist(t.end, s.start) < 1e-9) and _family(_zone(t.tag)) == family:
+        if (math.dist(t.start, s.end) < 1e-9 or math.dist(t.end, s.start) < 1e-9) and family_of(zone_of(t.tag)) == family:
             return True
     return False
 

@@ -93,7 +93,7 @@ class Feature:
                 "count": self.count, "parameter": self.parameter, "text": self.text()}
 
 
-def _zone(tag: str) -> str:
+def zone_of(tag: str) -> str:
     """'flexure_0+hub/contact' -> 'flexure 0'; a bore curve -> 'bore'."""
     if tag.endswith("/bore"):
         return "bore"
@@ -101,7 +101,7 @@ def _zone(tag: str) -> str:
     return z.replace("_", " ")
 
 
-def _family(where: str) -> str:
+def family_of(where: str) -> str:
     """'flexure 0' -> 'flexure' (the n shoes' copies of one feature)."""
     return " ".join(w for w in where.split() if not w.isdigit())
 
@@ -134,27 +134,27 @@ def inside_radii(outline) -> list[Feature]:
         for i, s in enumerate(segs):
             if s.kind == "arc" and s.sweep < 0:
                 small = s.radius < 0.25 * float(getattr(outline.params, "drum_radius", math.inf))
-                kind = "bore" if _zone(s.tag) == "bore" else ("fillet" if small else "arc")
-                found.append((s.radius, _zone(s.tag), tuple(s.point([0.5])[0]), kind))
+                kind = "bore" if zone_of(s.tag) == "bore" else ("fillet" if small else "arc")
+                found.append((s.radius, zone_of(s.tag), tuple(s.point([0.5])[0]), kind))
             elif s.kind == "spline":
                 t = np.linspace(0, 1, 401)
                 k = s.curvature(t)
                 if np.any(k < 0):
                     j = int(np.argmin(k))
-                    found.append((-1.0 / k[j], _zone(s.tag), tuple(s.point([t[j]])[0]), "spline"))
+                    found.append((-1.0 / k[j], zone_of(s.tag), tuple(s.point([t[j]])[0]), "spline"))
             nxt = segs[(i + 1) % len(segs)]
             if len(segs) > 1:
                 ta, tb = s.tangent(1.0), nxt.tangent(0.0)
                 ang = math.atan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb)
                 if ang < -1e-6:  # a right turn with the material on the left: an inside corner
-                    found.append((0.0, _zone(s.tag), tuple(s.end), f"corner {math.degrees(-ang):.0f} deg"))
+                    found.append((0.0, zone_of(s.tag), tuple(s.end), f"corner {math.degrees(-ang):.0f} deg"))
     return _smallest(found, "inside radius", outline.params)
 
 
 def _smallest(found, kind: str, params) -> list[Feature]:
     groups: dict[str, list] = {}
     for size, where, at, detail in found:
-        groups.setdefault(_family(where), []).append((size, where, at, detail))
+        groups.setdefault(family_of(where), []).append((size, where, at, detail))
     out = []
     for fam, items in groups.items():
         size, where, at, detail = min(items, key=lambda x: x[0])
@@ -164,22 +164,30 @@ def _smallest(found, kind: str, params) -> list[Feature]:
     return sorted(out, key=lambda f: f.size)
 
 
-def widths(outline) -> tuple[list[Feature], list[Feature]]:
-    """(slots, webs): the narrowest facing-wall widths per zone family (module docstring)."""
-    segs = [s for lp in outline.loops for s in lp.segments]
+def boundary_samples(segs, *, into: str, spacing: float = SPACING):
+    """The outline's segments sampled every ``spacing`` (at least 3 points a segment, its end
+    left to the next): points P, unit normals N pointing ``into`` "waste" (right of travel)
+    or "material" (left), the segment index S and the curve parameter T of each sample."""
     pts, nrm, sid, par = [], [], [], []
+    sign = 1.0 if into == "waste" else -1.0
     for k, s in enumerate(segs):
-        n = max(3, int(math.ceil(s.length / SPACING)) + 1)
+        n = max(3, int(math.ceil(s.length / spacing)) + 1)
         t = np.linspace(0.0, 1.0, n)[:-1]
         d = s.derivative(t)
         d /= np.linalg.norm(d, axis=1)[:, None]
         pts.append(s.point(t))
-        nrm.append(np.column_stack([d[:, 1], -d[:, 0]]))  # right of travel: into the waste
+        nrm.append(sign * np.column_stack([d[:, 1], -d[:, 0]]))
         sid.append(np.full(len(t), k))
         par.append(t)
-    P, N, S, T = np.vstack(pts), np.vstack(nrm), np.concatenate(sid), np.concatenate(par)
-    zones = sorted({_zone(s.tag) for s in segs})
-    zid = np.array([zones.index(_zone(segs[k].tag)) for k in S])
+    return np.vstack(pts), np.vstack(nrm), np.concatenate(sid), np.concatenate(par)
+
+
+def widths(outline) -> tuple[list[Feature], list[Feature]]:
+    """(slots, webs): the narrowest facing-wall widths per zone family (module docstring)."""
+    segs = [s for lp in outline.loops for s in lp.segments]
+    P, N, S, T = boundary_samples(segs, into="waste")
+    zones = sorted({zone_of(s.tag) for s in segs})
+    zid = np.array([zones.index(zone_of(segs[k].tag)) for k in S])
     pairs = cKDTree(P).query_pairs(MAX_WIDTH, output_type="ndarray")
     i, j = pairs[:, 0], pairs[:, 1]
     v = P[j] - P[i]

@@ -42,6 +42,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..core import format_quantity
+from .features import boundary_samples, family_of, zone_of
 
 #: boundary sample spacing [m]
 SPACING = 0.1e-3
@@ -108,16 +109,6 @@ class Ligament:
                 "text": self.text()}
 
 
-def _zone(tag: str) -> str:
-    if tag.endswith("/bore"):
-        return "bore"
-    return (tag.split("/")[0].split("+")[0] or "part").replace("_", " ")
-
-
-def _family(zone: str) -> str:
-    return " ".join(w for w in zone.split() if not w.isdigit())
-
-
 def thinnest_ligament(outline, zones: tuple[str, ...] = ("flexure",)) -> Ligament | None:
     """The thinnest section of the part (module docstring), on the given zone families.
 
@@ -154,21 +145,11 @@ def thinnest_ligament(outline, zones: tuple[str, ...] = ("flexure",)) -> Ligamen
     segs = [s for lp in outline.loops for s in lp.segments]
     if not segs:
         return None
-    pts, nrm, sid, par = [], [], [], []
-    for k, s in enumerate(segs):
-        n = max(3, int(math.ceil(s.length / SPACING)) + 1)
-        t = np.linspace(0.0, 1.0, n)[:-1]
-        d = s.derivative(t)
-        d /= np.linalg.norm(d, axis=1)[:, None]
-        pts.append(s.point(t))
-        nrm.append(np.column_stack([-d[:, 1], d[:, 0]]))  # left of travel: into the material
-        sid.append(np.full(len(t), k))
-        par.append(t)
-    P, N, S, T = np.vstack(pts), np.vstack(nrm), np.concatenate(sid), np.concatenate(par)
-    zone = [_zone(s.tag) for s in segs]
-    fams = {_family(z) for z in zone}
+    P, N, S, T = boundary_samples(segs, into="material", spacing=SPACING)
+    zone = [zone_of(s.tag) for s in segs]
+    fams = {family_of(z) for z in zone}
     want = {f for f in zones if f in fams} or fams
-    on = np.array([_family(zone[k]) in want for k in S])
+    on = np.array([family_of(zone[k]) in want for k in S])
     tree = cKDTree(P)
     pairs = tree.query_pairs(MAX_WIDTH, output_type="ndarray")
     if len(pairs) == 0:
@@ -208,14 +189,14 @@ def thinnest_ligament(outline, zones: tuple[str, ...] = ("flexure",)) -> Ligamen
     za, zb = zone[sa], zone[sb]
     where = za if za == zb else " / ".join(sorted((za, zb)))
     # copies on the other shoes: chords of the same width between zones of the same families
-    fa, fb = _family(za), _family(zb)
+    fa, fb = family_of(za), family_of(zb)
     same = np.nonzero(np.abs(dist - w) <= 2 * SPACING + 1e-6 * w)[0]
     shoes = {z.split()[-1] for m in same for z in (zone[S[i[m]]], zone[S[j[m]]])
-             if {_family(zone[S[i[m]]]), _family(zone[S[j[m]]])} == {fa, fb} and z.split()[-1].isdigit()}
+             if {family_of(zone[S[i[m]]]), family_of(zone[S[j[m]]])} == {fa, fb} and z.split()[-1].isdigit()}
     # reported on shoe 0's copy when it has one (the drawing dimensions shoe 0)
     for m in same:
         zs = (zone[S[i[m]]], zone[S[j[m]]])
-        if {_family(z) for z in zs} == {fa, fb} and any(z.endswith(" 0") for z in zs) and not (
+        if {family_of(z) for z in zs} == {fa, fb} and any(z.endswith(" 0") for z in zs) and not (
                 za.endswith(" 0") or zb.endswith(" 0")):
             w0, qa, qb = _refine(segs[S[i[m]]], T[i[m]], segs[S[j[m]]], T[j[m]], float(dist[m]), P[i[m]], P[j[m]])
             if abs(w0 - w) <= 1e-6 * w:
