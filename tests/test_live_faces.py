@@ -109,3 +109,46 @@ def test_a_live_study_answers_a_point_outside_with_the_fe_when_asked_and_says_so
     assert row["status"] == "ok" and row["answered_by"] == "FE (fallback)"
     assert "not live: no reduced model holds this design" in row["message"]
     assert row["engagement_rpm"] > 0 and row["engagement_err_rpm"] > 0  # the best path's own band
+
+
+def test_live_guidelines_are_the_reduced_models_elasticities_with_their_band(model, tmp_path):
+    d = cf.Design.from_concept("concept1", fidelity="live", flexure_thickness="2.15mm")
+    g = cf.run_guidelines(d, tmp_path / "g", live_check=0)
+    s = find(d).sensitivities(d)
+    e = {r["answer"]: r for r in g.table}
+    for ans, key in (("engagement_rpm", "engagement_rpm"), ("slip_rpm", "slip_rpm"),
+                     ("max_von_mises_MPa", "max_von_mises_Pa")):
+        assert e[ans]["E"] == pytest.approx(s.elasticity("flexure_thickness", key), rel=1e-12)
+        own = model.own_error(key)
+        assert e[ans]["E_band"] == pytest.approx(2 * own * 2.15e-3 / (HI - LO)) and e[ans]["verdict"] == "unchecked"
+    # the hand-made answers' own elasticities at 2.15 mm: engagement x^1.5, slip x^0.4, peak x^-0.8
+    for ans, want in (("engagement_rpm", 1.5), ("slip_rpm", 0.4), ("max_von_mises_MPa", -0.8)):
+        assert abs(e[ans]["E"] - want) <= e[ans]["E_band"] + 0.01, (ans, e[ans])
+    assert "reduced model" in g.notes[0] and "no FE check" in g.notes[1]
+    assert (tmp_path / "g" / "guidelines.csv").exists() and (tmp_path / "g" / "guidelines.json").exists()
+    with pytest.raises(cf.ParameterError) as err:
+        cf.run_guidelines(d, tmp_path / "g2", params=["clearance"], live_check=0)
+    assert err.value.name == "names"
+    with pytest.raises(cf.ParameterError) as err:
+        cf.run_guidelines(d, tmp_path / "g2", live_check=-1)
+    assert err.value.name == "check"
+
+
+def test_live_guidelines_outside_every_region_are_refused_naming_the_way(model, tmp_path):
+    d = cf.Design.from_concept("concept1", fidelity="live", flexure_thickness="2.6mm")
+    with pytest.raises(cf.ParameterError, match="clutchfem reduce concept1"):
+        cf.run_guidelines(d, tmp_path / "g", live_check=0)
+
+
+@pytest.mark.slow
+def test_live_guidelines_check_the_strongest_parameter_against_the_fe(model, tmp_path):
+    """The hand-made model is not the FE: the check must say where they differ."""
+    d = cf.Design.from_concept("concept1", fidelity="live", flexure_thickness="2.15mm")
+    g = cf.run_guidelines(d, tmp_path / "g", live_check=1)
+    checked = [r for r in g.table if "fe_check" in r]
+    assert checked and all(math.isfinite(r["E_fe"]) or r["fe_check"] == "no FE answer" for r in checked)
+    for r in checked:
+        if r["fe_check"] in ("agrees", "differs"):
+            agrees = abs(r["E"] - r["E_fe"]) <= r["E_band"] + 0.05 + 0.1 * abs(r["E_fe"])
+            assert (r["fe_check"] == "agrees") == agrees
+    assert "FE check (flexure_thickness" in g.notes[1]

@@ -41,7 +41,7 @@ import numpy as np
 from ..analysis import Requirements, idle_speed
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, InputError, ParameterError
-from ..evaluation import COLUMNS, STORE_NAME, ResultStore, RunResult, design_hash, model_version, run_points
+from ..evaluation import COLUMNS, ResultStore, RunResult, design_hash, model_version, run_points
 from ..evaluation.point import COLUMN_NAMES, split_point
 from ..loadcase import Design
 from ..reduced import find
