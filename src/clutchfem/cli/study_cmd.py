@@ -172,6 +172,9 @@ def guidelines(
     points: int = typer.Option(7, "--points", help="points of each one-at-a-time sweep", rich_help_panel="Guidelines"),
     span: float = typer.Option(0.5, "--span", help="one-at-a-time range: design value x (1 -+ span), within the "
                                "parameter's declared range", rich_help_panel="Guidelines"),
+    check: int = typer.Option(2, "--check", help="with --fidelity live: the parameters (strongest first) also "
+                              "differentiated by the full FE to check the live elasticities (0: none)",
+                              rich_help_panel="Guidelines"),
 ):
     """Design guidelines: per parameter, elasticities (x / A) dA/dx of engagement, slip rpm,
     torque at max engine torque, peak stress, shoe mass and contact arc at the design point
@@ -186,6 +189,9 @@ def guidelines(
         eng = engine_from(o.engine)[0] if o.engine is not None else None
         design = design_from(o.concept, o.set_, None, op=operating_point(mu=o.mu, material=material_from(o.material), fidelity=o.fidelity),
                              mesh_size=o.mesh_size, mesh_allowed=False)
+        if design.op.fidelity == "live":
+            _live_guidelines(o, design, eng, params, check)
+            return
         names = None if params is None else [x.strip() for x in params.split(",") if x.strip()]
         ins = None if inputs is None else [x.strip() for x in inputs.split(",") if x.strip()]
         if ins is not None and [x.lower() for x in ins] == ["none"]:
@@ -214,3 +220,28 @@ def guidelines(
         wrote(res.files)
     except ClutchfemError as exc:
         fail(exc)
+
+
+def _live_guidelines(o, design, eng, params, check) -> None:
+    """``guidelines --fidelity live``: the reduced model's elasticities with their band, a
+    few checked by the FE."""
+    from .. import dumps, run_guidelines
+
+    names = None if params is None else [x.strip() for x in params.split(",") if x.strip()]
+    o.out = check_out_dir(o.out if o.out is not None else Path(f"{design.name}-guidelines"))
+    res = run_guidelines(design, o.out, params=names, engine=eng, workers=o.workers or 0, live_check=check)
+    if o.json_:
+        print(dumps(res.to_json()))
+        return
+    t = Table(title=escape(f"{res.concept}: elasticities (x / A) dA/dx at the design point, live (reduced model)"))
+    for c in ("parameter", "answer", "E", "+- band", "FE check"):
+        t.add_column(c, justify="right" if c in ("E", "+- band") else "left")
+    for r in sorted(res.table, key=lambda r: res.ranking.index(r["parameter"])):
+        fe = r.get("fe_check")
+        t.add_row(escape(r["parameter"]), escape(r["answer"]), f"{r['E']:+.3f}",
+                  f"{r['E_band']:.3f}" if r["E_band"] == r["E_band"] else "-",
+                  escape(f"{fe}: E_fe {r['E_fe']:+.3f}" if fe in ("agrees", "differs") else (fe or "-")))
+    console.print(t)
+    for n in res.notes:
+        console.print(f"[dim]note: {escape(n)}[/]")
+    wrote(res.files)

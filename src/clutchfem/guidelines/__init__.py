@@ -4,7 +4,9 @@ with numbers).
 * :mod:`.elasticity` (:class:`GuidelineSettings`, the plan of designs, the elasticities
   with their step-stability check, :class:`GuidelineResult`);
 * :mod:`.study` (:func:`run_guidelines`: the plan on the study engine, the sensitivities
-  on morphed meshes, the tables).
+  on morphed meshes, the tables);
+* :mod:`.live` (:func:`live_guidelines`: a live design's, from the reduced model's
+  derivatives with their band, a few checked by the FE).
 
 The charts and the terminal table of a result are the report stage's
 (:mod:`clutchfem.report`), drawn by the faces.
@@ -20,7 +22,8 @@ from .elasticity import (
     GuidelineResult,
     GuidelineSettings,
 )
+from .live import live_guidelines
 from .study import run_guidelines, why_no_answer
 
 __all__ = ["ANSWERS", "CHECK_FACTOR", "SENSITIVITY_KEY", "SHORT", "STABLE_ABS", "STABLE_REL", "GuidelineResult",
-           "GuidelineSettings", "run_guidelines", "why_no_answer"]
+           "GuidelineSettings", "live_guidelines", "run_guidelines", "why_no_answer"]

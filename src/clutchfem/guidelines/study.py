@@ -17,6 +17,7 @@ answer), ``one_at_a_time.csv``, the charts (:mod:`.guideline_charts`) and
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
@@ -49,7 +50,7 @@ from .elasticity import (
 
 def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirements=None, workers: int | None = None,
                    scheduler: str | None = None, progress: bool = True, inputs=None,
-                   remeshed_check: bool = False) -> GuidelineResult:
+                   remeshed_check: bool = False, live_check: int = 2) -> GuidelineResult:
     """Design guidelines: which parameter moves which answer, and by how much.
 
     Per parameter, the elasticity (x / A) dA/dx of every answer at the design (a central
@@ -79,6 +80,11 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     remeshed_check : bool
         With a ``design``: also the seven-point fit on remeshed designs (``E_remeshed`` and
         its verdict in each row; six more meshed designs per parameter).
+    live_check : int
+        With a live ``design`` (its fidelity ``"live"``): the elasticities come from the
+        cached reduced model's derivatives, each with its band, and this many parameters
+        (the strongest) are also differentiated by the full FE as a check
+        (:func:`clutchfem.guidelines.live.live_guidelines`).
 
     Returns
     -------
@@ -97,6 +103,16 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     >>> e["method"]
     'central difference on morphed meshes'
     """
+    if isinstance(gs, Design) and gs.op.fidelity == "live":
+        from .live import live_guidelines
+
+        res = live_guidelines(gs, params=params, engine=engine, requirements=requirements, check=live_check,
+                              workers=0 if workers is None else workers)
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        pd.DataFrame(res.table).to_csv(out / "guidelines.csv", index=False)
+        res = replace(res, out=out, files=(out / "guidelines.csv",))
+        return res.with_files([])
     if isinstance(gs, Design):
         gs = GuidelineSettings.from_design(gs, params=params, engine=engine, requirements=requirements, inputs=inputs,
                                            remeshed_check=remeshed_check)

@@ -27,6 +27,7 @@ _NAMES: dict[str, str] = {
     "live_analysis": "live",
     "load": "build",
     "reduce": "build",
+    "save": "build",
     "ReducedModel": "model",
     "OK_PROBABILITY": "surrogate",
     "OPERATING_AXES": "region",

@@ -38,7 +38,7 @@ from ..evaluation import COLUMNS, STORE_NAME, ResultStore, run_points
 from .model import ReducedModel
 from .region import SPAN, Region
 
-__all__ = ["DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "reduce"]
+__all__ = ["DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "reduce", "save"]
 
 log = logging.getLogger("clutchfem")
 
@@ -200,8 +200,40 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     final.info.update(n_train=n, n_held_out=held_out, build_s=time.perf_counter() - t0,
                       fe_designs=len(rows), fe_ok=sum(r.get("status") == "ok" for r in rows),
                       compute_s=res.compute_s, workers=res.workers)
+    save(final)
+    return final
+
+
+def save(model: ReducedModel) -> Path:
+    """Write ``model`` to the cache folder of its region (``region.json`` and ``model.pkl``,
+    the latter atomically: its presence means a finished model), where :func:`find` and
+    :func:`load` read it; returns the folder.  :func:`reduce` saves what it builds; a model
+    fitted to rows of one's own (:meth:`ReducedModel.fit`) is saved the same way.
+
+    Examples
+    --------
+    >>> import json, os, tempfile, clutchfem as cf
+    >>> from clutchfem.reduced import ReducedModel, Region, find, save
+    >>> os.environ["CLUTCHFEM_CACHE"] = tempfile.mkdtemp()
+    >>> d = cf.Design.from_concept("concept1", fidelity="live")
+    >>> r = Region.around(d, free=["flexure_thickness"])
+    >>> row = lambda t: {"status": "ok", "point_json": json.dumps({"flexure_thickness": t}),
+    ...                  "engagement_rpm": 2.0e6 * t, "engagement_err_rpm": 20.0}
+    >>> m = ReducedModel.fit(r, [row(t) for t in (2.1e-3, 2.13e-3, 2.17e-3, 2.2e-3, 2.26e-3, 2.3e-3)])
+    >>> folder = save(m)
+    >>> find(d).region.key() == r.key()
+    True
+    """
+    region = model.region
+    folder = _folder(region)
+    if folder.exists() and not (folder / MARK).exists():
+        raise InputError(f"{folder}: a folder the reduced-model cache did not make is in its way; move it "
+                         "(the cache never deletes what it did not write)")
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / MARK).touch()
+    (folder / "region.json").write_text(dumps(region.to_json(), indent=1))
     tmp = folder / "model.pkl.tmp"
     with open(tmp, "wb") as fh:
-        pickle.dump({"model": final, "key": region.key(), "sklearn": _sklearn_version()}, fh)
+        pickle.dump({"model": model, "key": region.key(), "sklearn": _sklearn_version()}, fh)
     tmp.replace(folder / "model.pkl")
-    return final
+    return folder

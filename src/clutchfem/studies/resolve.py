@@ -41,7 +41,7 @@ from .spec import Axis, StudySpec
 #: operating-point fields a spec may set (or vary); rpm is the analysis's own business
 _OP_EXCLUDED = ("rpm",)
 #: settings that are not operating-point fields
-_EXTRA_SETTINGS = ("engine", "idle_rpm", "mesh_size", "mesh_model")
+_EXTRA_SETTINGS = ("engine", "idle_rpm", "mesh_size", "mesh_model", "live_outside")
 
 
 def load_study(path: str | Path) -> StudySpec:
@@ -198,12 +198,13 @@ def parse_spec(text: str, source: str = "<text>", base: Path | None = None) -> S
         if not any(a.sampled for a in axes):
             raise SpecError("vary.params", sorted(vary.params), f"at least one range {{min = .., max = ..}} to "
                             f"sample with {method}", source)
+    live_outside = settings_kw.pop("live_outside")
     settings = Settings(concept=concept.name if concept else None, fixed=tuple(sorted(fixed.items())),
                         mesh_file=mesh_file, mesh_bytes=mesh_bytes, **settings_kw,
                         a=t.requirements.a, b=t.requirements.b,
                         min_safety_factor=t.requirements.min_safety_factor)
     spec = StudySpec(source=source, settings=settings, axes=tuple(axes), method=method, samples=samples,
-                     seed=vary.seed, text=text, error_sample=t.errors.sample)
+                     seed=vary.seed, text=text, error_sample=t.errors.sample, live_outside=live_outside)
     n = spec.count()
     if n > MAX_POINTS:
         raise SpecError("vary", f"{n} points", f"at most {MAX_POINTS} points in one spec (split the study)", source)
@@ -379,7 +380,18 @@ def _settings(raw: dict, is_concept: bool, base: Path, source: str) -> dict:
         ms["size"] = _value(MeshSettings, "size", v, "settings.mesh_size", source)
     if "mesh_model" in raw:
         ms["model"] = _value(MeshSettings, "model", raw["mesh_model"], "settings.mesh_model", source)
-    return {"op": op, "mesh": MeshSettings.preset(op.fidelity, **ms), "engine": engine, "idle_rpm": idle}
+    outside = raw.get("live_outside", "refuse")
+    if outside not in ("refuse", "fe"):
+        raise SpecError("settings.live_outside", outside, "refuse or fe: what a point of a live study that no "
+                        "cached reduced model holds gets", source)
+    if "live_outside" in raw and op.fidelity != "live":
+        raise SpecError("settings.live_outside", outside, f"nothing for fidelity {op.fidelity!r} (it applies to "
+                        "fidelity = \"live\")", source)
+    if op.fidelity == "live" and not is_concept:
+        raise SpecError("settings.fidelity", "live", "best or fast for a user mesh (it has no parameters to "
+                        "reduce over)", source)
+    return {"op": op, "mesh": MeshSettings.preset(op.fidelity, **ms), "engine": engine, "idle_rpm": idle,
+            "live_outside": outside}
 
 
 def _rpm_value(v) -> float:

@@ -160,6 +160,9 @@ class StudySpec:
     seed: int = 0
     text: str = ""
     error_sample: int = 3
+    #: a live study's point that no cached reduced model answers: "refuse" or "fe"
+    #: (:mod:`clutchfem.studies.live`)
+    live_outside: str = "refuse"
 
     @property
     def design(self) -> str:

@@ -135,10 +135,17 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     ... ''')
     >>> s = cf.run_study(spec, tempfile.mkdtemp(), workers=0, progress=False)
     >>> s.run.points, s.run.ok, list(s.frame["flexure_thickness [mm]"])
-    (2, 2, [2.0, 2.4])"""
+    (2, 2, [2.0, 2.4])
+
+    With ``fidelity = "live"`` under ``[settings]`` each point is answered by the cached
+    reduced model whose region holds it, in milliseconds (:mod:`clutchfem.studies.live`):
+    the rows say ``answered_by`` and carry the live band; a point no region holds is refused
+    (or, with ``live_outside = "fe"``, answered by the full FE), said in its row."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     points = spec.points()
+    if spec.settings.op is not None and spec.settings.op.fidelity == "live":
+        return _run_live(spec, points, out, workers=workers, scheduler=scheduler, progress=progress)
     res = run_points(points, spec.settings, out / STORE_NAME, workers=workers, scheduler=scheduler,
                      retry_failed=retry_failed, progress=progress, source=spec.source, spec_text=spec.text,
                      error_points=spec.error_points(len(points)))
@@ -147,6 +154,30 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
     frame.to_csv(csv, index=False)
     result = StudyResult(spec=spec, run=res, frame=frame, out=out, fingerprint=fingerprint(spec.source, spec.text), errors=error_summary(frame),
                          files=(csv, out / "summary.json"))
+    write(result.summary_path, result.to_json(), indent=1)
+    return result
+
+
+def _run_live(spec, points, out: Path, *, workers, scheduler, progress) -> StudyResult:
+    """A live study (:mod:`.live`): the rows from the reduced models, ``results.csv`` and
+    ``summary.json``."""
+    from .live import live_rows
+
+    rows, res = live_rows(points, spec.settings, outside=spec.live_outside, store=out / STORE_NAME,
+                          workers=workers, scheduler=scheduler, progress=progress, source=spec.source)
+    df = pd.DataFrame(rows)
+    front = pd.DataFrame({a.label(): [display_value(p.get(a.name), a.unit) for p in points] for a in spec.axes},
+                         index=df.index)
+    frame = pd.concat([front, df], axis=1)
+    csv = out / "results.csv"
+    frame.to_csv(csv, index=False)
+    errors = error_summary(frame)
+    errors["method"] = ("live: each answer's band is the best path's band of the reduced model's nearest training "
+                        "designs plus the reduced model's own error measured on held-out designs (the rows of "
+                        "answered_by 'FE (fallback)': the best path's own band)")
+    errors["answered_by"] = {k: int(v) for k, v in frame["answered_by"].value_counts().items()}
+    result = StudyResult(spec=spec, run=res, frame=frame, out=out, fingerprint=fingerprint(spec.source, spec.text),
+                         errors=errors, files=(csv, out / "summary.json"))
     write(result.summary_path, result.to_json(), indent=1)
     return result
 
