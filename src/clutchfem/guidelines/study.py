@@ -46,6 +46,7 @@ from .elasticity import (
     morphed_elasticity,
     plan,
 )
+from .live import live_guidelines
 
 
 def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirements=None, workers: int | None = None,
@@ -104,8 +105,6 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     'central difference on morphed meshes'
     """
     if isinstance(gs, Design) and gs.op.fidelity == "live":
-        from .live import live_guidelines
-
         res = live_guidelines(gs, params=params, engine=engine, requirements=requirements, check=live_check,
                               workers=0 if workers is None else workers)
         out = Path(out)

@@ -44,7 +44,7 @@ from ..core import ClutchfemError, InputError, ParameterError
 from ..evaluation import COLUMNS, ResultStore, RunResult, design_hash, model_version, run_points
 from ..evaluation.point import COLUMN_NAMES, split_point
 from ..loadcase import Design
-from ..reduced import find
+from ..reduced import Region, cache_root, find
 from ..reduced.live import MAIN
 
 __all__ = ["BAND_COLUMNS", "LIVE_COLUMNS", "OUTSIDE", "live_rows"]
@@ -215,8 +215,6 @@ def live_rows(points: list[dict], settings, *, outside: str = "refuse", store: s
 def _same(model, design, settings, req) -> bool:
     """Whether ``model``'s region holds ``design`` (the region's key for the design's fixed
     inputs, its free parameters in the box)."""
-    from ..reduced import Region
-
     reg = model.region
     try:
         r = Region.around(design, free=list(reg.names), ranges={n: reg.bounds(n) for n in reg.names},
@@ -229,8 +227,6 @@ def _same(model, design, settings, req) -> bool:
 def _nearest_why(design, settings, req) -> str:
     """Why no cached region holds ``design``: the bounds of a region of the same fixed inputs
     it lies outside of, else that there is none."""
-    from ..reduced import Region, cache_root
-
     for folder in sorted(cache_root().glob(f"{design.name}-*")) if cache_root().is_dir() else ():
         try:
             doc = json.loads((folder / "region.json").read_text())

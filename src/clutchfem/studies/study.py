@@ -13,6 +13,7 @@ import pandas as pd
 
 from ..core import write
 from ..evaluation import COLUMNS, ERROR_COLUMNS, STORE_NAME, ResultStore, RunResult, run_points
+from .live import live_rows
 from .rerun import fingerprint
 from .spec import StudySpec, display_value
 
@@ -161,8 +162,6 @@ def run_study(spec, out: str | Path, *, workers: int | None = None, scheduler: s
 def _run_live(spec, points, out: Path, *, workers, scheduler, progress) -> StudyResult:
     """A live study (:mod:`.live`): the rows from the reduced models, ``results.csv`` and
     ``summary.json``."""
-    from .live import live_rows
-
     rows, res = live_rows(points, spec.settings, outside=spec.live_outside, store=out / STORE_NAME,
                           workers=workers, scheduler=scheduler, progress=progress, source=spec.source)
     df = pd.DataFrame(rows)
