@@ -36,7 +36,7 @@ DRIVE_OPTIONS = {"--engine-inertia": "engine_inertia", "--driven-inertia": "driv
 #: option -> field of WearParams (Archard's coefficients and the wear step)
 WEAR_OPTIONS = {"--wear-regime": "regime", "--wear-coefficient": "wear_coefficient", "--hardness": "hardness",
                 "--drum-wear-coefficient": "drum_wear_coefficient", "--drum-hardness": "drum_hardness",
-                "--max-wear-step": "max_step"}
+                "--max-wear-step": "max_step", "--wear-step-fraction": "step_fraction"}
 
 
 def _params(cls, given: dict, options: dict):
@@ -94,9 +94,13 @@ def life(
                                                         rich_help_panel=PANEL),
     drum_hardness: Optional[str] = typer.Option(None, "--drum-hardness", metavar="STRESS", help="drum hardness "
                                                 "(default 4.4 GPa, ASSUMED)", rich_help_panel=PANEL),
-    max_wear_step: Optional[str] = typer.Option(None, "--max-wear-step", metavar="LENGTH", help="largest worn "
-                                                "depth of one wear step, e.g. 2um (default: from the contact's "
-                                                "elastic give, see docs/durability.md)", rich_help_panel=PANEL),
+    max_wear_step: Optional[str] = typer.Option(None, "--max-wear-step", metavar="LENGTH", help="cap on the worn "
+                                                "depth of one wear step, e.g. 2um (default 10 um)",
+                                                rich_help_panel=PANEL),
+    wear_step_fraction: Optional[str] = typer.Option(None, "--wear-step-fraction", metavar="NUMBER", help="largest "
+                                                     "worn depth of one wear step as a share of the contact's "
+                                                     "elastic give (default 0.25; 0.01..1; halve it to see the "
+                                                     "step error)", rich_help_panel=PANEL),
     rebuild_depth: Optional[str] = typer.Option(None, "--rebuild-depth", metavar="LENGTH|never", help="worn depth "
                                                 "after which the part is meshed again with its worn profile "
                                                 "(default 0.1 mm; never: the wear stays in the contact gaps)",
@@ -125,7 +129,8 @@ def life(
                                     "--throttle-ramp": throttle_ramp}, DRIVE_OPTIONS)
         wear = _params(WearParams, {"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,
                                     "--hardness": hardness, "--drum-wear-coefficient": drum_wear_coefficient,
-                                    "--drum-hardness": drum_hardness, "--max-wear-step": max_wear_step},
+                                    "--drum-hardness": drum_hardness, "--max-wear-step": max_wear_step,
+                                    "--wear-step-fraction": wear_step_fraction},
                        WEAR_OPTIONS)
         if rebuild_depth is not None and rebuild_depth.strip().lower() == "never":
             depth = None

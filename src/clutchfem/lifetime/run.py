@@ -17,7 +17,10 @@ factorised model; the part is rebuilt with its worn profile every ``rebuild_dept
    the slip speed, sliding at the slip speed for the slip's duration), shoe and drum.
 
 The worn depths are integrated over the starts with the controlled wear step of
-:func:`~clutchfem.durability.integrate_wear`.  Requirements: engagement > a x idle and slip
+:func:`~clutchfem.durability.integrate_wear`: no node wears more in one step than
+``wear.step_fraction`` times the contact's elastic give (the free part's overlap at the
+loaded nodes, weighted by the wear done at each speed of the starts) nor than
+``wear.max_step``.  Requirements: engagement > a x idle and slip
 < b x rpm of maximum engine torque (:class:`~clutchfem.analysis.Requirements`), the first
 number of starts at which one is missed interpolated between the states.  Band: the
 answers depend on Archard's k / H only through n k / H (:mod:`clutchfem.durability.wear`),
@@ -160,6 +163,10 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
         dh, dd = wear_rate(I, wear, weight_m=m.weight, scale=m.scale, drum_radius_m=R)
         J = _jacobian(m, x, S, P, wear, R)
         info = _state_info(m, a, free, cut, W, R, h)
+        # the contact's elastic give where the starts wear: the free overlap at the loaded
+        # nodes per speed, weighted by the wear done at that speed (the step control's scale)
+        load = S * (P @ m.weight)
+        info["elastic_give_m"] = float(load @ a.table_give_m / load.sum()) if load.sum() > 0 else None
         if log:
             log(f"{h.count:4d} state: engagement {a.engagement_rpm or math.nan:.0f} rpm, slip "
                 f"{a.slip_rpm or math.nan:.0f} rpm, arc {a.contact_arc_deg:.1f} deg, worn {1e6 * W[:-1].max():.1f} um, "
@@ -177,7 +184,8 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
             log(f"rebuilt the worn part at {n:.0f} starts ({new.m} contact nodes)")
         return np.concatenate([w_new, [W[-1]]])
 
-    run = integrate_wear(rate, np.zeros(h.model.m + 1), float(starts), wear, on_state=on_state)
+    run = integrate_wear(rate, np.zeros(h.model.m + 1), float(starts), wear, on_state=on_state,
+                         step_limit=lambda info: info["elastic_give_m"])
     notes = []
     if design.params is None:
         notes.append("a user mesh: the worn profile is kept in the contact gaps of the new part's model (no rebuild)")
