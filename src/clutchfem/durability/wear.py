@@ -41,8 +41,8 @@ of the step's end (a step deeper than the elastic approach of the contact otherw
 the loaded nodes past the ones about to touch).  The step control: no node wears more than
 the step limit in one step (dn shrunk until it holds), the smaller of ``max_step`` and,
 with a ``step_limit`` (the life run's), ``step_fraction`` times the contact's elastic give
-(the overlap the free part would have at the loaded nodes, weighted by where the starts
-wear): a step deeper than the give unloads the loaded nodes entirely within one step and
+(the worn depth that would unload a loaded node, p_i / |dp_i/dw_i|, weighted by the wear
+the nodes take): a step deeper than the give unloads the loaded nodes within one step and
 over-wears them (the contact arc then jitters from state to state).  First order in dn, so
 halving the step halves the step error (measured: ``benchmarks/bench_life.py``).
 Wear does not heal: a step's dw is clipped at 0.

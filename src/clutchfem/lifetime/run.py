@@ -18,9 +18,9 @@ factorised model; the part is rebuilt with its worn profile every ``rebuild_dept
 
 The worn depths are integrated over the starts with the controlled wear step of
 :func:`~clutchfem.durability.integrate_wear`: no node wears more in one step than
-``wear.step_fraction`` times the contact's elastic give (the free part's overlap at the
-loaded nodes, weighted by the wear done at each speed of the starts) nor than
-``wear.max_step``.  Requirements: engagement > a x idle and slip
+``wear.step_fraction`` times the contact's elastic give (the worn depth that would unload a
+loaded node, p_i / |dp_i/dw_i|, weighted by the wear each node takes at each speed of the
+starts) nor than ``wear.max_step``.  Requirements: engagement > a x idle and slip
 < b x rpm of maximum engine torque (:class:`~clutchfem.analysis.Requirements`), the first
 number of starts at which one is missed interpolated between the states.  Band: the
 answers depend on Archard's k / H only through n k / H (:mod:`clutchfem.durability.wear`),
@@ -161,12 +161,9 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
                 S = S + _hat(x, n_h) * duty.held_slips_per_start * R * (n_h * math.pi / 30.0) * duty.held_slip_duration
         I = S @ P
         dh, dd = wear_rate(I, wear, weight_m=m.weight, scale=m.scale, drum_radius_m=R)
-        J = _jacobian(m, x, S, P, wear, R)
+        J, give = _jacobian(m, x, S, P, wear, R)
         info = _state_info(m, a, free, cut, W, R, h)
-        # the contact's elastic give where the starts wear: the free overlap at the loaded
-        # nodes per speed, weighted by the wear done at that speed (the step control's scale)
-        load = S * (P @ m.weight)
-        info["elastic_give_m"] = float(load @ a.table_give_m / load.sum()) if load.sum() > 0 else None
+        info["elastic_give_m"] = give
         if log:
             log(f"{h.count:4d} state: engagement {a.engagement_rpm or math.nan:.0f} rpm, slip "
                 f"{a.slip_rpm or math.nan:.0f} rpm, arc {a.contact_arc_deg:.1f} deg, worn {1e6 * W[:-1].max():.1f} um, "
@@ -201,22 +198,37 @@ def _hat(x: np.ndarray, v: float) -> np.ndarray:
     return np.array([np.interp(v, x, e) for e in np.eye(len(x))])
 
 
-def _jacobian(m: WornModel, x: np.ndarray, S: np.ndarray, P: np.ndarray, wear: WearParams, R: float) -> np.ndarray:
-    """d(wear rate)/d(worn depths) ((m+1) x (m+1): the shoe's nodes and the drum) from the
-    contact problem at every speed where the start slides (:mod:`clutchfem.durability.wear`)."""
+def _jacobian(m: WornModel, x: np.ndarray, S: np.ndarray, P: np.ndarray, wear: WearParams,
+              R: float) -> tuple[np.ndarray, float | None]:
+    """(d(wear rate)/d(worn depths) ((m+1) x (m+1): the shoe's nodes and the drum) from the
+    contact problem at every speed where the start slides (:mod:`clutchfem.durability.wear`),
+    the contact's elastic give [m] (None: no contact)).
+
+    The elastic give of a loaded node i is the worn depth that would unload it, linearised:
+    p_i / |dp_i/dw_i| (the node's own stiffness against the drum with its neighbours held
+    at their gaps); the give of the state is its mean weighted by the wear each node takes at
+    each speed (S_j p_i w_i), the scale of the step control (``WearParams.step_fraction``):
+    a step deeper than it unloads the loaded nodes within one step and over-wears them."""
     n = m.m
     JI = np.zeros((n, n + 1))
+    num = den = 0.0
     for j in np.nonzero(S > 0)[0]:
         A = np.nonzero(P[j] > 0)[0]
         if not len(A):
             continue
-        D = S[j] * m.pressure_jacobian(float(x[j]) * math.pi / 30.0, A)
+        Dp = m.pressure_jacobian(float(x[j]) * math.pi / 30.0, A)
+        D = S[j] * Dp
         JI[np.ix_(A, A)] += D
         JI[A, n] += D.sum(axis=1)  # the drum's depth opens every gap
+        stiff = -np.diag(Dp)
+        ok = stiff > 0
+        wgt = S[j] * P[j, A] * m.weight[A]
+        num += float(np.sum(wgt[ok] * P[j, A][ok] / stiff[ok]))
+        den += float(np.sum(wgt[ok]))
     J = np.zeros((n + 1, n + 1))
     J[:n] = wear.k / wear.hardness * JI
     J[n] = wear.k_drum / wear.drum_hardness * m.scale * (m.weight @ JI) / (2.0 * math.pi * R)
-    return J
+    return J, (num / den if den > 0 else None)
 
 
 def _state_info(m: WornModel, a, free, cut, W, R, h: _Holder) -> dict:

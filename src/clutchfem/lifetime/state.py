@@ -50,7 +50,6 @@ class StateAnswers:
     table_torque_Nm: np.ndarray
     table_pressure_Pa: np.ndarray  # (n speeds, m nodes)
     pressure_at_max_engine_torque_Pa: np.ndarray  # (m,)
-    table_give_m: np.ndarray | None = None  # (n speeds,) elastic give of the contact (0: none)
 
 
 class WornModel:
@@ -178,15 +177,12 @@ class WornModel:
             grid = np.union1d(grid, [n_eng])
         T = np.zeros(len(grid))
         P = np.zeros((len(grid), self.m))
-        give = np.zeros(len(grid))
         act = None
         for k, n in enumerate(grid):
             if n_eng is None or n <= n_eng:
                 continue
             lam, act = self.solve(rpm_to_rad_s(n), extra, act)
             T[k], P[k] = self.torque(lam), self.pressure(lam)
-            if act.any():  # the contact's elastic give: the free part's overlap at its active nodes
-                give[k] = float(np.max(-self.q(rpm_to_rad_s(n), extra)[act]))
         slip = self.slip_rpm(extra, engine, grid, T, n_eng)
         n_t = float(engine.rpm_max_torque)
         lam_t, _ = self.solve(rpm_to_rad_s(n_t), extra) if n_eng is not None and n_t > n_eng else \
@@ -195,7 +191,7 @@ class WornModel:
         return StateAnswers(engagement_rpm=n_eng, slip_rpm=slip, torque_at_max_engine_torque_Nm=self.torque(lam_t),
                             contact_arc_deg=share * self.arc_deg, contact_share=share, table_rpm=grid,
                             table_torque_Nm=T, table_pressure_Pa=P,
-                            pressure_at_max_engine_torque_Pa=self.pressure(lam_t), table_give_m=give)
+                            pressure_at_max_engine_torque_Pa=self.pressure(lam_t))
 
     def slip_rpm(self, extra, engine, grid, T, n_eng) -> float | None:
         """First speed where the clutch torque reaches the engine torque, bracketed on the
