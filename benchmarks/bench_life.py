@@ -1,13 +1,13 @@
 """The clutch over its life (issue 38): the time of ``cf.life(concept4 default, starts=N)`` and
 the error of its answers against the same run with half the wear step (the step control of
-:func:`clutchfem.durability.integrate_wear`: ``step_fraction`` of the contact's elastic give).
+:func:`clutchfem.durability.integrate_wear`: ``max_step`` and ``rate_change`` both halved).
 
 Printed for the run and the half-step run: the time, the wear states, the step limits, and
 the answers at the end (engagement, slip, torque and contact arc at the rpm of maximum engine
 torque, deepest worn depth); then the largest difference of each answer between the two runs
 over the life (the coarse run's states against the fine run interpolated at the same
 starts), and the largest state-to-state change of the contact arc after wear-in (the jitter
-the step control removes).  ``--fraction`` sets the coarse run's step fraction.
+the step control removes).  ``--fraction`` sets the coarse run's step limits as a share of the defaults.
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_life.py [--starts 100000] [--fraction 0.25]
 """
@@ -30,8 +30,11 @@ KEYS = (("engagement_rpm", "rpm", ".1f"), ("slip_rpm", "rpm", ".1f"), ("torque_a
 
 
 def run(design, starts, fraction, rebuild):
+    """A life whose step limits are ``fraction`` times the defaults (max_step, rate_change)."""
+    w0 = cf.WearParams()
+    wear = cf.WearParams(max_step=fraction * w0.max_step, rate_change=fraction * w0.rate_change)
     t0 = time.perf_counter()
-    L = cf.life(design, starts=starts, wear=cf.WearParams(step_fraction=fraction), rebuild_depth=rebuild)
+    L = cf.life(design, starts=starts, wear=wear, rebuild_depth=rebuild)
     return L, time.perf_counter() - t0
 
 
@@ -51,7 +54,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--concept", default="concept4")
     ap.add_argument("--starts", type=float, default=100_000)
-    ap.add_argument("--fraction", type=float, default=cf.WearParams().step_fraction)
+    ap.add_argument("--fraction", type=float, default=1.0, help="the coarse run's step limits as a share of the "
+                    "defaults (max_step, rate_change)")
     ap.add_argument("--mesh-size", default=None, help="e.g. 3mm (default: the concept's default mesh)")
     ap.add_argument("--no-rebuild", action="store_true", help="keep the wear in the contact gaps (no re-mesh)")
     a = ap.parse_args()
@@ -69,7 +73,8 @@ def main() -> None:
         L, sec = run(d, a.starts, f, rebuild)
         runs[f] = L
         lim = L.wear_steps["step_limit_m"]
-        print(f"\nstep fraction {f:g}: {sec:.1f} s, {L.wear_steps['states']} states, step limit "
+        print(f"\nstep limits x {f:g} (max_step {f * cf.WearParams().max_step * 1e6:g} um, rate_change "
+              f"{f * cf.WearParams().rate_change:g}): {sec:.1f} s, {L.wear_steps['states']} states, step limit "
               f"{1e6 * lim['min']:.3f}..{1e6 * lim['max']:.3f} um, rebuilds at {L.rebuilds_at_starts}, "
               f"energy balance {L.energy_balance:.1e}")
         for k, u, fmt in KEYS:
@@ -79,7 +84,7 @@ def main() -> None:
         print(f"  first misses: {L.first_miss}")
         print(f"  contact-arc jitter after wear-in (largest departure from its neighbours' line): {jitter(L):.3f} deg")
     c, f = runs[a.fraction], runs[0.5 * a.fraction]
-    print(f"\nerror of the step fraction {a.fraction:g} run against {0.5 * a.fraction:g} (largest over its states):")
+    print(f"\nerror of the run with step limits x {a.fraction:g} against x {0.5 * a.fraction:g} (largest over its states):")
     for k, u, fmt in KEYS:
         yc, yf = getattr(c, k), np.interp(c.starts, f.starts, getattr(f, k))
         ok = np.isfinite(yc) & np.isfinite(yf)

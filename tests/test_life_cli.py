@@ -34,7 +34,7 @@ def strict(text: str):
     (["--drum-hardness", "0Pa"], "--drum-hardness"),
     (["--wear-regime", "wet"], "--wear-regime"),
     (["--max-wear-step", "2kg"], "--max-wear-step"),
-    (["--wear-step-fraction", "0"], "--wear-step-fraction"),
+    (["--wear-rate-change", "0"], "--wear-rate-change"),
     (["--rebuild-depth", "5"], "--rebuild-depth"),
 ])
 def test_bad_values_are_refused_naming_the_option(args, option):
@@ -64,7 +64,7 @@ def short(tmp_path_factory):
                        "1.1e-3kg*m^2", "--driven-inertia", "2.5e-4kg*m^2", "--drag-torque", "0.3N*m",
                        "--cutting-torque", "3N*m", "--throttle-ramp", "0.25s", "--wear-regime", "lubricated",
                        "--wear-coefficient", "2e-5", "--hardness", "4GPa", "--drum-wear-coefficient", "1e-5",
-                       "--drum-hardness", "5GPa", "--max-wear-step", "8um", "--wear-step-fraction", "0.3",
+                       "--drum-hardness", "5GPa", "--max-wear-step", "8um", "--wear-rate-change", "0.3",
                        "--json", "--out", str(out))
     assert r.returncode == 0, r.stderr[-3000:]
     return strict(r.stdout), out, r.stderr
@@ -87,7 +87,7 @@ def test_json_answers_against_starts_and_the_options_reached_the_run(short):
     assert (dl["engine_inertia"], dl["driven_inertia"], dl["drag_torque"], dl["cutting_torque"],
             dl["throttle_ramp"]) == (1.1e-3, 2.5e-4, 0.3, 3.0, 0.25)
     assert (w["regime"], w["k_used"], w["hardness"], w["drum_wear_coefficient"], w["drum_hardness"], w["max_step"],
-            w["step_fraction"]) == ("lubricated", 2e-5, 4e9, 1e-5, 5e9, 8e-6, 0.3)
+            w["rate_change"]) == ("lubricated", 2e-5, 4e9, 1e-5, 5e9, 8e-6, 0.3)
     assert duty == {"starts_per_hour": 30.0, "held_slips_per_hour": 1.0, "held_slip_duration": 0.5,
                     "cutting_share": 0.2}
     # the given k with the lubricated band's ratios (1e-9..1e-7 around 1e-8)

@@ -36,7 +36,7 @@ DRIVE_OPTIONS = {"--engine-inertia": "engine_inertia", "--driven-inertia": "driv
 #: option -> field of WearParams (Archard's coefficients and the wear step)
 WEAR_OPTIONS = {"--wear-regime": "regime", "--wear-coefficient": "wear_coefficient", "--hardness": "hardness",
                 "--drum-wear-coefficient": "drum_wear_coefficient", "--drum-hardness": "drum_hardness",
-                "--max-wear-step": "max_step", "--wear-step-fraction": "step_fraction"}
+                "--max-wear-step": "max_step", "--wear-rate-change": "rate_change"}
 
 
 def _params(cls, given: dict, options: dict):
@@ -97,10 +97,10 @@ def life(
     max_wear_step: Optional[str] = typer.Option(None, "--max-wear-step", metavar="LENGTH", help="cap on the worn "
                                                 "depth of one wear step, e.g. 2um (default 10 um)",
                                                 rich_help_panel=PANEL),
-    wear_step_fraction: Optional[str] = typer.Option(None, "--wear-step-fraction", metavar="NUMBER", help="largest "
-                                                     "worn depth of one wear step as a share of the contact's "
-                                                     "elastic give (default 0.25; 0.01..1; halve it to see the "
-                                                     "step error)", rich_help_panel=PANEL),
+    wear_rate_change: Optional[str] = typer.Option(None, "--wear-rate-change", metavar="NUMBER", help="largest "
+                                                   "change of the wear rate in one wear step as a share of the "
+                                                   "largest rate (default 0.25; 0.01..10; halve it with "
+                                                   "--max-wear-step to see the step error)", rich_help_panel=PANEL),
     rebuild_depth: Optional[str] = typer.Option(None, "--rebuild-depth", metavar="LENGTH|never", help="worn depth "
                                                 "after which the part is meshed again with its worn profile "
                                                 "(default 0.1 mm; never: the wear stays in the contact gaps)",
@@ -130,7 +130,7 @@ def life(
         wear = _params(WearParams, {"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,
                                     "--hardness": hardness, "--drum-wear-coefficient": drum_wear_coefficient,
                                     "--drum-hardness": drum_hardness, "--max-wear-step": max_wear_step,
-                                    "--wear-step-fraction": wear_step_fraction},
+                                    "--wear-rate-change": wear_rate_change},
                        WEAR_OPTIONS)
         if rebuild_depth is not None and rebuild_depth.strip().lower() == "never":
             depth = None

@@ -43,7 +43,11 @@ the step limit in one step (dn shrunk until it holds), the smaller of ``max_step
 with a ``step_limit`` (the life run's), ``step_fraction`` times the contact's elastic give
 (the worn depth that would unload a loaded node, p_i / |dp_i/dw_i|, weighted by the wear
 the nodes take): a step deeper than the give unloads the loaded nodes within one step and
-over-wears them (the contact arc then jitters from state to state).  First order in dn, so
+over-wears them (the contact arc then jitters from state to state).  With a Jacobian the
+step also changes the wear rate by no more than ``rate_change`` times the largest rate
+(linearised: max |J dw| <= rate_change max |r|): short steps while the contact is
+wearing in and the pressure moves, long ones once the wear is uniform along the arc (a
+uniform wear opens every gap alike and barely moves the pressure).  First order in dn, so
 halving the step halves the step error (measured: ``benchmarks/bench_life.py``).
 Wear does not heal: a step's dw is clipped at 0.
 """
@@ -86,6 +90,9 @@ class WearParams(ParamSet):
     step_fraction : float
         Largest worn depth of one wear step as a share of the contact's elastic give (0.01..1;
         applied where :func:`integrate_wear` has a ``step_limit``).
+    rate_change : float
+        Largest change of the wear rate in one step (linearised, max |J dw|) as a share of the
+        largest wear rate (0.01..10; applied where the rate has a Jacobian).
 
     Examples
     --------
@@ -115,7 +122,10 @@ class WearParams(ParamSet):
     max_step: float = param(10e-6, "m", 1e-8, 1e-3, "largest worn depth of one wear step (the step control's "
                             "cap)", "dh_max")
     step_fraction: float = param(0.25, "-", 0.01, 1.0, "largest worn depth of one wear step as a share of the "
-                                 "contact's elastic give (with a step_limit: the life run's)", "f_dh")
+                                 "contact's elastic give (where integrate_wear is given a step_limit)", "f_dh")
+    rate_change: float = param(0.25, "-", 0.01, 10.0, "largest change of the wear rate in one step, linearised "
+                               "(max |J dw|), as a share of the largest wear rate (the life run's step control)",
+                               "f_r")
 
     @property
     def k(self) -> float:
@@ -278,9 +288,14 @@ def integrate_wear(rate: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | N
         for _ in range(30):
             dw = dn * r if J is None else np.linalg.solve(np.eye(len(w)) - dn * J, dn * r)
             big = float(np.max(np.abs(dw), initial=0.0))
-            if big <= limit * (1 + 1e-9):
+            shrink = limit / big if big > limit * (1 + 1e-9) else 1.0
+            if J is not None and rmax > 0:  # the wear rate's change over the step, linearised
+                change = float(np.max(np.abs(J @ dw)))
+                if change > params.rate_change * rmax * (1 + 1e-9):
+                    shrink = min(shrink, params.rate_change * rmax / change)
+            if shrink >= 1.0:
                 break
-            dn *= 0.9 * limit / big
+            dn *= 0.9 * shrink
             run.shrunk += 1
         w1 = w + np.maximum(dw, 0.0)
         r1, J1, info1 = rate(w1)

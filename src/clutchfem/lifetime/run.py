@@ -18,9 +18,10 @@ factorised model; the part is rebuilt with its worn profile every ``rebuild_dept
 
 The worn depths are integrated over the starts with the controlled wear step of
 :func:`~clutchfem.durability.integrate_wear`: no node wears more in one step than
-``wear.step_fraction`` times the contact's elastic give (the worn depth that would unload a
-loaded node, p_i / |dp_i/dw_i|, weighted by the wear each node takes at each speed of the
-starts) nor than ``wear.max_step``.  Requirements: engagement > a x idle and slip
+``wear.max_step`` and the step changes the wear rate (linearised with the contact
+Jacobian) by no more than ``wear.rate_change`` times the largest rate.  The contact's
+elastic give (the worn depth that would unload a loaded node, p_i / |dp_i/dw_i|, weighted
+by the wear each node takes) is reported per state (``wear_steps.elastic_give_m``).  Requirements: engagement > a x idle and slip
 < b x rpm of maximum engine torque (:class:`~clutchfem.analysis.Requirements`), the first
 number of starts at which one is missed interpolated between the states.  Band: the
 answers depend on Archard's k / H only through n k / H (:mod:`clutchfem.durability.wear`),
@@ -181,8 +182,7 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
             log(f"rebuilt the worn part at {n:.0f} starts ({new.m} contact nodes)")
         return np.concatenate([w_new, [W[-1]]])
 
-    run = integrate_wear(rate, np.zeros(h.model.m + 1), float(starts), wear, on_state=on_state,
-                         step_limit=lambda info: info["elastic_give_m"])
+    run = integrate_wear(rate, np.zeros(h.model.m + 1), float(starts), wear, on_state=on_state)
     notes = []
     if design.params is None:
         notes.append("a user mesh: the worn profile is kept in the contact gaps of the new part's model (no rebuild)")
@@ -207,8 +207,8 @@ def _jacobian(m: WornModel, x: np.ndarray, S: np.ndarray, P: np.ndarray, wear: W
     The elastic give of a loaded node i is the worn depth that would unload it, linearised:
     p_i / |dp_i/dw_i| (the node's own stiffness against the drum with its neighbours held
     at their gaps); the give of the state is its mean weighted by the wear each node takes at
-    each speed (S_j p_i w_i), the scale of the step control (``WearParams.step_fraction``):
-    a step deeper than it unloads the loaded nodes within one step and over-wears them."""
+    each speed (S_j p_i w_i): a step deeper than it unloads the loaded nodes within one step
+    and over-wears them (reported per state; the step control is the wear rate's change)."""
     n = m.m
     JI = np.zeros((n, n + 1))
     num = den = 0.0
