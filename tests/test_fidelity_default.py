@@ -47,7 +47,8 @@ def test_analyze_cli_default_is_the_corrected_best_estimate(monkeypatch):
     assert fix["uncorrected"] != d["errors"]["max_von_mises_Pa"]["value"] and "geometric_nonlinearity" in fix
 
 
-@pytest.mark.parametrize("name", ["analyze", "solve", "optimize", "tolerance", "guidelines", "compensate", "slip-heat"])
+@pytest.mark.parametrize("name", ["analyze", "solve", "optimize", "tolerance", "guidelines", "compensate", "slip-heat",
+                                  "life"])
 def test_every_design_command_takes_fidelity(name):
     cmd = next(c for c in app.registered_commands if (c.name or c.callback.__name__) == name)
     assert "fidelity" in inspect.signature(cmd.callback).parameters

@@ -166,11 +166,77 @@ def test_wear_in_tends_to_a_uniform_pressure_and_the_step_converges():
     assert np.max(np.abs(wc - wf)) < 0.1 * np.max(wf)
 
 
+def test_step_limit_follows_the_elastic_give_and_halving_it_converges():
+    """The step control of the life run: no step wears deeper than step_fraction x the give
+    (here the Winkler contact's overlap at its most loaded node) however large max_step is, and
+    the worn depths converge at first order as the fraction halves."""
+    k_node = 2e7
+    forces = _winkler(k_node=k_node)
+    s = 5.0
+
+    def run(fraction):
+        wp = WearParams(wear_coefficient=1e-5, max_step=1e-4, step_fraction=fraction)
+
+        def rate(w):
+            lam, J = forces(w)
+            return wp.k / wp.hardness * lam * s, wp.k / wp.hardness * s * J, lam
+
+        return integrate_wear(rate, np.zeros(12), 2e7, wp, step_limit=lambda lam: float(lam.max()) / k_node)
+
+    runs = {f: run(f) for f in (0.5, 0.25, 0.125, 0.03125)}
+    for f, r in runs.items():
+        steps = np.max(np.diff(np.array(r.worn_m), axis=0), axis=1)
+        gives = [float(lam.max()) / k_node for lam in r.info[:-1]]
+        assert np.all(steps <= f * np.array(gives) * (1 + 1e-9))
+        assert max(r.limits_m) < 1e-4  # the give, not max_step, set every step
+    ref = runs[0.03125]
+
+    def err(r):
+        mid = 2e6  # during wear-in, where the step matters
+        at = lambda rr: np.array([np.interp(mid, rr.starts, [w[k] for w in rr.worn_m]) for k in range(12)])
+        return float(np.max(np.abs(at(r) - at(ref))))
+
+    e = [err(runs[f]) for f in (0.5, 0.25, 0.125)]
+    assert e[0] > e[1] > e[2] > 0
+    assert e[1] / e[0] < 0.75 and e[2] / e[1] < 0.75  # about first order (0.5 per halving)
+
+
+def test_rate_change_control_shortens_the_steps_of_the_wear_in_and_converges():
+    """The life run's step control: the wear rate changes by at most rate_change x its largest
+    value per step (linearised); halving rate_change twice cuts the error during the wear-in
+    by more than half (first order: a quarter)."""
+    forces = _winkler()
+    s = 5.0
+
+    def run(f):
+        wp = WearParams(wear_coefficient=1e-5, max_step=1e-4, rate_change=f)
+
+        def rate(w):
+            lam, J = forces(w)
+            return wp.k / wp.hardness * lam * s, wp.k / wp.hardness * s * J, lam
+
+        return integrate_wear(rate, np.zeros(12), 2e7, wp)
+
+    runs = {f: run(f) for f in (0.5, 0.25, 0.125, 0.03125)}
+    assert len(runs[0.5].starts) < len(runs[0.25].starts) < len(runs[0.125].starts)
+    ref = runs[0.03125]
+
+    def at(r):
+        return np.array([np.interp(2e6, r.starts, [w[k] for w in r.worn_m]) for k in range(12)])
+
+    e = [float(np.max(np.abs(at(runs[f]) - at(ref)))) for f in (0.5, 0.25, 0.125)]
+    assert e[0] > e[1] > e[2] > 0 and e[2] < 0.5 * e[0]
+
+
 def test_wear_refusals():
     with pytest.raises(cf.ParameterError, match="wear_coefficient"):
         WearParams(wear_coefficient=0.0)
     with pytest.raises(cf.ParameterError, match="hardness"):
         WearParams(hardness="4 mm")
+    with pytest.raises(cf.ParameterError, match="step_fraction"):
+        WearParams(step_fraction=0.0)
+    with pytest.raises(cf.ParameterError, match="rate_change"):
+        WearParams(rate_change=0.0)
     with pytest.raises(cf.InputError, match="finite"):
         wear_rate([-1.0], WearParams())
     assert WearParams(regime="dry").k_band == (1e-6, 1e-4)

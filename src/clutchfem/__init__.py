@@ -76,6 +76,7 @@ _GROUPS: dict[str, dict[str, str]] = {
         "DutyCycle": "clutchfem.lifetime",
         "Life": "clutchfem.lifetime",
         "life": "clutchfem.lifetime",
+        "life_files": "clutchfem.lifetime",
     },
     "Studies": {
         "StudySpec": "clutchfem.studies",
@@ -268,7 +269,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
     from .fe import write_vtk
     from .geometry import MeshSettings, broken_concepts, concepts, draw_concept, get_concept
     from .guidelines import GuidelineResult, GuidelineSettings, run_guidelines
-    from .lifetime import DutyCycle, Life, life
+    from .lifetime import DutyCycle, Life, life, life_files
     from .loadcase import Design, DesignIdentity, OperatingPoint, SweepResult, model_warnings, morph, parse_rpm
     from .mesh import cache_dir, cache_entries, cache_foreign_files, cache_limit, clear_cache
     from .reduced import ReducedModel, Region, reduce

@@ -26,6 +26,7 @@ from .compensate_cmd import compensate
 from .demo_cmd import demo
 from .export_cmd import export
 from .geometry_cmd import geometry
+from .life_cmd import life
 from .optimize_cmd import optimize
 from .reduce_cmd import reduce
 from .report_cmd import report
@@ -47,6 +48,7 @@ _COMMANDS = [
     (solve, "solve", "Design", "clutchfem solve concept1 --rpm 0:14000:250 --vtk --out out/c1"),
     (report, "report", "Design", "clutchfem report concept4 --out out/c4-report"),
     (slip_heat, "slip-heat", "Design", "clutchfem slip-heat concept2 --cycles 3 --pause 20s --out out/heat"),
+    (life, "life", "Design", "clutchfem life concept4 --starts 100000 --duty duty.toml --out out/life"),
     (optimize, "optimize", "Design to targets", "clutchfem optimize concept4 --out out/opt"),
     (tolerance, "tolerance", "Design to targets",
      "clutchfem tolerance concept4 --tol flexure_thickness=+-0.05mm --tol clearance=+-0.02mm --n 100"),

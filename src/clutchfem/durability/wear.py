@@ -38,9 +38,17 @@ with J from the contact problem itself (on the active set A of each speed, dp_A/
 stable for any dn and damps the fast relaxation as the physics does; up to ``corrections``
 Newton corrections then solve the implicit Euler step w1 = w + dn r(w1) with the contact set
 of the step's end (a step deeper than the elastic approach of the contact otherwise wears
-the loaded nodes past the ones about to touch).  The step control: no
-node wears more than ``max_step`` in one step (dn shrunk until it holds); first order in
-dn, so halving ``max_step`` halves the step error (measured: ``benchmarks/bench_life.py``).
+the loaded nodes past the ones about to touch).  The step control: no node wears more than
+the step limit in one step (dn shrunk until it holds), the smaller of ``max_step`` and,
+with a ``step_limit`` (the life run's), ``step_fraction`` times the contact's elastic give
+(the worn depth that would unload a loaded node, p_i / |dp_i/dw_i|, weighted by the wear
+the nodes take): a step deeper than the give unloads the loaded nodes within one step and
+over-wears them (the contact arc then jitters from state to state).  With a Jacobian the
+step also changes the wear rate by no more than ``rate_change`` times the largest rate
+(linearised: max |J dw| <= rate_change max |r|): short steps while the contact is
+wearing in and the pressure moves, long ones once the wear is uniform along the arc (a
+uniform wear opens every gap alike and barely moves the pressure).  First order in dn, so
+halving the step halves the step error (measured: ``benchmarks/bench_life.py``).
 Wear does not heal: a step's dw is clipped at 0.
 """
 
@@ -78,7 +86,13 @@ class WearParams(ParamSet):
     drum_hardness : float or str
         Drum hardness [Pa].
     max_step : float or str
-        Largest worn depth of one wear step [m].
+        Largest worn depth of one wear step [m] (a cap).
+    step_fraction : float
+        Largest worn depth of one wear step as a share of the contact's elastic give (0.01..1;
+        applied where :func:`integrate_wear` has a ``step_limit``).
+    rate_change : float
+        Largest change of the wear rate in one step (linearised, max |J dw|) as a share of the
+        largest wear rate (0.01..10; applied where the rate has a Jacobian).
 
     Examples
     --------
@@ -105,8 +119,13 @@ class WearParams(ParamSet):
     drum_hardness: float = param(4.4e9, "Pa", 1e8, 2e10, "drum hardness (ASSUMED a hardened steel drum)", "H_d")
     corrections: int = param(2, "-", 0, 20, "Newton corrections of each implicit wear step (0: linearly "
                              "implicit only)", "n_N")
-    max_step: float = param(10e-6, "m", 1e-8, 1e-3, "largest worn depth of one wear step (the step control)",
-                            "dh_max")
+    max_step: float = param(10e-6, "m", 1e-8, 1e-3, "largest worn depth of one wear step (the step control's "
+                            "cap)", "dh_max")
+    step_fraction: float = param(0.25, "-", 0.01, 1.0, "largest worn depth of one wear step as a share of the "
+                                 "contact's elastic give (where integrate_wear is given a step_limit)", "f_dh")
+    rate_change: float = param(0.25, "-", 0.01, 10.0, "largest change of the wear rate in one step, linearised "
+                               "(max |J dw|), as a share of the largest wear rate (the life run's step control)",
+                               "f_r")
 
     @property
     def k(self) -> float:
@@ -187,16 +206,29 @@ class WearRun:
     info: list[object] = field(default_factory=list)
     shrunk: int = 0
     corrections: int = 0
+    limits_m: list[float] = field(default_factory=list)
 
     def to_json(self) -> dict:
         """Starts and worn depths [m] of every state, the step counts."""
         return {"starts": [float(n) for n in self.starts], "worn_m": [np.asarray(w).tolist() for w in self.worn_m],
-                "shrunk": self.shrunk, "corrections": self.corrections}
+                "shrunk": self.shrunk, "corrections": self.corrections, "step_limits_m": list(self.limits_m)}
+
+
+def _limit(params: WearParams, step_limit, info) -> float:
+    """The step limit [m] at a state: ``max_step``, or ``step_fraction`` x the elastic give
+    when that is smaller (a give of None, 0 or not finite: no contact, ``max_step``)."""
+    if step_limit is None:
+        return params.max_step
+    give = step_limit(info)
+    if give is None or not math.isfinite(give) or give <= 0:
+        return params.max_step
+    return min(params.max_step, params.step_fraction * float(give))
 
 
 def integrate_wear(rate: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | None, object]], w0, starts: float,
                    params: WearParams, *,
                    on_state: Callable[[float, np.ndarray, object], np.ndarray | None] | None = None,
+                   step_limit: Callable[[object], float | None] | None = None,
                    max_states: int = 5000) -> WearRun:
     """Worn depths over ``starts`` starts by the linearly implicit step of the module
     docstring.
@@ -216,6 +248,10 @@ def integrate_wear(rate: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | N
     on_state : callable, optional
         ``on_state(n, w, info) -> w or None`` after every step (e.g. a rebuild of the part
         that maps the depths to a new model).
+    step_limit : callable, optional
+        ``step_limit(info) -> depth [m] or None``: the contact's elastic give at a state (its
+        ``info``); a step then wears no node deeper than ``step_fraction`` times it (nor
+        than ``max_step``).
     max_states : int
         Refuse a run that needs more steps.
 
@@ -245,14 +281,21 @@ def integrate_wear(rate: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | N
         if len(run.starts) > max_states:
             raise InputError(f"wear: more than {max_states} wear steps before {starts:g} starts (at {n:.0f}); raise "
                              "the wear step's max_step")
+        limit = _limit(params, step_limit, info)
+        run.limits_m.append(limit)
         rmax = float(np.max(np.abs(r), initial=0.0))
-        dn = starts - n if rmax <= 0 else min(starts - n, (1.0 if J is None else 10.0) * params.max_step / rmax)
+        dn = starts - n if rmax <= 0 else min(starts - n, (1.0 if J is None else 10.0) * limit / rmax)
         for _ in range(30):
             dw = dn * r if J is None else np.linalg.solve(np.eye(len(w)) - dn * J, dn * r)
             big = float(np.max(np.abs(dw), initial=0.0))
-            if big <= params.max_step * (1 + 1e-9):
+            shrink = limit / big if big > limit * (1 + 1e-9) else 1.0
+            if J is not None and rmax > 0:  # the wear rate's change over the step, linearised
+                change = float(np.max(np.abs(J @ dw)))
+                if change > params.rate_change * rmax * (1 + 1e-9):
+                    shrink = min(shrink, params.rate_change * rmax / change)
+            if shrink >= 1.0:
                 break
-            dn *= 0.9 * params.max_step / big
+            dn *= 0.9 * shrink
             run.shrunk += 1
         w1 = w + np.maximum(dw, 0.0)
         r1, J1, info1 = rate(w1)
@@ -260,7 +303,7 @@ def integrate_wear(rate: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray | N
             # Newton on the implicit Euler step w1 = w + dn r(w1): the contact set of the end
             # of the step, not only of its start
             F = w1 - w - dn * r1
-            if float(np.max(np.abs(F))) <= 1e-3 * params.max_step:
+            if float(np.max(np.abs(F))) <= 1e-3 * limit:
                 break
             w1 = np.maximum(w1 - np.linalg.solve(np.eye(len(w)) - dn * J1, F), w)
             r1, J1, info1 = rate(w1)

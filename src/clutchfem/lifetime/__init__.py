@@ -7,15 +7,17 @@ contact arc and the drift of engagement as the shoe face wears.
   or a TOML file);
 * :mod:`.run` -- :func:`life`: the states over the starts;
 * :mod:`.result` -- :class:`Life`;
-* :mod:`.figures` -- the pictures (answers against starts, profile and pressure new and worn).
+* :mod:`.figures` -- :func:`life_files`: the JSON and the pictures (answers against starts with the
+  requirement limits; pressure along the arc new and worn; the worn profile).
 
 The physics of one start and of the wear is the durability stage's
 (:func:`clutchfem.durability.engagement_transient`, :mod:`clutchfem.durability.wear`).
 """
 
 from .duty import DutyCycle
+from .figures import life_files
 from .result import Life
 from .run import life
 from .state import StateAnswers, WornModel, rebuild
 
-__all__ = ["DutyCycle", "Life", "StateAnswers", "WornModel", "life", "rebuild"]
+__all__ = ["DutyCycle", "Life", "StateAnswers", "WornModel", "life", "life_files", "rebuild"]

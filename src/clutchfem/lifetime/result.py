@@ -157,8 +157,14 @@ class Life:
             pressure_s_worn=last["pressure_s"], pressure_worn_Pa=last["pressure_at_max_engine_torque_Pa"],
             first_miss=miss, limits=limits, band=band, energy_balance=float(energy_balance),
             wear_steps={"states": len(starts), "shrunk_steps": run.shrunk, "max_step_m": wear.max_step,
+                        "rate_change": wear.rate_change,
+                        "step_limit_m": {"min": float(np.min(run.limits_m)) if run.limits_m else None,
+                                         "max": float(np.max(run.limits_m)) if run.limits_m else None},
+                        "elastic_give_m": [i.get("elastic_give_m") for i in info],
                         "method": "linearly implicit Euler in the number of starts (the contact problem's "
-                                  "Jacobian), no node wearing more than max_step per step",
+                                  "Jacobian) with Newton corrections, no node wearing more per step than "
+                                  "max_step and the wear rate changing by no more than rate_change x its "
+                                  "largest value (linearised)",
                         "rebuild_depth_m": rebuild_depth},
             rebuilds_at_starts=list(rebuilds),
             assumptions={"drive_line": drive.model_dump(), "wear": {**wear.model_dump(), "k_used": k},

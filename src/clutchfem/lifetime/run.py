@@ -17,7 +17,11 @@ factorised model; the part is rebuilt with its worn profile every ``rebuild_dept
    the slip speed, sliding at the slip speed for the slip's duration), shoe and drum.
 
 The worn depths are integrated over the starts with the controlled wear step of
-:func:`~clutchfem.durability.integrate_wear`.  Requirements: engagement > a x idle and slip
+:func:`~clutchfem.durability.integrate_wear`: no node wears more in one step than
+``wear.max_step`` and the step changes the wear rate (linearised with the contact
+Jacobian) by no more than ``wear.rate_change`` times the largest rate.  The contact's
+elastic give (the worn depth that would unload a loaded node, p_i / |dp_i/dw_i|, weighted
+by the wear each node takes) is reported per state (``wear_steps.elastic_give_m``).  Requirements: engagement > a x idle and slip
 < b x rpm of maximum engine torque (:class:`~clutchfem.analysis.Requirements`), the first
 number of starts at which one is missed interpolated between the states.  Band: the
 answers depend on Archard's k / H only through n k / H (:mod:`clutchfem.durability.wear`),
@@ -158,8 +162,9 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
                 S = S + _hat(x, n_h) * duty.held_slips_per_start * R * (n_h * math.pi / 30.0) * duty.held_slip_duration
         I = S @ P
         dh, dd = wear_rate(I, wear, weight_m=m.weight, scale=m.scale, drum_radius_m=R)
-        J = _jacobian(m, x, S, P, wear, R)
+        J, give = _jacobian(m, x, S, P, wear, R)
         info = _state_info(m, a, free, cut, W, R, h)
+        info["elastic_give_m"] = give
         if log:
             log(f"{h.count:4d} state: engagement {a.engagement_rpm or math.nan:.0f} rpm, slip "
                 f"{a.slip_rpm or math.nan:.0f} rpm, arc {a.contact_arc_deg:.1f} deg, worn {1e6 * W[:-1].max():.1f} um, "
@@ -193,22 +198,37 @@ def _hat(x: np.ndarray, v: float) -> np.ndarray:
     return np.array([np.interp(v, x, e) for e in np.eye(len(x))])
 
 
-def _jacobian(m: WornModel, x: np.ndarray, S: np.ndarray, P: np.ndarray, wear: WearParams, R: float) -> np.ndarray:
-    """d(wear rate)/d(worn depths) ((m+1) x (m+1): the shoe's nodes and the drum) from the
-    contact problem at every speed where the start slides (:mod:`clutchfem.durability.wear`)."""
+def _jacobian(m: WornModel, x: np.ndarray, S: np.ndarray, P: np.ndarray, wear: WearParams,
+              R: float) -> tuple[np.ndarray, float | None]:
+    """(d(wear rate)/d(worn depths) ((m+1) x (m+1): the shoe's nodes and the drum) from the
+    contact problem at every speed where the start slides (:mod:`clutchfem.durability.wear`),
+    the contact's elastic give [m] (None: no contact)).
+
+    The elastic give of a loaded node i is the worn depth that would unload it, linearised:
+    p_i / |dp_i/dw_i| (the node's own stiffness against the drum with its neighbours held
+    at their gaps); the give of the state is its mean weighted by the wear each node takes at
+    each speed (S_j p_i w_i): a step deeper than it unloads the loaded nodes within one step
+    and over-wears them (reported per state; the step control is the wear rate's change)."""
     n = m.m
     JI = np.zeros((n, n + 1))
+    num = den = 0.0
     for j in np.nonzero(S > 0)[0]:
         A = np.nonzero(P[j] > 0)[0]
         if not len(A):
             continue
-        D = S[j] * m.pressure_jacobian(float(x[j]) * math.pi / 30.0, A)
+        Dp = m.pressure_jacobian(float(x[j]) * math.pi / 30.0, A)
+        D = S[j] * Dp
         JI[np.ix_(A, A)] += D
         JI[A, n] += D.sum(axis=1)  # the drum's depth opens every gap
+        stiff = -np.diag(Dp)
+        ok = stiff > 0
+        wgt = S[j] * P[j, A] * m.weight[A]
+        num += float(np.sum(wgt[ok] * P[j, A][ok] / stiff[ok]))
+        den += float(np.sum(wgt[ok]))
     J = np.zeros((n + 1, n + 1))
     J[:n] = wear.k / wear.hardness * JI
     J[n] = wear.k_drum / wear.drum_hardness * m.scale * (m.weight @ JI) / (2.0 * math.pi * R)
-    return J
+    return J, (num / den if den > 0 else None)
 
 
 def _state_info(m: WornModel, a, free, cut, W, R, h: _Holder) -> dict:
