@@ -144,6 +144,7 @@ def test_guideline_charts(tmp_path):
     assert any("table_c0..table_c16" in n for n in doc["notes"])
     oat = rule(tmp_path / "one_at_a_time.png")
     assert "table_c0..table_c16" in oat["figure"][0]
+    assert {a["xlabel"] for a in oat["axes"] if a["xlabel"]} == {"flexure_thickness [mm]", "clearance [mm]"}
     base = {r["answer"]: r["value_at_x0"] for r in doc["elasticities"]}
     agrees(oat, r"engagement \[rpm\]: design point", base["engagement_rpm"])
     agrees(oat, r"slip speed \[rpm\]: design point", base["slip_rpm"])
