@@ -30,9 +30,9 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..core import figure, save_figure
-from ..guidelines import ANSWERS, CHECK_FACTOR, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
 from ..core.values import param_bounds
 from ..geometry import get_concept
+from ..guidelines import ANSWERS, CHECK_FACTOR, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
 from ..studies import display_value
 from ..studies.spec import axis_label
 
