@@ -23,6 +23,7 @@ Figures are drawn with matplotlib's Agg canvas chosen inside :func:`clutchfem.co
 from __future__ import annotations
 
 import math
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -212,7 +213,9 @@ def oat_chart(res: GuidelineResult, path: str | Path) -> Path:
                 Line2D([], [], color="0.4", ls=":", lw=0.8, label="no answer there\n(refused or failed)")]
     fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="answer (its value at the design point)",
                title_fontsize=8)
-    fig.suptitle(f"{res.concept}: one parameter at a time around the design point" + _footnote(res), fontsize=10)
+    width = fig.get_figwidth()  # the note of the parameters not studied wrapped to the figure (~11 characters an inch)
+    note = "\n".join(textwrap.fill(line, int(11 * width)) for line in _footnote(res).split("\n"))
+    fig.suptitle(f"{res.concept}: one parameter at a time around the design point" + note, fontsize=10)
     return save_figure(fig, path)
 
 
