@@ -26,7 +26,6 @@ from rich.text import Text
 from .. import InputError, ParameterError, UnitError, parse_quantity
 
 
-
 def fitted(table: Table, width: int) -> list:
     """What prints ``table`` within ``width`` columns without cutting a number (issue 37):
     every cell wraps at its spaces and folds a word longer than its column (a path) instead of
