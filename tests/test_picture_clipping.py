@@ -10,8 +10,7 @@ import pytest
 
 import clutchfem as cf
 from clutchfem.core import figure, figure_record, save_figure
-from clutchfem.core.figures import clipped_markers
-from clutchfem.report.design import RPM_MARGIN
+from clutchfem.core.figures import RPM_MARGIN, clipped_markers
 
 
 def _marked(xmax: float):

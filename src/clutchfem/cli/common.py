@@ -24,6 +24,7 @@ from rich.table import Table
 from rich.text import Text
 
 from .. import InputError, ParameterError, UnitError, parse_quantity
+from . import clear_early
 
 
 def fitted(table: Table, width: int) -> list:
@@ -89,6 +90,7 @@ class FitConsole(Console):
     terminal shows every number whole."""
 
     def print(self, *objects, **kw):  # noqa: D102 (Console.print)
+        clear_early()
         if len(objects) == 1 and isinstance(objects[0], Table):
             for r in fitted(objects[0], self.width):
                 super().print(r, **kw)
@@ -115,6 +117,7 @@ def working(what: str):
     if not err.is_terminal:
         yield lambda text: None
         return
+    clear_early()  # the spinner replaces the start-up line
     bar = Progress(SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn(), console=err,
                    transient=True, redirect_stdout=False, redirect_stderr=False)
     with bar:

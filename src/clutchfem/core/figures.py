@@ -31,6 +31,9 @@ import numpy as np
 
 #: the PNG text chunk's keyword
 KEY = "clutchfem"
+#: an rpm axis runs this far past its last speed, so a point marked there is drawn whole
+#: (:func:`clipped_markers`)
+RPM_MARGIN = 1.04
 
 
 def figure(nrows: int = 1, ncols: int = 1, *, figsize=(8.0, 5.0), layout: str | None = None, **subplot_kw):

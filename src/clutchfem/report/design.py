@@ -12,8 +12,8 @@ import numpy as np
 
 from ..analysis import analyze, slip_answer
 from ..clutch import BaselineClutch, EngineCurve
-from ..core import figure, save_figure
 from ..core import write as write_json
+from ..core.figures import RPM_MARGIN, figure, save_figure
 from ..geometry import MeshSettings, concepts
 from ..loadcase import Design, OperatingPoint
 
@@ -22,10 +22,6 @@ __all__ = ["summary_rows", "torque_plot", "arc_stress_plot", "torque_speed_plot"
 
 _COLORS = {"concept1": "tab:blue", "concept4": "tab:red", "concept2": "tab:purple",
            "concept3": "tab:brown", "concept3.1": "tab:olive", "concept5": "tab:cyan"}
-
-
-#: the rpm axis runs this far past the last speed, so a point marked there is drawn whole
-RPM_MARGIN = 1.04
 
 
 def _fmt(v, f: str, unit: str) -> str:
