@@ -16,7 +16,7 @@ import pytest
 
 from clutchfem.analysis import analyze
 from clutchfem.clutch import EngineCurve
-from clutchfem.core import ClutchfemError, InputError, ParameterError
+from clutchfem.core import ClutchfemError, InputError, ParameterError, figure_record
 from clutchfem.geometry import broken_concepts, concepts, get_concept
 from clutchfem.geometry.registry import search_path
 from clutchfem.loadcase import Design
@@ -242,7 +242,8 @@ import meshio, numpy as np
 from clutchfem.fe.vtu import render_png
 pts = np.array([[0, 0, 0], [1e-2, 0, 0], [0, 1e-2, 0], [1e-2, 1e-2, 0]], float)
 meshio.Mesh(pts, [("triangle", np.array([[0, 1, 2], [1, 3, 2]]))],
-            point_data={"displacement_m": np.zeros((4, 3)), "von_mises_Pa": np.arange(4.0)}).write(sys.argv[1])
+            point_data={"displacement_m": np.zeros((4, 3)), "von_mises_Pa": np.arange(4.0) * 1e6,
+                        "von_mises_max_Pa": np.arange(4.0) * 1.5e6}).write(sys.argv[1])
 print(render_png(Path(sys.argv[1]), Path(sys.argv[1]).with_suffix(".png")))
 """
 
@@ -258,6 +259,8 @@ def test_a_render_on_a_headless_machine_prints_no_x_server_warning(tmp_path):
     if r.stdout.strip() == "None":
         pytest.skip("no off-screen OpenGL on this machine (the .vtu is still written)")
     assert (tmp_path / "f.png").stat().st_size > 1000
+    rec = figure_record(tmp_path / "f.png")  # the colour bar reaches the tables' (unaveraged) peak, 4.5 MPa
+    assert rec["peak_MPa"] == pytest.approx(4.5) and rec["colour_bar_MPa"][1] >= 4.5
 
 
 # ---- progress on a terminal, never in --json standard output -------------------------------

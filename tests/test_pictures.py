@@ -88,6 +88,7 @@ def test_field_picture_agrees_with_the_table(c4, tmp_path):
     avg = number(rec, r"von_mises_Pa\): peak")[0]
     assert avg < round(row.max_von_mises_Pa / 1e6)  # averaging lowers the peak: said, not hidden
     assert "MPa" in rec["axes"][-1]["ylabel"]  # the colour bar: MPa
+    assert max(rec["axes"][-1]["ylim"]) >= row.max_von_mises_Pa / 1e6 * (1 - 1e-12)  # it reaches the marked peak
 
 
 @pytest.mark.slow
@@ -143,6 +144,7 @@ def test_guideline_charts(tmp_path):
     assert any("table_c0..table_c16" in n for n in doc["notes"])
     oat = rule(tmp_path / "one_at_a_time.png")
     assert "table_c0..table_c16" in oat["figure"][0]
+    assert {a["xlabel"] for a in oat["axes"] if a["xlabel"]} == {"flexure_thickness [mm]", "clearance [mm]"}
     base = {r["answer"]: r["value_at_x0"] for r in doc["elasticities"]}
     agrees(oat, r"engagement \[rpm\]: design point", base["engagement_rpm"])
     agrees(oat, r"slip speed \[rpm\]: design point", base["slip_rpm"])

@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 from ..core import figure
+from ..core.figures import clipped_texts
 from ..loadcase import SweepResult
 
 __all__ = ["field_png", "pressure_chart", "torque_chart"]
@@ -28,7 +29,9 @@ def field_png(design, res: SweepResult, rpm: float, scale: float = DEFORMATION_S
     """The part at ``rpm`` (the whole part rebuilt from a sector) deformed x ``scale``, von
     Mises [MPa] averaged to the vertices, the raw peak (as the table) marked, the drum circle
     (with the gap scaled like the deformation);
-    returns (PNG bytes, {"peak_MPa", "peak_xy_mm", "max_displacement_mm"})."""
+    returns (PNG bytes, {"peak_MPa", "peak_xy_mm", "max_displacement_mm", "colour_bar_MPa" (the
+    colour bar's range: it reaches the marked peak), "clipped" (texts a reader sees cut,
+    :func:`clutchfem.core.figures.clipped_texts`: none expected)})."""
     cm = design.cm
     mesh = cm.mesh
     k = res.index(float(rpm))
@@ -82,8 +85,16 @@ def field_png(design, res: SweepResult, rpm: float, scale: float = DEFORMATION_S
                 ha="center", va="top", fontsize=8, color="0.25")
     px, py = 1e3 * xd[peak_v], 1e3 * yd[peak_v]
     ax.plot([px], [py], marker="o", mfc="none", mec="k", ms=12, mew=1.6)
-    ax.annotate(f"peak {peak:.0f} MPa", (px, py), xytext=(10, -16), textcoords="offset points", fontsize=9,
-                bbox={"boxstyle": "round", "fc": "white", "alpha": 0.85})
+    # the label toward the part's centre from the peak (the peak sits on the outline; outward,
+    # the label ran under the colour bar: issue 37)
+    right, upper = px > 0, py > 0
+    ax.annotate(f"peak {peak:.0f} MPa", (px, py), xytext=(-14 if right else 14, -18 if upper else 18),
+                textcoords="offset points", fontsize=9, ha="right" if right else "left",
+                va="top" if upper else "bottom", bbox={"boxstyle": "round", "fc": "white", "alpha": 0.85})
+    # the colour bar reaches the marked peak (the raw vertex maximum, above the averaged colours)
+    for coll in ax.collections:
+        if hasattr(coll, "set_clim") and coll.get_array() is not None:
+            coll.set_clim(0.0, max(vmax, peak))
     cb = fig.colorbar(tpc, ax=ax, shrink=0.82, pad=0.02)
     cb.set_label("von Mises [MPa] (vertex average; peak: raw vertex max, as the table)")
     ax.set_aspect("equal")
@@ -97,7 +108,8 @@ def field_png(design, res: SweepResult, rpm: float, scale: float = DEFORMATION_S
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=90)
     disp = float(np.hypot(ux, uy).max()) * 1e3
-    return buf.getvalue(), {"peak_MPa": peak, "peak_xy_mm": [px, py], "max_displacement_mm": disp}
+    return buf.getvalue(), {"peak_MPa": peak, "peak_xy_mm": [px, py], "max_displacement_mm": disp,
+                            "colour_bar_MPa": [float(cb.vmin), float(cb.vmax)], "clipped": clipped_texts(fig)}
 
 
 def _line(name: str, x, y, color: str, dashed: bool = False, width: float = 2.0) -> dict:
@@ -139,7 +151,7 @@ def torque_chart(an, pinned=None) -> dict:
         series.append(_line(f"pinned {pinned.label or pinned.design}", p["rpm"], p["fe_torque_Nm"], "#ff7f0e",
                             dashed=True))
     return {"animation": False, "tooltip": {"trigger": "axis"}, "legend": {"top": 0, "type": "scroll"},
-            "grid": {"left": 55, "right": 20, "top": 40, "bottom": 45},
+            "grid": {"left": 55, "right": 30, "top": 40, "bottom": 45, "containLabel": True},
             "xAxis": {"type": "value", "name": "engine speed [rpm]", "nameLocation": "middle", "nameGap": 28,
                       "min": 0},
             "yAxis": {"type": "value", "name": "torque [N m]", "nameLocation": "middle", "nameGap": 38},
@@ -157,7 +169,7 @@ def pressure_chart(res: SweepResult, rpm: float, pinned: SweepResult | None = No
             p = g["pressure_Pa"].fillna(0.0).to_numpy() / 1e6
             series.append(_line(f"{name} shoe {shoe}", g["angle_deg"], p, color, dashed=dashed))
     return {"animation": False, "tooltip": {"trigger": "axis"}, "legend": {"top": 0, "type": "scroll"},
-            "grid": {"left": 55, "right": 20, "top": 40, "bottom": 45},
+            "grid": {"left": 55, "right": 30, "top": 40, "bottom": 45, "containLabel": True},
             "xAxis": {"type": "value", "name": "polar angle along the shoe [deg]", "nameLocation": "middle",
                       "nameGap": 28, "scale": True},
             "yAxis": {"type": "value", "name": f"contact pressure at {rpm:.0f} rpm [MPa]", "nameLocation": "middle",

@@ -4,132 +4,67 @@ One grammar for every command that takes a design: ``clutchfem COMMAND CONCEPT [
 name=value ...]`` or ``clutchfem COMMAND --mesh FILE``; every quantity option takes a unit
 suffix (``--drum-radius 34.4mm``); every file written is listed (``wrote PATH`` on stderr)
 and carries the design's label.  One module per command, :mod:`.options` the shared
-options, :mod:`.common` the plumbing.
+options, :mod:`.common` the plumbing, :mod:`._app` the typer app.
+
+This package's own module is light (the typer app, its commands and their imports load in
+:func:`main`): on a terminal, the first line a command shows (``clutchfem analyze ...``)
+is written before they load, within a fraction of a second of the command (issue 37); the
+command's spinner or its first output replaces it.
 """
 
 from __future__ import annotations
 
-import logging
-import signal
+import atexit
 import sys
-from typing import Annotated, Optional
 
-import typer
-from typer._click.exceptions import ClickException  # typer vendors click (its BadParameter's base)
+__all__ = ["clear_early", "early_line", "main"]  # and ``app`` (the typer app, loaded on use)
 
-from .. import __version__
-from .analyze_cmd import analyze
-from .app_cmd import app as app_command
-from .cache_cmd import cache
-from .calibrate_cmd import calibrate
-from .compensate_cmd import compensate
-from .demo_cmd import demo
-from .export_cmd import export
-from .geometry_cmd import geometry
-from .life_cmd import life
-from .optimize_cmd import optimize
-from .reduce_cmd import reduce
-from .report_cmd import report
-from .slip_heat_cmd import slip_heat
-from .solve_cmd import solve
-from .study_cmd import guidelines, study
-from .tolerance_cmd import tolerance
-from .validate_cmd import validate
-
-app = typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode="rich",
-                  help="clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model).\n\n"
-                       "A design is a CONCEPT with --set overrides (clutchfem geometry --list) or --mesh FILE; "
-                       "every quantity takes a unit suffix (2.4mm, 80deg, 2700rpm, 200GPa).")
-
-#: (command, name, panel, example)
-_COMMANDS = [
-    (geometry, "geometry", "Design", "clutchfem geometry concept4 --set flexure_thickness=2mm --out out/c4"),
-    (analyze, "analyze", "Design", "clutchfem analyze concept4 --set flexure_thickness=2mm --out out/c4"),
-    (solve, "solve", "Design", "clutchfem solve concept1 --rpm 0:14000:250 --vtk --out out/c1"),
-    (report, "report", "Design", "clutchfem report concept4 --out out/c4-report"),
-    (slip_heat, "slip-heat", "Design", "clutchfem slip-heat concept2 --cycles 3 --pause 20s --out out/heat"),
-    (life, "life", "Design", "clutchfem life concept4 --starts 100000 --duty duty.toml --out out/life"),
-    (optimize, "optimize", "Design to targets", "clutchfem optimize concept4 --out out/opt"),
-    (tolerance, "tolerance", "Design to targets",
-     "clutchfem tolerance concept4 --tol flexure_thickness=+-0.05mm --tol clearance=+-0.02mm --n 100"),
-    (compensate, "compensate", "Design to targets", "clutchfem compensate concept4 --rpm 8000 --out out/comp"),
-    (calibrate, "calibrate", "Design to targets",
-     "clutchfem calibrate concept1 --measured engagement=4191rpm+-25rpm --measured slip=7512rpm+-40rpm "
-     "--uncertain mu=0.1:0.35 --uncertain flexure_thickness=+-0.1mm"),
-    (export, "export", "Design to targets",
-     "clutchfem export concept4 --process wire-edm --dxf part.dxf --step part.step --drawing part.pdf"),
-    (reduce, "reduce", "Studies", "clutchfem reduce concept4 --workers 2   (then: clutchfem analyze concept4 --fidelity live)"),
-    (study, "study", "Studies", "clutchfem study --example > study.toml && clutchfem study study.toml"),
-    (guidelines, "guidelines", "Studies", "clutchfem guidelines concept4 --params flexure_thickness,shoe_arc"),
-    (validate, "validate", "Checks", "clutchfem validate --docs docs/validation.md --out docs/img/validation"),
-    (demo, "demo", "Checks", "clutchfem demo --out out/demo"),
-    (app_command, "app", "Design", "clutchfem app  (then open http://127.0.0.1:8765)"),
-    (cache, "cache", "Checks", "clutchfem cache --clear"),
-]
-for _fn, _name, _panel, _example in _COMMANDS:
-    app.command(_name, rich_help_panel=_panel, epilog=f"Example: {_example}")(_fn)
+#: whether the start-up line is on the terminal (not yet replaced)
+_EARLY = [False]
 
 
-def _version(value: bool) -> None:
-    if value:
-        print(f"clutchfem {__version__}")
-        raise typer.Exit()
+def early_line(argv: list[str]) -> bool:
+    """Write ``clutchfem COMMAND ...`` on a terminal's standard error at once (no newline: the
+    spinner or the command's first output replaces it, :func:`clear_early`); nothing for a
+    pipe or a file, ``--help``, ``--version`` or ``--json``.  Returns whether it was written."""
+    try:
+        tty = sys.stderr.isatty()
+    except (AttributeError, ValueError):
+        tty = False
+    if not tty or len(argv) < 2 or argv[1].startswith("-") or any(
+            a in ("--help", "-h", "--version", "--json") for a in argv[2:]):
+        return False
+    sys.stderr.write(f"clutchfem {argv[1]} ...\r")
+    sys.stderr.flush()
+    _EARLY[0] = True
+    atexit.register(clear_early)
+    return True
 
 
-@app.callback()
-def _root(version: Annotated[Optional[bool], typer.Option(
-        "--version", callback=_version, is_eager=True, help="print the version and exit")] = None) -> None:
-    """clutchfem: design one-piece compliant centrifugal clutches (FEM + plus/minus shoe model)."""
+def clear_early() -> None:
+    """Erase the start-up line of :func:`early_line` if it is still there (before a spinner or
+    any output)."""
+    if _EARLY[0]:
+        _EARLY[0] = False
+        try:
+            sys.stderr.write("\r\x1b[2K")
+            sys.stderr.flush()
+        except (OSError, ValueError):
+            pass
 
 
 def main() -> None:
-    """Entry point: progress notes (clutchfem's INFO log) on stderr; Ctrl-C stops with exit
-    code 130 and one line, not a traceback (gmsh, while meshing, exits with 130 itself)."""
-    handler = logging.StreamHandler(sys.stderr)
-    handler.setFormatter(logging.Formatter("%(message)s"))
-    log = logging.getLogger("clutchfem")
-    log.addHandler(handler)
-    log.setLevel(logging.INFO)
+    """Entry point (``clutchfem``): the start-up line on a terminal, then the typer app
+    (:func:`clutchfem.cli._app.main`)."""
+    early_line(sys.argv)
+    from ._app import main as run
 
-    stopped = []
-
-    def interrupted(signum, frame):  # one line, exit 130, finally-blocks still run
-        stopped.append(signum)
-        print("\ninterrupted (Ctrl-C): unfinished work is not written", file=sys.stderr)
-        raise SystemExit(130)
-
-    signal.signal(signal.SIGINT, interrupted)
-    from .. import tune_malloc
-
-    tune_malloc()  # this process is clutchfem's: freed arrays stay for the next design
-    try:
-        _run()
-    except Exception:
-        # Ctrl-C while a library imports (scipy wraps what its import raised in an
-        # ImportError): the interrupt it was, not a traceback
-        if stopped:
-            raise SystemExit(130) from None
-        raise
+    run()
 
 
-def _run() -> None:
-    """The app, with usage errors as one line when standard error is not a terminal."""
-    if sys.stderr.isatty():
-        app()
-        return
-    # standard error is a file or a pipe: a usage error is one `error:` line (typer draws a
-    # box wrapped at 80 columns, and a script reading the first line got "Usage: ...")
-    try:
-        code = app(standalone_mode=False)
-    except ClickException as exc:
-        ctx = getattr(exc, "ctx", None)
-        where = f" (see {ctx.command_path} --help)" if ctx is not None else ""
-        print(f"error: {exc.format_message()}{where}", file=sys.stderr)
-        raise SystemExit(exc.exit_code) from None
-    except typer.Abort:
-        print("aborted", file=sys.stderr)
-        raise SystemExit(1) from None
-    raise SystemExit(code if isinstance(code, int) else 0)
+def __getattr__(name: str):
+    if name == "app":
+        from ._app import app
 
-
-__all__ = ["app", "main"]
+        return app
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -142,6 +142,6 @@ def _print(res) -> None:
                   f"{ch['p_predictive']:.3f}", "yes" if ch["explained"] else "NO")
     console.print(c)
     for e in res.explanations:
-        console.print(escape(f"- {e}"), soft_wrap=True)
+        console.print(escape(f"- {e}"))  # wrapped on a terminal, one line on a pipe
     for note in res.notes:
-        console.print(f"[dim]note: {escape(note)}[/]", soft_wrap=True)
+        console.print(f"[dim]note: {escape(note)}[/]")

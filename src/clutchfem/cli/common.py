@@ -16,17 +16,93 @@ from pathlib import Path
 from typing import Optional
 
 import typer
+from rich import box
 from rich.console import Console
 from rich.markup import escape
 from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn  # 0.04 s
 from rich.table import Table
+from rich.text import Text
 
 from .. import InputError, ParameterError, UnitError, parse_quantity
+from . import clear_early
+
+
+def fitted(table: Table, width: int) -> list:
+    """What prints ``table`` within ``width`` columns without cutting a number (issue 37):
+    every cell wraps at its spaces and folds a word longer than its column (a path) instead of
+    ending it with an ellipsis; a table whose narrowest layout (each column as wide as its
+    longest word) is still wider than ``width`` is drawn compact (no vertical rules, one
+    space between columns), and if that is still too wide, transposed: one small two-column
+    table per row (its first cell the title; each other column's head beside its value),
+    then its caption.  Returns the renderables to print, in order.
+
+    Examples
+    --------
+    >>> from rich.table import Table
+    >>> t = Table(title="t")
+    >>> for c in ("a", "b"):
+    ...     t.add_column(c)
+    >>> t.add_row("x", "+1.25")
+    >>> len(fitted(t, 80)), len(fitted(t, 5))
+    (1, 1)
+    """
+    for col in table.columns:
+        col.overflow = "fold"
+        col.no_wrap = False
+    probe = Console(width=max(width, 1) * 4, file=open(os.devnull, "w"))  # noqa: SIM115 (closed below)
+
+    def whole_words() -> list:  # a column of single words (names, numbers) as wide as its longest: never folded
+        for col in table.columns:
+            words = [probe.measure(x) for x in col.cells if x is not None]
+            if words and all(m.minimum == m.maximum for m in words):
+                col.width = max([m.minimum for m in words] + [probe.measure(col.header).minimum])
+        return [table]
+
+    try:
+        if probe.measure(table).minimum <= width:
+            return whole_words()
+        if len(table.columns) <= 2:
+            return [table]
+        # compact: no vertical rules, one space between the columns
+        table.box, table.padding, table.show_edge = box.SIMPLE_HEAD, (0, 0), False
+        if probe.measure(table).minimum <= width:
+            return whole_words()
+    finally:
+        probe.file.close()
+    cols = table.columns
+    cells = [list(c.cells) for c in cols]
+    out: list = [table.title] if table.title else []
+    for r in range(table.row_count):
+        t = Table(title=Text.assemble(str(cols[0].header), ": ", cells[0][r]) if str(cols[0].header)
+                  else cells[0][r], show_header=False, title_justify="left")
+        t.add_column("", overflow="fold", style="dim")
+        t.add_column("", overflow="fold", justify="right")
+        for c in range(1, len(cols)):
+            t.add_row(cols[c].header, cells[c][r])
+        out.append(t)
+    if table.caption:
+        out.append(table.caption)
+    return out
+
+
+class FitConsole(Console):
+    """A rich ``Console`` whose tables fit its width (:func:`fitted`): an 80-column
+    terminal shows every number whole."""
+
+    def print(self, *objects, **kw):  # noqa: D102 (Console.print)
+        clear_early()
+        if len(objects) == 1 and isinstance(objects[0], Table):
+            for r in fitted(objects[0], self.width):
+                super().print(r, **kw)
+            return
+        super().print(*objects, **kw)
+
 
 # Written to a file or a pipe, a message is one line however long (a script reads whole
-# lines: a refusal or a WARNING wrapped at 80 columns lost its end); tables keep their width.
-console = Console(soft_wrap=not sys.stdout.isatty())
-err = Console(stderr=True, soft_wrap=not sys.stderr.isatty())
+# lines: a refusal or a WARNING wrapped at 80 columns lost its end); tables fit the width
+# (80 columns on a pipe) without cutting a number.
+console = FitConsole(soft_wrap=not sys.stdout.isatty())
+err = FitConsole(stderr=True, soft_wrap=not sys.stderr.isatty())
 
 
 @contextlib.contextmanager
@@ -41,6 +117,7 @@ def working(what: str):
     if not err.is_terminal:
         yield lambda text: None
         return
+    clear_early()  # the spinner replaces the start-up line
     bar = Progress(SpinnerColumn(), TextColumn("{task.description}"), TimeElapsedColumn(), console=err,
                    transient=True, redirect_stdout=False, redirect_stderr=False)
     with bar:

@@ -10,10 +10,12 @@ sweep).
 designer uses (MPa, mm, rpm, N m), marks the answer it exists to show, keeps legends off the
 data and agrees with the tables to the digits it shows.  :func:`save_figure` makes the last two
 checkable: it stores in the PNG (a ``tEXt`` chunk ``clutchfem``, JSON) the texts a reader
-sees -- per axes its title, axis labels, annotations and legend entries, and the figure's
+sees -- per axes its title, axis labels, annotations, legend entries and view limits (a colour
+bar's: its range), and the figure's
 own texts and legends -- per legend, how many data points it covers (lines sampled along
 their segments, scatter points; inside the axes only), and the texts a reader would see cut
-(:func:`clipped_texts`: leaving the figure, or an annotation leaving its axes; issue 37).  :func:`figure_record` reads it back
+(:func:`clipped_texts`: leaving the figure, or an annotation leaving its axes, and
+:func:`clipped_markers`: a marked point cut by its axes' edge; issue 37).  :func:`figure_record` reads it back
 (the tests compare the annotated numbers with the answers' JSON).  :func:`tag_png` adds the
 same record to a PNG drawn by another library (pyvista's renders).
 """
@@ -29,6 +31,9 @@ import numpy as np
 
 #: the PNG text chunk's keyword
 KEY = "clutchfem"
+#: an rpm axis runs this far past its last speed, so a point marked there is drawn whole
+#: (:func:`clipped_markers`)
+RPM_MARGIN = 1.04
 
 
 def figure(nrows: int = 1, ncols: int = 1, *, figsize=(8.0, 5.0), layout: str | None = None, **subplot_kw):
@@ -132,6 +137,34 @@ def clipped_texts(fig, tol: float = 1.0) -> list[str]:
     for t, ax in on_axes:
         if t.get_visible() and t.get_text().strip() and out_of(t.get_window_extent(r), ax.bbox):
             bad.append(f"{t.get_text()!r}: leaves its axes")
+    return bad + clipped_markers(fig, tol)
+
+
+def clipped_markers(fig, tol: float = 1.0) -> list[str]:
+    """The marked points of a drawn ``fig`` that a reader sees cut: a line's marker (the
+    answer a picture marks, e.g. the peak at the engine's maximum speed) whose centre lies in
+    its axes but whose marker reaches beyond the axes' edge; each as "marker of 'label' at
+    (x, y): cut by its axes" (``tol`` pixels of slack).  Lines of many points (a curve drawn
+    with markers) are checked at every point."""
+    bad = []
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        b = ax.bbox
+        for ln in ax.lines:
+            if not ln.get_visible() or ln.get_marker() in (None, "None", "", " ", ",") or not ln.get_clip_on():
+                continue
+            xy = np.asarray(ln.get_xydata(), dtype=float)
+            xy = xy[np.isfinite(xy).all(axis=1)]
+            if not len(xy):
+                continue
+            d = ln.get_transform().transform(xy)
+            half = 0.5 * ln.get_markersize() * fig.dpi / 72.0 + 0.5 * ln.get_markeredgewidth() * fig.dpi / 72.0
+            inside = (d[:, 0] >= b.x0) & (d[:, 0] <= b.x1) & (d[:, 1] >= b.y0) & (d[:, 1] <= b.y1)
+            cut = inside & ((d[:, 0] - half < b.x0 - tol) | (d[:, 0] + half > b.x1 + tol)
+                            | (d[:, 1] - half < b.y0 - tol) | (d[:, 1] + half > b.y1 + tol))
+            for (x, y) in xy[cut][:3]:
+                bad.append(f"marker of {ln.get_label()!r} at ({x:.4g}, {y:.4g}): cut by its axes")
     return bad
 
 
@@ -152,7 +185,8 @@ def describe(fig, *, drawn: bool = False) -> dict:
                  "xlabel": ax.get_xlabel(), "ylabel": ax.get_ylabel(), "texts": _texts(ax.texts),
                  "legend": _texts(leg.get_texts()) if leg is not None else [],
                  "xticks": bool(ax.xaxis.get_visible() and len(ax.get_xticklabels())),
-                 "yticks": bool(ax.yaxis.get_visible() and len(ax.get_yticklabels()))}
+                 "yticks": bool(ax.yaxis.get_visible() and len(ax.get_yticklabels())),
+                 "xlim": [float(v) for v in ax.get_xlim()], "ylim": [float(v) for v in ax.get_ylim()]}
         axes.append(entry)
         if leg is not None and leg.get_visible():
             legends.append(leg)

@@ -34,6 +34,7 @@ from pathlib import Path
 import meshio
 import numpy as np
 
+from ..core.figures import tag_png
 from ..mesh import p2_cells
 from .ring import RingMesh, pvd_text, ring_stresses, zone_ids
 from .vtu3d import Frames3D
@@ -170,10 +171,22 @@ def _render(pv, vtu: Path, png: Path, title: str, scale: float) -> Path:
     grid = pv.read(vtu)
     warped = grid.warp_by_vector("displacement_m", factor=scale)
     pl = pv.Plotter(off_screen=True, window_size=(900, 800))
-    pl.add_mesh(warped, scalars="von_mises_Pa", cmap="turbo", show_edges=False,
-                scalar_bar_args={"title": "von Mises [Pa]"})
-    pl.add_text(f"{title} (deformation x{scale:g})", font_size=10)
+    # in MPa, the colour bar reaching the peak the tables report (the unaveraged element-vertex
+    # maximum ``von_mises_max_Pa``, above the averaged colours; issue 37), that peak stated
+    vm = np.asarray(warped.point_data["von_mises_Pa"], dtype=float) / 1e6
+    raw = warped.point_data["von_mises_max_Pa"] if "von_mises_max_Pa" in warped.point_data else None
+    peak = float(np.max(raw)) / 1e6 if raw is not None else float(np.max(vm))
+    top = max(peak, float(np.max(vm)))
+    warped.point_data["von Mises [MPa]"] = vm
+    pl.add_mesh(warped, scalars="von Mises [MPa]", cmap="turbo", show_edges=False, clim=(0.0, top),
+                scalar_bar_args={"title": "von Mises [MPa]", "position_x": 0.78, "position_y": 0.1,
+                                 "vertical": True, "width": 0.08, "height": 0.8})
+    pl.add_text(f"{title} (deformation x{scale:g}); peak {peak:.0f} MPa (unaveraged, as the tables)",
+                font_size=9)
     pl.view_xy()
     pl.screenshot(str(png))
     pl.close()
+    tag_png(png, {"figure": [f"{title} (deformation x{scale:g})", f"peak {peak:.0f} MPa"], "axes": [],
+                  "figure_legends": [], "legend_covers": [], "clipped": [],
+                  "colour_bar_MPa": [0.0, top], "peak_MPa": peak})
     return png

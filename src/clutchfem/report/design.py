@@ -12,8 +12,8 @@ import numpy as np
 
 from ..analysis import analyze, slip_answer
 from ..clutch import BaselineClutch, EngineCurve
-from ..core import figure, save_figure
 from ..core import write as write_json
+from ..core.figures import RPM_MARGIN, figure, save_figure
 from ..geometry import MeshSettings, concepts
 from ..loadcase import Design, OperatingPoint
 
@@ -312,7 +312,7 @@ def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
         a1.axvline(an.engagement_rpm, color="m", ls="--", lw=1, label=f"engagement {an.engagement_rpm:.0f} rpm")
     a1.set_xlabel("engine speed [rpm]")
     a1.set_ylabel("contact arc per shoe [deg]")
-    a1.set_xlim(0, rpm.max())
+    a1.set_xlim(0, RPM_MARGIN * rpm.max())  # the marks at the last speed whole (issue 37)
     a1.set_ylim(0, max(1.15 * float(np.nanmax(np.where(on, arc + err, 0.0), initial=0.0)), 0.5))
     if math.isfinite(nominal) and nominal > 0:
         a1.secondary_yaxis("right", functions=(lambda d: 100 * d / nominal, lambda q: q * nominal / 100)) \
@@ -344,7 +344,7 @@ def arc_stress_plot(an, path: Path, title: str | None = None) -> Path:
         a2.set_title("peak stress")
     a2.set_xlabel("engine speed [rpm]")
     a2.set_ylabel("max von Mises [MPa]")
-    a2.set_xlim(0, rpm.max())
+    a2.set_xlim(0, RPM_MARGIN * rpm.max())
     a2.set_ylim(0, max(1.1 * an.yield_strength_Pa / 1e6, 1.1 * float(np.nanmax(vm * (1 + (rel or 0.0))))))
     a2.grid(alpha=0.3)
     a2.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1)

@@ -84,7 +84,9 @@ def field_picture(res, rpm: float, path, cm=None, title: str = "") -> Path:
     p_xy = xy[i_peak] if np.hypot(*(ring.points[i_peak, :2] * 1e3 - at)) < 1e-6 else \
         xy[int(np.argmin(np.hypot(*(ring.points[:, :2].T * 1e3 - at[:, None]))))]
     fig, (a1, a2) = figure(1, 2, figsize=(13.0, 6.6), layout="constrained", gridspec_kw={"width_ratios": [1.35, 1]})
-    vmin, vtop = 0.0, float(np.max(vmax)) / 1e6
+    # the colour bar reaches the marked peak (the table's): on the thick model that peak is the
+    # largest over the through-thickness levels, above the mid-plane field drawn (issue 37)
+    vmin, vtop = 0.0, max(float(np.max(vmax)), peak) / 1e6
     for ax in (a1, a2):
         tp = ax.tripcolor(tri, vmax / 1e6, shading="gouraud", cmap="turbo", vmin=vmin, vmax=vtop)
         ax.set_aspect("equal")

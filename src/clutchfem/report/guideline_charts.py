@@ -5,9 +5,10 @@
   differs), ``?`` (unchecked: the wider step has no answer), ``1`` (one-sided: one side
   refused), ``k`` (a contact node enters or leaves inside the step: the answer kinks there;
   the row's ``E_left`` / ``E_right`` are the two sides), ``-`` (no answer), and the method of each row in words;
-* :func:`oat_chart`: small multiples, one panel per answer: the answer against x / x0 for
-  every parameter (one at a time), the design point marked with its value, dotted where a
-  design has no answer;
+* :func:`oat_chart`: small multiples, one panel per parameter: each answer's change from the
+  design point [%] against the parameter in its own unit (mm, deg) with its declared limits
+  drawn, the design point marked (the answers' values in the legend), dotted where a design
+  has no answer;
 * :func:`elasticity_chart`: small multiples, one per answer: each parameter's (and
   operating input's) elasticity as a bar labelled with its value, the spread of the step
   check as its error bar, coloured by verdict, the method under each name.
@@ -22,6 +23,7 @@ Figures are drawn with matplotlib's Agg canvas chosen inside :func:`clutchfem.co
 from __future__ import annotations
 
 import math
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -29,8 +31,11 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..core import figure, save_figure
+from ..core.values import param_bounds
+from ..geometry import get_concept
 from ..guidelines import ANSWERS, CHECK_FACTOR, SHORT, STABLE_ABS, STABLE_REL, GuidelineResult
 from ..studies import display_value
+from ..studies.spec import axis_label
 
 #: unit of each guideline answer (as its label states it)
 UNITS = {"engagement_rpm": "rpm", "slip_rpm": "rpm", "torque_at_max_engine_torque_Nm": "N m",
@@ -132,43 +137,85 @@ def _footnote(res: GuidelineResult) -> str:
     return ("\n" + off[0]) if off else ""
 
 
+def _limits(concept: str, name: str, unit: str) -> tuple[float | None, float | None]:
+    """The declared limits of parameter ``name`` of ``concept`` in the unit the chart shows
+    (mm for lengths); (None, None) for an operating input or an unknown concept."""
+    try:
+        lo, hi = param_bounds(get_concept(concept).Params, name)
+    except Exception:  # not a concept parameter (an operating input) or a concept no longer registered
+        return None, None
+    return (None if lo is None else display_value(float(lo), unit)), (None if hi is None else display_value(float(hi), unit))
+
+
 def oat_chart(res: GuidelineResult, path: str | Path) -> Path:
-    """Small multiples, one panel per answer: the answer against x / x0 for every parameter
-    (ranked, one colour and marker each, the legend beside the panels), the design point
-    marked with its value in each panel's title, dotted verticals where a parameter's design
-    has no answer (refused or failed)."""
+    """Small multiples, one panel per parameter (ranked): each answer's change from its
+    design-point value [%] against the parameter in its own unit (mm, deg), the design point
+    marked, the parameter's declared limits drawn (the range outside them shaded, their values
+    in the panel's title), dotted verticals where a design has no answer (refused or failed);
+    the legend beside the panels names each answer with its design-point value and unit."""
     from matplotlib.lines import Line2D
 
     path = Path(path)
     oat = res.oat
-    fig, axes = figure(2, 3, figsize=(15.0, 8.0), layout="constrained", squeeze=False)
+    names = list(res.ranking)
+    ncols = max(1, min(4, len(names)))
+    nrows = max(1, math.ceil(len(names) / ncols))
+    fig, axes = figure(nrows, ncols, figsize=(3.6 * ncols + 3.2, 3.0 * nrows + 1.2), layout="constrained",
+                       squeeze=False)
     base = {col: next((r["value_at_x0"] for r in res.table if r["answer"] == col), None) for col, _ in ANSWERS}
-    handles = []
-    for j, n in enumerate(res.ranking):
-        st = _style(j)
-        handles.append(Line2D([], [], lw=1.2, ms=4, label=n, **st))
-    for k, (col, label) in enumerate(ANSWERS):
-        ax = axes.flat[k]
-        for j, n in enumerate(res.ranking):
-            st = _style(j)
-            d = oat[oat["parameter"] == n]
-            okd = d[d["status"] == "ok"]
-            ax.plot(okd["relative"], okd[col].astype(float), "-", ms=3.5, lw=1.2, **st)
-            for xr in d.loc[d["status"] != "ok", "relative"]:
-                ax.axvline(xr, color=st["color"], lw=0.7, ls=":", alpha=0.8)
-        ax.axvline(1.0, color="k", lw=0.8)
-        if base[col] is not None and math.isfinite(base[col]):
-            ax.plot([1.0], [base[col]], "k*", ms=11, zorder=5)
-        ax.set_title(f"{label}: design point {_value_text(base[col], col)}", fontsize=9)
-        ax.set_xlabel("parameter / its design value [-]", fontsize=8)
-        ax.set_ylabel(label, fontsize=8)
+    has_base = {col: v is not None and math.isfinite(v) and v != 0 for col, v in base.items()}
+    for ax in axes.flat[len(names):]:
+        ax.set_visible(False)
+    for j, n in enumerate(names):
+        ax = axes.flat[j]
+        d = oat[oat["parameter"] == n].sort_values("value")
+        unit = str(d["unit"].iloc[0]) if len(d) else "-"
+        x = np.array([display_value(float(v), unit) for v in d["value"]], dtype=float)
+        x0 = next((display_value(float(r["x0"]), unit) for r in res.table if r["parameter"] == n), math.nan)
+        ok = (d["status"] == "ok").to_numpy()
+        for k, (col, _) in enumerate(ANSWERS):
+            if has_base[col]:
+                y = 100.0 * (d[col].astype(float).to_numpy() / base[col] - 1.0)
+                ax.plot(x[ok], y[ok], "-", marker=MARKERS[0], ms=3.5, lw=1.2, color=COLOURS[k])
+        for xr in x[~ok]:
+            ax.axvline(xr, color="0.4", lw=0.8, ls=":")
+        ax.axhline(0.0, color="0.5", lw=0.6)
+        ax.plot([x0], [0.0], "k*", ms=11, zorder=5)
+        lo, hi = _limits(res.concept, n, unit)
+        span = (float(np.nanmax(x)) - float(np.nanmin(x))) if len(x) else 1.0
+        span = span or abs(x0) or 1.0
+        left, right = float(np.nanmin(x, initial=x0)) - 0.08 * span, float(np.nanmax(x, initial=x0)) + 0.08 * span
+        # a limit within a quarter of the studied span is drawn in the view; a farther one is named
+        if lo is not None and lo >= left - 0.25 * span:
+            left = min(left, lo - 0.04 * span)
+            ax.axvspan(left, lo, color="0.85", zorder=0)
+            ax.axvline(lo, color="k", lw=1.0, ls="--")
+        if hi is not None and hi <= right + 0.25 * span:
+            right = max(right, hi + 0.04 * span)
+            ax.axvspan(hi, right, color="0.85", zorder=0)
+            ax.axvline(hi, color="k", lw=1.0, ls="--")
+        ax.set_xlim(left, right)
+        shown = {"m": "mm", "-": ""}.get(unit, unit)
+        lim = ", ".join(t for t in (f">= {lo:.4g} {shown}".strip() if lo is not None else "",
+                                    f"<= {hi:.4g} {shown}".strip() if hi is not None else "") if t)
+        ax.set_title(f"{n}: design {x0:.4g} {shown}".strip() + (f"\nlimits {lim}" if lim else "\nno declared limits"),
+                     fontsize=8)
+        ax.set_xlabel(axis_label(n, unit), fontsize=8)
+        ax.set_ylabel("answer change from the design point [%]", fontsize=8)
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=7)
+    handles = [Line2D([], [], lw=1.2, ms=4, marker=MARKERS[0], color=COLOURS[k],
+                      label=f"{label}: design point {_value_text(base[col], col)}" if has_base[col]
+                      else f"{label}: no answer at the design point (not drawn)")
+               for k, (col, label) in enumerate(ANSWERS)]
     handles += [Line2D([], [], color="k", marker="*", ls="", ms=9, label="design point"),
+                Line2D([], [], color="k", ls="--", lw=1.0, label="declared limit (shaded: outside)"),
                 Line2D([], [], color="0.4", ls=":", lw=0.8, label="no answer there\n(refused or failed)")]
-    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="parameter (ranked)",
+    fig.legend(handles=handles, loc="outside right upper", fontsize=8, title="answer (its value at the design point)",
                title_fontsize=8)
-    fig.suptitle(f"{res.concept}: one parameter at a time around the design point" + _footnote(res), fontsize=10)
+    width = fig.get_figwidth()  # the note of the parameters not studied wrapped to the figure (~11 characters an inch)
+    note = "\n".join(textwrap.fill(line, int(11 * width)) for line in _footnote(res).split("\n"))
+    fig.suptitle(f"{res.concept}: one parameter at a time around the design point" + note, fontsize=10)
     return save_figure(fig, path)
 
 
