@@ -241,12 +241,13 @@ def corrected_design(calibration, *, adjust=None, targets=None, seed: int = 0) -
     # the next part as built: per posterior sample, the shared inputs and drawn + offset
     S = calibration.samples
     S = S[:: max(1, len(S) // 4000)]
-    off = calibration.offset_samples()[:: max(1, len(calibration.samples) // 4000)][: len(S)]
+    off_all = calibration.offset_samples()
+    off = off_all[:: max(1, len(calibration.samples) // 4000)][: len(S)]
     base_view = calibration.part_samples(calibration.parts[0])[:: max(1, len(calibration.samples) // 4000)][: len(S)]
     drawn = np.array([u.drawn for u in U])
     theta0 = np.where([is_geometry(n) for n in names], drawn + off, base_view)
     j_adj = [names.index(a) for a in adjust]
-    off_mean = off[:, j_adj].mean(axis=0)
+    off_mean = off_all[:, j_adj].mean(axis=0)
     reg = model.region
     lo, hi = [], []
     for a, m_off in zip(adjust, off_mean):
