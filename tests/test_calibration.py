@@ -186,12 +186,19 @@ def test_the_command_line_refuses_bad_measurements_before_any_work():
 @pytest.mark.slow
 def test_the_command_line_calibrates_on_a_reduced_model_it_builds(tmp_path):
     """A tiny region of concept 1 on the fast path (3 mm mesh; 6 designs fitted, 2 held out;
-    ~15 s): the JSON's posterior holds each input as built, SI."""
+    ~15 s): the JSON's posterior holds each input as built, SI; the corrected design and its
+    cutting files."""
     out = cli_in_process("calibrate", "concept1", "--fidelity", "fast", "--mesh-size", "3mm", "--n", "6",
                          "--held-out", "2", "--workers", "0", "--measured", "engagement=4000rpm+-30rpm",
                          "--measured", "slip=7500rpm+-60rpm", "--uncertain", "mu=0.15:0.2", "--uncertain",
-                         "flexure_thickness=+-0.05mm", "--json", "--out", str(tmp_path), ok=True)
+                         "flexure_thickness=+-0.05mm", "--correct", "flexure_thickness", "--target",
+                         "engagement=4000rpm", "--json", "--out", str(tmp_path), ok=True)
     doc = json.loads(out.stdout)
+    k = doc["corrected"]  # the next part drawn so that, as built, it engages at the target
+    lo, hi = k["answers"]["engagement_rpm"]["ci95"]
+    assert k["met"] and lo <= 4000.0 <= hi and (tmp_path / "corrected" / f"{k['label']}.dxf").exists()
+    ch = k["changes"]["flexure_thickness"]
+    assert ch["as_built"] == pytest.approx(ch["corrected"] + ch["offset"])
     assert set(doc["posterior"]) == {"mu", "flexure_thickness"}
     t = doc["posterior"]["flexure_thickness"]
     assert 2.13e-3 < t["ci95"][0] < t["mean"] < t["ci95"][1] < 2.27e-3 and t["prior"]["kind"] == "normal"
