@@ -129,6 +129,7 @@ _GROUPS: dict[str, dict[str, str]] = {
         "check_measurements": "clutchfem.calibration",
         "torque_from_csv": "clutchfem.calibration",
         "corrected_design": "clutchfem.calibration",
+        "parse_target": "clutchfem.calibration",
         "Correction": "clutchfem.calibration",
     },
     "Output": {
@@ -222,6 +223,7 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         check_measurements,
         corrected_design,
         parse_measured,
+        parse_target,
         parse_uncertain,
         torque_from_csv,
     )

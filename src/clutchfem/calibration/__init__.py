@@ -19,11 +19,11 @@ from .inputs import (
     Measurement,
     Uncertain,
     check_measurements,
-    combine_readings,
     parse_measured,
     parse_uncertain,
     torque_from_csv,
 )
+from .readings import combine_readings
 
 __all__ = ["Calibration", "Correction", "Measurement", "Uncertain", "calibrate", "check_measurements",
            "combine_readings", "corrected_design", "parse_measured", "parse_target", "parse_uncertain",

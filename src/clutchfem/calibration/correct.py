@@ -36,9 +36,11 @@ import numpy as np
 
 from ..core import ParameterError, param_bounds, parse_quantity
 from ..core.units import UnitError
-from .calibrate import REPORTED, show
+from ..loadcase import Design
+from .calibrate import is_geometry
 from .inference import Forward
 from .inputs import ANSWER_OF
+from .summary import REPORTED, show
 
 __all__ = ["Correction", "corrected_design", "parse_target"]
 
@@ -183,13 +185,9 @@ def corrected_design(calibration, *, adjust=None, targets=None, seed: int = 0) -
     """
     from scipy.optimize import minimize
 
-    from ..loadcase import Design
-
     if calibration.model is None or calibration.design is None or not calibration.inputs:
         raise ParameterError("calibration", type(calibration).__name__, "a Calibration of clutchfem.calibrate "
                              "(with its design and reduced model)", "corrected design")
-    from .calibrate import is_geometry
-
     U, design, model = calibration.inputs, calibration.design, calibration.model
     names = [u.name for u in U]
     geometry = [u.name for u in U if is_geometry(u.name)]

@@ -23,7 +23,7 @@ geometry as built (:func:`clutchfem.calibrate`).  Once one measurement names its
 one must.
 
 A name may be repeated on one part (several readings of one part): the readings of one
-answer are combined into their weighted mean (:func:`combine_readings`; the model's error of
+answer are combined into their weighted mean (:func:`~.readings.combine_readings`; the model's error of
 that answer is one and the same for all of them, so it enters once -- the same posterior as
 the readings' joint normal likelihood), and readings that disagree beyond their
 uncertainties are said to.  Refused: an unknown
@@ -58,7 +58,7 @@ from ..core import InputError, ParameterError, param_bounds, parse_quantity
 from ..core.units import UnitError
 from ..reduced import OPERATING_AXES
 
-__all__ = ["ANSWER_OF", "SIMILARITY", "Measurement", "Uncertain", "check_measurements", "combine_readings",
+__all__ = ["ANSWER_OF", "SIMILARITY", "Measurement", "Uncertain", "check_measurements",
            "parse_measured", "parse_uncertain", "torque_from_csv"]
 
 #: measurement name -> (the reduced model's answer, unit, what it is)
@@ -79,8 +79,6 @@ RPM_MATCH = 1.0
 _PM = r"(?:\+-|±|\+/-)"
 #: a part's name in ``PART:NAME=...``
 _PART = r"[A-Za-z0-9][A-Za-z0-9_.-]*"
-#: repeated readings whose chi-square about their mean has a p-value below this disagree
-READINGS_P = 0.01
 
 
 @dataclass(frozen=True)
@@ -103,7 +101,7 @@ class Measurement:
     part : str or None
         The measured part of several of one design (``p1:engagement=...``), or None.
     readings : int
-        How many readings it combines (:func:`combine_readings`).
+        How many readings it combines (:func:`~.readings.combine_readings`).
 
     Examples
     --------
@@ -413,61 +411,6 @@ def check_measurements(measured: list[Measurement]) -> None:
             if s.part == e.part and s.value <= e.value:
                 raise ParameterError("slip", s.text, f"a slip speed above the measured engagement speed ({e.text}): a "
                                      "clutch slips only once it has engaged", "option --measured")
-
-
-def combine_readings(measured: list[Measurement]) -> tuple[list[Measurement], list[str]]:
-    """The repeated readings of one answer on one part combined into one measurement.
-
-    The readings y_i (standard uncertainties u_i) of one answer f of one part, whose model
-    error e is common to all of them, have the joint likelihood N(y | f + e, diag(u^2)); its
-    dependence on f + e is that of their weighted mean ybar = sum(y_i/u_i^2)/sum(1/u_i^2)
-    with uncertainty (sum 1/u_i^2)^-1/2 -- so the posterior is the same with the one combined
-    measurement, and the model's error enters once (counting it once per reading would
-    narrow the posterior as if the model erred anew each time).  Readings whose scatter about
-    their mean exceeds their uncertainties (a chi-square p-value below :data:`READINGS_P`)
-    are said to disagree.
-
-    Parameters
-    ----------
-    measured : list of Measurement
-
-    Returns
-    -------
-    (list of Measurement, list of str)
-        The measurements, one per answer (or dimension) and part, in the order first given;
-        and the notes on readings that disagree.
-
-    Examples
-    --------
-    >>> import clutchfem as cf
-    >>> from clutchfem.calibration import combine_readings
-    >>> ms, notes = combine_readings([cf.parse_measured(t) for t in ("slip=7500rpm+-40rpm", "slip=7540rpm+-40rpm")])
-    >>> [(m.value, round(m.sd, 3), m.readings) for m in ms], notes
-    ([(7520.0, 28.284, 2)], [])
-    """
-    from scipy.stats import chi2
-
-    groups: dict = {}
-    for m in measured:
-        groups.setdefault((m.part, m.name, m.at_rpm), []).append(m)
-    out, notes = [], []
-    for ms in groups.values():
-        if len(ms) == 1:
-            out.append(ms[0])
-            continue
-        y = np.array([m.value for m in ms])
-        w = 1.0 / np.array([m.sd for m in ms]) ** 2
-        mean = float((w * y).sum() / w.sum())
-        sd = float(w.sum() ** -0.5)
-        q = float((w * (y - mean) ** 2).sum())
-        p = float(chi2.sf(q, len(ms) - 1))
-        text = "; ".join(m.text for m in ms)
-        if p < READINGS_P:
-            notes.append(f"the {len(ms)} readings {text} disagree beyond their uncertainties (chi-square "
-                         f"{q:.1f} on {len(ms) - 1} degrees of freedom, p = {p:.2g}): the uncertainties are too "
-                         "small or the part changed between them; their weighted mean is used")
-        out.append(Measurement(ms[0].name, mean, sd, ms[0].unit, ms[0].at_rpm, text, ms[0].part, len(ms)))
-    return out, notes
 
 
 def torque_from_csv(path, rpm: float, sd: float) -> Measurement:

@@ -89,7 +89,7 @@ def calibrate(
         if process is not None and o.out is None:
             raise ParameterError("process", process, "an option of --out (the corrected design's cutting files)",
                                  "option --process")
-        from ..calibration import parse_target
+        from .. import parse_target
 
         for t in target:
             parse_target(t)  # refused before any work
@@ -127,7 +127,7 @@ def calibrate(
         if o.out is not None:
             wrote(res.write_figures(o.out))
             if corr is not None:
-                from ..cutting import export as cut
+                from .. import export as cut
 
                 files = cut(corr.design, Path(o.out) / "corrected", process=process, analyze_design=False,
                             engine=eng)
