@@ -282,7 +282,11 @@ def corrected_design(calibration, *, adjust=None, targets=None, seed: int = 0) -
     x = lo + (hi - lo) * np.clip(best.x, 0.0, 1.0)
     # the corrected design's answers with bands, against the targets and the design made again
     shown = [a for a in REPORTED if a in fw.answers]
-    ans, ok = fw(at(x, theta0), shown)
+    built = at(x, theta0)
+    ans, ok = fw(built, shown)
+    # per adjusted input, the share of the next parts as built beyond the region (the search's edge)
+    outside = [float(np.mean((built[:, j] < reg.bounds(a)[0]) | (built[:, j] > reg.bounds(a)[1])))
+               for a, j in zip(adjust, j_adj)]
     unc, ok0 = fw(theta0, shown)
     notes = []
     if ok.mean() < INSIDE_SHARE:
@@ -305,8 +309,8 @@ def corrected_design(calibration, *, adjust=None, targets=None, seed: int = 0) -
             entry["met"] = bool(ci[0] <= tg[a] <= ci[1])
             met &= entry["met"]
             if not entry["met"]:
-                at_bound = [n for n, xv, lv, hv in zip(adjust, x, lo, hi)
-                            if min(xv - lv, hv - xv) < 1e-3 * (hv - lv)]
+                at_bound = [n for n, xv, lv, hv, ob in zip(adjust, x, lo, hi, outside)
+                            if min(xv - lv, hv - xv) < 1e-3 * (hv - lv) or ob > 0.01]
                 notes.append(f"NOT REACHED: {a} {entry['mean']:.5g} (95 % {ci[0]:.5g} .. {ci[1]:.5g}) against the "
                              f"target {tg[a]:.5g} {entry['unit']}" + (
                                  f": {', '.join(at_bound)} at the bound of the reduced model's region for the part "
