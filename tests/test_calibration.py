@@ -336,7 +336,8 @@ def test_the_command_line_refuses_bad_correction_options_before_any_work():
     base = ("calibrate", "concept1", "--measured", "engagement=4191rpm+-25rpm", "--uncertain", "mu=0.1:0.35")
     for args, name in ((["--target", "engagement=4000rpm"], "target"),
                        (["--correct", "all", "--process", "plasma", "--out", "x"], "process"),
-                       (["--correct", "all", "--process", "laser"], "process"),
+                       (["--correct", "all", "--process", "laser"], "process"),   # without --out
+                       (["--correct", "all", "--process", "waterjet"], "process"),
                        (["--correct", "all", "--target", "slip=4000mm"], "slip"),
                        (["--measured", "p1:slip=4000rpm+-25rpm", "--measured", "p1:engagement=4191rpm+-25rpm"],
                         "slip")):

@@ -119,7 +119,13 @@ class Correction:
 
     Examples
     --------
-    See :func:`corrected_design`.
+    :func:`corrected_design` makes one; what its JSON holds:
+
+    >>> from clutchfem.calibration import Correction
+    >>> k = Correction("concept1", {"flexure_thickness": {"drawn": 2.2e-3, "offset": 4.2e-5, "corrected": 2.158e-3}},
+    ...                {}, {"engagement_rpm": 4000.0}, "given", True, ["flexure_thickness=2.158mm"], design=None)
+    >>> sorted(k.to_json())[:4], k.to_json()["set_args"]
+    (['answers', 'changes', 'concept', 'label'], ['flexure_thickness=2.158mm'])
     """
 
     concept: str
