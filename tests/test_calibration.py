@@ -262,7 +262,9 @@ def test_bad_corrections_are_refused_naming_the_option(design, model, kw, name):
     assert e.value.name == name, str(e.value)
 
 
-def test_several_parts_share_mu_and_each_has_its_own_flexure(design, model):
+def test_several_parts_share_mu_and_each_has_its_own_flexure(design, model, tmp_path):
+    from clutchfem.core.figures import figure_record
+
     rng = np.random.default_rng(8)
     mu = 0.22
     parts = {"p1": 2.24e-3, "p2": 2.27e-3}
@@ -288,6 +290,8 @@ def test_several_parts_share_mu_and_each_has_its_own_flexure(design, model):
     assert off["parts"] == 2 and off["mean"] == pytest.approx(np.mean(dev), rel=1e-9)
     k = cf.corrected_design(c, targets=["engagement=4000rpm"])
     assert k.changes["flexure_thickness"]["offset"] == pytest.approx(off["mean"])
+    rec = figure_record(c.write_figures(tmp_path)[1])  # the answers per part, each with its measurement
+    assert sum("(p2)" in ax["title"] for ax in rec["axes"]) == 2
     # a slip of one part below another part's engagement is no contradiction; unnamed with named is refused
     cf.check_measurements([cf.parse_measured("p1:slip=4300rpm+-40rpm"), cf.parse_measured("p2:engagement=4400rpm+-9rpm"),
                            cf.parse_measured("p1:engagement=4000rpm+-9rpm")])
