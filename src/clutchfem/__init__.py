@@ -16,7 +16,7 @@ Designs: :func:`concepts`, :class:`Design` (``from_concept``, ``from_mesh``), :f
 :class:`Requirements`.  Studies and design to targets: :class:`StudySpec`, :func:`load_study`,
 :func:`run_study`, :func:`run_grid`, :func:`guidelines`, :class:`Targets`, :func:`optimize`, :func:`tolerance`, :func:`sensitivities`,
 :func:`robust_optimize`, :func:`allocate_tolerances`, :func:`yield_front`,
-:func:`compensate`.  Calibration to measured parts: :func:`calibrate`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
+:func:`compensate`.  Calibration to measured parts: :func:`calibrate`, :func:`corrected_design`.  Durability: :class:`SlipScenario`, :func:`slip_heat`.  Output:
 :func:`write_report`, :func:`torque_speed_plot`.  Cutting: :func:`export` (DXF, STEP, drawing sheet,
 manufacturability check, as-cut analysis), :class:`ProcessRules`.  Checks: :func:`validate`.  The live app: :func:`serve_app`.  Errors: :class:`ClutchfemError` and its kinds.
 """
@@ -129,6 +129,9 @@ _GROUPS: dict[str, dict[str, str]] = {
         "parse_uncertain": "clutchfem.calibration",
         "check_measurements": "clutchfem.calibration",
         "torque_from_csv": "clutchfem.calibration",
+        "corrected_design": "clutchfem.calibration",
+        "parse_target": "clutchfem.calibration",
+        "Correction": "clutchfem.calibration",
     },
     "Output": {
         "write_report": "clutchfem.report",
@@ -216,9 +219,12 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
     from .app import serve_app
     from .calibration import (
         Calibration,
+        Correction,
         calibrate,
         check_measurements,
+        corrected_design,
         parse_measured,
+        parse_target,
         parse_uncertain,
         torque_from_csv,
     )

@@ -20,6 +20,19 @@ posterior of the inputs given the measurements (:mod:`.inference`) and reports:
 * the ranked explanations: the inputs by how far the data moved them from their prior
   (in prior standard deviations).
 
+**Several parts of one design** (measurements ``PART:NAME=...``): the parts share the
+inputs of :data:`SHARED` (``mu``, ``drum_wall``, ``E``, ``density``, ``drum_radius``: one
+lining, one material, one rig) and each has its own geometry as built, drawn from the same
+prior (the tolerance about the drawn value): the posterior holds ``mu`` once and
+``flexure_thickness[p1]``, ``flexure_thickness[p2]``, ... per part; each part's answers are
+reported as ``slip_rpm[p2]``.  The **process offset** of a geometry input (``offsets``: what
+the process adds to every part drawn at that value) is the mean of the parts' deviations
+from the drawn value, per posterior sample: with one part it is that part's deviation (its
+own scatter within the tolerance cannot be told apart from the process's offset); with
+several its band narrows as the parts agree (ASSUMED: the parts' deviations independent
+given the offset; no separate prior on the part-to-part scatter).  Repeated readings of one
+answer on one part are one combined measurement (:func:`~.inputs.combine_readings`).
+
 **Method**: emcee (the default; 32 walkers x 5000 steps, 500 discarded, on the reduced model:
 seconds; a chain shorter than 50 autocorrelation times is noted) or ``laplace`` (the mode and the Hessian: a normal, for a posterior near Gaussian;
 refused where the Hessian is not positive definite).  Checked against each other in
@@ -28,41 +41,42 @@ docs/calibration.md.
 
 from __future__ import annotations
 
-import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
 from ..core import ParameterError
 from ..core.figures import figure, save_figure
-from ..reduced import reduce
+from ..reduced import OPERATING_AXES, reduce
 from .inference import BAND_SIGMAS, Forward, Posterior, emcee_samples, laplace
-from .inputs import ANSWER_OF, SIMILARITY, Measurement, Uncertain, check_measurements, parse_measured, parse_uncertain
+from .inputs import (
+    ANSWER_OF,
+    SIMILARITY,
+    Measurement,
+    Uncertain,
+    check_measurements,
+    parse_measured,
+    parse_uncertain,
+)
+from .readings import combine_readings
+from .summary import IDENTIFIED, REPORTED, answers_of, explanations_of, show, summarise
 
-__all__ = ["IDENTIFIED", "SUSPECT_Z", "Calibration", "calibrate"]
+__all__ = ["IDENTIFIED", "SHARED", "SUSPECT_Z", "Calibration", "calibrate", "is_geometry"]
 
-#: an input whose 95 % interval the data narrowed by less than this share is not identified
-IDENTIFIED = 0.25
+#: inputs the parts of one design share (the operating inputs, the material, the rig's drum);
+#: every other uncertain input is a part's own geometry as built
+SHARED = (*OPERATING_AXES, *SIMILARITY, "drum_radius")
+
+
+def is_geometry(name: str) -> bool:
+    """True for a part's own geometry as built (not in :data:`SHARED`)."""
+    return name not in SHARED
+
 #: a measurement farther than this (in its standard deviations) from the best fit within the priors is not explained
 SUSPECT_Z = 3.0
-#: a posterior correlation at least this strong is named as a trade-off
-TRADE_OFF = 0.5
-#: the answers reported for the calibrated part: answer -> (label, unit shown, scale to it)
-REPORTED = {"engagement_rpm": ("engagement speed (static)", "rpm", 1.0),
-            "engagement_rpm_with_ripple": ("engagement speed with ripple", "rpm", 1.0),
-            "slip_rpm": ("slip speed (drum held)", "rpm", 1.0),
-            "torque_at_max_engine_torque_Nm": ("torque at the rpm of max engine torque", "N m", 1.0),
-            "max_von_mises_Pa": ("peak von Mises at engine max", "MPa", 1e-6),
-            "mass_kg": ("part mass", "g", 1e3)}
 _NOT_WITH_SIMILARITY = ("slip_rpm", "torque_at_max_engine_torque_Nm", "max_von_mises_Pa", "fatigue_safety_factor")
-
-
-def show(v: float, unit: str, digits: int = 4) -> str:
-    """A value in the unit a designer reads (mm, GPa, rpm, N m)."""
-    sc, u = {"m": (1e3, "mm"), "Pa": (1e-9, "GPa"), "-": (1.0, "")}.get(unit, (1.0, unit))
-    return f"{v * sc:.{digits}g} {u}".rstrip()
 
 
 @dataclass
@@ -93,6 +107,13 @@ class Calibration:
         Method, samples, timings, the reduced model's region and accuracy.
     samples : numpy.ndarray
         The posterior samples (n, k), SI.
+    parts : list of str
+        The measured parts (one part: ``[None]`` unless named).
+    offsets : dict
+        Geometry input -> the process offset (the mean deviation of the parts as built from
+        the drawn value): ``mean``, ``ci95`` [m], ``parts``.
+    design, model
+        The drawn design and the reduced model (:func:`corrected_design` uses them).
 
     Examples
     --------
@@ -116,6 +137,25 @@ class Calibration:
     info: dict = field(default_factory=dict)
     samples: np.ndarray = field(default=None, repr=False)
     prior_samples: np.ndarray = field(default=None, repr=False)
+    parts: list = field(default_factory=lambda: [None])
+    offsets: dict = field(default_factory=dict)
+    design: object = field(default=None, repr=False)
+    model: object = field(default=None, repr=False)
+    inputs: list = field(default_factory=list, repr=False)  # the uncertain inputs of one part
+    views: list = field(default_factory=list, repr=False)  # (part, columns of samples that are its inputs)
+
+    def part_samples(self, part=None) -> np.ndarray:
+        """The posterior samples of one part's inputs (n, len(inputs)), in :attr:`inputs`' order."""
+        idx = dict(self.views)[part]
+        return self.samples[:, idx]
+
+    def offset_samples(self) -> np.ndarray:
+        """Per posterior sample, each of :attr:`inputs`' deviation from the drawn value,
+        averaged over the parts (zero for a shared input)."""
+        drawn = np.array([u.drawn for u in self.inputs])
+        geo = np.array([is_geometry(u.name) for u in self.inputs])
+        dev = np.mean([self.samples[:, idx] - drawn for _, idx in self.views], axis=0)
+        return np.where(geo, dev, 0.0)
 
     def to_json(self) -> dict:
         """One JSON-ready object: ``posterior``, ``answers``, ``checks``, ``consistent``, ... (SI)."""
@@ -123,7 +163,7 @@ class Calibration:
                 "consistent": self.consistent, "correlation": {"names": list(self.posterior),
                                                                "matrix": self.correlation},
                 "explanations": self.explanations, "measured": [m.to_json() for m in self.measured],
-                "notes": self.notes, "info": self.info}
+                "parts": self.parts, "offsets": self.offsets, "notes": self.notes, "info": self.info}
 
     def write_figures(self, out) -> list[Path]:
         """The pictures into folder ``out``: per input its prior and posterior
@@ -150,7 +190,7 @@ class Calibration:
         if meas:
             fig, axes = figure(1, len(meas), figsize=(3.2 * len(meas) + 1, 3.6), layout="constrained", squeeze=False)
             for ax, m in zip(axes[0], meas):
-                a = self.answers.get(m.answer)
+                a = self.answers.get(m.key)
                 label, unit, sc = REPORTED.get(m.answer, (m.name, m.unit, 1.0))
                 ax.errorbar([0], [m.value * sc], yerr=[2 * m.sd * sc], fmt="o", color="k", capsize=4,
                             label="measured +- 2 u")
@@ -164,7 +204,7 @@ class Calibration:
                 ax.set_xticks([0, 1, 2], ["measured", "calibrated", "drawn"])
                 ax.set_xlim(-0.5, 2.5)
                 ax.set_ylabel(f"{label} [{unit}]")
-                ax.set_title(f"{m.name}: {m.value * sc:.4g} {unit} measured", fontsize=9)
+                ax.set_title(f"{m.name}{'' if m.part is None else ' (' + m.part + ')'}: {m.value * sc:.4g} {unit} measured", fontsize=9)
             axes[0][0].legend(loc="best", fontsize=7)
             paths.append(save_figure(fig, out / "calibration_answers.png"))
         return paths
@@ -259,6 +299,11 @@ def calibrate(design, measured, uncertain, *, model=None, method: str = "emcee",
     U = _as_uncertain(uncertain, design)
     M = _as_measurements(measured, design)
     names = [u.name for u in U]
+    parts = list(dict.fromkeys(m.part for m in M))
+    if len(parts) > 1 and None in parts:
+        m0 = next(m for m in M if m.part is None)
+        raise ParameterError("measured", m0.text, f"PART:{m0.text} -- once one measurement names its part "
+                             f"({', '.join(p for p in parts if p)}), every one must", "option --measured")
     for m in M:
         if m.is_dimension and m.name not in names:
             raise ParameterError(m.name, m.text, f"a measured dimension of an uncertain input ({', '.join(names)}): "
@@ -299,11 +344,30 @@ def calibrate(design, measured, uncertain, *, model=None, method: str = "emcee",
                 raise ParameterError("torque", m.text, f"a torque at {rpm:.0f} rpm, the engine's maximum-torque speed "
                                      "where the reduced model holds it (read a curve there: --torque-csv)",
                                      "option --measured")
-    post = Posterior(fw, U, M)
+    M, reading_notes = combine_readings(M)
+    # the inputs of the posterior: the shared ones once, each part's geometry per part
+    if len(parts) == 1:
+        UF, views = list(U), [(parts[0], list(range(len(U))))]
+    else:
+        UF = [u for u in U if not is_geometry(u.name)]
+        views = [(p, []) for p in parts]
+        for p, idx in views:
+            for u in U:
+                if is_geometry(u.name):
+                    UF.append(replace(u, name=f"{u.name}[{p}]", text=f"{p}:{u.text}"))
+                    idx.append(len(UF) - 1)
+                else:
+                    idx.append(next(i for i, v in enumerate(UF) if v.name == u.name))
+    names_f = [u.name for u in UF]
+    col = {}  # measurement -> the column of a measured dimension
+    for m in M:
+        if m.is_dimension:
+            col[id(m)] = dict(views)[m.part][names.index(m.name)]
+    post = Posterior(fw, UF, M, views)
     rng = np.random.default_rng(seed)
     t1 = time.perf_counter()
     mode = post.best(rng)
-    notes = []
+    notes = list(reading_notes)
     if method == "emcee":
         S, info = emcee_samples(post, seed=seed, steps=steps)
     else:
@@ -316,20 +380,20 @@ def calibrate(design, measured, uncertain, *, model=None, method: str = "emcee",
     if method == "emcee" and not info["chain_long_enough"]:
         notes.append(f"the chain ({steps - info['burn']} steps kept) is shorter than 50 autocorrelation times "
                      f"({info['autocorr_steps']:.0f} steps each): the intervals are rough; more --steps")
-    prior_S = np.column_stack([u.sample(np.random.default_rng(seed + 1), len(S)) for u in U])
-    posterior, corr = _summary(U, S, prior_S)
+    prior_S = np.column_stack([u.sample(np.random.default_rng(seed + 1), len(S)) for u in UF])
+    posterior, corr = summarise(UF, S, prior_S)
     z_best, s_best, ans_best, _ = post.residuals(mode[None, :])
     # the posterior predictive: answers over the samples, each measurement's replicate
     sub = S[:: max(1, len(S) // 4000)]
     zs, ss, ans_s, _ = post.residuals(sub)
     checks = []
     for k, m in enumerate(M):
-        pred = sub[:, names.index(m.name)] if m.is_dimension else ans_s[m.answer]
+        pred = sub[:, col[id(m)]] if m.is_dimension else ans_s[m.key]
         rep = pred + rng.normal(0.0, ss[:, k])
         p = 2.0 * min(np.mean(rep <= m.value), np.mean(rep >= m.value))
-        best = float(mode[names.index(m.name)]) if m.is_dimension else float(ans_best[m.answer][0])
+        best = float(mode[col[id(m)]]) if m.is_dimension else float(ans_best[m.key][0])
         z = float(-z_best[0, k])  # (best fit - measured) / sigma
-        checks.append({"measured": m.name, "text": m.text, "value": m.value, "unit": m.unit, "best_fit": best,
+        checks.append({"measured": m.name, "part": m.part, "readings": m.readings, "text": m.text, "value": m.value, "unit": m.unit, "best_fit": best,
                        "sigma": float(s_best[0, k]), "z_best": z, "p_predictive": float(p),
                        "explained": bool(abs(z) <= SUSPECT_Z)})
     consistent = all(c["explained"] for c in checks)
@@ -343,97 +407,31 @@ def calibrate(design, measured, uncertain, *, model=None, method: str = "emcee",
         if p["at_edge"]:
             notes.append(f"{name}: the posterior piles at the {p['at_edge']} bound of its prior "
                          f"({show(p['prior'][p['at_edge']], p['prior']['unit'])}): the data push it beyond the prior")
-    answers = _answers(fw, sub, M, design, model)
-    info.update({"mode": dict(zip(names, map(float, mode))), "samples": int(len(S)), "model_s": t_model,
+    answers = {}
+    for p, idx in views:
+        for a, v in answers_of(fw, sub[:, idx], [m for m in M if m.part == p], design, model).items():
+            if p is not None:
+                v["label"] += f" ({p})"
+            answers[a if p is None else f"{a}[{p}]"] = v
+    offsets = {}
+    geo = [j for j, u in enumerate(U) if is_geometry(u.name)]
+    if geo:
+        drawn = np.array([u.drawn for u in U])
+        dev = np.mean([S[:, idx] - drawn for _, idx in views], axis=0)
+        for j in geo:
+            lo, hi = (float(q) for q in np.quantile(dev[:, j], [0.025, 0.975]))
+            offsets[U[j].name] = {"mean": float(dev[:, j].mean()), "ci95": [lo, hi], "unit": U[j].unit,
+                                  "drawn": U[j].drawn, "parts": len(views)}
+    if len(views) > 1:
+        notes.append(f"{len(views)} parts: {', '.join(n for n in SHARED if n in names) or 'no input'} shared, the "
+                     "geometry per part; the process offset of each geometry input is the mean of the parts' "
+                     "deviations (offsets); the model's error taken independent from part to part (ASSUMED)")
+    info.update({"mode": dict(zip(names_f, map(float, mode))), "samples": int(len(S)), "model_s": t_model,
                  "total_s": time.perf_counter() - t0, "band_sigmas": BAND_SIGMAS,
                  "model_rel_band": {a: fw.rel_band[a] for a in post.answers},
                  "region": reg.to_json(), "accuracy": model.accuracy})
-    expl = _explanations(U, posterior, consistent)
-    return Calibration(concept=design.name, uncertain=U, measured=M, posterior=posterior, answers=answers,
+    expl = explanations_of(UF, posterior, consistent)
+    return Calibration(concept=design.name, uncertain=UF, measured=M, posterior=posterior, answers=answers,
                        checks=checks, consistent=consistent, correlation=corr.tolist(), explanations=expl,
-                       notes=notes, info=info, samples=S, prior_samples=prior_S)
-
-
-def _summary(U, S, prior_S) -> tuple[dict, np.ndarray]:
-    k = len(U)
-    corr = np.corrcoef(S.T) if k > 1 else np.ones((1, 1))
-    corr = np.atleast_2d(np.nan_to_num(corr))
-    out = {}
-    for j, u in enumerate(U):
-        x = S[:, j]
-        lo, hi = (float(v) for v in np.quantile(x, [0.025, 0.975]))
-        plo, phi = u.prior_ci95()
-        narrowed = 1.0 - (hi - lo) / (phi - plo)
-        partner = None
-        if k > 1:
-            c = corr[j].copy()
-            c[j] = 0.0
-            i = int(np.argmax(np.abs(c)))
-            if abs(c[i]) >= TRADE_OFF:
-                partner = {"name": U[i].name, "correlation": float(c[i])}
-        w = u.hi - u.lo
-        edge = None
-        if u.kind == "uniform":  # a posterior whose 95 % interval reaches the support's bound from inside
-            if lo - u.lo < 0.01 * w and np.mean(x < u.lo + 0.05 * w) > 0.1:
-                edge = "lo"
-            elif u.hi - hi < 0.01 * w and np.mean(x > u.hi - 0.05 * w) > 0.1:
-                edge = "hi"
-        else:
-            if np.mean(x < u.lo + 0.05 * w) > 0.1:
-                edge = "lo"
-            elif np.mean(x > u.hi - 0.05 * w) > 0.1:
-                edge = "hi"
-        out[u.name] = {"mean": float(x.mean()), "sd": float(x.std()), "ci95": [lo, hi], "unit": u.unit,
-                       "drawn": u.drawn, "deviation_mean": float(x.mean() - u.drawn), "prior": u.to_json(),
-                       "narrowed": float(narrowed), "identified": bool(narrowed >= IDENTIFIED),
-                       "trades_off_with": partner, "at_edge": edge, "moved_sigmas": float((x.mean() - u.mean) / u.sd)}
-    return out, corr
-
-
-def _answers(fw, S, M, design, model) -> dict:
-    """The calibrated part's answers: over the posterior samples, each with the model's
-    band drawn as a normal of +-2 sigma; the drawn design's (the base of the region)."""
-    ans, ok = fw(S, [a for a in REPORTED if a in fw.answers])
-    base = {u.name: u.drawn for u in fw.uncertain}
-    nom, _ = fw(np.array([[base[u.name] for u in fw.uncertain]]), [a for a in REPORTED if a in fw.answers])
-    rng = np.random.default_rng(7)
-    out = {}
-    for a, v in ans.items():
-        v = v[ok & np.isfinite(v)]
-        if not len(v):
-            continue
-        rep = v + rng.normal(0.0, 1.0, len(v)) * fw.sigma_model(a, v)
-        mean = float(v.mean())
-        label, unit, sc = REPORTED[a]
-        meas = [m.value for m in M if m.answer == a]
-        out[a] = {"label": label, "mean": mean, "ci95": [float(q) for q in np.quantile(rep, [0.025, 0.975])],
-                  "band": float(fw.rel_band[a] * abs(mean)), "unit": {"max_von_mises_Pa": "Pa", "mass_kg": "kg"}.get(
-                      a, unit), "measured": meas[0] if meas else None,
-                  "nominal": float(nom[a][0]) if math.isfinite(nom[a][0]) else None}
-    return out
-
-
-def _explanations(U, posterior, consistent) -> list[str]:
-    """The inputs ranked by how far the data moved them from their prior, in words."""
-    order = sorted(U, key=lambda u: -abs(posterior[u.name]["moved_sigmas"]))
-    out = []
-    for u in order:
-        p = posterior[u.name]
-        lo, hi = p["ci95"]
-        txt = f"{u.name} {show(p['mean'], u.unit)} (95 % {show(lo, u.unit)} .. {show(hi, u.unit)}"
-        if u.kind == "normal" and u.name not in ("mu",):
-            dev = p["mean"] - u.drawn
-            txt += f"; {show(abs(dev), u.unit, 2)} {'above' if dev > 0 else 'below'} the drawn {show(u.drawn, u.unit)}"
-        txt += f"; narrowed {100 * p['narrowed']:.0f} % from its prior"
-        if not p["identified"]:
-            txt += "; NOT IDENTIFIED by these data"
-            if p["trades_off_with"]:
-                t = p["trades_off_with"]
-                txt += f": it trades off against {t['name']} (correlation {t['correlation']:+.2f})"
-        elif p["trades_off_with"]:
-            t = p["trades_off_with"]
-            txt += f"; correlated with {t['name']} ({t['correlation']:+.2f})"
-        out.append(txt + ")")
-    if not consistent:
-        out.insert(0, "no combination of the inputs within their priors explains every measurement (see the checks)")
-    return out
+                       notes=notes, info=info, samples=S, prior_samples=prior_S, parts=parts, offsets=offsets,
+                       design=design, model=model, inputs=list(U), views=views)

@@ -27,6 +27,11 @@ its uncertain inputs, the likelihood of the measurements, and two ways to the po
   speed ripple depends on the speed itself, so the engagement *with ripple* scales only
   approximately (within the ripple's own share, ~3 %).
 
+**Several parts** (:class:`Posterior` ``views``): theta holds the shared inputs once and each
+part's own (its geometry as built); each part's answers come from the forward model at its
+view of theta.  The model's error is taken independent from part to part (ASSUMED: the
+parts' geometries differ; a model error common to all parts would need its own parameter).
+
 **Likelihood**: each measurement is normal about the model's answer with the variance of its
 standard uncertainty plus the model's: the reduced model's band of that answer (the best
 path's band of its training designs plus its own error measured on held-out designs,
@@ -130,27 +135,38 @@ class Posterior:
     """The log posterior of the uncertain inputs given the measurements (module docstring),
     vectorised over rows of ``theta``."""
 
-    def __init__(self, forward: Forward, uncertain, measured):
+    def __init__(self, forward: Forward, uncertain, measured, views=None):
         self.f, self.uncertain, self.measured = forward, list(uncertain), list(measured)
-        names = [u.name for u in self.uncertain]
+        # a part's view: the columns of theta that are its inputs, in the forward model's order
+        self.views = views if views is not None else [(None, list(range(len(self.uncertain))))]
+        self.view_of = {p: np.asarray(idx) for p, idx in self.views}
         self.answers = sorted({m.answer for m in self.measured if not m.is_dimension})
-        self.dim_index = [names.index(m.name) if m.is_dimension else None for m in self.measured]
+        self.dim_index = [int(self.view_of[m.part][[u.name for u in forward.uncertain].index(m.name)])
+                          if m.is_dimension else None for m in self.measured]
 
     def prior(self, theta: np.ndarray) -> np.ndarray:
         theta = np.atleast_2d(theta)
         return sum(u.logpdf(theta[:, i]) for i, u in enumerate(self.uncertain))
 
     def residuals(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict, np.ndarray]:
-        """(z (m, n) standardised residuals, sigma (m, n), answers, ok (m,))."""
+        """(z (m, n) standardised residuals, sigma (m, n), answers (by measurement key), ok (m,))."""
         theta = np.atleast_2d(np.asarray(theta, dtype=float))
-        ans, ok = self.f(theta, self.answers) if self.answers else ({}, np.ones(len(theta), bool))
+        ok = np.ones(len(theta), bool)
+        per_part = {}
+        for p, idx in self.views:
+            if self.answers and any(m.part == p and not m.is_dimension for m in self.measured):
+                a, o = self.f(theta[:, idx], self.answers)
+                per_part[p] = a
+                ok &= o
         z = np.empty((len(theta), len(self.measured)))
         s = np.empty_like(z)
+        ans = {}
         for k, (m, i) in enumerate(zip(self.measured, self.dim_index)):
             if i is not None:
                 pred, sig = theta[:, i], np.full(len(theta), m.sd)
             else:
-                pred = ans[m.answer]
+                pred = per_part[m.part][m.answer]
+                ans[m.key] = pred
                 sig = np.sqrt(m.sd ** 2 + self.f.sigma_model(m.answer, pred) ** 2)
             z[:, k], s[:, k] = (m.value - pred) / sig, sig
         return z, s, ans, ok

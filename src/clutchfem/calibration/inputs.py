@@ -15,7 +15,18 @@ as everywhere (``U`` one standard uncertainty, in the value's dimension):
 * ``flexure_thickness=2.26mm+-0.01mm``: a measured dimension of the part (a micrometer
   reading) -- any uncertain input's name: the reading is data on the input itself.
 
-A name may be repeated (several readings of one part: independent data).  Refused: an unknown
+**Several parts of one design**: a measurement may name its part, ``PART:NAME=VALUE+-U``
+(``p1:engagement=4191rpm+-25rpm``, ``p2:slip=7480rpm+-40rpm``, ``p2:flexure_thickness=2.27mm+-0.01mm``;
+PART: letters, digits, ``_``, ``-``, ``.``).  The parts share the operating inputs (``mu``,
+``drum_wall``, ``E``, ``density``: one material, one lining, one rig) and each has its own
+geometry as built (:func:`clutchfem.calibrate`).  Once one measurement names its part, every
+one must.
+
+A name may be repeated on one part (several readings of one part): the readings of one
+answer are combined into their weighted mean (:func:`~.readings.combine_readings`; the model's error of
+that answer is one and the same for all of them, so it enters once -- the same posterior as
+the readings' joint normal likelihood), and readings that disagree beyond their
+uncertainties are said to.  Refused: an unknown
 name, a value or uncertainty without its unit or in another dimension, an uncertainty of zero
 or below, a measured slip speed below the measured engagement speed (a clutch slips only
 once it holds), a torque at another speed than the model's.
@@ -47,8 +58,8 @@ from ..core import InputError, ParameterError, param_bounds, parse_quantity
 from ..core.units import UnitError
 from ..reduced import OPERATING_AXES
 
-__all__ = ["ANSWER_OF", "SIMILARITY", "Measurement", "Uncertain", "check_measurements", "parse_measured", "parse_uncertain",
-           "torque_from_csv"]
+__all__ = ["ANSWER_OF", "SIMILARITY", "Measurement", "Uncertain", "check_measurements",
+           "parse_measured", "parse_uncertain", "torque_from_csv"]
 
 #: measurement name -> (the reduced model's answer, unit, what it is)
 ANSWER_OF: dict[str, tuple[str, str, str]] = {
@@ -66,6 +77,8 @@ SIGMAS = 4.0
 #: the speed a torque is measured at must be the model's within this [rpm]
 RPM_MATCH = 1.0
 _PM = r"(?:\+-|±|\+/-)"
+#: a part's name in ``PART:NAME=...``
+_PART = r"[A-Za-z0-9][A-Za-z0-9_.-]*"
 
 
 @dataclass(frozen=True)
@@ -85,6 +98,10 @@ class Measurement:
         The speed of a torque measurement [rpm].
     text : str
         What was given.
+    part : str or None
+        The measured part of several of one design (``p1:engagement=...``), or None.
+    readings : int
+        How many readings it combines (:func:`~.readings.combine_readings`).
 
     Examples
     --------
@@ -100,6 +117,8 @@ class Measurement:
     unit: str
     at_rpm: float | None = None
     text: str = ""
+    part: str | None = None
+    readings: int = 1
 
     @property
     def answer(self) -> str:
@@ -110,9 +129,14 @@ class Measurement:
     def is_dimension(self) -> bool:
         return self.name not in ANSWER_OF
 
+    @property
+    def key(self) -> str:
+        """The answer (or input) it measures, with its part: ``slip_rpm`` or ``slip_rpm[p2]``."""
+        return self.answer if self.part is None else f"{self.answer}[{self.part}]"
+
     def to_json(self) -> dict:
         return {"name": self.name, "value": self.value, "sd": self.sd, "unit": self.unit, "at_rpm": self.at_rpm,
-                "text": self.text}
+                "text": self.text, "part": self.part, "readings": self.readings}
 
 
 @dataclass(frozen=True)
@@ -325,11 +349,12 @@ def parse_measured(text: str, *, design=None) -> Measurement:
     clutchfem.core.errors.ParameterError: option --measured: parameter 'slip' = 'slip=7512rpm+-0rpm' is not allowed: an uncertainty > 0 (one standard uncertainty, e.g. +-25rpm): a measurement without one cannot be weighed
     """
     option = "option --measured"
-    m = re.fullmatch(rf"\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:@\s*(\S+?))?\s*=\s*(.+?)\s*{_PM}\s*(\S+)\s*", str(text))
+    m = re.fullmatch(rf"\s*(?:({_PART})\s*:\s*)?([A-Za-z_][A-Za-z0-9_]*)\s*(?:@\s*(\S+?))?\s*=\s*(.+?)\s*{_PM}"
+                     r"\s*(\S+)\s*", str(text))
     if not m:
-        raise ParameterError("measured", text, "NAME=VALUE+-U with units (U one standard uncertainty), e.g. "
-                             "engagement=4191rpm+-25rpm, torque@6000rpm=5.1Nm+-0.2Nm", option)
-    name, at, val_t, sd_t = m.groups()
+        raise ParameterError("measured", text, "[PART:]NAME=VALUE+-U with units (U one standard uncertainty), e.g. "
+                             "engagement=4191rpm+-25rpm, torque@6000rpm=5.1Nm+-0.2Nm, p2:slip=7480rpm+-40rpm", option)
+    part, name, at, val_t, sd_t = m.groups()
     if name in ANSWER_OF:
         unit = ANSWER_OF[name][1]
     elif design is not None and design.params is not None:
@@ -353,7 +378,7 @@ def parse_measured(text: str, *, design=None) -> Measurement:
     at_rpm = _q(at, "rpm", name, text, option) if at is not None else None
     if at_rpm is not None and not at_rpm > 0:
         raise ParameterError(name, text, "a speed > 0 rpm after @", option)
-    return Measurement(name, value, sd, unit, at_rpm, str(text).strip())
+    return Measurement(name, value, sd, unit, at_rpm, str(text).strip(), part)
 
 
 def check_measurements(measured: list[Measurement]) -> None:
@@ -373,6 +398,7 @@ def check_measurements(measured: list[Measurement]) -> None:
     --------
     >>> import clutchfem as cf
     >>> cf.check_measurements([cf.parse_measured("engagement=4191rpm+-25rpm"), cf.parse_measured("slip=7512rpm+-40rpm")])
+    >>> cf.check_measurements([cf.parse_measured("p1:engagement=4191rpm+-25rpm"), cf.parse_measured("p2:slip=4100rpm+-40rpm")])
     >>> cf.check_measurements([cf.parse_measured("engagement=4191rpm+-25rpm"), cf.parse_measured("slip=4000rpm+-40rpm")])
     Traceback (most recent call last):
     ...
@@ -382,7 +408,7 @@ def check_measurements(measured: list[Measurement]) -> None:
     slip = [m for m in measured if m.name == "slip"]
     for s in slip:
         for e in eng:
-            if s.value <= e.value:
+            if s.part == e.part and s.value <= e.value:
                 raise ParameterError("slip", s.text, f"a slip speed above the measured engagement speed ({e.text}): a "
                                      "clutch slips only once it has engaged", "option --measured")
 

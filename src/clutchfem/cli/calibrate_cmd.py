@@ -1,6 +1,7 @@
 """``clutchfem calibrate``: which inputs of a part as built explain what the test rig
-measured (the posterior of the uncertain inputs on the reduced model), and which
-measurements none explains."""
+measured (the posterior of the uncertain inputs on the reduced model), which measurements
+none explains, and (``--correct``) the corrected design for the next part with its cutting
+files."""
 
 from __future__ import annotations
 
@@ -32,7 +33,10 @@ def calibrate(
     measured: List[str] = typer.Option([], "--measured", help="a measurement NAME=VALUE+-U with units (U: one "
                                        "standard uncertainty): engagement=4191rpm+-25rpm, slip=7512rpm+-40rpm, "
                                        "torque@SPEED=V+-U, mass=..., or a measured dimension "
-                                       "flexure_thickness=2.26mm+-0.01mm; repeat", rich_help_panel="Calibration"),
+                                       "flexure_thickness=2.26mm+-0.01mm; repeat (repeated readings of one part are "
+                                       "combined); several parts of one design: PART:NAME=VALUE+-U, e.g. "
+                                       "p1:engagement=4191rpm+-25rpm p2:engagement=4230rpm+-25rpm (mu and the "
+                                       "material shared, the geometry per part)", rich_help_panel="Calibration"),
     uncertain: List[str] = typer.Option(..., "--uncertain", help="an uncertain input of the part as built: "
                                         "mu=0.1:0.35 (uniform), flexure_thickness=+-0.1mm (normal about the drawn "
                                         "value, +-3 sigma), mu=0.2+-0.06; E and density by similarity; repeat",
@@ -52,6 +56,19 @@ def calibrate(
     seed: int = typer.Option(0, "--seed", help="the sampler's seed", rich_help_panel="Calibration"),
     steps: int = typer.Option(5000, "--steps", help="emcee's steps per walker (500 discarded)",
                               rich_help_panel="Calibration"),
+    correct: List[str] = typer.Option([], "--correct", help="a calibrated geometry input to move for the next "
+                                      "part (e.g. flexure_thickness): the corrected design, whose part as built "
+                                      "(the process offset added, at the calibrated mu) meets the targets; "
+                                      "'all' for every calibrated geometry input; repeat",
+                                      rich_help_panel="Corrected design"),
+    target: List[str] = typer.Option([], "--target", help="a target of the corrected design NAME=VALUE: "
+                                     "engagement=4000rpm, slip=7500rpm, torque=5Nm (default: the drawn design's "
+                                     "own predictions of the answers measured); repeat",
+                                     rich_help_panel="Corrected design"),
+    process: Optional[str] = typer.Option(None, "--process", metavar="laser|waterjet|wire-edm",
+                                          help="the cutting process of the corrected design's files (with "
+                                          "--correct and --out): its limits check the part",
+                                          rich_help_panel="Corrected design"),
 ):
     """Calibrate to measured parts: the posterior of the uncertain inputs given the rig's
     measurements (on the reduced model of a region holding the priors), the calibrated answers
@@ -63,8 +80,21 @@ def calibrate(
         check_out_dir(o.out)
         if seed < 0:
             raise ParameterError("seed", seed, "an integer >= 0", "option --seed")
+        if (target or process) and not correct:
+            raise ParameterError("target" if target else "process", (target or [process])[0], "an option of "
+                                 "--correct (the corrected design's)", "option --target" if target else
+                                 "option --process")
+        if process is not None and process not in ("laser", "waterjet", "wire-edm"):
+            raise ParameterError("process", process, "laser, waterjet or wire-edm", "option --process")
+        if process is not None and o.out is None:
+            raise ParameterError("process", process, "an option of --out (the corrected design's cutting files)",
+                                 "option --process")
+        from .. import parse_target
+
+        for t in target:
+            parse_target(t)  # refused before any work
         answers = ("engagement", "engagement_ripple", "slip")  # the speeds checked against each other, before any work
-        check_measurements([parse_measured(m) for m in measured if m.split("=")[0].strip() in answers])
+        check_measurements([parse_measured(m) for m in measured if m.split("=")[0].split(":")[-1].strip() in answers])
         eng, _ = engine_from(o.engine)
         req = requirements_from(o.a, o.b)
         fid = o.fidelity or "best"
@@ -88,12 +118,29 @@ def calibrate(
                                  "option --measured")
         res = run(design, meas, uncertain, method=method, n=n, held_out=held_out, engine=eng, requirements=req,
                   workers=o.workers, progress=not o.json_, seed=seed, steps=steps)
+        corr = None
+        if correct:
+            from .. import corrected_design
+
+            adjust = None if correct == ["all"] else [a for c in correct for a in c.split(",") if a.strip()]
+            corr = corrected_design(res, adjust=adjust, targets=list(target) or None, seed=seed)
         if o.out is not None:
             wrote(res.write_figures(o.out))
+            if corr is not None:
+                from .. import export as cut
+
+                files = cut(corr.design, Path(o.out) / "corrected", process=process, analyze_design=False,
+                            engine=eng)
+                wrote(files.files)
         if o.json_:
-            print(dumps(res.to_json()))
+            doc = res.to_json()
+            if corr is not None:
+                doc["corrected"] = corr.to_json()
+            print(dumps(doc))
             return
         _print(res)
+        if corr is not None:
+            _print_correction(corr)
     except ClutchfemError as exc:
         fail(exc)
 
@@ -144,4 +191,31 @@ def _print(res) -> None:
     for e in res.explanations:
         console.print(escape(f"- {e}"))  # wrapped on a terminal, one line on a pipe
     for note in res.notes:
+        console.print(f"[dim]note: {escape(note)}[/]")
+
+
+def _print_correction(corr) -> None:
+    t = Table(title=escape(f"the corrected design for the next part (targets: {corr.target_source})"))
+    for c in ("input", "drawn", "process offset (95 %)", "drawn next", "as built next"):
+        t.add_column(c, justify="left" if c == "input" else "right")
+    for name, ch in corr.changes.items():
+        u = ch["unit"]
+        oc = ch["offset_ci95"]
+        t.add_row(escape(name), escape(_q(ch["drawn"], u)), escape(f"{ch['offset'] * 1e3:+.4f} mm" if u == "m" else
+                                                                    _q(ch["offset"], u))
+                  + (escape(f" [{oc[0] * 1e3:+.4f}, {oc[1] * 1e3:+.4f}]") if oc and u == "m" else ""),
+                  escape(_q(ch["corrected"], u)), escape(_q(ch["as_built"], u)))
+    console.print(t)
+    a = Table(title="the next part as built")
+    for c in ("answer", "drawn design made again", "corrected (95 %)", "target", "met"):
+        a.add_column(c, justify="left" if c == "answer" else "right")
+    for v in corr.answers.values():
+        unit, sc = _SHOWN.get(v["unit"], (v["unit"], 1.0))
+        a.add_row(escape(v["label"]), escape(_q(v["uncorrected"], v["unit"]) if v["uncorrected"] is not None else "-"),
+                  escape(f"{v['mean'] * sc:.4g} [{v['ci95'][0] * sc:.4g}, {v['ci95'][1] * sc:.4g}] {unit}"),
+                  escape(_q(v["target"], v["unit"]) if v["target"] is not None else ""),
+                  "" if v["target"] is None else ("yes" if v["met"] else "NO"))
+    console.print(a)
+    console.print(escape("next part: --set " + " --set ".join(corr.set_args)), soft_wrap=True)
+    for note in corr.notes:
         console.print(f"[dim]note: {escape(note)}[/]")
