@@ -264,8 +264,12 @@ def test_duty_cycle_from_toml_and_its_refusals(tmp_path):
 # ---------------------------------------------------------------------------- life (FE)
 @pytest.mark.slow
 def test_life_of_concept4_wears_in_and_engagement_drifts_up():
+    """Concept 4's default wears in from its shoe tip: the contact arc spreads and engagement
+    moves up.  1200 starts with the wear rate's change per step at 0.5 (the default 0.25 takes
+    3x the states): the step control's convergence is tested above on the Winkler foundation
+    and measured on concept 4 over 100,000 starts in BENCHMARKS.md section 26."""
     d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
-    L = cf.life(d, starts=3000, duty=DutyCycle(), rebuild_depth=None)
+    L = cf.life(d, starts=1200, duty=DutyCycle(), rebuild_depth=None, wear=WearParams(rate_change=0.5))
     assert L.energy_balance < 1e-6
     assert L.contact_arc_deg[0] < 2.0 < 5 * L.contact_arc_deg[0] < L.contact_arc_deg[-1]
     assert L.engagement_rpm[-1] > L.engagement_rpm[0]
