@@ -78,6 +78,8 @@ DEFAULT_IDLE_RPM = 2700.0
 LIMITER_SHARE = 0.02
 #: dense-output samples per integration segment (peak slip power, droop, the plots)
 SAMPLES = 2001
+#: points of the dense solution the sliding by speed is integrated on (:func:`_sliding_by_rpm`)
+FINE = 5001
 
 
 class DriveLine(ParamSet):
@@ -248,16 +250,6 @@ class _Cubic:
         return ((a * u + b) * u + c) * u + d
 
 
-def _hats(x: list, v: float, out: np.ndarray) -> np.ndarray:
-    """The linear interpolation weights (hat functions) of the nodes ``x`` at ``v`` (clamped
-    at the ends) written into ``out`` (zeros elsewhere): p(v) = hats @ p(x)."""
-    out[:] = 0.0
-    k = min(max(bisect.bisect_right(x, v) - 1, 0), len(x) - 2)
-    t = min(max((v - x[k]) / (x[k + 1] - x[k]), 0.0), 1.0)
-    out[k], out[k + 1] = 1.0 - t, t
-    return out
-
-
 def _positive(name: str, v, what: str) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not \
             math.isfinite(float(v)) or float(v) <= 0:
@@ -334,9 +326,6 @@ def engagement_transient(clutch_rpm, clutch_torque_Nm, engine: EngineCurve | Non
     t_r = 0.0 if held else drive.throttle_ramp
     m = 0 if tq.p is None else len(tq.rpm)  # sliding distance per table speed (hat functions)
 
-    xs = [] if tq.p is None else [float(v) for v in tq.rpm]
-    hat = np.zeros(m)
-
     def rates(t, y):
         we, wd = y[0], max(y[1], 0.0)
         n = rad_s_to_rpm(we)
@@ -349,28 +338,23 @@ def engagement_transient(clutch_rpm, clutch_torque_Nm, engine: EngineCurve | Non
             th = 1.0 if t_r == 0.0 or t >= t_r else t / t_r
             Me = th * tq.engine_torque(n)
             dwe, p_in = (Me - Mc) / Je, Me * we
-        out = np.empty(6 + m)
-        out[:6] = (dwe, dwd, p_in, Mc * (we - wd), ML * wd if moving else 0.0, we - wd)
-        if m:
-            out[6:] = _hats(xs, n, hat) * (R * (we - wd))
-        return out
+        return np.array((dwe, dwd, p_in, Mc * (we - wd), ML * wd if moving else 0.0, we - wd))
 
     def lock(t, y):
         return y[0] - y[1]
 
     lock.terminal, lock.direction = True, -1
     w0 = rpm_to_rad_s(n0)
-    y = np.zeros(6 + m)
+    y = np.zeros(6)
     y[0] = w0
     wmax = rpm_to_rad_s(max(n0, engine.rpm_range[1] * (1 + LIMITER_SHARE)))
-    atol = np.full(6 + m, rtol * wmax)
+    atol = np.full(6, rtol * wmax)
     e_scale = 0.5 * (Je + Jd) * wmax ** 2
     atol[2:5] = rtol * e_scale
     atol[5] = rtol * wmax * drive.max_time
-    if m:
-        atol[6:] = rtol * R * wmax * drive.max_time
     bounds = [0.0, t_r, drive.max_time] if 0.0 < t_r < drive.max_time else [0.0, drive.max_time]
     ts, ys, nfev, locked = [], [], 0, False
+    by_rpm = np.zeros(m)
     for a, b in zip(bounds[:-1], bounds[1:]):
         sol = solve_ivp(rates, (a, b), y, method="DOP853", rtol=rtol, atol=atol, events=lock, dense_output=True,
                         max_step=max_step if max_step is not None else np.inf)
@@ -381,16 +365,39 @@ def engagement_transient(clutch_rpm, clutch_torque_Nm, engine: EngineCurve | Non
         tt = np.unique(np.concatenate([np.linspace(a, t_end, SAMPLES), sol.t]))
         ts.append(tt)
         ys.append(sol.sol(tt))
+        if m:
+            by_rpm += _sliding_by_rpm(sol, a, t_end, tq.rpm, R)
         y = sol.y[:, -1].copy()
         if sol.status == 1 and len(sol.t_events[0]):
             locked = True
             break
     t = np.concatenate(ts)
     Y = np.concatenate(ys, axis=1)
-    return _answer(t, Y, y, locked, tq, n0, Je, Jd, ML, R, held, m, nfev, rtol)
+    return _answer(t, Y, y, locked, tq, n0, Je, Jd, ML, R, held, by_rpm if m else None, nfev, rtol)
 
 
-def _answer(t, Y, y, locked, tq, n0, Je, Jd, ML, R, held, m, nfev, rtol) -> Engagement:
+def _sliding_by_rpm(sol, a: float, b: float, rpm: np.ndarray, R: float) -> np.ndarray:
+    """The sliding distance [m] a run spends at each speed of the table on [a, b]: the
+    integral of R (w_e - w_d) hat_k(n_e(t)) dt with hat_k the linear-interpolation weights of
+    the table speeds, by the trapezoid rule on the dense solution at :data:`FINE` points (and
+    the integrator's own steps).  Outside the integration: the hats are kinked at the table's
+    speeds, which made the integrator take ~4x the steps when they were states of the ODE."""
+    tt = np.unique(np.concatenate([np.linspace(a, b, FINE), sol.t[(sol.t >= a) & (sol.t <= b)]]))
+    Y = sol.sol(tt)
+    n = rad_s_to_rpm(Y[0])
+    v = R * (Y[0] - Y[1])
+    k = np.clip(np.searchsorted(rpm, n, side="right") - 1, 0, len(rpm) - 2)
+    w = np.clip((n - rpm[k]) / (rpm[k + 1] - rpm[k]), 0.0, 1.0)
+    dt = np.diff(tt)
+    out = np.zeros(len(rpm))
+    for kk, ww in ((k, 1.0 - w), (k + 1, w)):  # trapezoid: each interval's two ends, half each
+        f = ww * v
+        np.add.at(out, kk[:-1], 0.5 * dt * f[:-1])
+        np.add.at(out, kk[1:], 0.5 * dt * f[1:])
+    return out
+
+
+def _answer(t, Y, y, locked, tq, n0, Je, Jd, ML, R, held, by_rpm, nfev, rtol) -> Engagement:
     """The answers of a run (module docstring)."""
     we, wd = Y[0], np.maximum(Y[1], 0.0)
     n_e = rad_s_to_rpm(we)
@@ -419,6 +426,6 @@ def _answer(t, Y, y, locked, tq, n0, Je, Jd, ML, R, held, m, nfev, rtol) -> Enga
                     "load_work_J": E_load, "residual_J": resid},
         energy_balance=float(abs(resid) / scale), load_torque_Nm=float(ML), idle_rpm=float(n0),
         times_s=t, engine_rpm=n_e, drum_rpm=rad_s_to_rpm(wd), slip_power_W=P,
-        sliding_by_rpm_m=np.maximum(y[6:6 + m], 0.0) if m else None,
-        pressure_sliding_Pa_m=np.maximum(y[6:6 + m], 0.0) @ tq.p if m else None,
+        sliding_by_rpm_m=None if by_rpm is None else np.maximum(by_rpm, 0.0),
+        pressure_sliding_Pa_m=None if by_rpm is None else np.maximum(by_rpm, 0.0) @ tq.p,
         solver={"method": "DOP853", "rtol": rtol, "rhs_evaluations": int(nfev), "engine_held": bool(held)})
