@@ -133,13 +133,10 @@ def life(
                                     "--wear-rate-change": wear_rate_change},
                        WEAR_OPTIONS)
         if rebuild_depth is not None and rebuild_depth.strip().lower() == "never":
-            depth = None
-        else:
-            depth = quantity("--rebuild-depth", rebuild_depth, "m", 1e-6, 1e-2)
-            if depth is None:
-                from ..lifetime.run import REBUILD_DEPTH
-
-                depth = REBUILD_DEPTH
+            depth = {"rebuild_depth": None}
+        else:  # not given: cf.life's own default
+            d = quantity("--rebuild-depth", rebuild_depth, "m", 1e-6, 1e-2)
+            depth = {} if d is None else {"rebuild_depth": d}
         eng, idle = engine_from(o.engine, o.idle_rpm)
         req = requirements_from(o.a, o.b)
         op = operating_point(mu=o.mu, rotation=o.rotation, fidelity=o.fidelity)
@@ -149,7 +146,7 @@ def life(
                                  drum_radius=o.drum_radius, thickness=o.thickness)
             stage(f"{n:.0f} starts: the worn states")
             L = run(design, starts=n, duty=dc, engine=eng, drive=drive, wear=wear, requirements=req,
-                    idle_rpm=idle, rebuild_depth=depth, log=stage)
+                    idle_rpm=idle, log=stage, **depth)
         if o.out is not None:
             wrote(life_files(L, o.out))
         if o.json_:
