@@ -160,7 +160,9 @@ def clipped_markers(fig, tol: float = 1.0) -> list[str]:
                 continue
             d = ln.get_transform().transform(xy)
             half = 0.5 * ln.get_markersize() * fig.dpi / 72.0 + 0.5 * ln.get_markeredgewidth() * fig.dpi / 72.0
-            inside = (d[:, 0] >= b.x0) & (d[:, 0] <= b.x1) & (d[:, 1] >= b.y0) & (d[:, 1] <= b.y1)
+            # (a centre on the edge itself is inside: half its marker is cut)
+            inside = ((d[:, 0] >= b.x0 - tol) & (d[:, 0] <= b.x1 + tol) & (d[:, 1] >= b.y0 - tol)
+                      & (d[:, 1] <= b.y1 + tol))
             cut = inside & ((d[:, 0] - half < b.x0 - tol) | (d[:, 0] + half > b.x1 + tol)
                             | (d[:, 1] - half < b.y0 - tol) | (d[:, 1] + half > b.y1 + tol))
             for (x, y) in xy[cut][:3]:
