@@ -58,6 +58,19 @@ def cache_root() -> Path:
     return root / "reduced"
 
 
+def _claim(region: Region) -> Path:
+    """The cache folder of ``region``, made and marked as the cache's own (with its
+    ``region.json``); a folder of that name the cache did not make is refused, not used."""
+    folder = _folder(region)
+    if folder.exists() and not (folder / MARK).exists():
+        raise InputError(f"{folder}: a folder the reduced-model cache did not make is in its way; move it "
+                         "(the cache never deletes what it did not write)")
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / MARK).touch()
+    (folder / "region.json").write_text(dumps(region.to_json(), indent=1))
+    return folder
+
+
 def _folder(region: Region) -> Path:
     return cache_root() / f"{region.concept}-{region.key()}"
 
@@ -169,13 +182,7 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     cached = load(region)
     if cached is not None and cached.info.get("n_train", 0) >= n and cached.info.get("n_held_out", 0) >= held_out:
         return cached
-    folder = _folder(region)
-    if folder.exists() and not (folder / MARK).exists():
-        raise InputError(f"{folder}: a folder the reduced-model cache did not make is in its way; move it "
-                         "(the cache never deletes what it did not write)")
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / MARK).touch()
-    (folder / "region.json").write_text(dumps(region.to_json(), indent=1))
+    folder = _claim(region)
     t0 = time.perf_counter()
     train = region.sample(n, seed=seed)
     test = region.sample(held_out, seed=seed + 1)
@@ -225,13 +232,7 @@ def save(model: ReducedModel) -> Path:
     True
     """
     region = model.region
-    folder = _folder(region)
-    if folder.exists() and not (folder / MARK).exists():
-        raise InputError(f"{folder}: a folder the reduced-model cache did not make is in its way; move it "
-                         "(the cache never deletes what it did not write)")
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / MARK).touch()
-    (folder / "region.json").write_text(dumps(region.to_json(), indent=1))
+    folder = _claim(region)
     tmp = folder / "model.pkl.tmp"
     with open(tmp, "wb") as fh:
         pickle.dump({"model": model, "key": region.key(), "sklearn": _sklearn_version()}, fh)
