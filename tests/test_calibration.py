@@ -344,6 +344,8 @@ def test_the_command_line_refuses_bad_correction_options_before_any_work():
                        (["--correct", "all", "--process", "waterjet"], "process"),
                        (["--correct", "all", "--target", "slip=4000mm"], "slip"),
                        (["--measured", "p1:slip=4000rpm+-25rpm", "--measured", "p1:engagement=4191rpm+-25rpm"],
-                        "slip")):
+                        "slip"),
+                       (["--correct", "bogus"], "correct"),  # not an uncertain input: refused, no model built
+                       (["--correct", "mu"], "correct")):  # an operating input is not drawn
         out = cli_in_process(*base, *args, ok=False)
         assert out.returncode != 0 and f"'{name}'" in out.stderr, (args, out.stderr)

@@ -91,6 +91,13 @@ def calibrate(
                                  "option --process")
         from .. import parse_target
 
+        drawn = [u.split("=")[0].strip() for u in uncertain]  # the inputs the next part could be drawn at
+        drawn = [n for n in drawn if n not in ("mu", "drum_wall", "drum_radius", "E", "density")]
+        for c in [a.strip() for c in correct for a in c.split(",") if a.strip()]:
+            if c != "all" and c not in drawn:
+                raise ParameterError("correct", c, "all, or a geometry input given as --uncertain ("
+                                     + (", ".join(drawn) or "none given") + "): the next part is drawn at it",
+                                     "option --correct")
         for t in target:
             parse_target(t)  # refused before any work
         answers = ("engagement", "engagement_ripple", "slip")  # the speeds checked against each other, before any work
