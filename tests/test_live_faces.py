@@ -134,6 +134,19 @@ def test_live_guidelines_are_the_reduced_models_elasticities_with_their_band(mod
     assert err.value.name == "check"
 
 
+def test_the_guidelines_command_answers_live(model, tmp_path):
+    """``clutchfem guidelines --fidelity live`` (the command line's gate lets it through): the
+    reduced model's elasticities; outside every region refused naming the way."""
+    from support.cli import cli_in_process
+
+    out = cli_in_process("guidelines", "concept1", "--set", "flexure_thickness=2.15mm", "--fidelity", "live",
+                         "--check", "0", "--out", str(tmp_path / "g"), "--json", ok=True)
+    assert "reduced model" in out.stdout and "flexure_thickness" in out.stdout
+    bad = cli_in_process("guidelines", "concept1", "--set", "flexure_thickness=2.6mm", "--fidelity", "live",
+                         "--check", "0", "--out", str(tmp_path / "g2"), ok=False)
+    assert bad.returncode == 2 and "clutchfem reduce concept1" in bad.stderr and "Traceback" not in bad.stderr
+
+
 def test_live_guidelines_outside_every_region_are_refused_naming_the_way(model, tmp_path):
     d = cf.Design.from_concept("concept1", fidelity="live", flexure_thickness="2.6mm")
     with pytest.raises(cf.ParameterError, match="clutchfem reduce concept1"):

@@ -152,7 +152,7 @@ def _print_summary(s: dict) -> None:
 
 
 @O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "material", "engine", "workers", "scheduler", "out",
-         "json_")
+         "json_", live=True)
 def guidelines(
     o,
     params: Optional[str] = typer.Option(None, "--params", help="parameters to study, comma separated (default: "

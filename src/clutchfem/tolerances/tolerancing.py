@@ -58,7 +58,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import binomtest, bootstrap
 
-from ..core import InputError, ParameterError, clean
+from ..core import InputError, ParameterError, clean, format_quantity
 from ..core import values as V
 from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from ..targets import Targets, best_estimate, correction_ratios
@@ -125,6 +125,13 @@ def parse_tolerance(P, text: str) -> tuple[str, float]:
                              + f": samples are snapped to {res * shown[0]:g} {shown[1]}".rstrip() + " (the geometry's "
                              "resolution), so a narrower band has too few distinct values (+-0.1 um gave every sample "
                              "the nominal value: zero spread)", "--tol")
+    lo, hi = V.param_bounds(P, name)
+    if lo is not None and hi is not None and 2.0 * t >= hi - lo:  # a box wider than the range means nothing
+        show = (lambda x: format_quantity(x, unit))  # noqa: E731
+        raise ParameterError(name, text, f"a tolerance half-width below {show(0.5 * (hi - lo))}, half the "
+                             f"parameter's range [{show(lo)}, {show(hi)}]: a tolerance box of +-{show(t)} is wider "
+                             "than the range, no nominal value keeps every part inside it", "option --tol",
+                             shown=f"+-{show(t)}")
     return name, float(t)
 
 
