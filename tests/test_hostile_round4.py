@@ -26,7 +26,7 @@ def test_robust_design_options_without_tolerances_are_refused_not_dropped(opt):
 
 @pytest.mark.parametrize("cmd", [("optimize", "concept4"), ("solve", "concept4"), ("compensate", "concept4", "--rpm",
                                                                                   "8000"),
-                                 ("guidelines", "concept4"), ("slip-heat", "concept4")])
+                                 ("life", "concept4"), ("slip-heat", "concept4")])
 def test_live_fidelity_is_refused_by_the_commands_that_need_the_fe(cmd):
     err = refused(*cmd, "--fidelity", "live")
     assert "--fidelity" in err and "analyze and tolerance" in err
