@@ -55,8 +55,10 @@ def test_life_check_adds_the_drift_to_the_new_answers():
     assert c["worst_slack_rpm"]["slip_rpm<="] == pytest.approx(-100.0)
     assert c["first_miss_starts"]["slip_rpm<="] == pytest.approx(1e5)
     assert c["worst_slack_rpm"]["engagement_rpm_with_ripple>="] == pytest.approx(40.0)
-    ok = life_check(t, {**row, "slip_rpm": 7600.0}, L)
-    assert ok["met"] and ok["missed_by_rpm"] == 0.0
+    ok = life_check(t, {**row, "slip_rpm": 7600.0, "safety_factor": 1.6}, L)
+    assert ok["met"] and ok["missed_by_rpm"] == 0.0 and ok["missed_new"] == []
+    weak = life_check(t, {**row, "slip_rpm": 7600.0, "safety_factor": 1.2}, L)
+    assert not weak["met"] and weak["missed_by_rpm"] == 0.0 and weak["missed_new"][0].startswith("safety_factor")
 
 
 @pytest.mark.parametrize("args, text", [(["--life", "0"], "--life"), (["--life", "1e9"], "--life"),

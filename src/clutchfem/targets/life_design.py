@@ -169,10 +169,14 @@ def wear_allowance(life, reserve: float = RESERVE) -> WearAllowance:
 def life_check(targets: Targets, row: dict, life) -> dict:
     """Every target of ``targets`` over the life: the optimiser's new answer (``row``) plus the
     life's drift at each wear state.  Returns {"met": bool, "worst": {key: slack [rpm]},
-    "missed_by_rpm": largest miss (0 if met), "first_miss_starts": {key: starts or None}}."""
-    worst, first = {}, {}
+    "missed_by_rpm": largest miss (0 if met), "first_miss_starts": {key: starts or None},
+    "missed_new": the targets without a life drift (safety factors) the design misses new}."""
+    worst, first, new_misses = {}, {}, []
     for name, key, limit, sense in targets.constraints():
-        if key not in LIFE_KEYS:
+        if key not in LIFE_KEYS:  # no wear drift computed: the new part's answer
+            v = row.get(key)
+            if v is None or not math.isfinite(v) or (v < limit if sense == ">=" else v > limit):
+                new_misses.append(f"{key} {sense} {limit:.4g} (new: {'none' if v is None else f'{v:.4g}'})")
             continue
         y = np.asarray(getattr(life, LIFE_KEYS[key]), dtype=float)
         v0 = row.get(key)
@@ -186,7 +190,8 @@ def life_check(targets: Targets, row: dict, life) -> dict:
         bad = np.nonzero(slack < 0)[0]
         first[f"{key}{sense}"] = None if not len(bad) else float(np.asarray(life.starts)[bad[0]])
     miss = min([0.0] + list(worst.values()))
-    return {"met": miss >= 0.0, "worst_slack_rpm": worst, "missed_by_rpm": -miss, "first_miss_starts": first}
+    return {"met": miss >= 0.0 and not new_misses, "worst_slack_rpm": worst, "missed_by_rpm": -miss,
+            "first_miss_starts": first, "missed_new": new_misses}
 
 
 @dataclass(frozen=True)
@@ -235,8 +240,13 @@ class LifeDesign:
         n = self.allowance.starts
         if self.met:
             return f"every target met at {n:.0f} starts (checked by a full life run of the optimum)"
-        return (f"a target is MISSED at {n:.0f} starts by {self.check['missed_by_rpm']:.0f} rpm (full life run of "
-                f"the optimum, after {len(self.rounds)} rounds of allowance)")
+        parts = []
+        if self.check["missed_by_rpm"] > 0:
+            parts.append(f"a speed target is MISSED at {n:.0f} starts by {self.check['missed_by_rpm']:.0f} rpm (full "
+                         f"life run of the optimum, after {len(self.rounds)} round(s) of allowance)")
+        if self.check["missed_new"]:
+            parts.append("missed already new: " + "; ".join(self.check["missed_new"]))
+        return "; ".join(parts)
 
     def to_json(self) -> dict:
         return {"life_starts": self.allowance.starts, "met": self.met, "message": self.message,
@@ -319,8 +329,8 @@ def optimize_for_life(settings, targets: Targets, free=None, *, starts: float, l
         rounds.append({"round": r + 1, "allowance": allowance.to_json(),
                        "tightened_targets": [list(c) for c in tight.constraints()],
                        "set": list(res.set_args), "feasible_new": bool(res.feasible), "check": check})
-        if check["met"] or r == 1:
-            break
+        if check["met"] or r == 1 or check["missed_new"] or not res.feasible:
+            break  # met, or missed new (no allowance helps: the targets have no design in the ranges)
         allowance = wear_allowance(L, reserve)  # the optimum's own drift
     return LifeDesign(result=res, targets=targets, tightened=tight, allowance=allowance, life=L, check=check,
                       rounds=rounds)
