@@ -30,8 +30,12 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..analysis import Requirements
 from ..core import ParameterError
+from ..geometry import get_concept
+from ..lifetime import life as run_life
 from ..loadcase import Design
+from .optimization import optimize
 from .targets import Targets
 
 __all__ = ["RESERVE", "LifeDesign", "WearAllowance", "optimize_for_life", "wear_allowance"]
@@ -83,7 +87,7 @@ class WearAllowance:
     >>> a = cf.wear_allowance(L)
     >>> t = a.tighten(cf.Targets(3510, None, 8000, 1.5))
     >>> t.engage_rpm_lo, t.slip_rpm_max
-    (3510, 7750.0)
+    (3510.0, 7750.0)
     """
 
     starts: float
@@ -258,8 +262,6 @@ class LifeDesign:
 
 
 def _design(settings, point: dict | None) -> Design:
-    from ..geometry import get_concept
-
     return Design.from_concept(get_concept(settings.concept), settings.params(point), settings.operating_point(),
                                settings.mesh_settings())
 
@@ -297,10 +299,6 @@ def optimize_for_life(settings, targets: Targets, free=None, *, starts: float, l
     ...
     clutchfem.core.errors.ParameterError: ...
     """
-    from ..analysis import Requirements
-    from ..lifetime import life as run_life
-    from .optimization import optimize
-
     if isinstance(starts, bool) or not isinstance(starts, (int, float)) or not 1 <= starts <= 1e8:
         raise ParameterError("life", starts, "a number of starts in [1, 1e8]", "optimize --life")
     if not isinstance(targets, Targets):
