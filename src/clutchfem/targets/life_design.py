@@ -266,6 +266,22 @@ def _design(settings, point: dict | None) -> Design:
                                settings.mesh_settings())
 
 
+def _life_of(settings, point, starts, options, notes):
+    """:func:`~clutchfem.life` of the design at ``point``; a rebuild of the worn part that the
+    concept's rules refuse (a design on a rule's bound: the worn profile table moves the shoe's
+    inner surface in the rule's eyes) is said in ``notes`` and the life run again with the
+    wear kept in the contact gaps (``rebuild_depth=None``)."""
+    try:
+        return run_life(_design(settings, point), starts=float(starts), **options)
+    except ParameterError as exc:
+        if "rebuild_depth" in options and options["rebuild_depth"] is None:
+            raise
+        notes.append(f"life of {'the start design' if not point else 'the optimum'}: the rebuild of the worn part "
+                     f"was refused by the concept's rules ({exc}); run again with the wear kept in the contact "
+                     "gaps (no rebuild)")
+        return run_life(_design(settings, point), starts=float(starts), **{**options, "rebuild_depth": None})
+
+
 def optimize_for_life(settings, targets: Targets, free=None, *, starts: float, life_options: dict | None = None,
                       reserve: float = RESERVE, log=None, **optimize_options) -> LifeDesign:
     """The optimum that keeps ``targets`` over ``starts`` starts (module docstring).
@@ -312,7 +328,8 @@ def optimize_for_life(settings, targets: Targets, free=None, *, starts: float, l
     say = log or (lambda m: None)
 
     say(f"life of the start design over {starts:.0f} starts (the wear allowance)")
-    L = run_life(_design(settings, None), starts=float(starts), **lo)
+    notes: list = []
+    L = _life_of(settings, None, starts, lo, notes)
     allowance = wear_allowance(L, reserve)
     rounds = []
     for r in range(2):
@@ -322,8 +339,9 @@ def optimize_for_life(settings, targets: Targets, free=None, *, starts: float, l
         res = optimize(settings, tight, free, log=log, **optimize_options)
         point = res.best.get("params") or {}
         say(f"round {r + 1}: life of the optimum over {starts:.0f} starts (the check)")
-        L = run_life(_design(settings, point), starts=float(starts), **lo)
+        L = _life_of(settings, point, starts, lo, notes)
         check = life_check(targets, res.best, L)
+        check["notes"] = list(notes)
         rounds.append({"round": r + 1, "allowance": allowance.to_json(),
                        "tightened_targets": [list(c) for c in tight.constraints()],
                        "set": list(res.set_args), "feasible_new": bool(res.feasible), "check": check})
