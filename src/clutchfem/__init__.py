@@ -110,6 +110,10 @@ _GROUPS: dict[str, dict[str, str]] = {
         "best_estimate": "clutchfem.targets",
         "compensate": "clutchfem.targets",
         "Compensation": "clutchfem.targets",
+        "optimize_for_life": "clutchfem.targets",
+        "LifeDesign": "clutchfem.targets",
+        "wear_allowance": "clutchfem.targets",
+        "WearAllowance": "clutchfem.targets",
     },
     "Tolerances": {
         "parse_tolerance": "clutchfem.tolerances",
@@ -299,7 +303,18 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         run_grid,
         run_study,
     )
-    from .targets import Compensation, OptimizationResult, Targets, best_estimate, compensate, optimize
+    from .targets import (
+        Compensation,
+        LifeDesign,
+        OptimizationResult,
+        Targets,
+        WearAllowance,
+        best_estimate,
+        compensate,
+        optimize,
+        optimize_for_life,
+        wear_allowance,
+    )
     from .tolerances import (
         Allocation,
         RobustResult,

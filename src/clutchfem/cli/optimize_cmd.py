@@ -69,6 +69,11 @@ def optimize(
     rounds: Optional[int] = typer.Option(None, "--rounds", help="shifted-limit rounds at most after the deterministic "
                                "optimum (default 5; they stop earlier once feasible with converged margins)",
                                rich_help_panel="Robust design"),
+    life: Optional[str] = typer.Option(None, "--life", metavar="STARTS", help="design for life: every target still "
+                                       "met after STARTS starts (1..1e8): the targets tightened by the start "
+                                       "design's drift over its life (clutchfem life, central wear coefficient, "
+                                       "25 % reserve), the optimum checked by a full life run, redone once with its "
+                                       "own drift if it misses; default: new part only", rich_help_panel="Life"),
 ):
     """Find a design that meets the targets at least part mass (or largest torque margin);
     with --tol, one whose targets hold for the --yield share of made parts."""
@@ -78,6 +83,12 @@ def optimize(
     try:
         o.scheduler = check_cluster(o.workers, o.scheduler)
         check_out_dir(o.out)
+        n_life = None
+        if life is not None:
+            n_life = quantity("--life", life, "-", 1.0, 1e8)
+            if tol:
+                raise ParameterError("life", life, "without --tol: the robust design does not yet include the wear "
+                                     "(run optimize --life, then clutchfem tolerance on its optimum)", "option --life")
         robust_only = [(opt, v) for opt, v in (("--yield", yield_), ("--dist", dist), ("--rounds", rounds),
                                                ("--check", check or None),
                                                ("--model-error" if model_error else "--no-model-error",
@@ -106,6 +117,25 @@ def optimize(
         names = names_from(free)
         ranges = ranges_from(P, range_)
         robust = None
+        if n_life is not None:
+            from .. import optimize_for_life
+
+            lifed = optimize_for_life(s, t, names, starts=n_life, ranges=ranges or None, sample=sample,
+                                      max_evals=max_evals, workers=o.workers, scheduler=o.scheduler,
+                                      method=method or "auto", log=lambda m: err.print(escape(m)))
+            res = lifed.result
+            if o.out is not None:
+                wrote(write_report(res, o.out, final=res.final_analysis()))
+            if o.json_:
+                d = res.to_json()
+                d.pop("path")
+                d["path_length"] = len(res.path)
+                d["life"] = lifed.to_json()
+                print(dumps(d))
+                return
+            _print_optimization(res, res.final_analysis())
+            _print_life(lifed)
+            return
         if tol:
             robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, o.workers,
                              method or "pattern", rounds)
@@ -147,6 +177,21 @@ def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_eva
                            max_evals=max_evals, check=check, workers=workers, method=method,
                            **({} if rounds is None else {"rounds": rounds}),
                            log=lambda m: err.print(escape(m)))
+
+
+def _print_life(L):
+    console.print("the limits above are the ones tightened by the wear allowance; the designer's: " + ", ".join(
+        f"{c[1]} {c[3]} {c[2]:.4g}" for c in L.targets.constraints()))
+    a = L.allowance
+    for k, (lo, hi) in a.drift.items():
+        console.print(f"  drift of {escape(k)} over {a.starts:.0f} starts: {lo:+.0f} .. {hi:+.0f} rpm")
+    console.print(f"  torque at the rpm of maximum engine torque: {a.torque_drift_Nm:+.2f} N m over the life")
+    for k, v in L.check["worst_slack_rpm"].items():
+        console.print(f"  {escape(k)}: worst slack over the life {v:+.0f} rpm")
+    console.print(("[green]" if L.met else "[red]") + escape(L.message) + ("[/green]" if L.met else "[/red]"))
+    console.print("verify: clutchfem life " + escape(L.result.concept) + " "
+                  + " ".join(f"--set {escape(x)}" for x in L.result.set_args)
+                  + f" --starts {L.allowance.starts:.0f}", soft_wrap=True)
 
 
 def _print_robust(r):
