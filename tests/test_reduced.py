@@ -137,6 +137,11 @@ def test_live_analyze_answers_from_the_reduced_model_without_a_mesh_and_its_band
     doc = json.loads(cli_in_process("analyze", "concept1", "--mesh-size", "3mm", "--set", "flexure_thickness=2.15mm",
                                     "--fidelity", "live", "--json", ok=True).stdout)
     assert doc["answered_by"] == "reduced model" and doc["engagement_rpm"] == pytest.approx(a.engagement_rpm)
+    # the table: each band said to be live, with the reduced model's own error (it once raised)
+    text = cli_in_process("analyze", "concept1", "--mesh-size", "3mm", "--set", "flexure_thickness=2.15mm",
+                          "--fidelity", "live", ok=True).stdout
+    assert f"{a.engagement_rpm:.0f} rpm +- {a.errors['engagement_rpm']['total']:.0f} rpm (live:" in text
+    assert "reduced model's own" in text
 
 
 @pytest.mark.slow

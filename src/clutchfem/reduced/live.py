@@ -139,11 +139,12 @@ def _answers(design, model, engine, req, idle_rpm, v: dict, band: dict, why: dic
                   max_von_mises_Pa=peak, safety_factor=ys / peak, max_stress_rpm=hi, max_stress_location_m=[],
                   yield_strength_Pa=ys, slip_power_W=float(engine.torque_at(v["slip_rpm"]) * v["slip_rpm"] * np.pi / 30),
                   shoe_character="not computed (live)", shoe_character_per_shoe=[], mu=float(design.op.mu),
-                  mu_sensitivity={}, torque_models_at_max_engine_torque_Nm={"fe_torque_Nm": t},
+                  mu_sensitivity={}, torque_models_at_max_engine_torque_Nm={"rpm": float(engine.rpm_max_torque), "fe_torque_Nm": t},
                   contact_arc_at_max_engine_torque_deg=v.get("contact_arc_deg", math.nan), requirements=checks,
                   engine=eng_info, coupling={}, curves=_engine_only(engine), first_touch=None,
                   warnings=warnings, notes=notes,
-                  part={"mass_kg": mass} if math.isfinite(mass) else {}, analytical_available=False,
+                  part=({"mass_kg": mass, "thickness_m": float(design.thickness), "source": "live (reduced model)"}
+                        if math.isfinite(mass) else {}), analytical_available=False,
                   inputs=_inputs(design, model, eng_info, req), label=design_label(design), design_hash=design.hash,
                   fatigue_safety_factor=v.get("fatigue_safety_factor"), errors=errors,
                   answered_by="reduced model", region_key=reg.key())

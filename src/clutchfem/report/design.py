@@ -36,6 +36,10 @@ def _err(an, key: str, scale: float = 1.0, unit: str | None = None, fmt: str = "
     if not e or e.get("total") is None or e.get("value") is None:
         return ""
     u = unit or e["unit"]
+    if e.get("model_form") is None:  # a live answer: the best path's band plus the model's own error
+        own = e.get("reduced_model_rel")
+        return f" +- {e['total'] * scale:{fmt}} {u} (live: the best path's band" + \
+            (f" + the reduced model's own {100 * own:.2g} %)" if own is not None else ")")
     d = "n/a" if e["discretisation"] is None else f"{e['discretisation'] * scale:{fmt}}"
     corr = corrections_text(e)
     return f" +- {e['total'] * scale:{fmt}} {u} (mesh {d}, model {e['model_form'] * scale:{fmt}}" + \
@@ -103,8 +107,9 @@ def summary_rows(an) -> list[tuple[str, str]]:
     True"""
     req = an.requirements
     mrow = model_row(an)
+    live = getattr(an, "answered_by", "FE") == "reduced model"
     rows = ([mrow] if mrow else []) + [
-        ("engagement speed (static, FE)", _fmt(an.engagement_rpm, ".0f", "rpm") + _err(an, "engagement_rpm")
+        ("engagement speed (static, live)" if live else "engagement speed (static, FE)", _fmt(an.engagement_rpm, ".0f", "rpm") + _err(an, "engagement_rpm")
          + (f" (above the engine curve's top speed {an.max_engine_rpm:.0f} rpm: never engages on this engine)"
             if an.slip_status == "never engages" else "")
          if an.engagement_rpm is not None else "never engages"),
@@ -112,7 +117,7 @@ def summary_rows(an) -> list[tuple[str, str]]:
          f"{_fmt(an.engagement_rpm_with_ripple, '.0f', 'rpm')} / "
          f"{_fmt(an.engagement_rpm_with_ripple_typical, '.0f', 'rpm')}"
          if an.engagement_rpm_with_ripple is not None else "never engages"),
-        ("first contact on the shoe", str(an.first_touch)
+        ("first contact on the shoe", "not computed (live: --fidelity best gives it)" if live else str(an.first_touch)
          + (f" (polar angle {an.first_touch_angle_deg:.1f} deg)"
             if an.first_touch == "unknown" and getattr(an, "first_touch_angle_deg", None) is not None else "")),
     ]
@@ -171,9 +176,13 @@ def summary_rows(an) -> list[tuple[str, str]]:
                      f"{an.contact_arc_at_max_engine_torque_deg:.2f} deg{_arc_err(an, m['rpm'])} ({nominal:.0f} deg)"))
     else:
         rows.append(("analytical shoe model (eqs 2-8)",
-                     "not available (user mesh: no shoe pivot or nominal shoe arc)"))
+                     "not computed (live: --fidelity best gives it)" if live
+                     else "not available (user mesh: no shoe pivot or nominal shoe arc)"))
+        arc = an.contact_arc_at_max_engine_torque_deg
         rows.append((f"contact arc of shoe 0 at {m['rpm']:.0f} rpm",
-                     f"{an.contact_arc_at_max_engine_torque_deg:.2f} deg{_arc_err(an, m['rpm'])}"))
+                     f"{arc:.2f} deg{_arc_err(an, m['rpm'])}" if arc is not None and math.isfinite(arc)
+                     else "- (not given live: --fidelity best gives it)" if an.answered_by == "reduced model"
+                     else "-"))
     part = getattr(an, "part", None) or {}
     if "mass_kg" in part:
         rows.append((f"part mass (mesh area x rho x thickness {part['thickness_m'] * 1e3:g} mm)",
