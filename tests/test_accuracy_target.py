@@ -133,7 +133,7 @@ def test_refined_torque_keeps_its_nonlinearity_correction(base):
 def test_analyze_reports_the_refined_answers(base, monkeypatch):
     """Through analyze: the refined torque and engagement replace the analysis's, the
     requirement checks follow the refined engagement, and the report's text says why."""
-    from clutchfem.report.design import corrections_text
+    from clutchfem.report.answer_rows import corrections_text
 
     d, an, values, levels, plain = base
     for q in ("engagement_rpm", T):

@@ -1,14 +1,13 @@
 """Report stage: designer-facing output of analysed designs and design-to-targets runs:
-plots and the summary table (:mod:`.design`), the self-contained HTML page and its Markdown
+plots (:mod:`.design`), the summary table (:mod:`.answer_rows`), the self-contained HTML page and its Markdown
 twin (:mod:`.html`), which answers go on which page (:mod:`.pages`) and the field picture of
 a solved state (:mod:`.fields`)."""
 
+from .answer_rows import fatigue_rows, summary_rows
 from .design import (
                      arc_stress_plot,
                      default_design_report,
-                     fatigue_rows,
                      markdown_summary,
-                     summary_rows,
                      torque_plot,
                      torque_speed_plot,
                      write_analysis,

@@ -14,7 +14,8 @@ from ..geometry import draw_concept, fmt_param_value, get_concept
 from ..mesh import draw_mesh
 from ..targets import DIMENSIONLESS, fatigue_note
 from . import target_charts as charts
-from .design import arc_stress_plot, summary_rows, torque_plot
+from .answer_rows import summary_rows
+from .design import arc_stress_plot, torque_plot
 from .html import Figure, Page, Table, Text
 
 
