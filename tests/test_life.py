@@ -279,3 +279,59 @@ def test_life_of_concept4_wears_in_and_engagement_drifts_up():
     assert j["slip_energy_per_start_J"] > 0 and j["energy_balance"] < 1e-6
     with pytest.raises(cf.ParameterError, match="starts"):
         cf.life(d, starts=0)
+
+
+# ---------------------------------------------------------------------------- the worn part
+#: today's deterministic optimum of concept 4 (docs/durability.md): on the bound of the rule
+#: that puts the beam's end below the shoe's mid-depth
+OPTIMUM = ("hub_radius=9.7072mm shoe_arc=75.8733deg shoe_thickness=8.3128mm flexure_length=15.7297mm "
+           "flexure_thickness=3.2337mm flexure_taper=1.429751 flexure_angle=34.4978deg fillet_radius=1.2222mm "
+           "clearance=0.1274mm").split()
+
+
+def _optimum():
+    from clutchfem.geometry import get_concept
+
+    P = get_concept("concept4").Params
+    return P(**P.parse_assignments(OPTIMUM))
+
+
+def test_a_worn_face_is_checked_against_the_part_as_made():
+    """The optimum's beam ends on the rule's bound; a worn face (a table profile 50 um deeper)
+    read as a new design fails the rule (the face's minimum radius sets the mid-depth), read
+    as the worn face of the part as made it passes; a design that differs in anything but the
+    face is not a worn face and keeps its own rules."""
+    from clutchfem.geometry import TABLE_FIELDS, worn_from
+
+    new = _optimum()
+    worn = {n: new.clearance + 50e-6 for n in TABLE_FIELDS}
+    with pytest.raises(cf.ParameterError, match="flexure_length"):
+        new.replace(profile="table", **worn)
+    with worn_from(new):
+        p = new.replace(profile="table", **worn)
+        assert p.is_worn_face_of(new)
+        r = p.designed_outer_radius(np.linspace(0.0, 1.0, 5), 0.0, 1.0)
+        assert np.allclose(r, new.drum_radius - new.clearance, rtol=0, atol=1e-12)
+        assert np.allclose(p.outer_radius(np.linspace(0.0, 1.0, 5), 0.0, 1.0), r - 50e-6, rtol=0, atol=1e-9)
+        with pytest.raises(cf.ParameterError, match="flexure_length"):  # not this part's worn face
+            new.replace(profile="table", thickness=10e-3, **worn)
+    with pytest.raises(cf.ParameterError, match="new"):
+        with worn_from("concept4"):
+            pass
+
+
+@pytest.mark.slow
+def test_the_optimum_worn_on_its_rule_bound_is_rebuilt():
+    """The rebuild of the optimum's worn part (it used to be refused: the worn table moved
+    the mid-depth its beam's rule reads), twice, keeping the part as made."""
+    from clutchfem.lifetime import rebuild
+    from clutchfem.lifetime.state import WornModel
+
+    p = _optimum()
+    m = WornModel(cf.Design.from_concept("concept4", p, mesh=cf.MeshSettings(size="3mm")))
+    w = 150e-6 * (0.3 + m.s)
+    new, w1 = rebuild(m, w)
+    assert new.design.params.profile == "table" and new.made is p
+    assert abs(w1.max() - w.max()) < 1e-9 and w1.min() >= 0.3 * 150e-6 - 1e-9
+    again, _ = rebuild(new, w1 + 50e-6)
+    assert again.made is p
