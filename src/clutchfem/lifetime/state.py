@@ -34,7 +34,7 @@ from ..core import InputError, ParameterError, SolverError, brentq, rad_s_to_rpm
 from ..geometry import TABLE_FIELDS, TABLE_N, MeshSettings, worn_from
 from ..loadcase import Design, contact_extent
 
-__all__ = ["RebuildRefused", "WornModel", "StateAnswers", "rebuild"]
+__all__ = ["RebuildRefused", "WornModel", "StateAnswers", "rebuild", "state_fields"]
 
 
 class RebuildRefused(InputError):
@@ -269,3 +269,45 @@ def rebuild(model: WornModel, worn: np.ndarray) -> tuple[WornModel, np.ndarray]:
     new = WornModel(nd, c0=c0, made=model.made)
     w_new = np.interp(new.s, model.s[s_sorted], worn[s_sorted])
     return new, w_new
+
+
+def state_fields(model: WornModel, extra: np.ndarray, worn: np.ndarray, rpm: float, starts: float) -> dict:
+    """The fields of one worn state for its .vtu (:func:`~clutchfem.lifetime.life_files`): the
+    mesh of the part as it stands (rebuilt or new), the in-plane displacement [m] and the von
+    Mises stress [Pa] at ``rpm`` with the worn gaps ``extra`` (the contact solved on the one
+    factorised model; at each vertex the largest von Mises of its elements and stress levels)
+    and the worn depth ``worn`` [m] at the contact vertices (0 elsewhere; on a rebuilt part
+    the depth since the part as made).  A part whose mesh is not a plane triangle mesh keeps
+    its geometry only (no fields)."""
+    d = model.design
+    mesh = d.model.cm.mesh
+    nv = int(mesh.nvertices) if hasattr(mesh, "nvertices") else mesh.p.shape[1]
+    out = {"starts": float(starts), "rpm": float(rpm), "points_m": np.asarray(mesh.p[:, :nv]).T.copy(),
+           "triangles": None, "displacement_m": None, "von_mises_Pa": None, "worn_m": np.zeros(nv)}
+    if mesh.p.shape[0] != 2 or mesh.t.shape[0] < 3:
+        return out
+    out["triangles"] = np.asarray(mesh.t[:3]).T.copy()
+    basis = d.model.basis
+    nodal = np.asarray(basis.nodal_dofs)
+    vert_of_dof = {int(x): k for k, x in enumerate(nodal[0])}
+    nodes = model.contact.nodes
+    for i, dx in enumerate(np.asarray(nodes.dof_x)):
+        k = vert_of_dof.get(int(dx))
+        if k is not None:
+            out["worn_m"][k] = float(worn[i])
+    omega = rpm_to_rad_s(rpm)
+    w_eng = model.engagement(extra)
+    lam = model.solve(omega, extra)[0] if w_eng is not None and omega > w_eng else np.zeros(model.m)
+    b, coef, U = model.case.response.fields(np.array([omega]), lam[None, :])
+    u = np.asarray(U if U is not None else b @ coef)[:, 0]
+    disp = np.zeros((nv, 3))
+    disp[:, 0], disp[:, 1] = u[nodal[0]], u[nodal[1]]
+    out["displacement_m"] = disp
+    s = d.model.stress(u[:, None])
+    vm = np.asarray(d.model.von_mises(s)).reshape(-1)
+    tri = out["triangles"].ravel()
+    levels = vm.size // tri.size
+    v = np.zeros(nv)
+    np.maximum.at(v, np.tile(tri, levels), vm[: levels * tri.size])
+    out["von_mises_Pa"] = v
+    return out
