@@ -353,3 +353,34 @@ def test_the_optimum_worn_on_its_rule_bound_is_rebuilt():
     assert abs(w1.max() - w.max()) < 1e-9 and w1.min() >= 0.3 * 150e-6 - 1e-9
     again, _ = rebuild(new, w1 + 50e-6)
     assert again.made is p
+
+
+@pytest.mark.slow
+def test_out_writes_a_paraview_collection_of_the_wearing_part(tmp_path):
+    """``life(fields=k)`` keeps the fields of up to k worn states (the new part, the end and
+    log-spaced starts between); ``life_files`` writes them as a .pvd indexed by the starts,
+    each .vtu readable with the worn depth growing and the part displaced and stressed."""
+    import meshio
+    import pyvista as pv
+
+    d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
+    L = cf.life(d, starts=500, rebuild_depth=None, fields=3)
+    starts = [f["starts"] for f in L.fields]
+    assert starts[0] == 0.0 and starts[-1] == L.starts[-1] and len(starts) == 3
+    assert set(starts) <= set(L.starts.tolist())
+    paths = cf.life_files(L, tmp_path)
+    pvd = next(p for p in paths if p.suffix == ".pvd")
+    assert len([p for p in paths if p.suffix == ".vtu"]) == len(starts)
+    reader = pv.get_reader(str(pvd))
+    assert reader.time_values == pytest.approx(starts)
+    worn = []
+    for p in (p for p in paths if p.suffix == ".vtu"):
+        m = meshio.read(p)
+        assert m.cells_dict["triangle"].shape[1] == 3 and len(m.points) == d.model.cm.mesh.nvertices
+        assert np.abs(m.point_data["displacement_m"]).max() > 1e-6
+        assert m.point_data["von_mises_Pa"].max() > 1e6
+        worn.append(float(m.point_data["worn_depth_m"].max()))
+    assert worn[0] == 0.0 < worn[-1] and worn == sorted(worn)
+    assert worn[-1] == pytest.approx(L.worn_profile_m[-1].max(), rel=0.05)
+    with pytest.raises(cf.ParameterError, match="fields"):
+        cf.life(d, starts=10, fields=-1)
