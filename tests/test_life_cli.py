@@ -45,6 +45,12 @@ def test_bad_values_are_refused_naming_the_option(args, option):
     assert f"option {option}" in r.stderr and "is not allowed" in r.stderr
 
 
+def test_several_parameters_after_one_set_are_refused_saying_how():
+    r = cli_in_process("life", "concept4", "--set", "hub_radius=9.04mm", "shoe_arc=100.8deg", "--starts", "10")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "shoe_arc=100.8deg" in r.stderr and "each concept parameter takes its own --set" in r.stderr
+
+
 def test_duty_file_in_wrong_units_or_missing_is_refused(tmp_path):
     f = tmp_path / "duty.toml"
     f.write_text('[duty]\nheld_slip_duration = "2 mm"\n')
