@@ -92,7 +92,7 @@ class Concept31Params(Concept3Params):
         beta = math.radians(self.shoe_arc)
         rho = self.fillet_radius
         r_si, r_fo = self.radii()
-        r_so = float(np.min(self.outer_radius(np.linspace(0, beta, 61), 0.0, beta)))
+        r_so = float(np.min(self.designed_outer_radius(np.linspace(0, beta, 61), 0.0, beta)))
         if r_so - r_fo < 2 * rho + 0.5e-3:
             self.fail("flexure_thickness", f"<= {(r_so - r_fo + self.flexure_thickness - 2 * rho - 0.5e-3) * 1e3:.2f} mm "
                                            "(the relief above the flexures must be >= 2 fillet radii + 0.5 mm deep)")

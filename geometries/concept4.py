@@ -99,7 +99,7 @@ class Concept4Params(ConceptParams):
         Rd, c, ts = self.drum_radius, self.clearance, self.shoe_thickness
         beta = math.radians(self.shoe_arc)
         r_si = Rd - c - ts
-        r_so_min = float(np.min(self.outer_radius(np.linspace(0, beta, 61), 0.0, beta)))
+        r_so_min = float(np.min(self.designed_outer_radius(np.linspace(0, beta, 61), 0.0, beta)))
         rh, L, g = self.hub_radius, self.flexure_length, math.radians(self.flexure_angle)
         th = math.atan2(L * math.cos(g), rh + L * math.sin(g))
         H = K.polar(rh, th)
@@ -260,8 +260,8 @@ class Concept4Params(ConceptParams):
         """Largest flexure_length whose end still fits below the shoe (bisection)."""
         lo, hi = 1e-3, 60e-3
         r_si = self.drum_radius - self.clearance - self.shoe_thickness
-        r_so = float(np.min(self.outer_radius(np.linspace(0, math.radians(self.shoe_arc), 61), 0.0,
-                                              math.radians(self.shoe_arc))))
+        r_so = float(np.min(self.designed_outer_radius(np.linspace(0, math.radians(self.shoe_arc), 61), 0.0,
+                                                       math.radians(self.shoe_arc))))
         for _ in range(60):
             mid = 0.5 * (lo + hi)
             q = self.model_copy(update={"flexure_length": mid})

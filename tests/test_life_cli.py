@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 from support.cli import cli_in_process
@@ -42,6 +43,12 @@ def test_bad_values_are_refused_naming_the_option(args, option):
     assert r.returncode == 2, r.stderr
     assert "Traceback" not in r.stderr
     assert f"option {option}" in r.stderr and "is not allowed" in r.stderr
+
+
+def test_several_parameters_after_one_set_are_refused_saying_how():
+    r = cli_in_process("life", "concept4", "--set", "hub_radius=9.04mm", "shoe_arc=100.8deg", "--starts", "10")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "shoe_arc=100.8deg" in r.stderr and "each concept parameter takes its own --set" in r.stderr
 
 
 def test_duty_file_in_wrong_units_or_missing_is_refused(tmp_path):
@@ -113,3 +120,14 @@ def test_out_writes_the_json_and_pictures_that_keep_the_rule(short):
     assert f"{d['limits']['engagement_min_rpm']:.0f} rpm" in legend and f"{d['limits']['slip_max_rpm']:.0f} rpm" in legend
     rec = rule(out / f"{stem}_pressure.png")
     assert any("new" in t for ax in rec["axes"] for t in ax["legend"])
+    # the wearing part for ParaView: the collection indexes one .vtu per kept state by its starts
+    import xml.etree.ElementTree as ET
+
+    pvd = out / f"{stem}.pvd"
+    assert f"wrote {pvd}" in stderr
+    sets = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
+    steps = [float(e.get("timestep")) for e in sets]
+    assert steps[0] == 0 and steps[-1] == 400 and steps == sorted(steps) and len(steps) >= 2
+    starts = np.asarray(d["arrays"]["starts"])
+    assert all(np.min(np.abs(starts - n)) <= 1e-9 * max(n, 1.0) for n in steps)
+    assert all((out / e.get("file")).is_file() for e in sets)

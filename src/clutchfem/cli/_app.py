@@ -108,16 +108,36 @@ def main() -> None:
         raise
 
 
+def _set_hint(exc: ClickException) -> None:
+    """``--set a=1 b=2`` (several parameters after one ``--set``) is refused by the parser as
+    "unexpected extra argument(s)": say how to give them."""
+    msg = getattr(exc, "message", "")
+    if "unexpected extra argument" in msg and "=" in msg:
+        exc.message = (f"{msg}: each concept parameter takes its own --set "
+                       "(--set flexure_thickness=2mm --set clearance=0.3mm)")
+
+
 def _run() -> None:
     """The app, with usage errors as one line when standard error is not a terminal."""
     if sys.stderr.isatty():
-        app()
-        return
+        try:
+            code = app(standalone_mode=False)
+        except ClickException as exc:
+            _set_hint(exc)
+            from typer import rich_utils
+
+            rich_utils.rich_format_error(exc)
+            raise SystemExit(exc.exit_code) from None
+        except typer.Abort:
+            print("aborted", file=sys.stderr)
+            raise SystemExit(1) from None
+        raise SystemExit(code if isinstance(code, int) else 0)
     # standard error is a file or a pipe: a usage error is one `error:` line (typer draws a
     # box wrapped at 80 columns, and a script reading the first line got "Usage: ...")
     try:
         code = app(standalone_mode=False)
     except ClickException as exc:
+        _set_hint(exc)
         ctx = getattr(exc, "ctx", None)
         where = f" (see {ctx.command_path} --help)" if ctx is not None else ""
         print(f"error: {exc.format_message()}{where}", file=sys.stderr)

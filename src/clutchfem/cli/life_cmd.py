@@ -111,6 +111,7 @@ def life(
     of a start, and the first start at which a requirement is missed."""
     from .. import DriveLine, DutyCycle, WearParams, dumps, life_files
     from .. import life as run
+    from ..lifetime.run import FIELD_STATES
 
     try:
         check_out_dir(o.out)
@@ -146,7 +147,7 @@ def life(
                                  drum_radius=o.drum_radius, thickness=o.thickness)
             stage(f"{n:.0f} starts: the worn states")
             L = run(design, starts=n, duty=dc, engine=eng, drive=drive, wear=wear, requirements=req,
-                    idle_rpm=idle, log=stage, **depth)
+                    idle_rpm=idle, log=stage, fields=FIELD_STATES if o.out is not None else 0, **depth)
         if o.out is not None:
             wrote(life_files(L, o.out))
         if o.json_:

@@ -22,7 +22,10 @@ size fields and mass properties.
 
 from __future__ import annotations
 
+import contextvars
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import ClassVar, Literal
 
@@ -31,6 +34,47 @@ from pydantic import model_serializer
 
 from ..core import ParameterError, ParamSet, choice, param
 from .profile import MIN_PROFILE_CLEARANCE, TABLE_FIELDS, TABLE_N, table_param, table_spline
+
+#: the new part whose worn shoe face a ``table`` profile is (:func:`worn_from`), or None
+_AS_DESIGNED: contextvars.ContextVar = contextvars.ContextVar("clutchfem_as_designed", default=None)
+#: the fields that only shape the shoe's outer (rubbing) surface: the ones wear may change
+_PROFILE_FIELDS = frozenset(("profile", "clearance_tip", "eccentricity", "eccentric_angle", *TABLE_FIELDS))
+
+
+@contextmanager
+def worn_from(new: "ConceptParams") -> Iterator[None]:
+    """Inside this block a ``table`` profile that differs from the new part ``new`` only in
+    its outer (rubbing) surface is *the worn face of that part*: the concept's design rules
+    and inner geometry that read the shoe's outer surface
+    (:meth:`ConceptParams.designed_outer_radius`) read ``new``'s, the surface the part was
+    made with.  Wear removes material from the face; the flexures, heels and rounds stay
+    where they were cut, so a design rule that places them against the outer surface (e.g.
+    concept 4's beam end below the shoe's mid-depth) must not move with the wear.
+
+    Parameters
+    ----------
+    new : ConceptParams
+        The part as made (as designed).
+
+    Examples
+    --------
+    >>> from clutchfem.geometry import get_concept, TABLE_FIELDS
+    >>> P = get_concept("concept4").Params
+    >>> new = P()
+    >>> worn = {n: new.clearance + 50e-6 for n in TABLE_FIELDS}     # 50 um off the face
+    >>> with worn_from(new):
+    ...     p = new.replace(profile="table", **worn)
+    ...     r = float(p.designed_outer_radius([0.0], 0.0, 1.0)[0])
+    >>> round(r * 1e3, 4), round(float(p.outer_radius([0.0], 0.0, 1.0)[0]) * 1e3, 4)
+    (33.8, 33.75)
+    """
+    if not isinstance(new, ConceptParams):
+        raise ParameterError("new", type(new).__name__, "the ConceptParams of the part as made", "worn part")
+    token = _AS_DESIGNED.set(new)
+    try:
+        yield
+    finally:
+        _AS_DESIGNED.reset(token)
 
 
 class ConceptParams(ParamSet):
@@ -115,6 +159,23 @@ class ConceptParams(ParamSet):
         ux, uy = np.cos(theta), np.sin(theta)
         b = ux * cx + uy * cy
         return b + np.sqrt(rho_e ** 2 - (cx * cx + cy * cy) + b * b)
+
+    def designed_outer_radius(self, theta, t0: float, t1: float) -> np.ndarray:
+        """Radius of the shoe's outer surface *as designed* (:meth:`outer_radius` of the part as
+        made): inside :func:`worn_from` a ``table`` profile that is the worn face of that part
+        reads the new part's surface; otherwise this design's own.  Design rules and the inner
+        geometry placed against the outer surface use this (wear does not move them)."""
+        new = _AS_DESIGNED.get()
+        if new is not None and self.is_worn_face_of(new):
+            return new.outer_radius(theta, t0, t1)
+        return self.outer_radius(theta, t0, t1)
+
+    def is_worn_face_of(self, new: "ConceptParams") -> bool:
+        """True when this design is ``new`` with only its outer surface changed to a ``table``
+        profile (every other parameter equal)."""
+        if type(new) is not type(self) or self.profile != "table":
+            return False
+        return all(getattr(self, n) == getattr(new, n) for n in type(self).model_fields if n not in _PROFILE_FIELDS)
 
     @property
     def table(self) -> tuple[float, ...]:

@@ -18,6 +18,6 @@ from .duty import DutyCycle
 from .figures import life_files
 from .result import Life
 from .run import life
-from .state import StateAnswers, WornModel, rebuild
+from .state import RebuildRefused, StateAnswers, WornModel, rebuild
 
-__all__ = ["DutyCycle", "Life", "StateAnswers", "WornModel", "life", "life_files", "rebuild"]
+__all__ = ["DutyCycle", "Life", "RebuildRefused", "StateAnswers", "WornModel", "life", "life_files", "rebuild"]

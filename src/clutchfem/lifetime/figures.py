@@ -2,14 +2,19 @@
 :meth:`~clutchfem.lifetime.Life.to_json` document), ``<label>_life_answers.png`` (engagement and
 slip speed against the starts with the requirement limits, the contact arc and the slip energy
 per start) and ``<label>_life_pressure.png`` (the contact pressure along the shoe's arc new and
-worn at the rpm of maximum engine torque, and the worn depth along the arc).  Drawn with
+worn at the rpm of maximum engine torque, and the worn depth along the arc); with the fields
+of worn states (``life(fields=...)``) also ``<label>_life.pvd``, the ParaView collection of
+``<label>_life_fields/state_NNN.vtu`` (one per kept state, its time the number of starts: the
+part's mesh as it stands with the displacement, von Mises stress and worn depth).  Drawn with
 :func:`clutchfem.core.figures.figure` / :func:`~clutchfem.core.figures.save_figure` (the
 picture rule: every number with its unit, no legend over the data)."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from xml.sax.saxutils import quoteattr
 
+import meshio
 import numpy as np
 
 from ..core import InputError, figure, save_figure, write
@@ -72,9 +77,38 @@ def _pressure_png(L, path: Path) -> Path:
     return save_figure(fig, path)
 
 
+def _pvd(L, path: Path) -> list[Path]:
+    """``path`` (.pvd) and one .vtu per kept state in ``<stem>_fields/`` beside it."""
+    folder = path.with_name(path.stem + "_fields")
+    if folder.exists() and not folder.is_dir():
+        raise InputError(f"--out {path.parent}: {folder.name} exists and is not a folder: remove it or choose "
+                         "another --out")
+    folder.mkdir(exist_ok=True)
+    rows, written = [], []
+    for k, f in enumerate(L.fields):
+        pts = np.zeros((len(f["points_m"]), 3))
+        pts[:, :2] = f["points_m"]
+        data = {"worn_depth_m": np.asarray(f["worn_m"], dtype=float)}
+        if f["displacement_m"] is not None:
+            data["displacement_m"] = np.asarray(f["displacement_m"], dtype=float)
+            data["von_mises_Pa"] = np.asarray(f["von_mises_Pa"], dtype=float)
+        cells = [("triangle", np.asarray(f["triangles"], dtype=np.int64))] if f["triangles"] is not None else \
+            [("vertex", np.arange(len(pts), dtype=np.int64)[:, None])]
+        vtu = folder / f"state_{k:03d}.vtu"
+        meshio.write(vtu, meshio.Mesh(pts, cells, point_data=data), file_format="vtu")
+        written.append(vtu)
+        rows.append(f'    <DataSet timestep="{f["starts"]:.10g}" group="" part="0" '
+                    f'file={quoteattr(f"{folder.name}/{vtu.name}")}/>')
+    path.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
+                    "  <Collection>\n" + "\n".join(rows) + "\n  </Collection>\n</VTKFile>\n")
+    return [path, *written]
+
+
 def life_files(L, out) -> list[Path]:
     """Write ``<label>_life.json``, ``<label>_life_answers.png`` and ``<label>_life_pressure.png``
-    (module docstring) into the folder ``out``; returns their paths.
+    and, when the run kept the fields of worn states (``life(fields=...)``), the ParaView
+    collection ``<label>_life.pvd`` with its .vtu files (module docstring) into the folder
+    ``out``; returns their paths.
 
     Parameters
     ----------
@@ -106,4 +140,6 @@ def life_files(L, out) -> list[Path]:
     write(paths[0], L.to_json(), indent=2)
     _answers_png(L, paths[1])
     _pressure_png(L, paths[2])
+    if L.fields:
+        paths += _pvd(L, out / f"{stem}_life.pvd")
     return paths

@@ -57,6 +57,9 @@ class Life:
         from new) with its band over Archard's k.
     energy_balance : float
         Largest relative residual of the energy balance of every start computed.
+    fields : list of dict
+        The kept worn states' mesh, displacement, von Mises stress and worn depth
+        (``life(fields=...)``; :func:`~clutchfem.lifetime.state.state_fields`).
 
     Examples
     --------
@@ -98,6 +101,7 @@ class Life:
     seconds: float
     notes: list = field(default_factory=list)
     states: list = field(default_factory=list, repr=False)
+    fields: list = field(default_factory=list, repr=False)
 
     ARRAYS = ("engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "contact_arc_deg",
               "slip_energy_per_start_J", "time_to_lockup_s", "peak_slip_power_W", "engine_droop_rpm",
@@ -105,7 +109,7 @@ class Life:
 
     @classmethod
     def build(cls, design, run, *, engine, drive, wear, duty, req, idle_rpm, rebuilds, rebuild_depth,
-              energy_balance, seconds, notes, profile_s) -> "Life":
+              energy_balance, seconds, notes, profile_s, fields=()) -> "Life":
         """The result of a wear run (:func:`~clutchfem.durability.integrate_wear` whose infos are
         the life run's states)."""
         info = run.info
@@ -170,7 +174,7 @@ class Life:
             assumptions={"drive_line": drive.model_dump(), "wear": {**wear.model_dump(), "k_used": k},
                          "duty_cycle": None if duty is None else duty.model_dump(),
                          "engine": {"source": engine.source, "assumed_shape": engine.assumed}},
-            inputs=d_in, seconds=float(seconds), notes=list(notes), states=list(info))
+            inputs=d_in, seconds=float(seconds), notes=list(notes), states=list(info), fields=list(fields))
 
     def to_json(self) -> dict:
         """Strict-JSON dict: ``arrays`` against ``starts`` (units in the keys), the worn

@@ -45,7 +45,7 @@ from ..durability.engagement import LIMITER_SHARE
 from ..loadcase import Design
 from .duty import DutyCycle
 from .result import Life
-from .state import WornModel, rebuild
+from .state import WornModel, rebuild, state_fields
 
 __all__ = ["life"]
 
@@ -57,6 +57,8 @@ PROFILE_S = np.linspace(0.0, 1.0, 41)
 REBUILD_DEPTH = 0.1e-3
 #: relative tolerance of the starts' integration (their energy balance closes to ~1e-8)
 RTOL = 1e-8
+#: worn states whose fields ``clutchfem life --out`` keeps for its .pvd (``life(fields=...)``)
+FIELD_STATES = 12
 #: relative change of the starts' sliding speed or patch length after which the heat
 #: partition is evaluated again
 PARTITION_CHANGE = 0.1
@@ -76,7 +78,8 @@ class _Holder:
 
 def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engine: EngineCurve | None = None,
          drive: DriveLine | None = None, wear: WearParams | None = None, requirements: Requirements | None = None,
-         idle_rpm: float | None = None, rebuild_depth: float | None = REBUILD_DEPTH, log=None) -> Life:
+         idle_rpm: float | None = None, rebuild_depth: float | None = REBUILD_DEPTH, fields: int = 0,
+         log=None) -> Life:
     """The clutch over ``starts`` starts (module docstring).
 
     Parameters
@@ -97,6 +100,11 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
     rebuild_depth : float or None
         Worn depth [m] after which the part is rebuilt with its worn profile (None: never;
         the wear is then kept in the contact gaps of the new part's model).
+    fields : int
+        Number of worn states whose displacement and von Mises fields at the rpm of maximum
+        engine torque are kept (``Life.fields``, written as a ParaView .pvd by
+        :func:`~clutchfem.lifetime.life_files`): the new part, the end of the life and states
+        log-spaced in the starts between (0..200; 0: none, 1: the end only).
     log : callable, optional
         Receives a line per wear state.
 
@@ -125,6 +133,8 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
                                       or not 1e-6 <= rebuild_depth <= 1e-2):
         raise ParameterError("rebuild_depth", rebuild_depth, "a worn depth in [1 um, 10 mm] or None (never rebuild)",
                              "life")
+    if isinstance(fields, bool) or not isinstance(fields, (int, np.integer)) or not 0 <= fields <= 200:
+        raise ParameterError("fields", fields, "a number of worn states in [0, 200] whose fields are kept", "life")
     if design.drum_radius is None:
         raise ParameterError("drum_radius", None, "the drum's inner radius in m (a user mesh carries none)", "life")
     if rebuild_depth is not None and design.params is None:
@@ -172,7 +182,20 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
         h.count += 1
         return np.concatenate([dh, [dd]]), J, info
 
+    want = _field_starts(int(fields), float(starts))
+    kept: list[dict] = []
+
+    def keep(n, W):
+        while want and n >= want[0] * (1 - 1e-9):
+            want.pop(0)
+            if not kept or kept[-1]["starts"] != n:
+                kept.append(state_fields(h.model, W[:-1] + W[-1], W[:-1], float(engine.rpm_max_torque), n))
+
+    if fields > 1:
+        keep(0.0, np.zeros(h.model.m + 1))
+
     def on_state(n, W, info):
+        keep(n, W)
         if rebuild_depth is None or np.max(np.abs(W[:-1] - h.built)) < rebuild_depth:
             return None
         new, w_new = rebuild(h.model, W[:-1])
@@ -190,7 +213,18 @@ def life(design, *, starts: float = 100_000, duty: DutyCycle | None = None, engi
         notes.append(f"idle speed {idle:.0f} rpm ASSUMED")
     return Life.build(design, run, engine=engine, drive=drive, wear=wear, duty=duty, req=req, idle_rpm=idle,
                       rebuilds=h.rebuilds, rebuild_depth=rebuild_depth, energy_balance=h.max_balance,
-                      seconds=time.perf_counter() - t0, notes=notes, profile_s=PROFILE_S)
+                      seconds=time.perf_counter() - t0, notes=notes, profile_s=PROFILE_S, fields=kept)
+
+
+def _field_starts(k: int, starts: float) -> list[float]:
+    """The starts at which ``k`` states' fields are kept: 0, the end and log-spaced between
+    (from starts / 1e4, at least 1)."""
+    if k <= 0:
+        return []
+    if k == 1:
+        return [starts]
+    inner = np.geomspace(max(1.0, starts * 1e-4), starts, k - 1) if starts > 1 else np.array([starts])
+    return sorted({0.0, *map(float, inner[:-1]), starts})
 
 
 def _hat(x: np.ndarray, v: float) -> np.ndarray:

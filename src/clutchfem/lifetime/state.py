@@ -30,11 +30,25 @@ from functools import cached_property
 import numpy as np
 
 from ..contact import lazy, smooth_lcp, solve_lcp
-from ..core import InputError, SolverError, brentq, rad_s_to_rpm, rpm_to_rad_s, wrap_angle
-from ..geometry import TABLE_FIELDS, TABLE_N, MeshSettings
+from ..core import InputError, ParameterError, SolverError, brentq, rad_s_to_rpm, rpm_to_rad_s, wrap_angle
+from ..geometry import TABLE_FIELDS, TABLE_N, MeshSettings, worn_from
 from ..loadcase import Design, contact_extent
 
-__all__ = ["WornModel", "StateAnswers", "rebuild"]
+__all__ = ["RebuildRefused", "WornModel", "StateAnswers", "rebuild", "state_fields"]
+
+
+class RebuildRefused(InputError):
+    """The worn part cannot be made anew: a concept rule refuses its worn profile (say a face
+    worn through to a rule that reads the face itself).  The message names the rule; the life
+    can still run with the wear kept in the contact gaps (``rebuild_depth=None``).
+
+    Examples
+    --------
+    >>> import clutchfem as cf
+    >>> from clutchfem.lifetime import RebuildRefused
+    >>> issubclass(RebuildRefused, cf.InputError)
+    True
+    """
 
 
 @dataclass(frozen=True)
@@ -55,7 +69,7 @@ class StateAnswers:
 class WornModel:
     """A design's contact problem with worn clearances (module docstring)."""
 
-    def __init__(self, design: Design, c0=None):
+    def __init__(self, design: Design, c0=None, made=None):
         if not isinstance(design, Design):
             raise InputError(f"a worn model needs a Design (got {type(design).__name__})")
         self.design = design
@@ -76,6 +90,8 @@ class WornModel:
         self.arc_deg = abs(math.degrees(arcs[0][1] - arcs[0][0])) if arcs else math.nan
         # the new part's clearance along the shoe (a function of s), and the gap correction e
         self.c0 = c0 if c0 is not None else (np.sort(s), nd.gap0[np.argsort(s)].copy())
+        #: the concept parameters of the part as made (the rebuilds' design rules read them)
+        self.made = made if made is not None else design.params
         self.base = np.interp(s, *self.c0) - nd.gap0
         self.thickness = design.thickness
         self.weight = nd.weight
@@ -224,7 +240,12 @@ def rebuild(model: WornModel, worn: np.ndarray) -> tuple[WornModel, np.ndarray]:
     """The worn part made anew (module docstring): the concept's ``table`` profile through
     the worn clearance c0 + w at the 17 knots, meshed and solved again, and the worn depths
     carried over to its contact nodes (by arc fraction along the shoe).  Returns (the new
-    model, the worn depths at its nodes)."""
+    model, the worn depths at its nodes).
+
+    The concept's design rules read the part *as made* (:func:`clutchfem.geometry.worn_from`):
+    wear takes material off the face, the flexures and heels stay where they were cut, so a
+    design on a rule's bound (an optimum) stays buildable as it wears.  A worn profile that a
+    rule still refuses raises :class:`RebuildRefused` naming the rule."""
     d = model.design
     if d.params is None or d.concept is None:
         raise InputError(f"{d.name}: a user mesh has no profile parameters: its wear is kept in the contact gaps only")
@@ -234,9 +255,59 @@ def rebuild(model: WornModel, worn: np.ndarray) -> tuple[WornModel, np.ndarray]:
     wk = np.interp(knots, model.s[s_sorted], worn[s_sorted])
     v = np.interp(knots, *c0) + wk
     vals = {n: float(x) for n, x in zip(TABLE_FIELDS, v)}
-    p = d.params.replace(profile="table", **vals)
     ms = MeshSettings(**d.cm.mesh_settings) if d.cm.mesh_settings else None
-    nd = Design.from_concept(d.concept, p, d.op, ms)
-    new = WornModel(nd, c0=c0)
+    # the worn face of the part as made: the concept's rules that place its flexures against
+    # the shoe's outer surface read the surface it was made with (wear does not move them)
+    with worn_from(model.made):
+        try:
+            p = d.params.replace(profile="table", **vals)
+        except ParameterError as exc:
+            raise RebuildRefused(f"{d.name}: the part worn {1e6 * float(np.max(worn)):.1f} um deep cannot be rebuilt: "
+                             f"{exc}; run the life with rebuild_depth=None (--rebuild-depth never): the wear "
+                             "then stays in the contact gaps of the new part's model") from None
+        nd = Design.from_concept(d.concept, p, d.op, ms)
+    new = WornModel(nd, c0=c0, made=model.made)
     w_new = np.interp(new.s, model.s[s_sorted], worn[s_sorted])
     return new, w_new
+
+
+def state_fields(model: WornModel, extra: np.ndarray, worn: np.ndarray, rpm: float, starts: float) -> dict:
+    """The fields of one worn state for its .vtu (:func:`~clutchfem.lifetime.life_files`): the
+    mesh of the part as it stands (rebuilt or new), the in-plane displacement [m] and the von
+    Mises stress [Pa] at ``rpm`` with the worn gaps ``extra`` (the contact solved on the one
+    factorised model; at each vertex the largest von Mises of its elements and stress levels)
+    and the worn depth ``worn`` [m] at the contact vertices (0 elsewhere; on a rebuilt part
+    the depth since the part as made).  A part whose mesh is not a plane triangle mesh keeps
+    its geometry only (no fields)."""
+    d = model.design
+    mesh = d.model.cm.mesh
+    nv = int(mesh.nvertices) if hasattr(mesh, "nvertices") else mesh.p.shape[1]
+    out = {"starts": float(starts), "rpm": float(rpm), "points_m": np.asarray(mesh.p[:, :nv]).T.copy(),
+           "triangles": None, "displacement_m": None, "von_mises_Pa": None, "worn_m": np.zeros(nv)}
+    if mesh.p.shape[0] != 2 or mesh.t.shape[0] < 3:
+        return out
+    out["triangles"] = np.asarray(mesh.t[:3]).T.copy()
+    basis = d.model.basis
+    nodal = np.asarray(basis.nodal_dofs)
+    vert_of_dof = {int(x): k for k, x in enumerate(nodal[0])}
+    nodes = model.contact.nodes
+    for i, dx in enumerate(np.asarray(nodes.dof_x)):
+        k = vert_of_dof.get(int(dx))
+        if k is not None:
+            out["worn_m"][k] = float(worn[i])
+    omega = rpm_to_rad_s(rpm)
+    w_eng = model.engagement(extra)
+    lam = model.solve(omega, extra)[0] if w_eng is not None and omega > w_eng else np.zeros(model.m)
+    b, coef, U = model.case.response.fields(np.array([omega]), lam[None, :])
+    u = np.asarray(U if U is not None else b @ coef)[:, 0]
+    disp = np.zeros((nv, 3))
+    disp[:, 0], disp[:, 1] = u[nodal[0]], u[nodal[1]]
+    out["displacement_m"] = disp
+    s = d.model.stress(u[:, None])
+    vm = np.asarray(d.model.von_mises(s)).reshape(-1)
+    tri = out["triangles"].ravel()
+    levels = vm.size // tri.size
+    v = np.zeros(nv)
+    np.maximum.at(v, np.tile(tri, levels), vm[: levels * tri.size])
+    out["von_mises_Pa"] = v
+    return out

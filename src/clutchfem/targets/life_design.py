@@ -33,6 +33,7 @@ import numpy as np
 from ..analysis import Requirements
 from ..core import ParameterError
 from ..geometry import get_concept
+from ..lifetime import RebuildRefused
 from ..lifetime import life as run_life
 from ..loadcase import Design
 from .optimization import optimize
@@ -268,12 +269,12 @@ def _design(settings, point: dict | None) -> Design:
 
 def _life_of(settings, point, starts, options, notes):
     """:func:`~clutchfem.life` of the design at ``point``; a rebuild of the worn part that the
-    concept's rules refuse (a design on a rule's bound: the worn profile table moves the shoe's
-    inner surface in the rule's eyes) is said in ``notes`` and the life run again with the
-    wear kept in the contact gaps (``rebuild_depth=None``)."""
+    concept's rules still refuse (:class:`~clutchfem.lifetime.RebuildRefused`: the rules read
+    the part as made, so only a rule that reads the worn face itself) is said in ``notes`` and
+    the life run again with the wear kept in the contact gaps (``rebuild_depth=None``)."""
     try:
         return run_life(_design(settings, point), starts=float(starts), **options)
-    except ParameterError as exc:
+    except RebuildRefused as exc:
         if "rebuild_depth" in options and options["rebuild_depth"] is None:
             raise
         notes.append(f"life of {'the start design' if not point else 'the optimum'}: the rebuild of the worn part "
