@@ -9,6 +9,7 @@ import sys
 from typing import Annotated, Optional
 
 import typer
+from typer import rich_utils
 from typer._click.exceptions import ClickException  # typer vendors click (its BadParameter's base)
 
 from .. import __version__
@@ -124,8 +125,6 @@ def _run() -> None:
             code = app(standalone_mode=False)
         except ClickException as exc:
             _set_hint(exc)
-            from typer import rich_utils
-
             rich_utils.rich_format_error(exc)
             raise SystemExit(exc.exit_code) from None
         except typer.Abort:

@@ -29,6 +29,8 @@ from .common import (
 )
 
 PANEL = "Life"
+#: worn states whose fields ``--out`` keeps for its .pvd (``cf.life(fields=...)``)
+FIELD_STATES = 12
 #: option -> field of DriveLine (the assumed inertias, loads and throttle ramp of a start)
 DRIVE_OPTIONS = {"--engine-inertia": "engine_inertia", "--driven-inertia": "driven_inertia",
                  "--drag-torque": "drag_torque", "--cutting-torque": "cutting_torque",
@@ -111,7 +113,6 @@ def life(
     of a start, and the first start at which a requirement is missed."""
     from .. import DriveLine, DutyCycle, WearParams, dumps, life_files
     from .. import life as run
-    from ..lifetime.run import FIELD_STATES
 
     try:
         check_out_dir(o.out)

@@ -57,8 +57,6 @@ PROFILE_S = np.linspace(0.0, 1.0, 41)
 REBUILD_DEPTH = 0.1e-3
 #: relative tolerance of the starts' integration (their energy balance closes to ~1e-8)
 RTOL = 1e-8
-#: worn states whose fields ``clutchfem life --out`` keeps for its .pvd (``life(fields=...)``)
-FIELD_STATES = 12
 #: relative change of the starts' sliding speed or patch length after which the heat
 #: partition is evaluated again
 PARTITION_CHANGE = 0.1
