@@ -37,6 +37,17 @@ def _isolated_cache(tmp_path_factory, request):
 
 
 @pytest.fixture(autouse=True)
+def _cache_kept():
+    """The run's one cache for every test: an example that points ``CLUTCHFEM_CACHE`` at an
+    empty folder of its own (the reduced model's doctests do, to show a build) would leave
+    every later test of its worker meshing from scratch into it; the variable is put back."""
+    before = os.environ.get("CLUTCHFEM_CACHE")
+    yield
+    if before is not None and os.environ.get("CLUTCHFEM_CACHE") != before:
+        os.environ["CLUTCHFEM_CACHE"] = before
+
+
+@pytest.fixture(autouse=True)
 def _no_rows_from_another_test():
     """Each test evaluates its own designs: the study engine's in-process rows of recent
     designs (clutchfem.evaluation.batch.RECENT_ROWS) are not shared between tests, so a test
