@@ -150,7 +150,9 @@ def takes(*names: str, live: bool = False):
                 from .common import working  # stack (~1.5 s); a live design needs none of it (docs/reduced.md)
 
                 with working(f"{fn.__name__}: loading the FE stack"):
-                    from .. import analyze  # noqa: F401
+                    # analyze itself is light (a live answer needs none of the FE stack); check_speeds
+                    # lives with the FE steps (analysis.torque), which load the mesh and the FE model
+                    from .. import analyze, check_speeds  # noqa: F401
             return fn(o, **given)
 
         del command.__wrapped__  # typer reads the signature below, not the function's own
