@@ -32,6 +32,7 @@ HEAVY = {"matplotlib", "pyvista", "vtk", "dask", "distributed", "sksparse", "thr
          "scipy.optimize",  # 0.7 s (measured with python -X importtime): the base layer's brentq defers it
          "sklearn",  # ~0.6 s: the reduced model's fit only (a fitted model answers with numpy)
          "scipy.stats",  # ~0.4 s: the reduced model's Sobol sample (a build's, not a live answer's)
+         "scipy.interpolate",  # 0.35 s: a table profile's spline (a live answer's concept needs none)
          "emcee",  # the calibration's sampler: only when a calibration samples (Laplace does not)
          "PIL"}  # matplotlib's image writer: only when a picture is written
 #: the faces whose commands import the API on use (the command line starts in ~0.3 s instead of ~3 s)

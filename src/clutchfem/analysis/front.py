@@ -8,11 +8,16 @@ mesh and the FE model (docs/reduced.md).
 
 from __future__ import annotations
 
-from ..clutch import EngineCurve, RippleModel
+from typing import TYPE_CHECKING
+
+from ..clutch import EngineCurve
 from ..core import ParameterError, as_bool
 from ..loadcase import Design
 from .answers import Analysis, Requirements
 from .idle import LIVE
+
+if TYPE_CHECKING:
+    from ..clutch import RippleModel  # (the FE steps' 2-stroke ripple: scipy.special)
 
 __all__ = ["analyze"]
 
