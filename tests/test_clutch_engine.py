@@ -172,3 +172,26 @@ def test_first_slip_rpm_equals_slip_rpm_and_stops_at_the_answer(clutch):
         above = np.union1d(grid, c.rpm_range)
         above = above[above > s]
         assert max(calls) <= above[0]  # nothing past the bracket of the answer
+
+
+def test_the_curves_pchip_is_scipys():
+    """The engine curve's interpolant (numpy, for the start-up of a live answer) has scipy's
+    PCHIP slopes and pieces: 2 to 11 points, flat runs, peaks and valleys, at and between the
+    points (round-off only)."""
+    from scipy.interpolate import PchipInterpolator
+
+    from clutchfem.clutch.engine import Pchip
+
+    rng = np.random.default_rng(0)
+    for trial in range(500):
+        n = int(rng.integers(2, 12))
+        x = np.sort(rng.choice(np.arange(1000.0, 15000.0, 50.0), n, replace=False))
+        y = 4 * rng.random(n)
+        if trial % 3 == 0:
+            y[rng.integers(0, n, n // 2)] = y[0]  # flat runs
+        q = np.concatenate([np.linspace(x[0], x[-1], 97), x])
+        want = PchipInterpolator(x, y, extrapolate=False)(q)
+        np.testing.assert_allclose(Pchip(x, y)(q), want, rtol=0, atol=1e-13 * y.max(), err_msg=f"{x}, {y}")
+    e = EngineCurve.default()
+    q = np.linspace(*e.rpm_range, 1001)
+    np.testing.assert_allclose(e.torque_at(q), PchipInterpolator(e.rpm, e.torque)(q), rtol=1e-14)

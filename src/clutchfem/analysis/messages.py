@@ -25,7 +25,8 @@ from .answers import (
     SlipAnswer,
     StressAnswer,
 )
-from .requirements import DEFAULT_IDLE_RPM, WHIRL_MARGIN
+from .idle import DEFAULT_IDLE_RPM
+from .requirements import WHIRL_MARGIN
 
 #: normal force with / without friction above which a plus shoe is called strongly
 #: self-energising (near self-locking) in the warnings

@@ -1,7 +1,8 @@
 """From a design to the answers a clutch designer asks for: the steps of an analysis, in order.
 
-:func:`analyze` runs, on one :class:`~clutchfem.loadcase.Design` (one FE model, one
-factorisation for everything below):
+:func:`run_steps` runs, on one :class:`~clutchfem.loadcase.Design` (one FE model, one
+factorisation for everything below; :func:`clutchfem.analysis.analyze` checks the inputs and
+hands a live design to the reduced model instead, without loading this module):
 
 1. :func:`~.torque.slip_step`: the slip speed with the drum held, from the *exact* FE
    torque (crossings bracketed on a fixed internal grid and refined by bisection with FE
@@ -56,15 +57,16 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..clutch import EngineCurve, RippleModel
-from ..core import EquilibriumError, ParameterError, as_bool, rpm_to_rad_s
-from ..loadcase import Design, design_inputs, design_label
+from ..clutch import EngineCurve
+from ..core import EquilibriumError, rpm_to_rad_s
+from ..loadcase import design_inputs, design_label
 from ..mesh import mesh_mass_properties
 from .answers import Analysis, Requirements
 from .coupling import answer_curves, coupling_step, torque_models
 from .error_band import error_step
+from .idle import idle_speed
 from .messages import design_notes, design_warnings
-from .requirements import idle_speed, requirements_step, whirl_step
+from .requirements import requirements_step, whirl_step
 from .sensitivity import drum_sensitivity_step
 from .strength import fatigue_step, nonlinearity_step, peak_sweep, stress_step
 from .torque import (
@@ -78,69 +80,12 @@ from .torque import (
     slip_step,
 )
 
-#: the answerer of designs whose operating point's fidelity is ``"live"``: the reduced model's
-#: (:func:`clutchfem.reduced.live_analysis`), registered by that stage when it is imported
-#: (it sits above this one: it is trained from these answers).  ``import clutchfem`` and
-#: ``clutchfem.analyze`` load it.
-LIVE: list = []
 
-
-def analyze(design, *, engine: EngineCurve | None = None, requirements: Requirements | None = None,
-            idle_rpm: float | None = None, ripple_model: RippleModel | None = None,
-            errors: bool = True, fatigue_loads=None, fatigue_params=None) -> Analysis:
-    """Run the steps (module docstring) on ``design`` (a :class:`~clutchfem.loadcase.Design`:
-    mesh, parameters, material, mu, rotation, drum, thickness, softening and output speeds in
-    its operating point).  engine: full-throttle curve (default: the ASSUMED 56.5 cc saw
-    curve); requirements: factors a, b; idle_rpm: overrides the engine's idle speed (else the
-    curve's, else 2700 rpm, ASSUMED); errors: estimate the error of the main answers (step
-    9: a mesh twice as fine and its solves, ~3x the time; off for bulk studies that rank
-    designs, whose error the study states from a sample); fatigue_loads, fatigue_params: the
-    service loads (:class:`~clutchfem.durability.FatigueLoads`) and fatigue strength
-    (:class:`~clutchfem.durability.FatigueParams`) of step 11.  A user mesh
-    (``design.params`` None) gets every FE answer; the analytical curves are then NaN and
-    ``analytical_available`` is False.
-
-    Parameters
-    ----------
-    design : Design
-    engine : EngineCurve, optional
-    requirements : Requirements, optional
-    idle_rpm : float, optional
-    ripple_model : RippleModel, optional
-        The 2-stroke speed ripple (default: seed 000's).
-    errors : bool
-        Estimate the error of the main answers.
-    fatigue_loads, fatigue_params : optional
-
-    Returns
-    -------
-    Analysis
-        Every answer with its unit and error band, warnings where the model is stretched or
-        the design fails, the curves against rpm and the design's inputs.
-
-    Examples
-    --------
-    >>> import clutchfem as cf
-    >>> a = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="2.0mm"))
-    >>> 4000 < a.engagement_rpm < 6000, a.errors["engagement_rpm"]["unit"]
-    (True, 'rpm')"""
-    if not isinstance(design, Design):
-        raise ParameterError("design", type(design).__name__, "a clutchfem Design (Design.from_concept or Design.from_mesh)")
-    if design.op.fidelity == "live":
-        if not LIVE:
-            raise ParameterError("fidelity", "live", "a live answer needs the reduced-model stage: call it as "
-                                 "clutchfem.analyze (or import clutchfem.reduced first)")
-        return LIVE[0](design, engine=engine, requirements=requirements, idle_rpm=idle_rpm)
-    engine = EngineCurve.of(engine)
-    if requirements is not None and not isinstance(requirements, Requirements):
-        raise ParameterError("requirements", type(requirements).__name__, "a Requirements(a=..., b=...) or None "
-                             "(a = 1.3, b = 1.0, ASSUMED)")
-    errors = as_bool(errors, "errors")
-    req = requirements or Requirements()
-    if design.drum_radius is None:
-        raise ParameterError("drum_radius", None, "the drum's inner radius in m, larger than the outer radius "
-                             "of the contact surface: a user mesh carries no drum, and without a drum there "
-                             "is no friction torque", context="user mesh")
+def run_steps(design, engine: EngineCurve, req: Requirements, idle_rpm, ripple_model, errors: bool, fatigue_loads,
+              fatigue_params) -> Analysis:
+    """The steps (module docstring) on the inputs :func:`~.front.analyze` checked; a design whose
+    pre-stress Ritz space misses equilibrium is solved again with the per-speed factorisation
+    (said in the notes)."""
     try:
         return _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, fatigue_params)
     except EquilibriumError as exc:
@@ -181,7 +126,7 @@ def refined_answers(err: dict, t_nom, eng, slip, checks, check):
 
 
 def _steps(design, engine, req, idle_rpm, ripple_model, errors, fatigue_loads, fatigue_params) -> Analysis:
-    """The steps of :func:`analyze` on checked inputs."""
+    """The steps of :func:`run_steps` on checked inputs."""
     idle_rpm, idle_assumed = idle_speed(engine, idle_rpm)
     hi = engine.rpm_range[1]
     op, material = design.op, design.model.material

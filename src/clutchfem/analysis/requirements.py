@@ -6,8 +6,6 @@ whirl against the engine's maximum speed.
   before it reaches its torque peak), with the values checked and the limits
   (:class:`~clutchfem.analysis.Requirements`: a = 1.3, b = 1.0 ASSUMED, the thesis keeps
   them confidential);
-* :func:`idle_speed`: the idle speed of the check: the caller's, else the engine curve's,
-  else :data:`DEFAULT_IDLE_RPM` (ASSUMED);
 * :func:`whirl_step`: the crankshaft's first critical speed with this clutch, drum and
   sprocket on its overhang (:func:`clutchfem.clutch.whirl`), wanted at least
   :data:`WHIRL_MARGIN` above the engine's maximum speed.
@@ -15,42 +13,12 @@ whirl against the engine's maximum speed.
 
 from __future__ import annotations
 
-import math
-
 from ..clutch import EngineCurve, whirl
-from ..core import ParameterError, UnitError, parse_quantity
 from .answers import EngagementAnswer, Requirements, SlipAnswer
 
-#: Idle speed used when the engine curve carries none (typical saw idle): ASSUMED.
-DEFAULT_IDLE_RPM = 2700.0
 #: required margin of the first crankshaft critical speed over the engine's maximum speed
 #: (ASSUMED: the usual 20-30 % separation rule for rotors running below their first critical)
 WHIRL_MARGIN = 0.25
-
-
-def idle_speed(engine: EngineCurve, idle_rpm: float | None = None) -> tuple[float, bool]:
-    """(idle speed [rpm], True if it is the ASSUMED default): ``idle_rpm`` if given (a number
-    in rpm or a string with its unit, ``"2700rpm"``), else the engine curve's, else
-    :data:`DEFAULT_IDLE_RPM`; refuses anything but a finite speed > 0 below the engine
-    curve's top speed (an engine idles below its full-throttle range's end)."""
-    assumed = False
-    if idle_rpm is None:
-        idle_rpm = engine.idle_rpm
-        if idle_rpm is None:
-            idle_rpm, assumed = DEFAULT_IDLE_RPM, True
-    raw = idle_rpm
-    try:
-        idle_rpm = parse_quantity(idle_rpm, "rpm")
-    except UnitError:
-        raise ParameterError("idle_rpm", raw, "an idle speed > 0 rpm (a number in rpm or a string with its "
-                             "unit, e.g. '2700rpm')") from None
-    if not (math.isfinite(idle_rpm) and idle_rpm > 0):
-        raise ParameterError("idle_rpm", raw, "an idle speed > 0 rpm")
-    top = engine.rpm_range[1]
-    if idle_rpm >= top:
-        raise ParameterError("idle_rpm", raw, f"an idle speed below the engine curve's top speed {top:g} rpm "
-                             f"({engine.source}): is the idle speed or the curve in other units?")
-    return idle_rpm, assumed
 
 
 def requirements_step(req: Requirements, idle_rpm: float, engine: EngineCurve, eng: EngagementAnswer,

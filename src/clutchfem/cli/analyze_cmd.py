@@ -50,8 +50,7 @@ def analyze(
 ):
     """Engagement (static, with ripple), slip speed, torque margin, stresses, fatigue,
     plus/minus character, crankshaft whirl and the requirement checks, each with its error."""
-    from .. import analyze as run
-    from .. import check_speeds, dumps, summary_rows, write_report
+    from .. import dumps
 
     try:
         if list_fatigue:
@@ -76,6 +75,8 @@ def analyze(
                              formulation=o.formulation, rpm=rpm,
                              layers=o.layers, drum_wall=o.drum_wall, drum_state=o.drum_state, material=mat)
         if op.rpm is not None:
+            from .. import check_speeds
+
             check_speeds(op.speeds(), eng)
         if o.mesh is not None and o.drum_radius is None:
             raise ClutchfemError("analyze --mesh needs --drum-radius: the drum's inner radius (e.g. 35mm), larger "
@@ -88,15 +89,21 @@ def analyze(
         if design.params is None and "contact" not in (design.cm.mesh.boundaries or {}):
             raise ClutchfemError(f"{o.mesh}: analyze needs a physical curve group 'contact' (the shoe surfaces facing "
                                  f"the drum); groups found: {sorted(design.cm.mesh.boundaries or {})}")
+        from .. import analyze as run  # (a live design: the reduced model's answer, without the FE stack)
+
         with working(f"analyze {design.name}") as stage:
             stage("engagement, torque, slip, fatigue and their errors")
             an = run(design, engine=eng, requirements=req, idle_rpm=idle, fatigue_loads=fat_loads,
                      fatigue_params=fat_params)
         if o.out is not None:
+            from .. import write_report
+
             wrote(write_report(an, o.out, engine=eng))
         if o.json_:
             print(dumps(an.to_json()))
             return
+        from .. import summary_rows
+
         t = Table(title=escape(f"{design.name}: clutch answers (mu = {an.mu:g}, {op.rotation})"))
         t.add_column("quantity")
         t.add_column("value", justify="right")

@@ -142,14 +142,17 @@ def takes(*names: str, live: bool = False):
         @functools.wraps(fn)
         def command(**given):
             o = SimpleNamespace(**{n: given.pop(n) for n in names})
-            if not live and str(getattr(o, "fidelity", None) or "").strip().lower() == "live":
+            asks_live = str(getattr(o, "fidelity", None) or "").strip().lower() == "live"
+            if not live and asks_live:
                 raise typer.BadParameter(f"live (the reduced model) answers {' and '.join(LIVE_COMMANDS)} only; "
                                          f"this command needs the FE: best (default) or fast", param_hint="'--fidelity'")
-            if "concept" in names:  # a design command: the spinner first, then the FE stack (~1.5 s)
-                from .common import working
+            if "concept" in names and not asks_live:  # a design command: the spinner first, then the FE
+                from .common import working  # stack (~1.5 s); a live design needs none of it (docs/reduced.md)
 
                 with working(f"{fn.__name__}: loading the FE stack"):
-                    from .. import analyze  # noqa: F401
+                    # analyze itself is light (a live answer needs none of the FE stack); check_speeds
+                    # lives with the FE steps (analysis.torque), which load the mesh and the FE model
+                    from .. import analyze, check_speeds  # noqa: F401
             return fn(o, **given)
 
         del command.__wrapped__  # typer reads the signature below, not the function's own

@@ -38,6 +38,10 @@ def lazy_names(package: str, namespace: dict, names: dict[str, str | None]) -> t
         mod = importlib.import_module(f"{package}.{module or name}")
         value = mod if module is None else getattr(mod, name)
         namespace[name] = value
+        if module is not None and names.get(module) == module:
+            # a public name that is also its module's name (``slip_heat`` in ``slip_heat.py``):
+            # importing the module set the package's attribute to the module; the name wins
+            namespace[module] = getattr(mod, module)
         return value
 
     def __dir__() -> list[str]:

@@ -17,37 +17,47 @@ Heat and fatigue take plain arrays (contact forces, stress states) and a
 :class:`~clutchfem.mesh.ClutchMesh`; they never run the elastic FE solver themselves.
 """
 
-from .cycles import FatigueLoads, ServiceStates, ripple_classes, service_cycles
-from .engagement import DriveLine, Engagement, engagement_transient
-from .fatigue import (
-                      FatigueParams,
-                      FatigueResult,
-                      LoadCycle,
-                      Location,
-                      candidate_points,
-                      endurance_limit,
-                      fatigue_check,
-                      name_location,
-                      single_cycle_factor,
-)
-from .heat import (
-                      DrumThermal,
-                      HeatPartition,
-                      SlipHeatLoad,
-                      SlipHeatResult,
-                      SlipScenario,
-                      ThermalEnvironment,
-                      ThermalMaterial,
-                      heat_partition,
-                      heat_transient,
-                      render_png,
-                      slip_heat_load,
-                      slip_heat_validity,
-                      write_series,
-                      write_vtu,
-)
-from .start_heat import StartHeating, start_heating
-from .wear import WearParams, WearRun, integrate_wear, wear_rate
+from ..core import lazy_names
+
+#: public name -> the module of this package it lives in (imported on first use: PEP 562)
+_NAMES: dict[str, str] = {
+    "candidate_points": "fatigue.check",
+    "DriveLine": "engagement",
+    "DrumThermal": "heat",
+    "endurance_limit": "fatigue.criteria",
+    "Engagement": "engagement",
+    "engagement_transient": "engagement",
+    "fatigue_check": "fatigue.check",
+    "FatigueLoads": "cycles",
+    "FatigueParams": "fatigue.strength",
+    "FatigueResult": "fatigue.check",
+    "heat_partition": "heat",
+    "heat_transient": "heat",
+    "HeatPartition": "heat",
+    "integrate_wear": "wear",
+    "LoadCycle": "fatigue.check",
+    "Location": "location",
+    "name_location": "location",
+    "render_png": "heat",
+    "ripple_classes": "cycles",
+    "service_cycles": "cycles",
+    "ServiceStates": "cycles",
+    "single_cycle_factor": "fatigue.criteria",
+    "slip_heat_load": "heat",
+    "slip_heat_validity": "heat",
+    "SlipHeatLoad": "heat",
+    "SlipHeatResult": "heat",
+    "SlipScenario": "heat",
+    "start_heating": "start_heat",
+    "StartHeating": "start_heat",
+    "ThermalEnvironment": "heat",
+    "ThermalMaterial": "heat",
+    "wear_rate": "wear",
+    "WearParams": "wear",
+    "WearRun": "wear",
+    "write_series": "heat",
+    "write_vtu": "heat",
+}
 
 __all__ = ["DriveLine", "Engagement", "engagement_transient", "StartHeating", "start_heating", "WearParams",
            "WearRun", "integrate_wear", "wear_rate", "DrumThermal", "FatigueLoads", "FatigueParams", "FatigueResult", "HeatPartition", "LoadCycle",
@@ -55,3 +65,5 @@ __all__ = ["DriveLine", "Engagement", "engagement_transient", "StartHeating", "s
            "ThermalMaterial", "candidate_points", "endurance_limit", "fatigue_check", "heat_partition",
            "name_location", "render_png", "ripple_classes", "service_cycles", "single_cycle_factor",
            "heat_transient", "slip_heat_load", "slip_heat_validity", "write_series", "write_vtu"]
+
+__getattr__, __dir__ = lazy_names(__name__, globals(), _NAMES)

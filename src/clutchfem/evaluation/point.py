@@ -39,16 +39,15 @@ import socket
 import tempfile
 import time
 import traceback
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 from ..analysis import Requirements, analyze
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, GeometryError, InputError, MeshError, ParameterError, dumps, tune_malloc
 from ..geometry import MeshSettings, get_concept
-from ..loadcase import Design, OperatingPoint, model_version
+from ..loadcase import Design, model_version
 from ..mesh import load_user_geometry, mesh_concept, morph_or_mesh
+from .settings import Settings
 
 #: the row: (column, SQL type, meaning with unit).  The store creates its table from it.
 COLUMNS: tuple[tuple[str, str, str], ...] = (
@@ -134,60 +133,6 @@ ANSWERS: tuple[tuple[str, str], ...] = (
     ("part_mass_g", "part mass [g]"),
     ("contact_arc_deg", "contact arc at max engine torque [deg]"),
 )
-
-
-@dataclass(frozen=True)
-class Settings:
-    """The fixed part of a study: what every point shares (picklable: shipped to workers).
-
-    concept: concept name (or None with ``mesh_file``); fixed: concept parameters held fixed
-    (name, value) pairs in the parameter's unit; op: the operating point (material, mu,
-    rotation, softening, formulation, drum wall ...); mesh: mesh settings; engine: the
-    full-throttle curve (None: the built-in ASSUMED 56.5 cc curve); idle_rpm: overrides the
-    curve's idle speed; a, b: requirement factors; min_safety_factor: required yield safety
-    factor at the engine's maximum speed; mesh_file / mesh_bytes: a user mesh (its content
-    travels with the settings, so remote workers need no shared disk); morph: the reference
-    design of morphed meshes (None: each design meshed from scratch).
-    """
-
-    concept: str | None
-    fixed: tuple[tuple[str, Any], ...] = ()
-    op: Any = None
-    mesh: Any = None
-    engine: Any = None
-    idle_rpm: float | None = None
-    a: float = 1.3
-    b: float = 1.0
-    min_safety_factor: float = 1.0
-    mesh_file: str | None = None
-    mesh_bytes: bytes | None = field(default=None, repr=False)
-    #: morph every design's mesh from this reference design's ((name, value) pairs over the
-    #: concept's defaults, :mod:`clutchfem.mesh.morph`), meshing from scratch only where the
-    #: morph is refused; None: every design meshed from scratch
-    morph: tuple[tuple[str, Any], ...] | None = None
-
-    @property
-    def design_name(self) -> str:
-        return self.concept if self.concept else Path(self.mesh_file or "mesh").name
-
-    def canonical(self) -> dict:
-        """The defining fixed inputs as plain JSON data (for the design hash and the row)."""
-        op = self.op if self.op is not None else OperatingPoint()
-        ms = self.mesh if self.mesh is not None else MeshSettings.preset(op.fidelity)
-        eng = None
-        if self.engine is not None:
-            eng = {"rpm": list(self.engine.rpm), "torque": list(self.engine.torque),
-                   "idle_rpm": self.engine.idle_rpm}
-        doc = {"concept": self.concept, "fixed": dict(self.fixed),
-                "mesh_file_sha256": hashlib.sha256(self.mesh_bytes).hexdigest() if self.mesh_bytes else None,
-                "op": op.model_dump(mode="json"), "mesh": ms.model_dump(mode="json"),
-                "engine": eng, "idle_rpm": self.idle_rpm,
-                "requirements": {"a": self.a, "b": self.b, "min_safety_factor": self.min_safety_factor}}
-        if self.morph is not None:  # a morphed mesh is another discretisation of the design
-            doc["morph_reference"] = dict(self.morph)
-        return doc
-
-
 
 
 # ---------------------------------------------------------------------------------------

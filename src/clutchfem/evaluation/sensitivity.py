@@ -67,7 +67,8 @@ from ..analysis import CONTACT_SPEED_OF, idle_speed
 from ..core import ParameterError
 from ..core import values as V
 from ..loadcase import Design
-from .batch import EvalSettings, evaluate_many, shared_cluster
+from .batch import evaluate_many, shared_cluster
+from .settings import EvalSettings
 
 #: (row key, unit) of the differentiated answers
 ANSWERS: tuple[tuple[str, str], ...] = (

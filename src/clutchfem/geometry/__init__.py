@@ -7,7 +7,7 @@ A concept file imports what it needs from here: the contract (:class:`Concept`,
 analytic outline with exact tangent fillets)."""
 
 from . import occ, sketch
-from .build import BuiltModel, build_model, disc_size_field, source_files
+from .build import MESH_PIPELINE, BuiltModel, build_model, disc_size_field, source_files, source_hash
 from .concept import MESH_PRESETS, Annotation, Concept, ConceptParams, MeshSettings, Shapes, default_free, worn_from
 from .curves import OCC_TOLERANCE, CurveFrame, curve_frame, occ_tolerances
 from .drawing import draw_concept, fmt_param_value
@@ -17,5 +17,5 @@ from .session import gmsh_session
 
 __all__ = ["default_free", "MESH_PRESETS", "broken_concepts", "MIN_PROFILE_CLEARANCE", "TABLE_FIELDS", "TABLE_N", "Annotation", "BuiltModel", "Concept", "ConceptParams",
            "MeshSettings", "Shapes", "OCC_TOLERANCE", "CurveFrame", "curve_frame", "occ_tolerances", "build_model", "disc_size_field", "concepts", "draw_concept", "fmt_param_value",
-           "get_concept", "gmsh_session", "load_concept_file", "occ", "sketch", "source_files", "table_cardinal", "worn_from",
+           "get_concept", "gmsh_session", "load_concept_file", "occ", "sketch", "source_files", "source_hash", "MESH_PIPELINE", "table_cardinal", "worn_from",
            "table_spline"]

@@ -14,6 +14,8 @@ fix-up, the cache) is the mesh stage's (:mod:`clutchfem.mesh`).
 
 from __future__ import annotations
 
+import hashlib
+import inspect
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -36,6 +38,28 @@ def source_files() -> list[Path]:
     a change to any of them must not serve a cached mesh."""
     here = Path(__file__).resolve().parent
     return [here / name for name in SHAPING_MODULES]
+
+
+#: the meshing pipeline's files that shape every mesh as well (:mod:`clutchfem.mesh`: generation,
+#: the high-order guard, meshio -> scikit-fem), relative to the package: named here so that a
+#: design's identity (:func:`clutchfem.loadcase.model_version`) is computed without importing
+#: the mesh stage (a live design is never meshed)
+MESH_PIPELINE = ("mesh/generate.py", "mesh/convert.py", "mesh/highorder.py")
+
+
+def source_hash(concept) -> str:
+    """Hash of every source that shapes the mesh of ``concept``: the concept's module file and
+    those of its base classes loaded from geometries/, the generic geometry code
+    (:func:`source_files`) and the meshing pipeline (:data:`MESH_PIPELINE`)."""
+    h = hashlib.sha256()
+    files = {inspect.getfile(cls) for cls in type(concept).__mro__
+             if cls.__module__.startswith("clutchfem_geometries.")}
+    files |= {str(f) for f in source_files()}
+    package = Path(__file__).parent.parent
+    files |= {str(package / rel) for rel in MESH_PIPELINE}
+    for f in sorted(files):
+        h.update(Path(f).read_bytes())
+    return h.hexdigest()[:16]
 
 
 @dataclass

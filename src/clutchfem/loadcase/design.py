@@ -6,6 +6,10 @@ one factorisation) and the contact nodes once, and hands out load cases by (mu, 
 softening) that all share them: a sweep, friction off, mu +-30 %, a tolerance sample's
 other speeds never re-assemble or re-factorise.  A sweep point, an optimiser step and a
 Monte Carlo sample are each one ``Design``.
+
+A concept's design is meshed, and its FE model built, when an answer first needs them: the
+mesh, the FE model, the contact and the load cases are imported there, so a design answered
+live (by the reduced model, :mod:`clutchfem.reduced`) loads none of the FE stack.
 """
 
 from __future__ import annotations
@@ -14,19 +18,21 @@ import copy
 import math
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..contact import DrumContact, DrumWall, RingDrum, contact_nodes
 from ..core import ParameterError, UnitError, as_bool, as_path, parse_quantity
-from ..fe import ExtrusionSettings, FEModel, FEModel3D, FEModelThick, Solver, ThickSettings, check_3d_size
 from ..geometry import Concept, MeshSettings, get_concept
-from ..mesh import ClutchMesh, load_user_geometry, mesh_concept
-from ..softening import get_softening
-from .case import LoadCase, sweep
 from .identity import DesignIdentity, design_identity
 from .operating import OperatingPoint
 from .record import design_hash, design_inputs, design_label
+
+if TYPE_CHECKING:
+    from ..contact import DrumContact
+    from ..fe import Solver
+    from ..mesh import ClutchMesh
+    from .case import LoadCase
 
 #: axial thickness of a user mesh when none is given [m] (ASSUMED: the thesis's 10-12 mm)
 USER_THICKNESS = 11e-3
@@ -99,10 +105,12 @@ class Design:
         if cm is None:  # a concept's design, meshed on first use (:attr:`cm`)
             if concept is None or params is None:
                 raise ParameterError("cm", None, "a ClutchMesh, or a concept with its params (meshed on first use)")
-        elif not isinstance(cm, ClutchMesh):
-            raise ParameterError("cm", type(cm).__name__, "a ClutchMesh (from clutchfem.mesh.mesh_concept "
-                                 "or load_user_geometry)")
         else:
+            from ..mesh import ClutchMesh  # (a mesh given: the FE stack is wanted)
+
+            if not isinstance(cm, ClutchMesh):
+                raise ParameterError("cm", type(cm).__name__, "a ClutchMesh (from clutchfem.mesh.mesh_concept "
+                                     "or load_user_geometry)")
             self.__dict__["cm"] = cm
         self.op = op
         self.params = params
@@ -127,6 +135,8 @@ class Design:
     def cm(self) -> ClutchMesh:
         """The meshed part.  A concept's design is meshed when an answer first needs it (a live
         answer from the reduced model needs none: :mod:`clutchfem.reduced`)."""
+        from ..mesh import mesh_concept
+
         return mesh_concept(self.concept, self.params, self._mesh_settings)
 
     @property
@@ -143,6 +153,8 @@ class Design:
     def model(self):
         """The FE model of the operating point's formulation (K, f1, constraints, one
         factorisation), built on first use."""
+        from ..fe import ExtrusionSettings, FEModel, FEModel3D, FEModelThick, ThickSettings, check_3d_size
+
         op, cm = self.op, self.cm
         form = op.model_formulation
         if form == "thick":
@@ -257,6 +269,8 @@ class Design:
         given = {k: v for k, v in (("drum_radius", drum_radius), ("thickness", thickness)) if v is not None}
         op = op.replace(**given, **op_values) if (given or op_values) else op
         size = MeshSettings.parse_value("size", mesh_size) if isinstance(mesh_size, str) else mesh_size
+        from ..mesh import load_user_geometry
+
         cm = load_user_geometry(path, mesh_size=size, thickness=op.thickness, drum_radius=op.drum_radius)
         if op.thickness is None:  # a STEP solid's own height, else the assumed default
             op = op.replace(thickness=cm.thickness if cm.thickness is not None else USER_THICKNESS)
@@ -266,6 +280,8 @@ class Design:
     @cached_property
     def nodes(self):
         """Contact nodes (None without a drum)."""
+        from ..contact import contact_nodes
+
         if self.drum_radius is None:
             return None
         return contact_nodes(self.model, self.drum_radius)
@@ -278,6 +294,8 @@ class Design:
     def ring(self, wall: float | None):
         """The ring drum of wall thickness ``wall`` [m] (the operating point's state and
         material), None for a rigid drum (``wall`` None) or without a drum."""
+        from ..contact import DrumWall, RingDrum
+
         if self.drum_radius is None or wall is None:
             return None
         return RingDrum(self.drum_radius, DrumWall(wall_thickness=wall, state=self.op.drum_state,
@@ -287,6 +305,8 @@ class Design:
         """The drum as a load-case part with friction ``mu`` (default: the operating point's),
         None without a drum.  ``drum_wall``: another drum wall [m] (None: rigid) than the
         design's, for the sensitivity to that assumed input."""
+        from ..contact import DrumContact
+
         if self.nodes is None:
             return None
         sectors = self.cm.sector_copies
@@ -299,6 +319,9 @@ class Design:
         """The load case with friction ``mu`` (default: the operating point's) and spin
         softening ``softening`` (default: the operating point's); cached.  ``drum_wall``:
         another drum than the design's (:meth:`contact`), on the same model and factorisation."""
+        from ..softening import get_softening
+        from .case import LoadCase
+
         if mu is not None:
             try:
                 mu = parse_quantity(mu, "-")
@@ -339,6 +362,8 @@ class Design:
 
     def sweep(self, rpm=None, *, mu: float | None = None, softening=None, stresses: bool = True):
         """Sweep the speeds ``rpm`` (default: the operating point's, else 0:14000:250)."""
+        from .case import sweep
+
         speeds = self.op.speeds() if rpm is None else rpm
         return sweep(self.case(mu, softening), speeds, stresses=as_bool(stresses, "stresses"))
 

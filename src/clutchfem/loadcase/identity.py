@@ -26,6 +26,7 @@ digits of SHA-256); :attr:`clutchfem.Design.identity` and a study's row hash
 from __future__ import annotations
 
 import hashlib
+import importlib.metadata
 import json
 import math
 from dataclasses import dataclass
@@ -33,18 +34,19 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-import gmsh
-import skfem
-
 from .._version import __version__
 from ..core import ClutchfemError, get_material, round12
-from ..geometry import Concept, MeshSettings, get_concept
-from ..mesh import source_hash
+from ..geometry import Concept, MeshSettings, get_concept, source_hash
 from .operating import OperatingPoint
 
 #: operating-point fields that are not part of the design: the speeds an answer is asked at
 NOT_DESIGN = ("rpm",)
 
+#: the versions of the mesher and the FE library, part of every design's identity: read from
+#: their installed metadata (the same as their ``__version__``), so that a design's identity
+#: does not import them (a live design is never meshed)
+GMSH_VERSION = importlib.metadata.version("gmsh")
+SKFEM_VERSION = importlib.metadata.version("scikit-fem")
 #: parts of the package that only present results (they do not change an answer): left out of
 #: :func:`model_version`
 PRESENTATION = ("cli/", "app/", "studies/", "targets/", "tolerances/", "guidelines/", "reduced/", "validation/",
@@ -52,7 +54,7 @@ PRESENTATION = ("cli/", "app/", "studies/", "targets/", "tolerances/", "guidelin
                 "loadcase/identity.py",
                 # the study engine's machinery (scheduling, store, batches): not the row of a design
                 "evaluation/cluster.py", "evaluation/store.py", "evaluation/runner.py", "evaluation/batch.py",
-                "evaluation/sensitivity.py", "evaluation/hashing.py")
+                "evaluation/sensitivity.py", "evaluation/hashing.py", "evaluation/settings.py")
 
 
 @lru_cache(maxsize=None)
@@ -90,7 +92,7 @@ def model_version(concept: str | None = None) -> str:
         h.update(f.read_bytes())
     if concept:
         h.update(source_hash(get_concept(concept)).encode())
-    h.update(f"gmsh {gmsh.__version__} scikit-fem {getattr(skfem, '__version__', '?')}".encode())
+    h.update(f"gmsh {GMSH_VERSION} scikit-fem {SKFEM_VERSION}".encode())
     return f"{__version__}+{h.hexdigest()[:12]}"
 
 

@@ -10,13 +10,10 @@ the name plus the hash otherwise.
 
 from __future__ import annotations
 
-import gmsh
-import skfem
-
 from .._version import __version__
 from ..core import clean
 from ..geometry import MeshSettings
-from .identity import design_identity, file_sha256, identity_of
+from .identity import GMSH_VERSION, SKFEM_VERSION, design_identity, file_sha256, identity_of
 from .operating import OperatingPoint
 
 
@@ -27,7 +24,7 @@ def design_inputs(design) -> dict:
     cm = design.cm if meshed else None
     ident = design_identity(design)
     d: dict = {"name": design.name, "design_hash": ident.hash, "model_version": ident.model_version,
-               "clutchfem": __version__, "gmsh": gmsh.__version__, "scikit-fem": getattr(skfem, "__version__", "?")}
+               "clutchfem": __version__, "gmsh": GMSH_VERSION, "scikit-fem": SKFEM_VERSION}
     if design.params is not None:
         d["concept"] = design.name
         d["params"] = design.params.model_dump()

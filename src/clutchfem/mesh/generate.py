@@ -24,7 +24,6 @@ guarded by :func:`clutchfem.geometry.gmsh_session`; parallel sweeps use processe
 from __future__ import annotations
 
 import hashlib
-import inspect
 import json
 import logging
 import os
@@ -46,7 +45,7 @@ from ..geometry import (
     build_model,
     gmsh_session,
     occ_tolerances,
-    source_files,
+    source_hash,
 )
 from .cache import TMP_PREFIX, cache_dir, entry_lock, evict, touch
 from .clutch_mesh import ClutchMesh, groups_msh_path
@@ -57,20 +56,6 @@ from .highorder import guard_high_order, optimise_high_order
 #: thousand; 250 000 P2 triangles are ~1 M unknowns, minutes and GBs for one design)
 MAX_ELEMENTS = 250_000
 log = logging.getLogger("clutchfem")
-
-
-def source_hash(concept: Concept) -> str:
-    """Hash of every source that shapes the mesh: the concept's module file and those of its
-    base classes loaded from geometries/, plus the generic geometry code."""
-    h = hashlib.sha256()
-    files = {inspect.getfile(cls) for cls in type(concept).__mro__
-             if cls.__module__.startswith("clutchfem_geometries.")}
-    files |= {str(f) for f in source_files()}
-    # the meshing pipeline itself: generation, the high-order guard and meshio -> scikit-fem
-    files |= {__file__, inspect.getfile(meshio_to_skfem), inspect.getfile(guard_high_order)}
-    for f in sorted(files):
-        h.update(Path(f).read_bytes())
-    return h.hexdigest()[:16]
 
 
 def cache_key(concept: Concept, p: ConceptParams, ms: MeshSettings) -> str:

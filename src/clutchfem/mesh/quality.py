@@ -11,7 +11,7 @@ moved from: the criterion that decides between a morphed mesh and a new one.
   J = [dx/ds dx/dt]): the high-order guard measures gmsh's nodes with it before a
   scikit-fem mesh exists, :func:`scaled_jacobian` a ``MeshTri2``.  It lives with the
   guard because the guard's source is part of the mesh cache key
-  (:func:`~clutchfem.mesh.generate.source_hash`): a change to the measure must not serve
+  (:func:`~clutchfem.geometry.build.source_hash`): a change to the measure must not serve
   a cached mesh.
 * **Distortion** of a moved element: the corner triangle's affine map F from its reference
   position to the moved one (F = E_new E_ref^-1, E the two edge vectors) and its singular

@@ -34,7 +34,7 @@ import platformdirs
 from cachetools import LRUCache, cached
 
 from ..core import InputError, ParameterError, dumps
-from ..evaluation import COLUMNS, STORE_NAME, ResultStore, run_points
+from ..evaluation import STORE_NAME, ResultStore
 from .model import ReducedModel
 from .region import SPAN, Region
 
@@ -182,6 +182,9 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     cached = load(region)
     if cached is not None and cached.info.get("n_train", 0) >= n and cached.info.get("n_held_out", 0) >= held_out:
         return cached
+    from ..evaluation.point import COLUMNS  # (the FE evaluation of the training designs: a build's only)
+    from ..evaluation.runner import run_points
+
     folder = _claim(region)
     t0 = time.perf_counter()
     train = region.sample(n, seed=seed)

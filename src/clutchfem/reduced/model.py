@@ -34,7 +34,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core import ParameterError
-from ..evaluation import Sensitivities
 from ..geometry import get_concept
 from .region import OPERATING_AXES, Region
 from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel
@@ -224,6 +223,8 @@ class ReducedModel:
         pred = self.predict(np.array(rows))["value"]
         ys = float(design.op.material.yield_strength)
         base = {a: float(v[0]) for a, v in pred.items()}
+        from ..evaluation.sensitivity import Sensitivities  # (its home is the FE's sensitivities)
+
         out = Sensitivities(concept=reg.concept, base=base, values={}, steps={}, units={}, derivatives={}, methods={},
                             notes=[f"derivatives of the reduced model of {reg.describe()} (central differences over "
                                    f"{h:g} of each width); its own error per answer: " + ", ".join(

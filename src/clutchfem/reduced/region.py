@@ -36,8 +36,9 @@ import numpy as np
 
 from ..clutch import EngineCurve
 from ..core import ParameterError, dumps, param_bounds, round12
-from ..evaluation import EvalSettings, model_version
+from ..evaluation import EvalSettings
 from ..geometry import default_free, get_concept
+from ..loadcase import model_version
 
 __all__ = ["OPERATING_AXES", "SPAN", "Region"]
 

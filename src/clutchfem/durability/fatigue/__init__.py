@@ -10,26 +10,40 @@ Miner's sum over the cycle types reaches 1, at the worst point, named.  By job:
   S-N curve with its knee, allowed amplitude, the one-cycle-type load factor;
 * :mod:`.check` -- :class:`LoadCycle`, Miner's damage, the load factor per point,
   :func:`fatigue_check` and :class:`FatigueResult`;
-* the worst point's name comes from :mod:`clutchfem.durability.location`.
+* the worst point's name comes from :mod:`clutchfem.durability.location`
+  (:class:`~clutchfem.durability.Location`, :func:`~clutchfem.durability.name_location`).
+
+The names load on first use: a fatigue check of given stresses needs neither the mesh nor the
+FE model (and a live answer none of this).
 """
 
-from ..location import Location, name_location
-from .check import FatigueResult, LoadCycle, candidate_points, fatigue_check
-from .criteria import (
-                       allowed_amplitude,
-                       cycles_to_failure,
-                       endurance_limit,
-                       haigh_safety_factor,
-                       marin_factors,
-                       reversed_equivalent,
-                       single_cycle_factor,
-)
-from .strength import ASSUMED, SURFACE_TABLE, FatigueParams
-from .stresses import amplitude_mean, equivalent_stresses
+from ...core import lazy_names
+
+#: public name -> the module of this package it lives in (imported on first use: PEP 562)
+_NAMES: dict[str, str] = {
+    "allowed_amplitude": "criteria",
+    "amplitude_mean": "stresses",
+    "ASSUMED": "strength",
+    "candidate_points": "check",
+    "cycles_to_failure": "criteria",
+    "endurance_limit": "criteria",
+    "equivalent_stresses": "stresses",
+    "fatigue_check": "check",
+    "FatigueParams": "strength",
+    "FatigueResult": "check",
+    "haigh_safety_factor": "criteria",
+    "LoadCycle": "check",
+    "marin_factors": "criteria",
+    "reversed_equivalent": "criteria",
+    "single_cycle_factor": "criteria",
+    "SURFACE_TABLE": "strength",
+}
 
 __all__ = [
-    "FatigueParams", "LoadCycle", "FatigueResult", "Location", "amplitude_mean",
+    "FatigueParams", "LoadCycle", "FatigueResult", "amplitude_mean",
     "equivalent_stresses", "marin_factors", "endurance_limit", "reversed_equivalent",
-    "cycles_to_failure", "haigh_safety_factor", "fatigue_check", "name_location", "SURFACE_TABLE",
+    "cycles_to_failure", "haigh_safety_factor", "fatigue_check", "SURFACE_TABLE",
     "allowed_amplitude", "single_cycle_factor", "candidate_points", "ASSUMED",
 ]
+
+__getattr__, __dir__ = lazy_names(__name__, globals(), _NAMES)

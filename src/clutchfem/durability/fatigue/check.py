@@ -31,16 +31,18 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ...core import InputError, ParameterError
-from ...fe import von_mises
-from ...mesh import ClutchMesh
-from ..location import Location, name_location
 from .criteria import cycles_to_failure, endurance_limit, reversed_equivalent, single_cycle_factor
 from .strength import ASSUMED, FatigueParams
 from .stresses import amplitude_mean, equivalent_stresses, stress_array
+
+if TYPE_CHECKING:  # (the mesh and the FE model: a fatigue check of given stresses needs neither)
+    from ...mesh import ClutchMesh
+    from ..location import Location
 
 __all__ = ["FatigueResult", "LoadCycle", "candidate_points", "fatigue_check"]
 
@@ -233,6 +235,8 @@ def fatigue_check(cycles: Sequence[LoadCycle], params: FatigueParams | None = No
                     "safety_factor_alone": float(Xi[0]),
                     "damage_share_at_failure": (float(share[i] / share.sum())
                                                 if np.isfinite(share).all() and share.sum() > 0 else float(i == gov))})
+    from ...fe import von_mises
+
     vmax = np.max(np.stack([np.maximum(von_mises(c.state_a), von_mises(c.state_b)) for c in cycles]), axis=0)
     with np.errstate(divide="ignore"):
         ny = np.where(vmax > 0, p.yield_strength / np.where(vmax > 0, vmax, 1.0), np.inf)
@@ -248,6 +252,8 @@ def fatigue_check(cycles: Sequence[LoadCycle], params: FatigueParams | None = No
             if element.shape != (npts,):
                 raise InputError(f"fatigue_check: element must have shape ({npts},) (got {element.shape})")
             el = int(element[worst])
+        from ..location import name_location  # (names a point on the mesh)
+
         loc = name_location(cm, xy[:, worst], element=el)
     return FatigueResult(safety_factor=float(X[worst]), worst_index=worst, governing_cycle=names[gov],
                          damage_at_worst=float(Dtot[worst]), max_damage=float(Dtot.max()), per_cycle=tuple(per),

@@ -25,7 +25,6 @@ from __future__ import annotations
 import numpy as np
 
 from ...core import InputError
-from ...fe import von_mises
 
 __all__ = ["amplitude_mean", "equivalent_stresses", "stress_array", "trace"]
 
@@ -64,6 +63,8 @@ def amplitude_mean(state_a, state_b) -> tuple[np.ndarray, np.ndarray]:
 def equivalent_stresses(amplitude, mean) -> tuple[np.ndarray, np.ndarray]:
     """(s_a, s_m): von Mises of the amplitude tensor, von Mises of the mean tensor signed by
     its trace (+ for a zero trace) [Pa] (module docstring)."""
+    from ...fe import von_mises  # (the FE stage's formula: loaded with the stresses it is given)
+
     amp = np.asarray(amplitude, dtype=float)
     mean = np.asarray(mean, dtype=float)
     sign = np.where(trace(mean) < 0.0, -1.0, 1.0)
