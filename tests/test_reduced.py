@@ -144,7 +144,7 @@ def test_live_analyze_answers_from_the_reduced_model_without_a_mesh_and_its_band
     assert doc["answered_by"] == "reduced model" and doc["engagement_rpm"] == pytest.approx(a.engagement_rpm)
     # the table: each band said to be live, with the reduced model's own error (it once raised)
     text = cli_in_process("analyze", "concept1", "--mesh-size", "3mm", "--set", "flexure_thickness=2.15mm",
-                          "--fidelity", "live", ok=True).stdout
+                          "--fidelity", "live", env={"COLUMNS": "200"}, ok=True).stdout  # rows on one line
     assert f"{a.engagement_rpm:.0f} rpm +- {a.errors['engagement_rpm']['total']:.0f} rpm (live:" in text
     assert "reduced model's own" in text
 
