@@ -61,6 +61,21 @@ def _params(cls, given: dict, options: dict):
                              shown=given.get(opt) or exc.shown) from None
 
 
+def wear_from(given: dict):
+    """The WearParams of the ``--wear-*`` options ``given`` (option -> raw or None)."""
+    from .. import WearParams
+
+    return _params(WearParams, given, WEAR_OPTIONS)
+
+
+def rebuild_from(raw: str | None) -> dict:
+    """``--rebuild-depth`` as keywords of cf.life: {} (its default), or {"rebuild_depth": m or None}."""
+    if raw is not None and raw.strip().lower() == "never":
+        return {"rebuild_depth": None}
+    d = quantity("--rebuild-depth", raw, "m", 1e-6, 1e-2)  # not given: cf.life's own default
+    return {} if d is None else {"rebuild_depth": d}
+
+
 @O.takes("concept", "set_", "mesh", "mesh_size", "model", "drum_radius", "thickness", "mu", "fidelity",
          "rotation", "engine", "idle_rpm", "a", "b", "out", "json_")
 def life(
@@ -111,7 +126,7 @@ def life(
     """The clutch over its life: engagement and slip speed, torque and contact arc against the
     number of starts as the shoe face wears (Archard, k ASSUMED with its band), the slip energy
     of a start, and the first start at which a requirement is missed."""
-    from .. import DriveLine, DutyCycle, WearParams, dumps, life_files
+    from .. import DriveLine, DutyCycle, dumps, life_files
     from .. import life as run
 
     try:
@@ -129,16 +144,11 @@ def life(
         drive = _params(DriveLine, {"--engine-inertia": engine_inertia, "--driven-inertia": driven_inertia,
                                     "--drag-torque": drag_torque, "--cutting-torque": cutting_torque,
                                     "--throttle-ramp": throttle_ramp}, DRIVE_OPTIONS)
-        wear = _params(WearParams, {"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,
+        wear = wear_from({"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,
                                     "--hardness": hardness, "--drum-wear-coefficient": drum_wear_coefficient,
                                     "--drum-hardness": drum_hardness, "--max-wear-step": max_wear_step,
-                                    "--wear-rate-change": wear_rate_change},
-                       WEAR_OPTIONS)
-        if rebuild_depth is not None and rebuild_depth.strip().lower() == "never":
-            depth = {"rebuild_depth": None}
-        else:  # not given: cf.life's own default
-            d = quantity("--rebuild-depth", rebuild_depth, "m", 1e-6, 1e-2)
-            depth = {} if d is None else {"rebuild_depth": d}
+                                    "--wear-rate-change": wear_rate_change})
+        depth = rebuild_from(rebuild_depth)
         eng, idle = engine_from(o.engine, o.idle_rpm)
         req = requirements_from(o.a, o.b)
         op = operating_point(mu=o.mu, rotation=o.rotation, fidelity=o.fidelity)

@@ -26,6 +26,17 @@ of spec, exactly the cases that matter; Clopper-Pearson's exact interval is cons
 (covers more than 95 %); Wilson's coverage is close to nominal down to n ~ 20 (Brown, Cai &
 DasGupta 2001).
 
+Over a life (``life=N``): one :func:`clutchfem.life` run of the nominal design for N starts
+gives the drift of each requirement answer as the shoe face wears (engagement and slip speed;
+the engagement with ripple drifts as the static engagement does), and every part is taken to
+drift as the nominal does (ASSUMED: the parts' spread is small next to the design, so their
+wear -- the same contact, the same starts -- is the nominal's).  A part is in spec at N starts
+if it is at every wear state: its new answer plus the nominal's change from new at that state,
+the worst over the life (as :func:`clutchfem.targets.life_design.life_check` checks an optimum;
+a state without a slip speed misses the slip limit).  Since the new part is the life's first
+state, the share in spec at N starts is never above the share new.  Both are reported per
+target with their Wilson intervals (``ToleranceResult.life``).
+
 Ranking: standardised regression coefficients (SRC).  Over a tolerance band the answers are
 close to linear in the dimensions, so the least-squares fit y ~ b0 + sum_j b_j x_j explains
 their variance (R^2 near 1) and SRC_j = b_j sd(x_j) / sd(y) is the share of sd(y) due to x_j;
@@ -62,6 +73,7 @@ from ..core import InputError, ParameterError, clean, format_quantity
 from ..core import values as V
 from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from ..targets import Targets, best_estimate, correction_ratios
+from ..targets.life_design import LIFE_KEYS, life_of_nominal, wear_allowance
 from .live import agreement, live_parts
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
@@ -77,6 +89,8 @@ ANSWERS = [
 SHIFTS = (-0.5e-3, -0.2e-3, 0.2e-3, 0.5e-3)
 #: sampling resolution per unit
 RES = {"m": 1e-6, "deg": 0.01, "-": 1e-4, "": 1e-4}
+#: the keywords of clutchfem.life that ``tolerance(life_options=...)`` passes on
+LIFE_OPTIONS = {"duty", "drive", "wear", "rebuild_depth", "engine", "requirements", "idle_rpm"}
 #: the narrowest tolerance half-width, in resolution steps: +-5 steps give 11 snapped values
 MIN_BANDS = 5
 
@@ -201,6 +215,11 @@ class ToleranceResult:
         regression coefficients with bootstrap intervals.
     shifts : list of dict
         Each toleranced length shifted by +-0.2 and +-0.5 mm alone.
+    life : dict or None
+        With ``tolerance(..., life=N)``: ``starts``, the nominal's ``drift_rpm`` per answer
+        ([most negative, most positive] change from new over the life) and ``in_spec`` per
+        target and ``any``: ``new`` and ``at_life`` shares of parts in spec with their Wilson
+        ``ci95`` (module docstring; None without ``life``).
 
     Examples
     --------
@@ -235,6 +254,8 @@ class ToleranceResult:
     #: FE also analysed, the largest relative difference per answer and the verdicts that differ)
     answered_by: str = "FE"
     agreement: dict | None = None
+    #: with ``life=N``: the shares in spec new and at N starts (module docstring)
+    life: dict | None = None
 
     @property
     def out_any(self) -> dict:
@@ -249,7 +270,7 @@ class ToleranceResult:
                       "out_of_spec": self.out_of_spec, "statuses": self.statuses, "stats": self.stats,
                       "ranking": self.ranking, "shifts": self.shifts, "seconds": self.seconds,
                       "notes": self.notes, "corrections": self.corrections, "answered_by": self.answered_by,
-                      "agreement": self.agreement, "samples": [_strip(r) for r in self.rows],
+                      "agreement": self.agreement, "life": self.life, "samples": [_strip(r) for r in self.rows],
                       "method": {"sampling": "independent pseudo-random draws; normal: tolerance = +-3 sigma "
                                              "(ASSUMED Cp = 1); uniform: over +-tolerance",
                                  "share_ci": "Wilson score interval, 95 %",
@@ -273,9 +294,65 @@ def _in_spec(row: dict, spec) -> dict:
     return out
 
 
+def _in_spec_over_life(row: dict, spec, life) -> dict:
+    """Per target: is the part ``row`` in spec at every wear state of ``life`` (its new answer
+    plus the nominal's change from new there; module docstring)?"""
+    new = _in_spec(row, spec)
+    out = {}
+    for name, key, limit, sense in spec:
+        v0 = row.get(key)
+        if key not in LIFE_KEYS or v0 is None or not math.isfinite(v0):
+            out[name] = new[name]  # no wear drift (safety factors), or no answer new: judged new
+            continue
+        y = np.asarray(getattr(life, LIFE_KEYS[key]), dtype=float)
+        if not len(y) or not math.isfinite(y[0]):
+            out[name] = False  # the nominal has no such answer new: no drift to add
+            continue
+        vals = v0 + (y - y[0])
+        with np.errstate(invalid="ignore"):
+            ok = (vals >= limit) if sense == ">=" else (vals <= limit)
+        out[name] = bool(new[name] and np.all(ok & np.isfinite(vals)))
+    return out
+
+
+def _share_in(checks: list, name: str, n_bad: int) -> dict:
+    """The share of parts in spec on target ``name`` (or ``any``) with its Wilson interval;
+    ``n_bad`` parts that could not be analysed counted out (0: left out)."""
+    k = sum(1 for c in checks if (all(c.values()) if name == "any" else c[name]))
+    m = len(checks) + n_bad
+    ci = wilson(k, m)
+    return {"k_in_spec": k, "n": m, "share_in_spec": k / m if m else math.nan, "ci95": list(ci)}
+
+
+def _life_shares(ok_rows, spec, L, starts, bad, notes) -> dict:
+    """``ToleranceResult.life``: the nominal's drift and the shares in spec new and at
+    ``starts`` starts (module docstring)."""
+    a = wear_allowance(L, reserve=0.0)
+    new = [_in_spec(r, spec) for r in ok_rows]
+    old = [_in_spec_over_life(r, spec, L) for r in ok_rows]
+    in_spec = {}
+    for name, *_ in spec + [("any", None, None, None)]:
+        in_spec[name] = {"new": _share_in(new, name, 0), "at_life": _share_in(old, name, 0)}
+    if bad:
+        in_spec["any_counting_unbuildable"] = {"new": _share_in(new, "any", bad), "at_life": _share_in(old, "any", bad)}
+    band = getattr(L, "band", None) or {}
+    return {"starts": float(starts), "drift_rpm": {k: list(v) for k, v in a.drift.items()},
+            "torque_drift_Nm": a.torque_drift_Nm, "drift_at_high_k_rpm": a.k_band,
+            "nominal_life_new_rpm": {v: float(np.asarray(getattr(L, v), dtype=float)[0]) for v in LIFE_KEYS.values()},
+            "in_spec": in_spec, "wear_coefficient": band.get("wear_coefficient"),
+            "wear_coefficient_band": band.get("wear_coefficient_band"),
+            "wear_states": len(np.asarray(L.starts)), "life_seconds": float(getattr(L, "seconds", math.nan)),
+            "notes": list(notes),
+            "assumption": "every part drifts as the nominal design does over the life (one clutchfem life run of "
+                          "the nominal): the parts' spread is small next to the design, so their wear is the "
+                          "nominal's; a part is in spec at N starts if its new answer plus the nominal's change "
+                          "from new is within the limit at every wear state"}
+
+
 def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", seed: int = 1,
               targets=None, engine=None, requirements=None, shifts: bool = True, workers: int | None = None,
-              scheduler: str | None = None, log=None, model: str | None = None, check: int = 16) -> ToleranceResult:
+              scheduler: str | None = None, log=None, model: str | None = None, check: int = 16,
+              life: float | None = None, life_options: dict | None = None) -> ToleranceResult:
     """Monte Carlo of manufacturing tolerances: the spread of the answers, the share of parts
     out of spec and a ranking of the dimensions (module docstring).
 
@@ -305,6 +382,13 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
         (:mod:`clutchfem.tolerances.live`: 10,000 parts in seconds).
     check : int
         With ``model="live"``: parts also analysed by the FE, and the agreement reported.
+    life : float, optional
+        A life [starts] in [1, 1e8]: one :func:`clutchfem.life` run of the nominal design over
+        it, and the share of parts in spec new and at ``life`` starts, every part drifting as
+        the nominal does (module docstring; ``ToleranceResult.life``).  Default: new parts only.
+    life_options : dict, optional
+        With ``life``: keywords of :func:`clutchfem.life` (``duty``, ``drive``, ``wear``,
+        ``rebuild_depth``; default: its defaults, the engine and requirements of the study).
 
     Returns
     -------
@@ -319,7 +403,22 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
     >>> r = cf.tolerance(d, {"flexure_thickness": "0.05mm"}, n=8, shifts=False, workers=0)
     >>> r.n, 0.0 <= r.out_of_spec["any"]["share"] <= 1.0   # share of parts out of any spec
     (8, True)
+    >>> # with life=N (1..1e8 starts): r.life["in_spec"][target]["new"|"at_life"]["share_in_spec"]
+    >>> cf.tolerance(d, {"flexure_thickness": "0.05mm"}, life=0)
+    Traceback (most recent call last):
+    ...
+    clutchfem.core.errors.ParameterError: ...life...
     """
+    if life is not None and (isinstance(life, bool) or not isinstance(life, (int, float)) or not 1 <= life <= 1e8):
+        raise ParameterError("life", life, "a number of starts in [1, 1e8] (as clutchfem life --starts)", "tolerance")
+    if life_options is not None and (life is None or not isinstance(life_options, dict)):
+        raise ParameterError("life_options", life_options if isinstance(life_options, dict) else
+                             type(life_options).__name__, "a dict of clutchfem.life keywords, given with life=N",
+                             "tolerance")
+    unknown = sorted(set(life_options or {}) - LIFE_OPTIONS)
+    if unknown:
+        raise ParameterError("life_options", unknown[0], "keywords of clutchfem.life: " + ", ".join(sorted(LIFE_OPTIONS)),
+                             "tolerance")
     live = (model or ("live" if getattr(getattr(design, "op", None), "fidelity", "") == "live" else "fe")) == "live"
     if model not in (None, "fe", "live"):
         raise ParameterError("model", model, "'fe' (the full FE answers every part) or 'live' (the reduced model "
@@ -475,8 +574,19 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
                      + f"); {agree['n']} of them also through the FE: largest differences "
                      + ", ".join(f"{k} {100 * v:.2g} %" for k, v in agree["largest_rel"].items() if v is not None)
                      + f", {agree['verdicts_differ']} verdict(s) differ")
+    life_res = None
+    if life is not None:
+        if log:
+            log(f"life of the nominal design over {life:.0f} starts (its drift, taken as every part's)")
+        life_notes: list = []
+        L = life_of_nominal(settings, float(life), life_options, life_notes)
+        life_res = _life_shares(ok_rows, spec, L, life, bad, life_notes)
+        notes.append(f"over {life:.0f} starts every part is taken to drift as the nominal design does (one life "
+                     "run of the nominal: the parts' spread is small next to the design, so their wear is the "
+                     "nominal's); drift from new: " + ", ".join(
+                         f"{k} {lo:+.0f} .. {hi:+.0f} rpm" for k, (lo, hi) in life_res["drift_rpm"].items()))
     return ToleranceResult(concept=settings.concept, tolerances=dict(tolerances), dist=dist, n=n, seed=seed,
                            nominal=nom, rows=rows, spec=spec, out_of_spec=out, statuses=statuses, stats=stats,
                            ranking=ranking, shifts=shift_rows, seconds=time.perf_counter() - t0, notes=notes,
                            settings=settings, corrections=ratios, answered_by="reduced model" if live else "FE",
-                           agreement=agree)
+                           agreement=agree, life=life_res)
