@@ -12,7 +12,7 @@ import pytest
 import clutchfem as cf
 from clutchfem.core import ParameterError
 from clutchfem.targets import Targets
-from clutchfem.tolerances.tolerancing import _life_shares, wilson
+from clutchfem.tolerances.over_life import shares_over_life, wilson
 from support.cli import cli_in_process
 
 
@@ -32,7 +32,7 @@ def test_drift_towards_a_limit_lowers_the_share_in_spec():
     rows = _parts([7800.0, 7850.0, 7900.0, 7950.0, 7990.0])
     # slip rises by at most 120 rpm (towards its maximum), engagement rises (away from its minimum)
     L = _life([3600.0, 3650.0, 3700.0], [7000.0, 7120.0, 7080.0])
-    lf = _life_shares(rows, spec, L, 1e4, 0, [])
+    lf = shares_over_life(rows, spec, L, 1e4, 0, [])
     slip = lf["in_spec"]["slip speed <= max"]
     assert slip["new"]["k_in_spec"] == 5
     assert slip["at_life"]["k_in_spec"] == sum(1 for r in rows if r["slip_rpm"] + 120.0 <= 8000.0) == 2
@@ -47,13 +47,13 @@ def test_drift_towards_a_limit_lowers_the_share_in_spec():
 def test_a_downward_drift_moves_the_engagement_minimum_and_a_lost_slip_speed_misses():
     spec = Targets(3510.0, None, 8000.0, 1.5).constraints()
     rows = _parts([7500.0], eng=3540.0) + _parts([7500.0], eng=3600.0)
-    lf = _life_shares(rows, spec, _life([3600.0, 3550.0], [7000.0, 7010.0]), 1e4, 0, [])
+    lf = shares_over_life(rows, spec, _life([3600.0, 3550.0], [7000.0, 7010.0]), 1e4, 0, [])
     assert lf["in_spec"]["engagement with ripple >= LO"]["at_life"]["k_in_spec"] == 1  # 3540 - 50 < 3510
-    lost = _life_shares(rows, spec, _life([3600.0, 3650.0], [7000.0, math.nan]), 1e4, 0, [])
+    lost = shares_over_life(rows, spec, _life([3600.0, 3650.0], [7000.0, math.nan]), 1e4, 0, [])
     assert lost["in_spec"]["slip speed <= max"]["new"]["k_in_spec"] == 2
     assert lost["in_spec"]["slip speed <= max"]["at_life"]["k_in_spec"] == 0
     # parts the rules refuse: counted out of spec both ways
-    bad = _life_shares(rows, spec, _life([3600.0, 3650.0], [7000.0, 7010.0]), 1e4, 2, [])
+    bad = shares_over_life(rows, spec, _life([3600.0, 3650.0], [7000.0, 7010.0]), 1e4, 2, [])
     assert bad["in_spec"]["any_counting_unbuildable"]["new"]["n"] == 4
 
 

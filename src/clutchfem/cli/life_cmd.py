@@ -27,55 +27,11 @@ from .common import (
     working,
     wrote,
 )
+from .life_options import DRIVE_OPTIONS, params_from, rebuild_from, wear_from
 
 PANEL = "Life"
 #: worn states whose fields ``--out`` keeps for its .pvd (``cf.life(fields=...)``)
 FIELD_STATES = 12
-#: option -> field of DriveLine (the assumed inertias, loads and throttle ramp of a start)
-DRIVE_OPTIONS = {"--engine-inertia": "engine_inertia", "--driven-inertia": "driven_inertia",
-                 "--drag-torque": "drag_torque", "--cutting-torque": "cutting_torque",
-                 "--throttle-ramp": "throttle_ramp"}
-#: option -> field of WearParams (Archard's coefficients and the wear step)
-WEAR_OPTIONS = {"--wear-regime": "regime", "--wear-coefficient": "wear_coefficient", "--hardness": "hardness",
-                "--drum-wear-coefficient": "drum_wear_coefficient", "--drum-hardness": "drum_hardness",
-                "--max-wear-step": "max_step", "--wear-rate-change": "rate_change"}
-
-
-def _params(cls, given: dict, options: dict):
-    """``cls`` from the option strings ``given`` (option -> raw or None); a refusal names the
-    option typed."""
-    values = {}
-    for opt, raw in given.items():
-        if raw is None:
-            continue
-        name = options[opt]
-        try:
-            values[name] = cls.parse_value(name, raw)
-        except ParameterError as exc:
-            raise ParameterError(exc.name, raw, exc.allowed, f"option {opt}") from None
-    try:
-        return cls(**values)
-    except ParameterError as exc:
-        opt = next((o for o, n in options.items() if n == exc.name), None)
-        raise ParameterError(exc.name, exc.value, exc.allowed, f"option {opt}" if opt else None,
-                             shown=given.get(opt) or exc.shown) from None
-
-
-def wear_from(given: dict):
-    """The WearParams of the ``--wear-*`` options ``given`` (option -> raw or None)."""
-    from .. import WearParams
-
-    return _params(WearParams, given, WEAR_OPTIONS)
-
-
-def rebuild_from(raw: str | None) -> dict:
-    """``--rebuild-depth`` as keywords of cf.life: {} (its default), or {"rebuild_depth": m or None}."""
-    if raw is not None and raw.strip().lower() == "never":
-        return {"rebuild_depth": None}
-    d = quantity("--rebuild-depth", raw, "m", 1e-6, 1e-2)  # not given: cf.life's own default
-    return {} if d is None else {"rebuild_depth": d}
-
-
 @O.takes("concept", "set_", "mesh", "mesh_size", "model", "drum_radius", "thickness", "mu", "fidelity",
          "rotation", "engine", "idle_rpm", "a", "b", "out", "json_")
 def life(
@@ -141,7 +97,7 @@ def life(
                                      shown=exc.shown) from None
             except InputError as exc:
                 raise InputError(f"option --duty: {exc}") from None
-        drive = _params(DriveLine, {"--engine-inertia": engine_inertia, "--driven-inertia": driven_inertia,
+        drive = params_from(DriveLine, {"--engine-inertia": engine_inertia, "--driven-inertia": driven_inertia,
                                     "--drag-torque": drag_torque, "--cutting-torque": cutting_torque,
                                     "--throttle-ramp": throttle_ramp}, DRIVE_OPTIONS)
         wear = wear_from({"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,

@@ -13,7 +13,7 @@ from rich.table import Table
 from .. import ClutchfemError, ParameterError
 from . import options as O
 from .common import check_cluster, check_out_dir, console, err, fail, quantity, study_settings, tolerances_from, wrote
-from .life_cmd import rebuild_from, wear_from
+from .life_options import rebuild_from, wear_from
 
 LIFE = "Life"
 

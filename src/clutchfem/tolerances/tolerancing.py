@@ -26,16 +26,8 @@ of spec, exactly the cases that matter; Clopper-Pearson's exact interval is cons
 (covers more than 95 %); Wilson's coverage is close to nominal down to n ~ 20 (Brown, Cai &
 DasGupta 2001).
 
-Over a life (``life=N``): one :func:`clutchfem.life` run of the nominal design for N starts
-gives the drift of each requirement answer as the shoe face wears (engagement and slip speed;
-the engagement with ripple drifts as the static engagement does), and every part is taken to
-drift as the nominal does (ASSUMED: the parts' spread is small next to the design, so their
-wear -- the same contact, the same starts -- is the nominal's).  A part is in spec at N starts
-if it is at every wear state: its new answer plus the nominal's change from new at that state,
-the worst over the life (as :func:`clutchfem.targets.life_design.life_check` checks an optimum;
-a state without a slip speed misses the slip limit).  Since the new part is the life's first
-state, the share in spec at N starts is never above the share new.  Both are reported per
-target with their Wilson intervals (``ToleranceResult.life``).
+Over a life (``life=N``): every part drifts as the nominal design's life run does, and the
+share in spec is reported new and at N starts (:mod:`.over_life`).
 
 Ranking: standardised regression coefficients (SRC).  Over a tolerance band the answers are
 close to linear in the dimensions, so the least-squares fit y ~ b0 + sum_j b_j x_j explains
@@ -67,14 +59,14 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.stats import binomtest, bootstrap
+from scipy.stats import bootstrap
 
 from ..core import InputError, ParameterError, clean, format_quantity
 from ..core import values as V
 from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from ..targets import Targets, best_estimate, correction_ratios
-from ..targets.life_design import LIFE_KEYS, life_of_nominal, wear_allowance
 from .live import agreement, live_parts
+from .over_life import check_life_args, in_spec, life_shares, wilson
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -89,8 +81,6 @@ ANSWERS = [
 SHIFTS = (-0.5e-3, -0.2e-3, 0.2e-3, 0.5e-3)
 #: sampling resolution per unit
 RES = {"m": 1e-6, "deg": 0.01, "-": 1e-4, "": 1e-4}
-#: the keywords of clutchfem.life that ``tolerance(life_options=...)`` passes on
-LIFE_OPTIONS = {"duty", "drive", "wear", "rebuild_depth", "engine", "requirements", "idle_rpm"}
 #: the narrowest tolerance half-width, in resolution steps: +-5 steps give 11 snapped values
 MIN_BANDS = 5
 
@@ -147,15 +137,6 @@ def parse_tolerance(P, text: str) -> tuple[str, float]:
                              "than the range, no nominal value keeps every part inside it", "option --tol",
                              shown=f"+-{show(t)}")
     return name, float(t)
-
-
-def wilson(k: int, n: int) -> tuple[float, float]:
-    """The 95 % Wilson score interval of a binomial share k/n (module docstring;
-    :func:`scipy.stats.binomtest`); NaN for n = 0."""
-    if n <= 0:
-        return (math.nan, math.nan)
-    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=0.95, method="wilson")
-    return (float(ci.low), float(ci.high))
 
 
 def src(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
@@ -219,7 +200,7 @@ class ToleranceResult:
         With ``tolerance(..., life=N)``: ``starts``, the nominal's ``drift_rpm`` per answer
         ([most negative, most positive] change from new over the life) and ``in_spec`` per
         target and ``any``: ``new`` and ``at_life`` shares of parts in spec with their Wilson
-        ``ci95`` (module docstring; None without ``life``).
+        ``ci95`` (:mod:`clutchfem.tolerances.over_life`; None without ``life``).
 
     Examples
     --------
@@ -254,7 +235,7 @@ class ToleranceResult:
     #: FE also analysed, the largest relative difference per answer and the verdicts that differ)
     answered_by: str = "FE"
     agreement: dict | None = None
-    #: with ``life=N``: the shares in spec new and at N starts (module docstring)
+    #: with ``life=N``: the shares in spec new and at N starts (:mod:`clutchfem.tolerances.over_life`)
     life: dict | None = None
 
     @property
@@ -280,73 +261,6 @@ class ToleranceResult:
 
 def _strip(r: dict) -> dict:
     return {k: v for k, v in r.items() if k not in ("warnings",)}
-
-
-def _in_spec(row: dict, spec) -> dict:
-    out = {}
-    for name, key, limit, sense in spec:
-        v = row.get(key)
-        if v is None or not math.isfinite(v):
-            ok = key != "slip_rpm" and sense == ">="  # never engages: no chain motion at idle
-        else:
-            ok = v >= limit if sense == ">=" else v <= limit
-        out[name] = bool(ok)
-    return out
-
-
-def _in_spec_over_life(row: dict, spec, life) -> dict:
-    """Per target: is the part ``row`` in spec at every wear state of ``life`` (its new answer
-    plus the nominal's change from new there; module docstring)?"""
-    new = _in_spec(row, spec)
-    out = {}
-    for name, key, limit, sense in spec:
-        v0 = row.get(key)
-        if key not in LIFE_KEYS or v0 is None or not math.isfinite(v0):
-            out[name] = new[name]  # no wear drift (safety factors), or no answer new: judged new
-            continue
-        y = np.asarray(getattr(life, LIFE_KEYS[key]), dtype=float)
-        if not len(y) or not math.isfinite(y[0]):
-            out[name] = False  # the nominal has no such answer new: no drift to add
-            continue
-        vals = v0 + (y - y[0])
-        with np.errstate(invalid="ignore"):
-            ok = (vals >= limit) if sense == ">=" else (vals <= limit)
-        out[name] = bool(new[name] and np.all(ok & np.isfinite(vals)))
-    return out
-
-
-def _share_in(checks: list, name: str, n_bad: int) -> dict:
-    """The share of parts in spec on target ``name`` (or ``any``) with its Wilson interval;
-    ``n_bad`` parts that could not be analysed counted out (0: left out)."""
-    k = sum(1 for c in checks if (all(c.values()) if name == "any" else c[name]))
-    m = len(checks) + n_bad
-    ci = wilson(k, m)
-    return {"k_in_spec": k, "n": m, "share_in_spec": k / m if m else math.nan, "ci95": list(ci)}
-
-
-def _life_shares(ok_rows, spec, L, starts, bad, notes) -> dict:
-    """``ToleranceResult.life``: the nominal's drift and the shares in spec new and at
-    ``starts`` starts (module docstring)."""
-    a = wear_allowance(L, reserve=0.0)
-    new = [_in_spec(r, spec) for r in ok_rows]
-    old = [_in_spec_over_life(r, spec, L) for r in ok_rows]
-    in_spec = {}
-    for name, *_ in spec + [("any", None, None, None)]:
-        in_spec[name] = {"new": _share_in(new, name, 0), "at_life": _share_in(old, name, 0)}
-    if bad:
-        in_spec["any_counting_unbuildable"] = {"new": _share_in(new, "any", bad), "at_life": _share_in(old, "any", bad)}
-    band = getattr(L, "band", None) or {}
-    return {"starts": float(starts), "drift_rpm": {k: list(v) for k, v in a.drift.items()},
-            "torque_drift_Nm": a.torque_drift_Nm, "drift_at_high_k_rpm": a.k_band,
-            "nominal_life_new_rpm": {v: float(np.asarray(getattr(L, v), dtype=float)[0]) for v in LIFE_KEYS.values()},
-            "in_spec": in_spec, "wear_coefficient": band.get("wear_coefficient"),
-            "wear_coefficient_band": band.get("wear_coefficient_band"),
-            "wear_states": len(np.asarray(L.starts)), "life_seconds": float(getattr(L, "seconds", math.nan)),
-            "notes": list(notes),
-            "assumption": "every part drifts as the nominal design does over the life (one clutchfem life run of "
-                          "the nominal): the parts' spread is small next to the design, so their wear is the "
-                          "nominal's; a part is in spec at N starts if its new answer plus the nominal's change "
-                          "from new is within the limit at every wear state"}
 
 
 def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", seed: int = 1,
@@ -385,7 +299,7 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
     life : float, optional
         A life [starts] in [1, 1e8]: one :func:`clutchfem.life` run of the nominal design over
         it, and the share of parts in spec new and at ``life`` starts, every part drifting as
-        the nominal does (module docstring; ``ToleranceResult.life``).  Default: new parts only.
+        the nominal does (:mod:`clutchfem.tolerances.over_life`; ``ToleranceResult.life``).  Default: new parts only.
     life_options : dict, optional
         With ``life``: keywords of :func:`clutchfem.life` (``duty``, ``drive``, ``wear``,
         ``rebuild_depth``; default: its defaults, the engine and requirements of the study).
@@ -409,16 +323,7 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
     ...
     clutchfem.core.errors.ParameterError: ...life...
     """
-    if life is not None and (isinstance(life, bool) or not isinstance(life, (int, float)) or not 1 <= life <= 1e8):
-        raise ParameterError("life", life, "a number of starts in [1, 1e8] (as clutchfem life --starts)", "tolerance")
-    if life_options is not None and (life is None or not isinstance(life_options, dict)):
-        raise ParameterError("life_options", life_options if isinstance(life_options, dict) else
-                             type(life_options).__name__, "a dict of clutchfem.life keywords, given with life=N",
-                             "tolerance")
-    unknown = sorted(set(life_options or {}) - LIFE_OPTIONS)
-    if unknown:
-        raise ParameterError("life_options", unknown[0], "keywords of clutchfem.life: " + ", ".join(sorted(LIFE_OPTIONS)),
-                             "tolerance")
+    check_life_args(life, life_options)
     live = (model or ("live" if getattr(getattr(design, "op", None), "fidelity", "") == "live" else "fe")) == "live"
     if model not in (None, "fe", "live"):
         raise ParameterError("model", model, "'fe' (the full FE answers every part) or 'live' (the reduced model "
@@ -500,13 +405,13 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
             if r.get(key) is not None:
                 r[key] = r[key] * f
     if live:
-        agree = agreement(rows[:n_check], fe_rows, spec, _in_spec)
+        agree = agreement(rows[:n_check], fe_rows, spec, in_spec)
     statuses: dict = {}
     for r in rows:
         statuses[r["status"]] = statuses.get(r["status"], 0) + 1
     bad = n - len(ok_rows)
     out: dict = {}
-    checks = [_in_spec(r, spec) for r in ok_rows]
+    checks = [in_spec(r, spec) for r in ok_rows]
     for name, *_ in spec + [("any", None, None, None)]:
         k = sum(1 for c in checks if (not all(c.values()) if name == "any" else not c[name]))
         m_ = len(ok_rows)
@@ -576,15 +481,8 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
                      + f", {agree['verdicts_differ']} verdict(s) differ")
     life_res = None
     if life is not None:
-        if log:
-            log(f"life of the nominal design over {life:.0f} starts (its drift, taken as every part's)")
-        life_notes: list = []
-        L = life_of_nominal(settings, float(life), life_options, life_notes)
-        life_res = _life_shares(ok_rows, spec, L, life, bad, life_notes)
-        notes.append(f"over {life:.0f} starts every part is taken to drift as the nominal design does (one life "
-                     "run of the nominal: the parts' spread is small next to the design, so their wear is the "
-                     "nominal's); drift from new: " + ", ".join(
-                         f"{k} {lo:+.0f} .. {hi:+.0f} rpm" for k, (lo, hi) in life_res["drift_rpm"].items()))
+        life_res, note = life_shares(settings, life, life_options, ok_rows, spec, bad, log)
+        notes.append(note)
     return ToleranceResult(concept=settings.concept, tolerances=dict(tolerances), dist=dist, n=n, seed=seed,
                            nominal=nom, rows=rows, spec=spec, out_of_spec=out, statuses=statuses, stats=stats,
                            ranking=ranking, shifts=shift_rows, seconds=time.perf_counter() - t0, notes=notes,
