@@ -27,40 +27,11 @@ from .common import (
     working,
     wrote,
 )
+from .life_options import DRIVE_OPTIONS, params_from, rebuild_from, wear_from
 
 PANEL = "Life"
 #: worn states whose fields ``--out`` keeps for its .pvd (``cf.life(fields=...)``)
 FIELD_STATES = 12
-#: option -> field of DriveLine (the assumed inertias, loads and throttle ramp of a start)
-DRIVE_OPTIONS = {"--engine-inertia": "engine_inertia", "--driven-inertia": "driven_inertia",
-                 "--drag-torque": "drag_torque", "--cutting-torque": "cutting_torque",
-                 "--throttle-ramp": "throttle_ramp"}
-#: option -> field of WearParams (Archard's coefficients and the wear step)
-WEAR_OPTIONS = {"--wear-regime": "regime", "--wear-coefficient": "wear_coefficient", "--hardness": "hardness",
-                "--drum-wear-coefficient": "drum_wear_coefficient", "--drum-hardness": "drum_hardness",
-                "--max-wear-step": "max_step", "--wear-rate-change": "rate_change"}
-
-
-def _params(cls, given: dict, options: dict):
-    """``cls`` from the option strings ``given`` (option -> raw or None); a refusal names the
-    option typed."""
-    values = {}
-    for opt, raw in given.items():
-        if raw is None:
-            continue
-        name = options[opt]
-        try:
-            values[name] = cls.parse_value(name, raw)
-        except ParameterError as exc:
-            raise ParameterError(exc.name, raw, exc.allowed, f"option {opt}") from None
-    try:
-        return cls(**values)
-    except ParameterError as exc:
-        opt = next((o for o, n in options.items() if n == exc.name), None)
-        raise ParameterError(exc.name, exc.value, exc.allowed, f"option {opt}" if opt else None,
-                             shown=given.get(opt) or exc.shown) from None
-
-
 @O.takes("concept", "set_", "mesh", "mesh_size", "model", "drum_radius", "thickness", "mu", "fidelity",
          "rotation", "engine", "idle_rpm", "a", "b", "out", "json_")
 def life(
@@ -111,7 +82,7 @@ def life(
     """The clutch over its life: engagement and slip speed, torque and contact arc against the
     number of starts as the shoe face wears (Archard, k ASSUMED with its band), the slip energy
     of a start, and the first start at which a requirement is missed."""
-    from .. import DriveLine, DutyCycle, WearParams, dumps, life_files
+    from .. import DriveLine, DutyCycle, dumps, life_files
     from .. import life as run
 
     try:
@@ -126,19 +97,14 @@ def life(
                                      shown=exc.shown) from None
             except InputError as exc:
                 raise InputError(f"option --duty: {exc}") from None
-        drive = _params(DriveLine, {"--engine-inertia": engine_inertia, "--driven-inertia": driven_inertia,
+        drive = params_from(DriveLine, {"--engine-inertia": engine_inertia, "--driven-inertia": driven_inertia,
                                     "--drag-torque": drag_torque, "--cutting-torque": cutting_torque,
                                     "--throttle-ramp": throttle_ramp}, DRIVE_OPTIONS)
-        wear = _params(WearParams, {"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,
+        wear = wear_from({"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,
                                     "--hardness": hardness, "--drum-wear-coefficient": drum_wear_coefficient,
                                     "--drum-hardness": drum_hardness, "--max-wear-step": max_wear_step,
-                                    "--wear-rate-change": wear_rate_change},
-                       WEAR_OPTIONS)
-        if rebuild_depth is not None and rebuild_depth.strip().lower() == "never":
-            depth = {"rebuild_depth": None}
-        else:  # not given: cf.life's own default
-            d = quantity("--rebuild-depth", rebuild_depth, "m", 1e-6, 1e-2)
-            depth = {} if d is None else {"rebuild_depth": d}
+                                    "--wear-rate-change": wear_rate_change})
+        depth = rebuild_from(rebuild_depth)
         eng, idle = engine_from(o.engine, o.idle_rpm)
         req = requirements_from(o.a, o.b)
         op = operating_point(mu=o.mu, rotation=o.rotation, fidelity=o.fidelity)

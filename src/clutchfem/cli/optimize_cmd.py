@@ -87,8 +87,11 @@ def optimize(
         if life is not None:
             n_life = quantity("--life", life, "-", 1.0, 1e8)
             if tol:
-                raise ParameterError("life", life, "without --tol: the robust design does not yet include the wear "
-                                     "(run optimize --life, then clutchfem tolerance on its optimum)", "option --life")
+                raise ParameterError("life", life, "without --tol: the robust design does not yet include the wear; "
+                                     "run optimize --tol ... --yield Y without --life, then check its optimum over "
+                                     f"the life with clutchfem tolerance CONCEPT --set ... --tol ... --life {life} "
+                                     "(the share of parts in spec new and at that many starts; the robust output "
+                                     "prints the command)", "option --life")
         robust_only = [(opt, v) for opt, v in (("--yield", yield_), ("--dist", dist), ("--rounds", rounds),
                                                ("--check", check or None),
                                                ("--model-error" if model_error else "--no-model-error",
@@ -157,6 +160,9 @@ def optimize(
         _print_optimization(res, final)
         if robust is not None:
             _print_robust(robust)
+            console.print("over a life: clutchfem tolerance " + escape(res.concept) + " "
+                          + " ".join(f"--set {escape(x)}" for x in res.set_args) + " "
+                          + " ".join(f"--tol {escape(x)}" for x in tol) + " --life STARTS", soft_wrap=True)
     except ClutchfemError as exc:
         fail(exc)
 

@@ -13,6 +13,9 @@ from rich.table import Table
 from .. import ClutchfemError, ParameterError
 from . import options as O
 from .common import check_cluster, check_out_dir, console, err, fail, quantity, study_settings, tolerances_from, wrote
+from .life_options import rebuild_from, wear_from
+
+LIFE = "Life"
 
 
 @O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "idle_rpm", "a", "b", "workers",
@@ -47,6 +50,31 @@ def tolerance(
     cost: List[str] = typer.Option([], "--cost", help="with --allocate: cost weight name=W of a dimension at its "
                                    "--tol width (default 1 each; reciprocal cost model, ASSUMED)",
                                    rich_help_panel="Allocation"),
+    life: Optional[str] = typer.Option(None, "--life", metavar="STARTS", help="also the share in spec after STARTS "
+                                       "starts (1..1e8): one clutchfem life run of the nominal design, every part "
+                                       "drifting as the nominal does (drive line and duty: clutchfem life's "
+                                       "defaults)", rich_help_panel=LIFE),
+    wear_regime: Optional[str] = typer.Option(None, "--wear-regime", metavar="dry|lubricated", help="with --life: "
+                                              "as clutchfem life (default dry)", rich_help_panel=LIFE),
+    wear_coefficient: Optional[str] = typer.Option(None, "--wear-coefficient", metavar="NUMBER", help="with "
+                                                   "--life: Archard's k of the shoe (default: the regime's, ASSUMED)",
+                                                   rich_help_panel=LIFE),
+    hardness: Optional[str] = typer.Option(None, "--hardness", metavar="STRESS", help="with --life: shoe hardness "
+                                           "(default 4.4 GPa, ASSUMED)", rich_help_panel=LIFE),
+    drum_wear_coefficient: Optional[str] = typer.Option(None, "--drum-wear-coefficient", metavar="NUMBER",
+                                                        help="with --life: Archard's k of the drum (default: the "
+                                                        "shoe's)", rich_help_panel=LIFE),
+    drum_hardness: Optional[str] = typer.Option(None, "--drum-hardness", metavar="STRESS", help="with --life: drum "
+                                                "hardness (default 4.4 GPa, ASSUMED)", rich_help_panel=LIFE),
+    max_wear_step: Optional[str] = typer.Option(None, "--max-wear-step", metavar="LENGTH", help="with --life: cap "
+                                                "on the worn depth of one wear step (default 10 um)",
+                                                rich_help_panel=LIFE),
+    wear_rate_change: Optional[str] = typer.Option(None, "--wear-rate-change", metavar="NUMBER", help="with --life: "
+                                                   "largest change of the wear rate in one step (default 0.25)",
+                                                   rich_help_panel=LIFE),
+    rebuild_depth: Optional[str] = typer.Option(None, "--rebuild-depth", metavar="LENGTH|never", help="with --life: "
+                                                "worn depth after which the part is meshed again (default 0.1 mm)",
+                                                rich_help_panel=LIFE),
 ):
     """Monte Carlo of manufacturing tolerances: spread, share out of spec, ranking of dimensions."""
     from .. import Requirements, Targets, dumps, write_report
@@ -66,6 +94,11 @@ def tolerance(
         if given and not allocate:
             raise ParameterError(given[0][0].lstrip("-"), given[0][1], "an option of --allocate only (--yield, --cost, "
                                  "--no-model-error): add --allocate", f"option {given[0][0]}")
+        wear_given = {"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient, "--hardness": hardness,
+                      "--drum-wear-coefficient": drum_wear_coefficient, "--drum-hardness": drum_hardness,
+                      "--max-wear-step": max_wear_step, "--wear-rate-change": wear_rate_change,
+                      "--rebuild-depth": rebuild_depth}
+        life_kw = _life_options(life, wear_given, allocate)
         y = _yield(yield_) if allocate else None
         if allocate and o.scheduler is not None:
             raise ParameterError("scheduler", o.scheduler, "no --scheduler with --allocate: its sensitivities run on "
@@ -81,9 +114,11 @@ def tolerance(
         n = 64 if n is None else n
         live = {"model": "live", "check": check} if o.fidelity == "live" else {}
         res = run(s, tols, n=n, dist=dist, seed=seed, targets=Targets(t0.engage_rpm_lo, None, t0.slip_rpm_max, sf), **live,
-                  shifts=shifts, workers=o.workers, scheduler=o.scheduler, log=lambda m: err.print(escape(m)))
+                  shifts=shifts, workers=o.workers, scheduler=o.scheduler, log=lambda m: err.print(escape(m)),
+                  **life_kw)
         if o.out is not None:
-            wrote(write_report(res, o.out, design=base, run={"tolerances_si": tols, "n": n, "dist": dist, "seed": seed},
+            wrote(write_report(res, o.out, design=base, run={"tolerances_si": tols, "n": n, "dist": dist, "seed": seed,
+                                                             "life_starts": life_kw.get("life")},
                                engine=s.engine_csv or "", requirements=Requirements(a=s.a, b=s.b)))
         if o.json_:
             d = res.to_json()
@@ -93,6 +128,43 @@ def tolerance(
         _print_tolerance(res)
     except ClutchfemError as exc:
         fail(exc)
+
+
+def _life_options(raw, wear_given: dict, allocate: bool) -> dict:
+    """The ``life=``/``life_options=`` keywords of cf.tolerance from ``--life`` and the wear
+    options (refused before any design is meshed)."""
+    given = [(opt, v) for opt, v in wear_given.items() if v is not None]
+    if raw is None:
+        if given:
+            raise ParameterError(given[0][0].lstrip("-").replace("-", "_"), given[0][1], "an option of --life only: "
+                                 "add --life STARTS", f"option {given[0][0]}")
+        return {}
+    n = quantity("--life", raw, "-", 1.0, 1e8)
+    if allocate:
+        raise ParameterError("life", raw, "without --allocate (the allocation is for new parts; check its widths "
+                             "over a life with clutchfem tolerance --tol ... --life N)", "option --life")
+    wear = wear_from({k: v for k, v in wear_given.items() if k != "--rebuild-depth"})
+    return {"life": n, "life_options": {"wear": wear, **rebuild_from(wear_given["--rebuild-depth"])}}
+
+
+def _print_life(res):
+    lf = res.life
+    t = Table(title=escape(f"share of parts in spec new and after {lf['starts']:.0f} starts (95 % Wilson interval)"))
+    t.add_column("spec")
+    t.add_column("new", justify="right")
+    t.add_column(escape(f"at {lf['starts']:.0f} starts"), justify="right")
+    for name, v in lf["in_spec"].items():
+        t.add_row(escape(name), *(escape(f"{100 * x['share_in_spec']:.1f} % [{100 * x['ci95'][0]:.1f}, "
+                                         f"{100 * x['ci95'][1]:.1f}] ({x['k_in_spec']} of {x['n']})")
+                                  for x in (v["new"], v["at_life"])))
+    console.print(t)
+    for k, (lo, hi) in lf["drift_rpm"].items():
+        console.print(escape(f"  drift of the nominal's {k} over {lf['starts']:.0f} starts: {lo:+.0f} .. {hi:+.0f} rpm"))
+    console.print(escape(f"  torque at the rpm of maximum engine torque: {lf['torque_drift_Nm']:+.2f} N m over the life; "
+                         f"Archard k = {lf['wear_coefficient']:.1e} (band {lf['wear_coefficient_band'][0]:.0e}"
+                         f"..{lf['wear_coefficient_band'][1]:.0e}); {lf['wear_states']} wear states"))
+    console.print("[dim]ASSUMED: every part drifts as the nominal design does (the parts' spread is small next to the "
+                  "design, so their wear is the nominal's)[/]")
 
 
 def _print_tolerance(res):
@@ -138,6 +210,8 @@ def _print_tolerance(res):
                              if x["engagement_rpm"] else x["status"]),
                       escape(f"{x['stiffness_change_pct']:+.1f} %" if x["stiffness_change_pct"] is not None else "-"))
         console.print(s)
+    if res.life is not None:
+        _print_life(res)
     for n_ in res.notes:
         console.print(f"[dim]note: {escape(n_)}[/]")
 

@@ -283,6 +283,23 @@ def _life_of(settings, point, starts, options, notes):
         return run_life(_design(settings, point), starts=float(starts), **{**options, "rebuild_depth": None})
 
 
+def life_defaults(settings, life_options: dict | None = None) -> dict:
+    """The keywords of :func:`clutchfem.life` for a design of ``settings``: ``life_options``
+    with the settings' engine curve, requirement factors and idle speed where not given."""
+    lo = dict(life_options or {})
+    lo.setdefault("engine", settings.engine())
+    lo.setdefault("requirements", Requirements(a=settings.a, b=settings.b))
+    lo.setdefault("idle_rpm", settings.idle_rpm)
+    return lo
+
+
+def life_of_nominal(settings, starts: float, life_options: dict | None = None, notes: list | None = None):
+    """:func:`clutchfem.life` of the base design of ``settings`` over ``starts`` starts
+    (:func:`life_defaults`; a refused rebuild of the worn part is said in ``notes`` and the
+    life run again without rebuilds, as :func:`optimize_for_life` does)."""
+    return _life_of(settings, None, starts, life_defaults(settings, life_options), [] if notes is None else notes)
+
+
 def optimize_for_life(settings, targets: Targets, free=None, *, starts: float, life_options: dict | None = None,
                       reserve: float = RESERVE, log=None, **optimize_options) -> LifeDesign:
     """The optimum that keeps ``targets`` over ``starts`` starts (module docstring).
@@ -322,10 +339,7 @@ def optimize_for_life(settings, targets: Targets, free=None, *, starts: float, l
         raise ParameterError("targets", type(targets).__name__, "a clutchfem Targets", "optimize --life")
     if isinstance(reserve, bool) or not isinstance(reserve, (int, float)) or not 0.0 <= reserve <= 5.0:
         raise ParameterError("reserve", reserve, "a share in [0, 5]", "optimize --life")
-    lo = dict(life_options or {})
-    lo.setdefault("engine", settings.engine())
-    lo.setdefault("requirements", Requirements(a=settings.a, b=settings.b))
-    lo.setdefault("idle_rpm", settings.idle_rpm)
+    lo = life_defaults(settings, life_options)
     say = log or (lambda m: None)
 
     say(f"life of the start design over {starts:.0f} starts (the wear allowance)")

@@ -26,6 +26,9 @@ of spec, exactly the cases that matter; Clopper-Pearson's exact interval is cons
 (covers more than 95 %); Wilson's coverage is close to nominal down to n ~ 20 (Brown, Cai &
 DasGupta 2001).
 
+Over a life (``life=N``): every part drifts as the nominal design's life run does, and the
+share in spec is reported new and at N starts (:mod:`.over_life`).
+
 Ranking: standardised regression coefficients (SRC).  Over a tolerance band the answers are
 close to linear in the dimensions, so the least-squares fit y ~ b0 + sum_j b_j x_j explains
 their variance (R^2 near 1) and SRC_j = b_j sd(x_j) / sd(y) is the share of sd(y) due to x_j;
@@ -56,13 +59,14 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.stats import binomtest, bootstrap
+from scipy.stats import bootstrap
 
 from ..core import InputError, ParameterError, clean, format_quantity
 from ..core import values as V
 from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from ..targets import Targets, best_estimate, correction_ratios
 from .live import agreement, live_parts
+from .over_life import check_life_args, in_spec, life_shares, wilson
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
@@ -135,15 +139,6 @@ def parse_tolerance(P, text: str) -> tuple[str, float]:
     return name, float(t)
 
 
-def wilson(k: int, n: int) -> tuple[float, float]:
-    """The 95 % Wilson score interval of a binomial share k/n (module docstring;
-    :func:`scipy.stats.binomtest`); NaN for n = 0."""
-    if n <= 0:
-        return (math.nan, math.nan)
-    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=0.95, method="wilson")
-    return (float(ci.low), float(ci.high))
-
-
 def src(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
     """(standardised regression coefficients, R^2, raw slopes) of y on the columns of X."""
     Xc = X - X.mean(axis=0)
@@ -201,6 +196,11 @@ class ToleranceResult:
         regression coefficients with bootstrap intervals.
     shifts : list of dict
         Each toleranced length shifted by +-0.2 and +-0.5 mm alone.
+    life : dict or None
+        With ``tolerance(..., life=N)``: ``starts``, the nominal's ``drift_rpm`` per answer
+        ([most negative, most positive] change from new over the life) and ``in_spec`` per
+        target and ``any``: ``new`` and ``at_life`` shares of parts in spec with their Wilson
+        ``ci95`` (:mod:`clutchfem.tolerances.over_life`; None without ``life``).
 
     Examples
     --------
@@ -235,6 +235,8 @@ class ToleranceResult:
     #: FE also analysed, the largest relative difference per answer and the verdicts that differ)
     answered_by: str = "FE"
     agreement: dict | None = None
+    #: with ``life=N``: the shares in spec new and at N starts (:mod:`clutchfem.tolerances.over_life`)
+    life: dict | None = None
 
     @property
     def out_any(self) -> dict:
@@ -249,7 +251,7 @@ class ToleranceResult:
                       "out_of_spec": self.out_of_spec, "statuses": self.statuses, "stats": self.stats,
                       "ranking": self.ranking, "shifts": self.shifts, "seconds": self.seconds,
                       "notes": self.notes, "corrections": self.corrections, "answered_by": self.answered_by,
-                      "agreement": self.agreement, "samples": [_strip(r) for r in self.rows],
+                      "agreement": self.agreement, "life": self.life, "samples": [_strip(r) for r in self.rows],
                       "method": {"sampling": "independent pseudo-random draws; normal: tolerance = +-3 sigma "
                                              "(ASSUMED Cp = 1); uniform: over +-tolerance",
                                  "share_ci": "Wilson score interval, 95 %",
@@ -261,21 +263,10 @@ def _strip(r: dict) -> dict:
     return {k: v for k, v in r.items() if k not in ("warnings",)}
 
 
-def _in_spec(row: dict, spec) -> dict:
-    out = {}
-    for name, key, limit, sense in spec:
-        v = row.get(key)
-        if v is None or not math.isfinite(v):
-            ok = key != "slip_rpm" and sense == ">="  # never engages: no chain motion at idle
-        else:
-            ok = v >= limit if sense == ">=" else v <= limit
-        out[name] = bool(ok)
-    return out
-
-
 def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", seed: int = 1,
               targets=None, engine=None, requirements=None, shifts: bool = True, workers: int | None = None,
-              scheduler: str | None = None, log=None, model: str | None = None, check: int = 16) -> ToleranceResult:
+              scheduler: str | None = None, log=None, model: str | None = None, check: int = 16,
+              life: float | None = None, life_options: dict | None = None) -> ToleranceResult:
     """Monte Carlo of manufacturing tolerances: the spread of the answers, the share of parts
     out of spec and a ranking of the dimensions (module docstring).
 
@@ -305,6 +296,13 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
         (:mod:`clutchfem.tolerances.live`: 10,000 parts in seconds).
     check : int
         With ``model="live"``: parts also analysed by the FE, and the agreement reported.
+    life : float, optional
+        A life [starts] in [1, 1e8]: one :func:`clutchfem.life` run of the nominal design over
+        it, and the share of parts in spec new and at ``life`` starts, every part drifting as
+        the nominal does (:mod:`clutchfem.tolerances.over_life`; ``ToleranceResult.life``).  Default: new parts only.
+    life_options : dict, optional
+        With ``life``: keywords of :func:`clutchfem.life` (``duty``, ``drive``, ``wear``,
+        ``rebuild_depth``; default: its defaults, the engine and requirements of the study).
 
     Returns
     -------
@@ -319,7 +317,13 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
     >>> r = cf.tolerance(d, {"flexure_thickness": "0.05mm"}, n=8, shifts=False, workers=0)
     >>> r.n, 0.0 <= r.out_of_spec["any"]["share"] <= 1.0   # share of parts out of any spec
     (8, True)
+    >>> # with life=N (1..1e8 starts): r.life["in_spec"][target]["new"|"at_life"]["share_in_spec"]
+    >>> cf.tolerance(d, {"flexure_thickness": "0.05mm"}, life=0)
+    Traceback (most recent call last):
+    ...
+    clutchfem.core.errors.ParameterError: ...life...
     """
+    check_life_args(life, life_options)
     live = (model or ("live" if getattr(getattr(design, "op", None), "fidelity", "") == "live" else "fe")) == "live"
     if model not in (None, "fe", "live"):
         raise ParameterError("model", model, "'fe' (the full FE answers every part) or 'live' (the reduced model "
@@ -401,13 +405,13 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
             if r.get(key) is not None:
                 r[key] = r[key] * f
     if live:
-        agree = agreement(rows[:n_check], fe_rows, spec, _in_spec)
+        agree = agreement(rows[:n_check], fe_rows, spec, in_spec)
     statuses: dict = {}
     for r in rows:
         statuses[r["status"]] = statuses.get(r["status"], 0) + 1
     bad = n - len(ok_rows)
     out: dict = {}
-    checks = [_in_spec(r, spec) for r in ok_rows]
+    checks = [in_spec(r, spec) for r in ok_rows]
     for name, *_ in spec + [("any", None, None, None)]:
         k = sum(1 for c in checks if (not all(c.values()) if name == "any" else not c[name]))
         m_ = len(ok_rows)
@@ -475,8 +479,12 @@ def tolerance(design, tolerances: dict, *, n: int = 64, dist: str = "normal", se
                      + f"); {agree['n']} of them also through the FE: largest differences "
                      + ", ".join(f"{k} {100 * v:.2g} %" for k, v in agree["largest_rel"].items() if v is not None)
                      + f", {agree['verdicts_differ']} verdict(s) differ")
+    life_res = None
+    if life is not None:
+        life_res, note = life_shares(settings, life, life_options, ok_rows, spec, bad, log)
+        notes.append(note)
     return ToleranceResult(concept=settings.concept, tolerances=dict(tolerances), dist=dist, n=n, seed=seed,
                            nominal=nom, rows=rows, spec=spec, out_of_spec=out, statuses=statuses, stats=stats,
                            ranking=ranking, shifts=shift_rows, seconds=time.perf_counter() - t0, notes=notes,
                            settings=settings, corrections=ratios, answered_by="reduced model" if live else "FE",
-                           agreement=agree)
+                           agreement=agree, life=life_res)
