@@ -194,6 +194,9 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
         # side-car maps entity tags to group names
         gmsh.model.removePhysicalGroups()
         gmsh.option.setNumber("Mesh.SaveAll", 1)
+        # binary: the exact doubles, and meshio reads it ~3x (writes ~4x) faster than text
+        # (a cache hit is a read: the test suite read 1,200 of them)
+        gmsh.option.setNumber("Mesh.Binary", 1)
         _atomic_write(msh)
     return built
 
