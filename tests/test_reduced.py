@@ -16,6 +16,7 @@ import pytest
 import clutchfem as cf
 from clutchfem.reduced import AnswerModel, Region, StatusModel, live_analysis
 from support.cli import cli_in_process
+from support.reduced import built_region  # noqa: F401 -- the shared region (fixture `built`)
 
 MESH = cf.MeshSettings(size="3mm")
 
@@ -100,16 +101,6 @@ def test_the_band_holds_every_held_out_design_even_with_no_fe_band(a):
 
 
 # -- the build and the live answers ---------------------------------------------------------
-@pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    """The reduced model of concept 1's flexure thickness at +-5 % (3 mm mesh, 3 designs fitted,
-    2 held out: the best path with its error step, ~6 s a design), built by the command line
-    in this process."""
-    out = cli_in_process("reduce", "concept1", "--mesh-size", "3mm", "--free", "flexure_thickness", "--n", "3",
-                         "--held-out", "2", "--workers", "0", "--json", ok=True)
-    return json.loads(out.stdout)
-
-
 @pytest.mark.slow
 def test_reduce_builds_the_region_and_measures_its_error_on_held_out_designs(built):
     assert built["region"]["free"]["flexure_thickness"] == [pytest.approx(2.09e-3), pytest.approx(2.31e-3)]

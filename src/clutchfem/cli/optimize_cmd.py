@@ -28,7 +28,7 @@ from .common import (
 
 
 @O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "idle_rpm", "a", "b", "workers",
-         "scheduler", "out", "json_")
+         "scheduler", "out", "json_", live=True)
 def optimize(
     o,
     engage_rpm: Optional[str] = typer.Option(None, "--engage-rpm", help="engagement with ripple LO:HI in rpm "
@@ -100,6 +100,17 @@ def optimize(
             opt, v = robust_only[0]
             raise ParameterError(opt.lstrip("-").replace("-", "_").replace("no_", ""), v, "an option of the robust "
                                  "design only: give the tolerances with --tol name=+-value", f"option {opt}")
+        live = str(o.fidelity or "").strip().lower() == "live"
+        if live:  # said before any work: what the live search does not take
+            given = [(opt, v) for opt, v in (("--life", life), ("--range", " ".join(range_)), ("--method", method),
+                                             ("--rounds", rounds), ("--out", o.out),
+                                             ("--no-model-error", None if model_error is not False else "given"))
+                     if v]
+            if given:
+                opt, v = given[0]
+                raise ParameterError(opt.lstrip("-").replace("-", "_"), v, "not with --fidelity live: the search box "
+                                     "is the cached region's, the live band holds the model's error, the FE verifies "
+                                     "the result (--fidelity best takes it)", f"option {opt}")
         yield_, dist = yield_ or "0.99", dist or "normal"
         model_error = True if model_error is None else model_error
         sf = quantity("--safety-factor-min", safety_factor_min, "-", above=0.0)
@@ -138,6 +149,29 @@ def optimize(
                 return
             _print_optimization(res, res.final_analysis())
             _print_life(lifed)
+            return
+        if live:
+            from .. import robust_optimize
+
+            if tol:
+                if check and not 0 <= check <= 1000:
+                    raise ParameterError("check", check, "0 to 1000 parts also through the FE", "option --check")
+                y = quantity("--yield", yield_, "-", above=0.0)
+                if not 0.5 < y < 1.0:
+                    raise ParameterError("yield", yield_, "a share of parts in (0.5, 1), e.g. 0.99", "option --yield")
+                robust = robust_optimize(s, tolerances_from(P, tol), yield_target=y, dist=dist, targets=t, free=names,
+                                         check=check or CHECK_PARTS, workers=o.workers, fidelity="live",
+                                         log=lambda m: err.print(escape(m)))
+                res = robust.result
+            else:
+                res = run(s, t, names, workers=o.workers, scheduler=o.scheduler, fidelity="live",
+                          log=lambda m: err.print(escape(m)))
+            if o.json_:
+                d = res.to_json() if robust is None else robust.to_json()
+                d.pop("path")
+                print(dumps(d))
+                return
+            _print_live(res, robust)
             return
         if tol:
             robust = _robust(s, P, t, names, tol, yield_, dist, model_error, check, max_evals, o.workers,
@@ -183,6 +217,58 @@ def _robust(s, P, targets, names, tol, yield_, dist, model_error, check, max_eva
                            max_evals=max_evals, check=check, workers=workers, method=method,
                            **({} if rounds is None else {"rounds": rounds}),
                            log=lambda m: err.print(escape(m)))
+
+
+#: FE parts of a live robust result when --check is not given
+CHECK_PARTS = 8
+
+
+def _print_live(res, robust) -> None:
+    """The live search's table in the designer's units (rpm, mm, g), its verification and region."""
+    L = res.live
+    t = Table(title=escape(f"{res.concept}: {res.message}"))
+    for c in ("target", "live (value +- band)", "edge used", "FE (verified)", "limit", "met"):
+        t.add_column(c, justify="left" if c == "target" else "right")
+    fe = L.get("fe_answers") or {}
+    for _, key, limit, sense in res.targets.constraints():
+        a = L["answers"].get(key, {})
+        dim = key in ("safety_factor", "fatigue_safety_factor")
+        f = (lambda v: "none" if v is None else (f"{v:.2f}" if dim else f"{v:.0f} rpm"))  # noqa: E731
+        fv = fe.get(key)
+        ok = None if fv is None else (fv >= limit if sense == ">=" else fv <= limit)
+        t.add_row(escape(key), escape(f"{f(a.get('value'))} +- {f(a.get('band'))}"), escape(f(a.get("edge"))),
+                  escape(f(fv)), escape(f"{sense} {f(limit)}"), "-" if ok is None else ("yes" if ok else "MISSED"))
+    console.print(t)
+    P = Table(title="parameters")
+    for c in ("parameter", "start", "final", "region"):
+        P.add_column(c, justify="left" if c == "parameter" else "right")
+    for n in res.free:
+        lo, hi = L["region_bounds"][n]
+        mm = n not in ("shoe_arc", "flexure_angle", "flexure_taper")
+        rng = f"{lo * 1e3:.4g}..{hi * 1e3:.4g} mm" if mm else f"{lo:.4g}..{hi:.4g}"
+        P.add_row(escape(n), escape(res.start_texts.get(n, "")), escape(res.params_texts.get(n, ""))
+                  + (" (region's bound)" if n in res.at_bounds else ""), escape(rng))
+    console.print(P)
+    mass = L["answers"].get("mass_kg", {}).get("value")
+    console.print(f"answered by: {L['answered_by']}; region {L['region_key']}; live mass "
+                  + (f"{mass * 1e3:.2f} g" if mass else "-") + f"; {L['live_evaluations']} live evaluations, "
+                  f"{L['fe_designs']} FE designs, {L['seconds']:.1f} s")
+    console.print(escape(f"verdict: {L['verdict']}"))
+    if robust is not None:
+        y = L["yield"]
+        console.print(f"yield asked {robust.yield_target:.2%}; on the live model {y['yield_search_sample']:.2%} of "
+                      f"{L['robust']['parts']} parts (search sample), {y['yield_independent']:.2%} of "
+                      f"{y['independent_parts']} independent parts (95 % Wilson {y['ci95'][0]:.2%} .. {y['ci95'][1]:.2%})")
+        c = L.get("fe_parts")
+        if c:
+            console.print(f"FE check of {c['n_fe']} parts: {c['fe_in_spec']} of {c['n_ok']} in spec (live: "
+                          f"{c['live_in_spec']}), verdicts differ on {c['verdicts_differ']}, {c['outside_live_band']} "
+                          "outside the live band; largest relative difference "
+                          + ", ".join(f"{k} {100 * v:.2f} %" for k, v in c["largest_rel"].items()))
+    for n in L["notes"]:
+        console.print(f"[yellow]{escape(n)}[/yellow]", soft_wrap=True)
+    console.print("verify: clutchfem analyze " + escape(res.concept) + " "
+                  + " ".join(f"--set {escape(x)}" for x in res.set_args), soft_wrap=True)
 
 
 def _print_life(L):

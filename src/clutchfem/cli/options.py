@@ -119,7 +119,7 @@ SHARED: dict[str, tuple] = {
 
 #: the commands a live design (``--fidelity live``: the reduced model) answers; the others
 #: need the FE and refuse it, naming the fidelity that does
-LIVE_COMMANDS = ("analyze", "tolerance", "calibrate", "guidelines")
+LIVE_COMMANDS = ("analyze", "tolerance", "calibrate", "guidelines", "optimize")
 
 
 def takes(*names: str, live: bool = False):

@@ -38,7 +38,7 @@ from ..evaluation import STORE_NAME, ResultStore
 from .model import ReducedModel
 from .region import SPAN, Region
 
-__all__ = ["DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "reduce", "save"]
+__all__ = ["DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "outside_why", "reduce", "save"]
 
 log = logging.getLogger("clutchfem")
 
@@ -128,6 +128,33 @@ def find(design, *, engine=None, requirements=None) -> ReducedModel | None:
         if model is not None:
             return model
     return None
+
+
+def outside_why(design, *, engine=None, requirements=None) -> str:
+    """Why no cached region holds ``design``: the bounds of each finished region of the same
+    fixed inputs (concept, fixed parameters, operating point, engine, requirements) it lies
+    outside of, else that there is none.
+
+    Examples
+    --------
+    >>> import os, tempfile, clutchfem as cf
+    >>> from clutchfem.reduced import outside_why
+    >>> os.environ["CLUTCHFEM_CACHE"] = tempfile.mkdtemp()      # an empty cache
+    >>> outside_why(cf.Design.from_concept("concept1", fidelity="live"))
+    'no cached region of these fixed inputs'
+    """
+    root = cache_root()
+    found = []
+    for folder in sorted(root.glob(f"{design.name}-*")) if root.is_dir() and design.params is not None else ():
+        try:
+            doc = json.loads((folder / "region.json").read_text())
+            r = Region.around(design, free=list(doc["free"]), ranges={n: tuple(v) for n, v in doc["free"].items()},
+                              engine=engine, requirements=requirements)
+        except (OSError, ValueError, KeyError, ParameterError):
+            continue
+        if r.key() == doc.get("key") and (folder / "model.pkl").exists():
+            found.append(f"region {r.key()}: " + "; ".join(r.outside(r.design_values(design))))
+    return ("outside the cached region(s): " + " | ".join(found)) if found else "no cached region of these fixed inputs"
 
 
 def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None, n: int = DEFAULT_N,

@@ -161,17 +161,20 @@ class ReducedModel:
         held-out designs (NaN: not measured)."""
         return float(self.accuracy.get(answer, {}).get("max_rel", np.nan))
 
-    def predict(self, u: np.ndarray) -> dict:
+    def predict(self, u: np.ndarray, answers=None) -> dict:
         """The answers at the unit-box points ``u`` (m, d), vectorised: ``value`` (answer ->
         array, NaN where not given live), ``band`` (answer -> absolute band: the best path's
         band of the nearest training designs plus :meth:`own_error`), ``p_ok`` (the
         probability that the FE answers there), ``why`` (answer -> per point the reason of a
-        missing value, or '')."""
+        missing value, or '').  ``answers``: only these (default: every modelled answer; an
+        optimiser asks for the few its targets need, each answer a kernel evaluation)."""
         u = np.atleast_2d(np.asarray(u, dtype=float))
         p_ok = self.status.probability(u)
         nb = self.neighbours(u)
         out = {"value": {}, "band": {}, "p_ok": p_ok, "why": {}}
         for a, model in self.models.items():
+            if answers is not None and a not in answers:
+                continue
             band_rows = np.array([row_band(r, a) or 0.0 for r in self.rows])
             have_rows = np.array([row_value(r, a) is not None for r in self.rows])
             fe_band = band_rows[nb].max(axis=1)

@@ -150,6 +150,10 @@ class OptimizationResult:
     #: Analysis (not in the JSON)
     best_estimate: dict | None = None
     best_analysis: object = field(default=None, repr=False)
+    #: what answered the search: "FE", or (``fidelity="live"``) the reduced model, verified by the FE
+    answered_by: str = "FE"
+    #: a live search's region, live answers, counts, rounds and FE verification (:mod:`.live`)
+    live: dict | None = None
 
     def final_analysis(self):
         """The final design's analysis with its errors: the one the optimiser's check made
@@ -185,7 +189,8 @@ class OptimizationResult:
                         "safety_factor_min": self.targets.safety_factor_min,
                         "fatigue_min": self.targets.fatigue_min},
             "units": {"rpm": "1/min", "stress": "Pa", "mass": "kg", "torque": "N m", "seconds": "s"},
-            "best_estimate": self.best_estimate,
+            "best_estimate": self.best_estimate, "answered_by": self.answered_by,
+            **({"live": self.live} if self.live is not None else {}),
             "path": [{k: v for k, v in r.items() if k != "warnings"} for r in self.path],
         })
 
@@ -193,7 +198,7 @@ class OptimizationResult:
 def optimize(design, targets: Targets | None = None, free: list[str] | None = None, *,
              engine=None, requirements=None, ranges: dict | None = None, sample: int = 32, max_evals: int = 300,
              workers: int | None = None, scheduler: str | None = None, seed: int = 0, min_step: float = 1.0 / 256,
-             method: str = "auto", check: bool = True, log=None) -> OptimizationResult:
+             method: str = "auto", check: bool = True, fidelity: str | None = None, log=None) -> OptimizationResult:
     """Find the design that meets the targets at least part mass (or largest torque margin).
 
     A space-filling (Sobol) sample, then a pattern search (module docstring), from the base
@@ -231,12 +236,19 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
         first moved by analyze's corrections at the start design; up to two more rounds, each
         with half of ``max_evals``); the result's ``best_estimate`` says what analyze gives.
         Default on.
+    fidelity : {None, "live"}
+        ``"live"`` (or a ``design`` whose operating point's fidelity is ``"live"``): the search
+        runs on the cached reduced model whose region holds the start design, within the
+        region's box, every live answer at its band's conservative edge, and the result is
+        verified by the FE (:mod:`clutchfem.targets.live`; ``ranges`` is then refused and
+        ``sample``, ``max_evals``, ``method``, ``min_step`` are not used).  None: the design's own.
 
     Returns
     -------
     OptimizationResult
         The best design (``best``, ``params_texts``, ``set_args``), the binding
-        constraints, the path of every evaluation and the message.
+        constraints, the path of every evaluation and the message; a live search's
+        ``answered_by`` and ``live`` (region, live answers, counts, FE verification).
 
     Examples
     --------
@@ -246,6 +258,9 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
     >>> r.free, sum(r.evaluations.values()) <= 2 + 2
     (['flexure_thickness'], True)
     """
+    if fidelity not in (None, "live"):
+        raise ParameterError("fidelity", fidelity, "None (the design's own) or 'live' (the reduced model)", "optimize")
+    live = fidelity == "live" or getattr(getattr(design, "op", None), "fidelity", None) == "live"
     settings = design if isinstance(design, EvalSettings) else EvalSettings.from_design(
         design, engine=engine, requirements=requirements)
     if targets is None:
@@ -262,6 +277,14 @@ def optimize(design, targets: Targets | None = None, free: list[str] | None = No
     if method not in METHODS:
         raise ParameterError("method", method, "one of " + ", ".join(METHODS), "optimize")
     check = as_bool(check, "check")
+    if live:
+        if ranges:
+            raise ParameterError("ranges", ranges, "none with fidelity live: the search box is the region's (`clutchfem "
+                                 "reduce --range` builds another)", "optimize")
+        from .live import live_optimize
+
+        return live_optimize(settings, targets, free, check=check, seed=seed, workers=workers, scheduler=scheduler,
+                             log=log)
     with shared_cluster(workers, scheduler):
         def search(s, t, budget=max_evals, first=sample):
             if method == "pattern":

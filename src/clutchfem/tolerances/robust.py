@@ -279,6 +279,26 @@ def window(nominal: Targets, margins: dict, tol_txt: str, yield_target: float) -
                              "the tolerances or lower --yield", "optimize") from None
 
 
+def _robust_live(settings, nominal, free, tols, dist, yield_target, check, seed, workers, log, t0) -> RobustResult:
+    """:func:`robust_optimize` on the reduced model (:func:`clutchfem.targets.live.live_optimize`)."""
+    from ..targets.live import live_optimize
+
+    if isinstance(check, bool) or not isinstance(check, int) or not 0 <= check <= 1000:
+        raise ParameterError("check", check, "an integer in [0, 1000]: parts also through the FE", "optimize")
+    res = live_optimize(settings, nominal, free, tolerances=tols, dist=dist, yield_target=yield_target,
+                        check_parts=check, seed=seed, workers=workers, log=log)
+    y = res.live["yield"]
+    try:  # the concept's rules at every corner of the final design's tolerance box
+        dataclasses.replace(settings, base=tuple(res.set_args), tolerance_box=tuple(tols.items())).params()
+        buildable = True
+    except ParameterError:
+        buildable = False
+    return RobustResult(result=res, targets=nominal, tolerances=tols, dist=dist, yield_target=yield_target,
+                        margins={}, sigma={}, predicted_yield=y["yield_independent"], check=None,
+                        rounds=res.live["rounds"], model_error=True, converged=True, box_buildable=buildable,
+                        evaluations=res.live["fe_designs"], seconds=time.perf_counter() - t0)
+
+
 def shifted(targets: Targets, margins: dict) -> Targets:
     """``targets`` with every limit moved inward by its margin (:meth:`Targets.moved_inward`)."""
     return targets.moved_inward(margins)
@@ -287,7 +307,8 @@ def shifted(targets: Targets, margins: dict) -> Targets:
 def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dist: str = "normal",
                     model_error: bool = True, targets: Targets | None = None, free: list[str] | None = None,
                     engine=None, requirements=None, max_evals: int = 300, rounds: int = 5, check: int = 0,
-                    workers: int | None = None, seed: int = 1, method: str = "pattern", log=None) -> RobustResult:
+                    workers: int | None = None, seed: int = 1, method: str = "pattern", fidelity: str | None = None,
+                    log=None) -> RobustResult:
     """The lightest design that meets every target for ``yield_target`` of made parts.
 
     Parameters
@@ -333,6 +354,15 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
         concept 4's defaults 100.4 g, 998 of 1000 remeshed parts in spec); with ``auto`` the
         rounds of an earlier version missed the shifted limits by 0.03-1.5 % within the
         budget (measured once, section 21), so it is not the default.
+    fidelity : {None, "live"}
+        ``"live"`` (or a ``design`` whose operating point's fidelity is ``"live"``): the search
+        runs on the cached reduced model whose region holds the start design, the yield by a
+        Monte Carlo of made parts on it (:mod:`clutchfem.targets.live`: common random numbers,
+        2000 parts per candidate, every answer at its live band's edge), the result verified
+        by the FE and ``check`` of the parts also through the FE (0: none); ``max_evals``,
+        ``rounds``, ``method`` and ``model_error`` are not used (the live band holds the
+        model's error).  The result's ``predicted_yield`` is the share in spec of 10,000
+        independent parts on the live model; ``margins`` and ``sigma`` are empty.
 
     Returns
     -------
@@ -378,6 +408,10 @@ def robust_optimize(design, tolerances: dict, *, yield_target: float = 0.99, dis
                                  "is wider than the range, no nominal value keeps every part inside it", "option --tol",
                                  shown=f"+-{show(half)}")
     nominal = targets or Targets.defaults(settings)
+    if fidelity not in (None, "live"):
+        raise ParameterError("fidelity", fidelity, "None (the design's own) or 'live' (the reduced model)", "optimize")
+    if fidelity == "live" or getattr(getattr(design, "op", None), "fidelity", None) == "live":
+        return _robust_live(settings, nominal, free, tols, dist, yield_target, check, seed, workers, log, t0)
     m = len(nominal.constraints())
     z = NormalDist().inv_cdf(1.0 - (1.0 - yield_target) / m)
     margins = {k: 0.0 for _, k, _, _ in nominal.constraints()}
