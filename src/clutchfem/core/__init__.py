@@ -22,6 +22,7 @@ _NAMES: dict[str, str | None] = {
     "as_bool": "args",
     "as_path": "args",
     "brentq": "roots",
+    "wilson": "stats",
     "choice": "params",
     "clean": "jsonio",
     "ClutchfemError": "errors",

@@ -177,6 +177,29 @@ class ParamSet(BaseModel):
 
     # -- coupled limits ----------------------------------------------------------------
     @classmethod
+    def admits(cls, values: dict) -> bool:
+        """True if the parameter set accepts ``values`` (declared ranges and cross-parameter
+        rules), probed quietly: a refusal computes no limit for its message (~0.3 ms a probe
+        instead of ~20 ms), for searches that test many designs against the rules.
+
+        Examples
+        --------
+        >>> import clutchfem as cf
+        >>> P = cf.get_concept("concept4").Params
+        >>> P.admits({"flexure_thickness": 1.9e-3}), P.admits({"flexure_length": 30e-3})
+        (True, False)
+        """
+        token, quiet = _PROBING.set(True), _QUIET.set(True)
+        try:
+            cls(**values)
+            return True
+        except (ValueError, ClutchfemError, ZeroDivisionError):  # pydantic's ValidationError is a ValueError
+            return False
+        finally:
+            _PROBING.reset(token)
+            _QUIET.reset(quiet)
+
+    @classmethod
     def feasible_range(cls, values: dict, name: str) -> tuple[float | None, float | None]:
         """The interval of numeric parameter ``name`` that the parameter set accepts with the
         other parameters at ``values`` (its declared range cut by the cross-parameter rules),
@@ -203,11 +226,7 @@ class ParamSet(BaseModel):
         token, quiet = _PROBING.set(True), _QUIET.set(True)
         try:
             def ok(x) -> bool:
-                try:
-                    cls(**{**values, name: int(round(x)) if integer else float(x)})
-                    return True
-                except ParameterError:
-                    return False
+                return cls.admits({**values, name: int(round(x)) if integer else float(x)})
 
             if lo is None or hi is None:  # an open range: only the rules' side is searched
                 return (lo, hi) if ok(x0) else (None, None)

@@ -20,7 +20,8 @@ resumable store); the made parts' tolerances are the layer above (:mod:`clutchfe
 from .best_check import analysed_answers, best_estimate, check_optimum, correction_ratios, start_targets
 from .compensation import Compensation, CompensationStep, ShoeState, compensate, evenness, shoe_state
 from .life_design import LifeDesign, WearAllowance, life_check, optimize_for_life, wear_allowance
-from .optimization import METHODS, OptimizationResult, better, fatigue_note, optimize
+from .optimization import METHODS, optimize
+from .result import OptimizationResult, better, fatigue_note
 from .rules import bisect
 from .search_space import Space, make_space
 from .targets import DIMENSIONLESS, OBJECTIVES, Targets

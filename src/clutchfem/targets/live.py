@@ -51,12 +51,25 @@ import time
 import numpy as np
 
 from ..analysis import Requirements
-from ..core import ClutchfemError, ParameterError
+from ..core import ClutchfemError, ParameterError, wilson
 from ..core import values as V
 from ..evaluation import evaluate_many, shared_cluster
 from ..loadcase import Design
 from ..reduced import OPERATING_AXES, find, outside_why
 from .best_check import analysed_answers, best_estimate, confirmed, correction_ratios
+from .live_search import (
+    MARGIN,
+    SOURCE,
+    LiveProblem,
+    RuleConstraint,
+    live_answers,
+    on_grid,
+    parts_slack,
+    rebind,
+    set_texts,
+    slsqp_search,
+)
+from .result import OptimizationResult
 from .targets import DIMENSIONLESS, Targets
 
 __all__ = ["ANSWERED_BY", "CHECK_PARTS", "PARTS", "ROUNDS", "YIELD_PARTS", "live_model", "live_optimize"]
@@ -64,7 +77,7 @@ __all__ = ["ANSWERED_BY", "CHECK_PARTS", "PARTS", "ROUNDS", "YIELD_PARTS", "live
 #: what answered a live optimisation's design
 ANSWERED_BY = "reduced model (searched), FE (verified)"
 #: Monte Carlo parts per candidate of a robust search (common random numbers)
-PARTS = 2000
+PARTS = 1000
 #: parts of the independent sample the final yield is counted on
 YIELD_PARTS = 10000
 #: parts of a robust result also through the FE (the agreement reported)
@@ -75,15 +88,8 @@ ROUNDS = 3
 STARTS = 8
 #: a normal tolerance's parts are kept within this many sigmas by the inset box (the tolerance is 3)
 SIGMAS = 4.0
-#: the search's constraints hold with this relative margin (SLSQP ends within its tolerance)
-MARGIN = 1e-6
 #: a free parameter this share of the search box's width from a face is on the bound
 EDGE = 1e-3
-#: forward-difference step of the gradients, in unit-box coordinates
-STEP = 1e-5
-#: the model answer of each constrained answer
-SOURCE = {"engagement_rpm_with_ripple": "engagement_rpm_with_ripple", "slip_rpm": "slip_rpm",
-          "safety_factor": "max_von_mises_Pa", "fatigue_safety_factor": "fatigue_safety_factor"}
 
 
 def live_model(settings, *, fe_engine=None):
@@ -102,216 +108,6 @@ def live_model(settings, *, fe_engine=None):
                              f"{settings.concept} {sets}`".rstrip() + " builds a region around it (100+ best-path "
                              "designs, minutes), or --fidelity best searches on the FE", "optimize")
     return model, design
-
-
-class _Problem:
-    """The live answers of the search: objective and constraint slacks at the conservative edge."""
-
-    def __init__(self, model, targets: Targets, free_idx, u0, ys: float, max_torque: float):
-        self.model, self.targets, self.free, self.u0 = model, targets, list(free_idx), np.asarray(u0, float)
-        self.ys, self.max_torque = ys, max_torque
-        self.cons = targets.constraints()
-        need = {SOURCE[k] for _, k, _, _ in self.cons}
-        need |= {"mass_kg"} if targets.objective == "mass" else {"torque_at_max_engine_torque_Nm"}
-        missing = [a for a in sorted(need) if a not in model.models]
-        if missing:
-            raise ParameterError("fidelity", "live", f"targets the reduced model answers (it has no model of "
-                                 f"{', '.join(missing)}: --fidelity best)", "optimize")
-        self.need = need
-        self.evals = 0
-
-    def full(self, X) -> np.ndarray:
-        """Unit-box points of the whole region from the free coordinates ``X`` (m, k)."""
-        X = np.atleast_2d(X)
-        U = np.repeat(self.u0[None, :], len(X), axis=0)
-        U[:, self.free] = X
-        return U
-
-    def answers(self, U) -> tuple[dict, dict]:
-        """(value, relative band) of the needed answers at the unit-box points ``U``."""
-        self.evals += len(U)
-        p = self.model.predict(U, answers=self.need)
-        val = {a: p["value"][a] for a in self.need}
-        rel = {a: np.abs(p["band"][a] / val[a]) for a in self.need}
-        return val, rel
-
-    def slacks(self, val: dict, rel: dict) -> np.ndarray:
-        """(m, constraints): each target's relative slack at the conservative edge (NaN -> -1:
-        a missing answer misses its target)."""
-        cols = []
-        for _, key, limit, sense in self.cons:
-            v, r = val[SOURCE[key]], rel[SOURCE[key]]
-            if key == "safety_factor":
-                edge = self.ys / (v * (1.0 + r))
-            else:
-                edge = v * (1.0 - r) if sense == ">=" else v * (1.0 + r)
-            s = (edge - limit) / limit if sense == ">=" else (limit - edge) / limit
-            cols.append(np.where(np.isfinite(s), s, -1.0))
-        return np.array(cols).T if cols else np.zeros((len(next(iter(val.values()))), 0))
-
-    def objective(self, val: dict, rel: dict) -> np.ndarray:
-        if self.targets.objective == "mass":
-            return val["mass_kg"]
-        t = val["torque_at_max_engine_torque_Nm"]
-        return -(t * (1.0 - rel["torque_at_max_engine_torque_Nm"]) - self.max_torque)
-
-    def with_jac(self, x) -> tuple:
-        """(objective, slacks, their gradients) at the free coordinates ``x``: one vectorised
-        call over x and its forward steps, the band held at x's own."""
-        k = len(x)
-        X = np.repeat(np.asarray(x, float)[None, :], k + 1, axis=0)
-        X[1:] += STEP * np.eye(k)
-        val, rel = self.answers(self.full(X))
-        rel0 = {a: np.full(k + 1, r[0]) for a, r in rel.items()}
-        f, g = self.objective(val, rel0), self.slacks(val, rel0)
-        return f[0], g[0], (f[1:] - f[0]) / STEP, (g[1:] - g[0]) / STEP
-
-
-class _Rules:
-    """The concept's rules as a constraint of the search: 0 where they admit the design at x
-    (with a tolerance box: at every corner of it), else minus the distance (unit-box
-    coordinates) from x back to the last admitted point on the segment from the start ``xs``.
-    A refusal costs ~20-40 ms (its message bisects the allowed ranges), so the distance is
-    measured only where the search steps beyond the rules."""
-
-    def __init__(self, P, base: dict, names, lo_si, w_si, xs, box=None):
-        self.P, self.base, self.names, self.lo_si, self.w_si = P, dict(base), list(names), lo_si, w_si
-        self.box = list(box or [])
-        self.xs = np.asarray(xs, float)
-        self.active = self.admits(self.xs)  # a start the rules refuse: no segment to measure along
-
-    def admits(self, x) -> bool:
-        import itertools
-
-        vals = dict(self.base)
-        vals.update({n: float(self.lo_si[j] + x[j] * self.w_si[j]) for j, n in enumerate(self.names)})
-        for sg in itertools.product((1.0, -1.0), repeat=len(self.box)):
-            c = dict(vals)
-            for (n, t), g in zip(self.box, sg):
-                c[n] = vals[n] + g * t
-            try:
-                self.P.model_validate(c).check()
-            except (ValueError, ClutchfemError, ZeroDivisionError):  # pydantic's ValidationError is a ValueError
-                return False
-        return True
-
-    def slack(self, x) -> float:
-        x = np.asarray(x, float)
-        if not self.active or self.admits(x):
-            return 0.0
-        v = x - self.xs
-        L = float(np.linalg.norm(v))
-        a, b = 0.0, 1.0
-        while (b - a) * L > 1e-6:
-            m = 0.5 * (a + b)
-            a, b = (m, b) if self.admits(self.xs + m * v) else (a, m)
-        return -(1.0 - a) * L
-
-
-def _parts_slack(prob: _Problem, U: np.ndarray) -> np.ndarray:
-    """Each part's worst relative slack at its band's edge (-1: outside the region)."""
-    val, rel = prob.answers(U)
-    m = prob.slacks(val, rel).min(axis=1) if prob.cons else np.zeros(len(U))
-    inside = np.all((U >= -1e-9) & (U <= 1 + 1e-9), axis=1)
-    return np.where(inside, m, -1.0)
-
-
-def _search(prob: _Problem, lo, hi, starts, D=None, k_out: int = 0, log=None, rules: _Rules | None = None,
-            margin=MARGIN) -> tuple[np.ndarray, dict]:
-    """SLSQP from each start; (best x, what it found).  ``D``: the parts' unit-box deviations
-    (robust: the (k_out+1)-th smallest part slack >= MARGIN), else every slack >= MARGIN;
-    ``rules``: the concept's rules as one more constraint."""
-    from scipy.optimize import minimize
-
-    cache: dict = {}
-    rcache: dict = {}
-
-    def rule(x):
-        key = np.asarray(x, float).tobytes()
-        if key not in rcache:
-            h = 1e-3
-            r0 = rules.slack(x)
-            g = (np.zeros(len(x)) if r0 == 0.0 else  # beyond the rules only: forward differences of the distance
-                 np.array([(rules.slack(np.asarray(x, float) + h * e) - r0) / h for e in np.eye(len(x))]))
-            rcache.clear()
-            rcache[key] = (r0, g)
-        return rcache[key]
-
-    def at(x):
-        key = np.asarray(x, float).tobytes()
-        if key not in cache:
-            f, g, df, dg = prob.with_jac(x)
-            if D is not None:  # the order statistic of the parts' slacks, its gradient the part's that sets it
-                U = prob.full(x)[0] + D
-                m = _parts_slack(prob, U)
-                i = int(np.argpartition(m, k_out)[k_out])
-                if m[i] > -1.0 and np.all((U[i] >= 0) & (U[i] <= 1)):
-                    k = len(x)
-                    Xp = np.repeat(U[i][None, :], k + 1, axis=0)
-                    Xp[1:, prob.free] += STEP * np.eye(k)
-                    val, rel = prob.answers(Xp)
-                    rel0 = {a: np.full(k + 1, r[0]) for a, r in rel.items()}
-                    mm = prob.slacks(val, rel0).min(axis=1)
-                    g, dg = np.array([m[i]]), ((mm[1:] - mm[0]) / STEP)[:, None]
-                else:
-                    g, dg = np.array([m[i]]), np.zeros((len(x), 1))
-            cache.clear()
-            cache[key] = (f, g, df, dg)
-        return cache[key]
-
-    f0 = abs(at(np.clip(starts[0], lo, hi))[0]) or 1.0
-    found = []
-    for x0 in starts:
-        x0 = np.clip(x0, lo, hi)
-        try:
-            cons = [{"type": "ineq", "fun": lambda x: at(x)[1] - margin, "jac": lambda x: at(x)[3].T}] \
-                if prob.cons else []
-            if rules is not None and rules.active:
-                cons.append({"type": "ineq", "fun": lambda x: rule(x)[0], "jac": lambda x: rule(x)[1]})
-            r = minimize(lambda x: at(x)[0] / f0, x0, jac=lambda x: at(x)[2] / f0, method="SLSQP",
-                         bounds=list(zip(lo, hi)), constraints=cons, options={"maxiter": 200, "ftol": 1e-10})
-            x = np.clip(r.x, lo, hi)
-        except (ValueError, FloatingPointError) as exc:  # a start where the model gives no answer
-            if log:
-                log(f"live search: a start gave no answer ({exc})")
-            continue
-        f, g, _, _ = at(x)
-        ok_rules = rules is None or not rules.active or rules.admits(x)
-        found.append((x, float(f), (float(g.min()) if g.size else 0.0) if ok_rules else -1.0, r.nit))
-    if not found:
-        raise ClutchfemError("the live search found no point where the reduced model answers")
-    feas = [t for t in found if t[2] >= 0.0]
-    best = min(feas, key=lambda t: t[1]) if feas else max(found, key=lambda t: t[2])
-    return best[0], {"starts": len(starts), "feasible_starts": len(feas), "iterations": sum(t[3] for t in found)}
-
-
-def _grid(prob, P, names, x, lo_si, w_si, lo, hi, feasible, log=None) -> tuple[np.ndarray, dict]:
-    """``x`` put on the parameters' resolution: the lightest corner of its grid cell that
-    ``feasible`` (x -> bool) admits; x itself (exact texts) where none does."""
-    import itertools
-
-    res = np.array([V.resolution(P, n) for n in names])
-    si = lo_si + x * w_si
-    fl = np.floor(si / res + 1e-9) * res
-    corners = []
-    for c in itertools.product((0, 1), repeat=len(names)):
-        v = fl + np.array(c) * res
-        xc = (v - lo_si) / w_si
-        if np.all(xc >= lo - 1e-12) and np.all(xc <= hi + 1e-12):
-            corners.append(xc)
-    if corners:
-        val, rel = prob.answers(prob.full(np.array(corners)))
-        f = prob.objective(val, rel)
-        for i in np.argsort(f)[:64]:
-            if feasible(corners[i]):
-                return corners[i], {"on_grid": True}
-    if log:
-        log("live search: no corner of the design's resolution cell meets every target; the exact values are kept")
-    return x, {"on_grid": False}
-
-
-def _texts(P, names, lo_si, w_si, x) -> dict:
-    return {n: V.exact_text(P, n, V.round12(float(lo_si[j] + x[j] * w_si[j]))) for j, n in enumerate(names)}
 
 
 def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | None = None, dist: str = "normal",
@@ -366,8 +162,6 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
     ...
     clutchfem.core.errors.ParameterError: ...
     """
-    from .optimization import OptimizationResult
-
     t0 = time.perf_counter()
     for name, v, lo_, hi_ in (("parts", parts, 100, 100000), ("check_parts", check_parts, 0, 1000)):
         if isinstance(v, bool) or not isinstance(v, int) or not lo_ <= v <= hi_:
@@ -442,8 +236,8 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
     starts0 = [x0] + [lo + s * (hi - lo) for s in sob][: n_starts - 1]
     base_vals = settings.params().model_dump()
     box = list(tolerances.items()) if robust else None
-    rules_nominal = _Rules(P, base_vals, names, lo_si, w_si, np.clip(x0, lo, hi))
-    rules = _Rules(P, base_vals, names, lo_si, w_si, np.clip(x0, lo, hi), box) if robust else rules_nominal
+    rules_nominal = RuleConstraint(P, base_vals, names, lo_si, w_si, np.clip(x0, lo, hi))
+    rules = RuleConstraint(P, base_vals, names, lo_si, w_si, np.clip(x0, lo, hi), box) if robust else rules_nominal
     prob = None
     x = None
     an = fe = None
@@ -451,12 +245,14 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
     margins: dict = {}
     while True:
         rounds_done += 1
-        prob = _Problem(model, aim, idx, u0, ys, float(engine.max_torque)) if prob is None else _rebind(prob, aim)
+        prob = LiveProblem(model, aim, idx, u0, ys, float(engine.max_torque)) if prob is None else rebind(prob, aim)
         starts = list(starts0) if x is None else [x] + list(starts0)
-        if robust:  # SORA's first cycle as a start: the deterministic optimum on the live model
-            xd, _ = _search(prob, lo, hi, starts, log=log, rules=rules_nominal)
-            starts = [xd] + starts
-        x, info = _search(prob, lo, hi, starts, D, k_out or 0, log, rules=rules)
+        if robust:  # SORA's first cycle as the start: the deterministic optimum on the live model
+            # (searched from every start; the robust search, 1000x dearer a step, from it and
+            # from the last design only)
+            xd, _ = slsqp_search(prob, lo, hi, starts, log=log, rules=rules_nominal)
+            starts = [xd, starts[0]]
+        x, info = slsqp_search(prob, lo, hi, starts, D, k_out or 0, log, rules=rules)
         # room for the resolution grid: each slack's change over one resolution step of every
         # free parameter (its gradient at x), then again from x with that margin
         _, _, _, dg = prob.with_jac(x)
@@ -464,27 +260,27 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
         snap = np.abs(dg).T @ step if dg.size else np.zeros(0)
         if snap.size:
             room = MARGIN + (float(snap.max()) if robust else snap)
-            x, _ = _search(prob, lo, hi, [x], D, k_out or 0, log, rules=rules, margin=room)
+            x, _ = slsqp_search(prob, lo, hi, [x], D, k_out or 0, log, rules=rules, margin=room)
 
         def feasible(xc):
             if not rules.admits(xc):
                 return False
             if robust:
-                m = _parts_slack(prob, prob.full(xc)[0] + D)
+                m = parts_slack(prob, prob.full(xc)[0] + D)
                 return int(np.sum(m < 0)) <= k_out
             val, rel = prob.answers(prob.full(xc))
             return bool(np.all(prob.slacks(val, rel) >= 0))
 
-        x, grid = _grid(prob, P, names, x, lo_si, w_si, lo, hi, feasible, log)
-        texts = _texts(P, names, lo_si, w_si, x)
+        x, grid = on_grid(prob, P, names, x, lo_si, w_si, lo, hi, feasible, log)
+        texts = set_texts(P, names, lo_si, w_si, x)
         val, rel = prob.answers(prob.full(x))
-        live_ans = _answers(prob, val, rel, ys)
+        live_ans = live_answers(prob, val, rel, ys)
         slack = prob.slacks(val, rel)[0]
         rnd = {"round": rounds_done, "targets_searched": _tdict(aim), "params": texts, "live": live_ans,
                "live_edge_slack_rel": {k: float(s) for (_, k, _, _), s in zip(aim.constraints(), slack)},
                "feasible_live": bool(feasible(x)), **info, **grid}
         if robust:
-            m = _parts_slack(prob, prob.full(x)[0] + D)
+            m = parts_slack(prob, prob.full(x)[0] + D)
             rnd["yield_live"] = float(np.mean(m >= 0))
         history.append(rnd)
         if log:
@@ -569,10 +365,10 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
     y_info = None
     if robust:
         Dy, _ = draw(YIELD_PARTS, np.random.default_rng(seed + 7919))
-        m = _parts_slack(prob, prob.full(x)[0] + Dy)
+        m = parts_slack(prob, prob.full(x)[0] + Dy)
         k = int(np.sum(m < 0))
         y_info = {"yield_search_sample": history[-1]["yield_live"], "yield_independent": 1.0 - k / YIELD_PARTS,
-                  "independent_parts": YIELD_PARTS, "out_of_spec": k, "ci95": _wilson_in(k, YIELD_PARTS)}
+                  "independent_parts": YIELD_PARTS, "out_of_spec": k, "ci95": _in_share(wilson(k, YIELD_PARTS))}
     msg = ("feasible design found on the live model" if live_ok else
            "NO DESIGN MEETS EVERY TARGET on the live model in the region; the least-violating one is returned")
     msg += f"; {verdict}"
@@ -601,29 +397,6 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
         res.best_estimate = {"confirmed": fe is not None and not confirmed(targets, fe), "answers": fe,
                              "rounds": rounds_done - 1, "missed": confirmed(targets, fe) if fe else []}
     return res
-
-
-def _rebind(prob: _Problem, aim: Targets) -> _Problem:
-    prob.targets, prob.cons = aim, aim.constraints()
-    return prob
-
-
-def _answers(prob: _Problem, val: dict, rel: dict, ys: float) -> dict:
-    """The live answers of one design, each with its band and its conservative edge."""
-    out = {}
-    for a in sorted(prob.need):
-        v, r = float(val[a][0]), float(rel[a][0])
-        out[a] = {"value": v, "band": abs(v) * r}
-    for _, key, _, sense in prob.cons:
-        src = out[SOURCE[key]]
-        if key == "safety_factor":
-            v = ys / src["value"]
-            out[key] = {"value": v, "band": v * src["band"] / src["value"],
-                        "edge": ys / (src["value"] + src["band"])}
-        else:
-            out[key] = dict(out.get(key, src))
-            out[key]["edge"] = src["value"] - src["band"] if sense == ">=" else src["value"] + src["band"]
-    return out
 
 
 def _fe_parts(settings, P, names, texts, D_si, prob, x, D_unit, targets, an, log) -> dict:
@@ -674,13 +447,9 @@ def _fe_parts(settings, P, names, texts, D_si, prob, x, D_unit, targets, an, log
     return out
 
 
-def _wilson_in(k: int, n: int) -> list:
-    """The 95 % Wilson interval of the share in spec, (n - k) of n."""
-    z = 1.959963984540054
-    p = (n - k) / n
-    c = (p + z * z / (2 * n)) / (1 + z * z / n)
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
-    return [max(0.0, c - h), min(1.0, c + h)]
+def _in_share(ci) -> list:
+    """The interval of the share in spec from that of the share out of it."""
+    return [1.0 - ci[1], 1.0 - ci[0]]
 
 
 def _tdict(t: Targets) -> dict:

@@ -12,7 +12,7 @@ state, the share in spec at N starts is never above the share new.  Both are rep
 target with their Wilson intervals (``ToleranceResult.life``).
 
 The share in spec (of the parts new, and at N starts) carries the 95 % Wilson score interval
-of :func:`wilson` (:mod:`clutchfem.tolerances.tolerancing`'s docstring says why Wilson's).
+of :func:`~clutchfem.core.wilson` (:mod:`clutchfem.tolerances.tolerancing`'s docstring says why Wilson's).
 """
 
 from __future__ import annotations
@@ -20,13 +20,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.stats import binomtest
 
-from ..core import ParameterError
+from ..core import ParameterError, wilson
 from ..targets.life_design import LIFE_KEYS, life_of_nominal, wear_allowance
 
-__all__ = ["LIFE_OPTIONS", "check_life_args", "in_spec", "in_spec_over_life", "life_shares", "share_in", "shares_over_life",
-           "wilson"]
+__all__ = ["LIFE_OPTIONS", "check_life_args", "in_spec", "in_spec_over_life", "life_shares", "share_in", "shares_over_life"]
 
 #: the keywords of clutchfem.life that ``tolerance(life_options=...)`` passes on
 LIFE_OPTIONS = {"duty", "drive", "wear", "rebuild_depth", "engine", "requirements", "idle_rpm"}
@@ -45,15 +43,6 @@ def check_life_args(life, life_options) -> None:
     if unknown:
         raise ParameterError("life_options", unknown[0], "keywords of clutchfem.life: " + ", ".join(sorted(LIFE_OPTIONS)),
                              "tolerance")
-
-
-def wilson(k: int, n: int) -> tuple[float, float]:
-    """The 95 % Wilson score interval of a binomial share k/n (module docstring;
-    :func:`scipy.stats.binomtest`); NaN for n = 0."""
-    if n <= 0:
-        return (math.nan, math.nan)
-    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=0.95, method="wilson")
-    return (float(ci.low), float(ci.high))
 
 
 def in_spec(row: dict, spec) -> dict:

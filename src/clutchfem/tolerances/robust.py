@@ -57,6 +57,7 @@ from ..core import values as V
 from ..evaluation import EvalSettings, sensitivities
 from ..geometry import get_concept
 from ..targets import METHODS, OptimizationResult, Targets, best_estimate, bisect, optimize
+from ..targets.live import live_optimize
 from .tolerancing import ToleranceResult, parse_tolerance, tolerance
 
 #: the error-band key of each constrained answer (analyze's ``errors``), None: no band.  The
@@ -281,21 +282,18 @@ def window(nominal: Targets, margins: dict, tol_txt: str, yield_target: float) -
 
 def _robust_live(settings, nominal, free, tols, dist, yield_target, check, seed, workers, log, t0) -> RobustResult:
     """:func:`robust_optimize` on the reduced model (:func:`clutchfem.targets.live.live_optimize`)."""
-    from ..targets.live import live_optimize
-
     if isinstance(check, bool) or not isinstance(check, int) or not 0 <= check <= 1000:
         raise ParameterError("check", check, "an integer in [0, 1000]: parts also through the FE", "optimize")
     res = live_optimize(settings, nominal, free, tolerances=tols, dist=dist, yield_target=yield_target,
                         check_parts=check, seed=seed, workers=workers, log=log)
     y = res.live["yield"]
     try:  # the concept's rules at every corner of the final design's tolerance box
-        dataclasses.replace(settings, base=tuple(res.set_args), tolerance_box=tuple(tols.items())).params()
-        buildable = True
+        buildable = dataclasses.replace(settings, base=tuple(res.set_args), tolerance_box=tuple(tols.items())).params()
     except ParameterError:
         buildable = False
     return RobustResult(result=res, targets=nominal, tolerances=tols, dist=dist, yield_target=yield_target,
                         margins={}, sigma={}, predicted_yield=y["yield_independent"], check=None,
-                        rounds=res.live["rounds"], model_error=True, converged=True, box_buildable=buildable,
+                        rounds=res.live["rounds"], model_error=True, converged=True, box_buildable=buildable is not False,
                         evaluations=res.live["fe_designs"], seconds=time.perf_counter() - t0)
 
 

@@ -61,12 +61,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.stats import bootstrap
 
-from ..core import InputError, ParameterError, clean, format_quantity
+from ..core import InputError, ParameterError, clean, format_quantity, wilson
 from ..core import values as V
 from ..evaluation import EvalSettings, evaluate_many, shared_cluster
 from ..targets import Targets, best_estimate, correction_ratios
 from .live import agreement, live_parts
-from .over_life import check_life_args, in_spec, life_shares, wilson
+from .over_life import check_life_args, in_spec, life_shares
 
 #: the answers whose spread is reported (key, label, unit, scale to the shown unit)
 ANSWERS = [
