@@ -24,12 +24,18 @@ def test_robust_design_options_without_tolerances_are_refused_not_dropped(opt):
     assert f"option {opt[0]}" in err and "--tol" in err
 
 
-@pytest.mark.parametrize("cmd", [("optimize", "concept4"), ("solve", "concept4"), ("compensate", "concept4", "--rpm",
+@pytest.mark.parametrize("cmd", [("export", "concept4"), ("solve", "concept4"), ("compensate", "concept4", "--rpm",
                                                                                   "8000"),
                                  ("life", "concept4"), ("slip-heat", "concept4")])
 def test_live_fidelity_is_refused_by_the_commands_that_need_the_fe(cmd):
     err = refused(*cmd, "--fidelity", "live")
     assert "--fidelity" in err and "analyze and tolerance" in err
+
+
+def test_a_live_optimisation_no_cached_region_holds_is_refused_before_any_work(tmp_path, monkeypatch):
+    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path))  # an empty cache: no region holds the start
+    err = refused("optimize", "concept4", "--fidelity", "live")
+    assert "clutchfem reduce concept4" in err and "--fidelity best" in err
 
 
 @pytest.mark.parametrize("args, what", [(("--span", "0"), "span"), (("--span", "2"), "(0, 0.5]"),

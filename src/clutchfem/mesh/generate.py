@@ -199,9 +199,6 @@ def _generate(concept: Concept, p: ConceptParams, ms: MeshSettings, msh: Path,
             raise GeometryError(f"gmsh failed to build/mesh concept '{concept.name}': {exc}",
                                 p.model_dump()) from None
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        # both files binary: the exact doubles (the two hold the same nodes to the last bit), and
-        # meshio reads them ~3x (gmsh writes them ~4x) faster than text (a cache hit is a read)
-        gmsh.option.setNumber("Mesh.Binary", 1)
         # the user-facing file keeps the named physical groups ...
         gmsh.option.setNumber("Mesh.SaveAll", 0)
         _atomic_write(groups_msh_path(msh))

@@ -88,6 +88,7 @@ def summary_rows(an) -> list[tuple[str, str]]:
 
     Examples
     --------
+    >>> from clutchfem import Design, MeshSettings, analyze
     >>> a = analyze(Design.from_concept("concept1", mesh=MeshSettings(size="3mm")), errors=False)
     >>> dict(summary_rows(a))["engagement speed (static, FE)"] == f"{a.engagement_rpm:.0f} rpm"
     True"""
