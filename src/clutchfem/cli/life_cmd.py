@@ -27,13 +27,14 @@ from .common import (
     working,
     wrote,
 )
-from .life_options import DRIVE_OPTIONS, params_from, rebuild_from, wear_from
+from .life_options import DRIVE_OPTIONS, life_given, params_from, rebuild_from, wear_from
 
 PANEL = "Life"
 #: worn states whose fields ``--out`` keeps for its .pvd (``cf.life(fields=...)``)
 FIELD_STATES = 12
 @O.takes("concept", "set_", "mesh", "mesh_size", "model", "drum_radius", "thickness", "mu", "fidelity",
-         "rotation", "engine", "idle_rpm", "a", "b", "out", "json_")
+         "rotation", "engine", "idle_rpm", "a", "b", "out", "json_", "wear_regime", "wear_coefficient", "hardness", "drum_wear_coefficient", "drum_hardness",
+         "max_wear_step", "wear_rate_change", "rebuild_depth")
 def life(
     o,
     starts: str = typer.Option("100000", "--starts", metavar="N", help="number of starts of the life (1..1e8)",
@@ -54,30 +55,6 @@ def life(
                                                  rich_help_panel=PANEL),
     throttle_ramp: Optional[str] = typer.Option(None, "--throttle-ramp", metavar="TIME", help="time to open the "
                                                 "throttle, e.g. 0.2s (ASSUMED default)", rich_help_panel=PANEL),
-    wear_regime: Optional[str] = typer.Option(None, "--wear-regime", metavar="dry|lubricated", help="Archard's "
-                                              "typical k and band: dry 1e-5 (1e-6..1e-4, default) or lubricated 1e-8 "
-                                              "(1e-9..1e-7)", rich_help_panel=PANEL),
-    wear_coefficient: Optional[str] = typer.Option(None, "--wear-coefficient", metavar="NUMBER", help="Archard's k "
-                                                   "of the shoe (> 0; default: the regime's, ASSUMED)",
-                                                   rich_help_panel=PANEL),
-    hardness: Optional[str] = typer.Option(None, "--hardness", metavar="STRESS", help="shoe hardness, e.g. 4.4GPa "
-                                           "(default, ASSUMED)", rich_help_panel=PANEL),
-    drum_wear_coefficient: Optional[str] = typer.Option(None, "--drum-wear-coefficient", metavar="NUMBER",
-                                                        help="Archard's k of the drum (default: the shoe's)",
-                                                        rich_help_panel=PANEL),
-    drum_hardness: Optional[str] = typer.Option(None, "--drum-hardness", metavar="STRESS", help="drum hardness "
-                                                "(default 4.4 GPa, ASSUMED)", rich_help_panel=PANEL),
-    max_wear_step: Optional[str] = typer.Option(None, "--max-wear-step", metavar="LENGTH", help="cap on the worn "
-                                                "depth of one wear step, e.g. 2um (default 10 um)",
-                                                rich_help_panel=PANEL),
-    wear_rate_change: Optional[str] = typer.Option(None, "--wear-rate-change", metavar="NUMBER", help="largest "
-                                                   "change of the wear rate in one wear step as a share of the "
-                                                   "largest rate (default 0.25; 0.01..10; halve it with "
-                                                   "--max-wear-step to see the step error)", rich_help_panel=PANEL),
-    rebuild_depth: Optional[str] = typer.Option(None, "--rebuild-depth", metavar="LENGTH|never", help="worn depth "
-                                                "after which the part is meshed again with its worn profile "
-                                                "(default 0.1 mm; never: the wear stays in the contact gaps)",
-                                                rich_help_panel=PANEL),
 ):
     """The clutch over its life: engagement and slip speed, torque and contact arc against the
     number of starts as the shoe face wears (Archard, k ASSUMED with its band), the slip energy
@@ -100,11 +77,8 @@ def life(
         drive = params_from(DriveLine, {"--engine-inertia": engine_inertia, "--driven-inertia": driven_inertia,
                                     "--drag-torque": drag_torque, "--cutting-torque": cutting_torque,
                                     "--throttle-ramp": throttle_ramp}, DRIVE_OPTIONS)
-        wear = wear_from({"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient,
-                                    "--hardness": hardness, "--drum-wear-coefficient": drum_wear_coefficient,
-                                    "--drum-hardness": drum_hardness, "--max-wear-step": max_wear_step,
-                                    "--wear-rate-change": wear_rate_change})
-        depth = rebuild_from(rebuild_depth)
+        wear = wear_from(life_given(o))
+        depth = rebuild_from(o.rebuild_depth)
         eng, idle = engine_from(o.engine, o.idle_rpm)
         req = requirements_from(o.a, o.b)
         op = operating_point(mu=o.mu, rotation=o.rotation, fidelity=o.fidelity)

@@ -16,6 +16,17 @@ WEAR_OPTIONS = {"--wear-regime": "regime", "--wear-coefficient": "wear_coefficie
                 "--max-wear-step": "max_step", "--wear-rate-change": "rate_change"}
 
 
+def life_given(o, rebuild: bool = False) -> dict:
+    """The wear options of a command's shared namespace ``o`` (:data:`~.options.SHARED`) as
+    option -> raw text (``rebuild``: ``--rebuild-depth`` too)."""
+    attr = {"--max-wear-step": "max_wear_step", "--wear-rate-change": "wear_rate_change",
+            "--wear-regime": "wear_regime"}
+    out = {opt: getattr(o, attr.get(opt, field)) for opt, field in WEAR_OPTIONS.items()}
+    if rebuild:
+        out["--rebuild-depth"] = o.rebuild_depth
+    return out
+
+
 def params_from(cls, given: dict, options: dict):
     """``cls`` from the option strings ``given`` (option -> raw or None); a refusal names the
     option typed."""

@@ -17,7 +17,7 @@ from typing import Annotated, List, Optional
 
 import typer
 
-__all__ = ["DESIGN", "ENGINE", "MODEL", "OPERATING", "OUTPUT", "SHARED", "STUDY", "takes"]
+__all__ = ["DESIGN", "ENGINE", "LIFE", "MODEL", "OPERATING", "OUTPUT", "SHARED", "STUDY", "takes"]
 
 DESIGN = "Design"
 OPERATING = "Operating point"
@@ -25,6 +25,7 @@ MODEL = "Model"
 ENGINE = "Engine and requirements"
 STUDY = "Study engine"
 OUTPUT = "Output"
+LIFE = "Life"
 
 Concept = Annotated[Optional[str], typer.Argument(
     metavar="CONCEPT", help="concept name (clutchfem geometry --list); or give --mesh FILE", show_default=False)]
@@ -103,6 +104,31 @@ Out = Annotated[Optional[Path], typer.Option("--out", metavar="DIR", help="outpu
                                              rich_help_panel=OUTPUT)]
 Json = Annotated[bool, typer.Option("--json", help="print one JSON document on stdout", rich_help_panel=OUTPUT)]
 
+# the wear of a life run (clutchfem life, tolerance --life)
+WearRegime = Annotated[Optional[str], typer.Option(
+    "--wear-regime", metavar="dry|lubricated", help="Archard's typical k and band: dry 1e-5 (1e-6..1e-4, default) "
+    "or lubricated 1e-8 (1e-9..1e-7)", rich_help_panel=LIFE)]
+WearCoefficient = Annotated[Optional[str], typer.Option(
+    "--wear-coefficient", metavar="NUMBER", help="Archard's k of the shoe (> 0; default: the regime's, ASSUMED)",
+    rich_help_panel=LIFE)]
+Hardness = Annotated[Optional[str], typer.Option(
+    "--hardness", metavar="STRESS", help="shoe hardness, e.g. 4.4GPa (default, ASSUMED)", rich_help_panel=LIFE)]
+DrumWearCoefficient = Annotated[Optional[str], typer.Option(
+    "--drum-wear-coefficient", metavar="NUMBER", help="Archard's k of the drum (default: the shoe's)",
+    rich_help_panel=LIFE)]
+DrumHardness = Annotated[Optional[str], typer.Option(
+    "--drum-hardness", metavar="STRESS", help="drum hardness (default 4.4 GPa, ASSUMED)", rich_help_panel=LIFE)]
+MaxWearStep = Annotated[Optional[str], typer.Option(
+    "--max-wear-step", metavar="LENGTH", help="cap on the worn depth of one wear step, e.g. 2um (default 10 um)",
+    rich_help_panel=LIFE)]
+WearRateChange = Annotated[Optional[str], typer.Option(
+    "--wear-rate-change", metavar="NUMBER", help="largest change of the wear rate in one wear step as a share of "
+    "the largest rate (default 0.25; 0.01..10; halve it with --max-wear-step to see the step error)",
+    rich_help_panel=LIFE)]
+RebuildDepth = Annotated[Optional[str], typer.Option(
+    "--rebuild-depth", metavar="LENGTH|never", help="worn depth after which the part is meshed again with its worn "
+    "profile (default 0.1 mm; never: the wear stays in the contact gaps)", rich_help_panel=LIFE)]
+
 #: the shared options: parameter name -> (declaration, default); a command names the ones it
 #: takes with :func:`takes` instead of declaring them again
 SHARED: dict[str, tuple] = {
@@ -114,6 +140,10 @@ SHARED: dict[str, tuple] = {
     "layers": (Layers, None), "engine": (Engine, None), "idle_rpm": (IdleRpm, None), "a": (A, None),
     "b": (B, None), "workers": (Workers, None), "scheduler": (Scheduler, None), "out": (Out, None),
     "json_": (Json, False),
+    "wear_regime": (WearRegime, None), "wear_coefficient": (WearCoefficient, None), "hardness": (Hardness, None),
+    "drum_wear_coefficient": (DrumWearCoefficient, None), "drum_hardness": (DrumHardness, None),
+    "max_wear_step": (MaxWearStep, None), "wear_rate_change": (WearRateChange, None),
+    "rebuild_depth": (RebuildDepth, None),
 }
 
 

@@ -13,13 +13,14 @@ from rich.table import Table
 from .. import ClutchfemError, ParameterError
 from . import options as O
 from .common import check_cluster, check_out_dir, console, err, fail, quantity, study_settings, tolerances_from, wrote
-from .life_options import rebuild_from, wear_from
+from .life_options import life_given, rebuild_from, wear_from
 
 LIFE = "Life"
 
 
 @O.takes("concept", "set_", "mesh_size", "mu", "fidelity", "engine", "idle_rpm", "a", "b", "workers",
-         "scheduler", "out", "json_", live=True)
+         "scheduler", "out", "json_", "wear_regime", "wear_coefficient", "hardness", "drum_wear_coefficient", "drum_hardness",
+         "max_wear_step", "wear_rate_change", "rebuild_depth", live=True)
 def tolerance(
     o,
     tol: List[str] = typer.Option(..., "--tol", help="tolerance name=+-value with its unit, e.g. "
@@ -54,27 +55,6 @@ def tolerance(
                                        "starts (1..1e8): one clutchfem life run of the nominal design, every part "
                                        "drifting as the nominal does (drive line and duty: clutchfem life's "
                                        "defaults)", rich_help_panel=LIFE),
-    wear_regime: Optional[str] = typer.Option(None, "--wear-regime", metavar="dry|lubricated", help="with --life: "
-                                              "as clutchfem life (default dry)", rich_help_panel=LIFE),
-    wear_coefficient: Optional[str] = typer.Option(None, "--wear-coefficient", metavar="NUMBER", help="with "
-                                                   "--life: Archard's k of the shoe (default: the regime's, ASSUMED)",
-                                                   rich_help_panel=LIFE),
-    hardness: Optional[str] = typer.Option(None, "--hardness", metavar="STRESS", help="with --life: shoe hardness "
-                                           "(default 4.4 GPa, ASSUMED)", rich_help_panel=LIFE),
-    drum_wear_coefficient: Optional[str] = typer.Option(None, "--drum-wear-coefficient", metavar="NUMBER",
-                                                        help="with --life: Archard's k of the drum (default: the "
-                                                        "shoe's)", rich_help_panel=LIFE),
-    drum_hardness: Optional[str] = typer.Option(None, "--drum-hardness", metavar="STRESS", help="with --life: drum "
-                                                "hardness (default 4.4 GPa, ASSUMED)", rich_help_panel=LIFE),
-    max_wear_step: Optional[str] = typer.Option(None, "--max-wear-step", metavar="LENGTH", help="with --life: cap "
-                                                "on the worn depth of one wear step (default 10 um)",
-                                                rich_help_panel=LIFE),
-    wear_rate_change: Optional[str] = typer.Option(None, "--wear-rate-change", metavar="NUMBER", help="with --life: "
-                                                   "largest change of the wear rate in one step (default 0.25)",
-                                                   rich_help_panel=LIFE),
-    rebuild_depth: Optional[str] = typer.Option(None, "--rebuild-depth", metavar="LENGTH|never", help="with --life: "
-                                                "worn depth after which the part is meshed again (default 0.1 mm)",
-                                                rich_help_panel=LIFE),
 ):
     """Monte Carlo of manufacturing tolerances: spread, share out of spec, ranking of dimensions."""
     from .. import Requirements, Targets, dumps, write_report
@@ -94,10 +74,7 @@ def tolerance(
         if given and not allocate:
             raise ParameterError(given[0][0].lstrip("-"), given[0][1], "an option of --allocate only (--yield, --cost, "
                                  "--no-model-error): add --allocate", f"option {given[0][0]}")
-        wear_given = {"--wear-regime": wear_regime, "--wear-coefficient": wear_coefficient, "--hardness": hardness,
-                      "--drum-wear-coefficient": drum_wear_coefficient, "--drum-hardness": drum_hardness,
-                      "--max-wear-step": max_wear_step, "--wear-rate-change": wear_rate_change,
-                      "--rebuild-depth": rebuild_depth}
+        wear_given = life_given(o, rebuild=True)
         life_kw = _life_options(life, wear_given, allocate)
         y = _yield(yield_) if allocate else None
         if allocate and o.scheduler is not None:
