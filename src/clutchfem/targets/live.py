@@ -194,7 +194,8 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
         for n, t in tols.items():
             if n not in reg.names:
                 raise ParameterError(n, t, f"a toleranced dimension the region varies ({', '.join(reg.names)}): "
-                                     f"`clutchfem reduce {reg.concept} --free ...,{n}` builds one", "option --tol")
+                                     f"`clutchfem reduce {reg.concept} --free ...,{n}` builds one", "option --tol",
+                                     shown=f"+-{_shown(P, n, t)}")
             j = reg.names.index(n)
             inset = (t * SIGMAS / 3.0 if dist == "normal" else t) / (reg.hi[j] - reg.lo[j])
             what = f"+-{SIGMAS:g} sigma" if dist == "normal" else "the tolerance"
@@ -202,9 +203,10 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
                 k = names.index(n)
                 lo[k], hi[k] = inset, 1.0 - inset
                 if lo[k] > hi[k]:
-                    raise ParameterError(n, t, f"a tolerance whose box ({what}: +-{V.exact_text(P, n, t * (SIGMAS / 3.0 if dist == 'normal' else 1.0))}) fits in the region's box of {n} "
-                                         f"({reg.describe()}): build a wider region (clutchfem reduce --range "
-                                         f"{n}=LO:HI)", "option --tol")
+                    box = _shown(P, n, t * (SIGMAS / 3.0 if dist == "normal" else 1.0))
+                    raise ParameterError(n, t, f"a tolerance whose box ({what}: +-{box}) fits in the region's box of "
+                                         f"{n} ({reg.describe()}): build a wider region (clutchfem reduce --range "
+                                         f"{n}=LO:HI)", "option --tol", shown=f"+-{_shown(P, n, t)}")
             elif not inset <= u0[j] <= 1.0 - inset:
                 raise ParameterError(n, t, f"a start whose tolerance box ({what}) lies in the region's box of {n} "
                                      f"({reg.bounds(n)[0]:.6g}..{reg.bounds(n)[1]:.6g})", "option --tol")
@@ -460,3 +462,9 @@ def _tdict(t: Targets) -> dict:
 def _amount(c: dict) -> str:
     s = -c["slack"]
     return f"{s:.3g}" if c["key"] in DIMENSIONLESS else f"{s:.0f} rpm"
+
+
+def _shown(P, name: str, v: float) -> str:
+    """A length in mm, an angle in deg, else the value with its unit (a refusal's numbers)."""
+    u = P.unit(name)
+    return f"{v * 1e3:.4g} mm" if u == "m" else f"{v:.4g} {u}".rstrip(" -")
