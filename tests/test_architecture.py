@@ -34,7 +34,8 @@ HEAVY = {"matplotlib", "pyvista", "vtk", "dask", "distributed", "sksparse", "thr
          "scipy.stats",  # ~0.4 s: the reduced model's Sobol sample (a build's, not a live answer's)
          "scipy.interpolate",  # 0.35 s: a table profile's spline (a live answer's concept needs none)
          "emcee",  # the calibration's sampler: only when a calibration samples (Laplace does not)
-         "PIL"}  # matplotlib's image writer: only when a picture is written
+         "PIL",  # matplotlib's image writer: only when a picture is written
+         "pandas"}  # ~0.4 s: tables of study rows and of curves (a live answer's start-up reads none)
 #: the faces whose commands import the API on use (the command line starts in ~0.3 s instead of ~3 s)
 FACES = ("cli/", "app/")
 #: the stages of the FE work (meshing, the FE model and its solves, evaluating designs, building a

@@ -144,31 +144,39 @@ def test_live_analyze_answers_from_the_reduced_model_without_a_mesh_and_its_band
 
 
 #: what a live answer from a cached reduced model must not load: the mesh (gmsh's meshing,
-#: meshio), the FE model (scikit-fem), the contact and load cases, the FE steps, the reports and
-#: the fit (gmsh itself is loaded: a concept's geometry module imports its OCC helpers, ~20 ms)
+#: meshio), the FE model (scikit-fem), the contact and load cases, the FE steps, the reports' pages
+#: and plots (the table's rows are clutchfem.report.answer_rows), the fit, scipy and pandas (gmsh
+#: itself is loaded: a concept's geometry module imports its OCC helpers, ~20 ms)
 FE_STACK = ("skfem", "meshio", "clutchfem.mesh", "clutchfem.fe", "clutchfem.contact", "clutchfem.softening",
-            "clutchfem.loadcase.case", "clutchfem.analysis.pipeline", "clutchfem.report", "sklearn", "matplotlib")
+            "clutchfem.loadcase.case", "clutchfem.analysis.pipeline", "clutchfem.report.design",
+            "clutchfem.report.pages", "sklearn", "matplotlib", "scipy", "pandas")
 
 
 @pytest.mark.slow
-def test_a_live_analyze_from_a_cached_region_loads_none_of_the_fe_stack(built):
-    """The start-up of ``analyze --fidelity live``: a real process (what it imports is the
-    process's), the region cached by the fixture."""
+@pytest.mark.parametrize("json_out", [True, False], ids=["json", "table"])
+def test_a_live_analyze_from_a_cached_region_loads_none_of_the_fe_stack(built, json_out):
+    """The start-up of ``analyze --fidelity live``, its JSON and its table: a real process (what
+    it imports is the process's), the region cached by the fixture."""
+    argv = ["clutchfem", "analyze", "concept1", "--mesh-size", "3mm", "--set", "flexure_thickness=2.15mm",
+            "--fidelity", "live"] + (["--json"] if json_out else [])
     code = textwrap.dedent(f"""
         import json, sys
         from clutchfem.cli import main
-        sys.argv = ["clutchfem", "analyze", "concept1", "--mesh-size", "3mm", "--set", "flexure_thickness=2.15mm",
-                    "--fidelity", "live", "--json"]
+        sys.argv = {argv!r}
         try:
             main()
         except SystemExit as exc:
             assert not exc.code, exc.code
         print(json.dumps([m for m in {FE_STACK!r} if m in sys.modules]), file=sys.stderr)
         """)
-    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1] / "src")}
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1] / "src"), "COLUMNS": "200"}
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
-    assert json.loads(r.stdout)["answered_by"] == "reduced model"  # (a fallback to the FE loads it, rightly)
+    # (a fallback to the FE loads it, rightly)
+    if json_out:
+        assert json.loads(r.stdout)["answered_by"] == "reduced model"
+    else:
+        assert "live: answered by the reduced model" in r.stdout and "engagement" in r.stdout
     assert json.loads(r.stderr.strip().splitlines()[-1]) == []
 
 

@@ -11,11 +11,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..core import ParameterError, clean
+
+if TYPE_CHECKING:  # pandas loads when a table of curves is first read (a live answer's start-up needs none)
+    import pandas as pd
 
 #: Defaults of the requirement factors.  The thesis keeps a and b confidential: ASSUMED.
 DEFAULT_A = 1.3
@@ -172,7 +175,8 @@ class Analysis:
     errors : dict
         The error band of every main answer (discretisation and model form).
     curves : pandas.DataFrame
-        Torque, arc, stress and the analytical models against rpm.
+        Torque, arc, stress and the analytical models against rpm.  May be given as a mapping of
+        column name -> array: it becomes the DataFrame on first read (pandas is then imported).
     warnings, notes : list of str
 
     Examples
@@ -256,12 +260,45 @@ class Analysis:
     #: the key of the reduced model's region of a live answer (clutchfem.reduced.Region.key)
     region_key: str | None = None
 
+    @property
+    def curve_names(self) -> list[str]:
+        """The names of the columns of :attr:`curves`, read without making the table."""
+        return list(self.__dict__[_CURVES])
+
     def to_json(self) -> dict:
-        d = {k: v for k, v in self.__dict__.items() if k != "curves"}
+        d = {k: v for k, v in self.__dict__.items() if k != _CURVES}
         d["units"] = {"rpm": "1/min", "torque": "N m", "stress": "Pa", "power": "W",
                       "safety_factor": "- (yield strength / max von Mises)",
                       "fatigue_safety_factor": "- (load multiplier at which Miner's sum reaches 1)", "angles": "deg",
                       "lengths": "m", "mass": "kg", "force": "N"}
-        d["curves"] = self.curves.to_dict("records")
+        c = self.__dict__[_CURVES]
+        if isinstance(c, dict):  # still its columns: the records without pandas
+            cols = {k: np.asarray(v).tolist() for k, v in c.items()}
+            d["curves"] = [dict(zip(cols, row)) for row in zip(*cols.values())]
+        else:
+            d["curves"] = c.to_dict("records")
         return clean(d)
+
+
+#: where an Analysis keeps its curves: a DataFrame, or the columns it is made from on first read
+_CURVES = "_curves"
+
+
+def _get_curves(self: Analysis) -> pd.DataFrame:
+    c = self.__dict__[_CURVES]
+    if isinstance(c, dict):
+        import pandas as pd
+
+        c = self.__dict__[_CURVES] = pd.DataFrame(c)
+    return c
+
+
+def _set_curves(self: Analysis, value) -> None:
+    self.__dict__[_CURVES] = dict(value) if isinstance(value, dict) else value
+
+
+# set after the dataclass is made, so that ``curves`` stays an ordinary (required) field of its
+# __init__, __eq__ and dataclasses.replace, read and written through the property
+Analysis.curves = property(_get_curves, _set_curves, doc="Torque, arc, stress and the analytical models against "
+                                                         "rpm (:class:`pandas.DataFrame`).")
 

@@ -38,11 +38,10 @@ from __future__ import annotations
 
 import logging
 import sqlite3
+import sys
 import time
 from pathlib import Path
 from typing import Iterable
-
-import pandas as pd
 
 from ..core import ClutchfemError, InputError
 
@@ -136,7 +135,7 @@ class ResultStore:
         while True:
             try:
                 return fn()
-            except (sqlite3.OperationalError, pd.errors.DatabaseError) as exc:
+            except _lock_errors() as exc:
                 if not _locked(exc):
                     raise
                 now = time.monotonic()
@@ -192,6 +191,8 @@ class ResultStore:
     def frame(self, model_version: str | None = None, keys: Iterable[str] | None = None):
         """The rows as a pandas DataFrame (of one model version, and only ``keys`` if given,
         in the order of ``keys``)."""
+        import pandas as pd
+
         where, args = self._where(model_version)
         q = f"SELECT * FROM results{where}"
         df = self._retry(lambda: pd.read_sql_query(q, self.db, params=args))
@@ -204,6 +205,8 @@ class ResultStore:
 
     def runs(self):
         """The runs table (one row per run: started, finished, source, counts, outcome)."""
+        import pandas as pd
+
         return self._retry(lambda: pd.read_sql_query("SELECT * FROM runs ORDER BY run", self.db))
 
     def close(self) -> None:
@@ -214,3 +217,10 @@ class ResultStore:
 
     def __exit__(self, *exc):
         self.close()
+
+
+def _lock_errors() -> tuple[type[Exception], ...]:
+    """What a locked database raises: sqlite3's error, and pandas' wrapper of it once pandas is in
+    use (the store imports pandas only for its tables, so that a live answer's start-up needs none)."""
+    pd = sys.modules.get("pandas")
+    return (sqlite3.OperationalError,) if pd is None else (sqlite3.OperationalError, pd.errors.DatabaseError)

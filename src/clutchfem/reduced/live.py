@@ -22,7 +22,6 @@ import math
 from dataclasses import replace
 
 import numpy as np
-import pandas as pd
 
 from ..analysis import LIVE, Analysis, Requirements, analyze, idle_speed
 from ..clutch import EngineCurve
@@ -151,10 +150,11 @@ def _answers(design, model, engine, req, idle_rpm, v: dict, band: dict, why: dic
     return an
 
 
-def _engine_only(engine: EngineCurve) -> pd.DataFrame:
-    """The curves of a live answer: the engine's only (the clutch's against rpm needs the FE)."""
+def _engine_only(engine: EngineCurve) -> dict:
+    """The curves of a live answer: the engine's only (the clutch's against rpm needs the FE), as
+    columns (:attr:`Analysis.curves` makes the DataFrame when it is read: no pandas at start-up)."""
     rpm = np.linspace(*map(float, engine.rpm_range), 61)
-    return pd.DataFrame({"rpm": rpm, "engine_torque_Nm": np.asarray(engine.torque_at(rpm), float)})
+    return {"rpm": rpm, "engine_torque_Nm": np.asarray(engine.torque_at(rpm), float)}
 
 
 LIVE.append(live_analysis)

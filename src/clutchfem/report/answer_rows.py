@@ -195,9 +195,9 @@ def summary_rows(an) -> list[tuple[str, str]]:
 
 def _arc_err(an, rpm: float) -> str:
     """' +- x deg' of the contact arc at the sweep speed ``rpm`` (its ends between nodes)."""
-    c = an.curves
-    if "contact_arc_error_deg" not in c:
+    if "contact_arc_error_deg" not in an.curve_names:
         return ""
+    c = an.curves
     k = int(np.argmin(np.abs(c["rpm"].to_numpy(dtype=float) - rpm)))
     return f" +- {float(c['contact_arc_error_deg'].iloc[k]):.2f} deg"
 
