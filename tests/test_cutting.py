@@ -125,7 +125,9 @@ def test_step_and_dxf_round_trip_within_the_discretisation_band(tmp_path, name):
 
     e_d, s_d = d.case().engagement_rpm, slip_step(d.case(), eng).rpm
     e_f, s_f = fine.case().engagement_rpm, slip_step(fine.case(), eng).rpm
-    r = cf.export(d, tmp_path, analyze_design=False)
+    # the two files read back (the drawing sheet, not read here, is test_drawing's and
+    # test_report_links_the_cutting_files')
+    r = cf.export(d, dxf=tmp_path / "part.dxf", step=tmp_path / "part.step", analyze_design=False)
     step = next(f for f in r.files if f.suffix == ".step")
     dxf = next(f for f in r.files if f.suffix == ".dxf")
     h = 1.5e-3
