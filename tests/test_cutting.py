@@ -106,10 +106,11 @@ def test_features_below_the_process_limit_are_refused_by_name(tmp_path):
     with pytest.raises(cf.CuttingError) as e:
         cf.export(d, tmp_path / "b", process="waterjet", analyze_design=False)
     assert "slot width 0.95 mm (= slot_width)" in str(e.value) and "waterjet minimum slot width 1 mm" in str(e.value)
-    # the shop's own limits let it through
-    r = cf.export(d, tmp_path / "b", process="waterjet", min_inside_radius="0.4mm", min_slot="0.9mm",
-                  analyze_design=False)
-    assert r.rules.min_slot == 0.9e-3
+    # the shop's own limits let it through (its cutting file written; the drawing sheet is
+    # test_drawing's)
+    r = cf.export(d, dxf=tmp_path / "b" / "part.dxf", process="waterjet", min_inside_radius="0.4mm",
+                  min_slot="0.9mm", analyze_design=False)
+    assert r.rules.min_slot == 0.9e-3 and (tmp_path / "b" / "part.dxf").stat().st_size > 0
 
 
 @pytest.mark.slow
@@ -166,7 +167,7 @@ def test_from_run_folder_reads_back_the_same_design(tmp_path):
     r = cf.export(d, tmp_path / "a", analyze_design=False)
     back = design_from_run(tmp_path / "a", COARSE)
     assert back.params == d.params and back.name == d.name
-    r2 = cf.export(back, tmp_path / "b", analyze_design=False)
+    r2 = cf.export(back, dxf=tmp_path / "b.dxf", analyze_design=False)  # (its part: no drawing sheet needed)
     assert r2.area_m2 == r.area_m2
 
 
