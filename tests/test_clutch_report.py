@@ -152,6 +152,7 @@ def test_two_designs_in_one_folder_are_told_apart(tmp_path):
 def test_terminal_table_has_units_and_warning(c4):
     d, _, output = c4  # the table the fixture's run printed
     t = flat(output)
+    assert "concept4: clutch answers (mu = 0.165" in t  # the design's table, with its friction
     for frag in ("rpm", "N m", "MPa", " W ", "(-)", "PASS" if d["requirements"]["slip_ok"] else "FAIL",
                  "ASSUMED"):
         assert frag in t, frag

@@ -12,7 +12,6 @@ import clutchfem as cf
 from clutchfem.app import DesignSession
 from clutchfem.app.session import answer_rows
 
-
 #: a coarse mesh (the faces agreeing to their digits is the point, not the answers' accuracy):
 #: the design of tests/test_design_identity.py, whose mesh a full run shares
 MESH = cf.MeshSettings.preset("fast", size=6e-3)
