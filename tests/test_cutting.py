@@ -106,10 +106,11 @@ def test_features_below_the_process_limit_are_refused_by_name(tmp_path):
     with pytest.raises(cf.CuttingError) as e:
         cf.export(d, tmp_path / "b", process="waterjet", analyze_design=False)
     assert "slot width 0.95 mm (= slot_width)" in str(e.value) and "waterjet minimum slot width 1 mm" in str(e.value)
-    # the shop's own limits let it through
-    r = cf.export(d, tmp_path / "b", process="waterjet", min_inside_radius="0.4mm", min_slot="0.9mm",
-                  analyze_design=False)
-    assert r.rules.min_slot == 0.9e-3
+    # the shop's own limits let it through (its cutting file written; the drawing sheet is
+    # test_drawing's)
+    r = cf.export(d, dxf=tmp_path / "b" / "part.dxf", process="waterjet", min_inside_radius="0.4mm",
+                  min_slot="0.9mm", analyze_design=False)
+    assert r.rules.min_slot == 0.9e-3 and (tmp_path / "b" / "part.dxf").stat().st_size > 0
 
 
 @pytest.mark.slow
@@ -125,7 +126,9 @@ def test_step_and_dxf_round_trip_within_the_discretisation_band(tmp_path, name):
 
     e_d, s_d = d.case().engagement_rpm, slip_step(d.case(), eng).rpm
     e_f, s_f = fine.case().engagement_rpm, slip_step(fine.case(), eng).rpm
-    r = cf.export(d, tmp_path, analyze_design=False)
+    # the two files read back (the drawing sheet, not read here, is test_drawing's and
+    # test_report_links_the_cutting_files')
+    r = cf.export(d, dxf=tmp_path / "part.dxf", step=tmp_path / "part.step", analyze_design=False)
     step = next(f for f in r.files if f.suffix == ".step")
     dxf = next(f for f in r.files if f.suffix == ".dxf")
     h = 1.5e-3
@@ -164,7 +167,7 @@ def test_from_run_folder_reads_back_the_same_design(tmp_path):
     r = cf.export(d, tmp_path / "a", analyze_design=False)
     back = design_from_run(tmp_path / "a", COARSE)
     assert back.params == d.params and back.name == d.name
-    r2 = cf.export(back, tmp_path / "b", analyze_design=False)
+    r2 = cf.export(back, dxf=tmp_path / "b.dxf", analyze_design=False)  # (its part: no drawing sheet needed)
     assert r2.area_m2 == r.area_m2
 
 

@@ -12,9 +12,13 @@ import clutchfem as cf
 from clutchfem.app import DesignSession
 from clutchfem.app.session import answer_rows
 
+#: a coarse mesh (the faces agreeing to their digits is the point, not the answers' accuracy):
+#: the design of tests/test_design_identity.py, whose mesh a full run shares
+MESH = cf.MeshSettings.preset("fast", size=6e-3)
+
 
 def _design():
-    return cf.Design.from_concept("concept4", flexure_thickness="1.9mm", fidelity="fast")
+    return cf.Design.from_concept("concept4", flexure_thickness="1.9mm", fidelity="fast", mesh=MESH)
 
 
 @pytest.mark.slow
@@ -45,6 +49,7 @@ def test_app_analyze_report_and_drawing_show_the_same_answers(tmp_path, monkeypa
     # the app: the answers it ends on are analyze's (the value column of each main answer)
     s = DesignSession("concept4")
     assert s.set_value("flexure_thickness", 1.9) is None
+    s.mesh = MESH  # (the session's mesh setting: the same design as the other faces')
     done = s.complete(s.run())
     assert done.rows == answer_rows(want)
     shown = dict((q, v) for q, v, _ in done.rows)
