@@ -64,9 +64,11 @@ from .live_search import (
     RuleConstraint,
     live_answers,
     on_grid,
+    order_slack,
     parts_slack,
     rebind,
     set_texts,
+    shifted_search,
     slsqp_search,
 )
 from .result import OptimizationResult
@@ -255,6 +257,9 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
             xd, _ = slsqp_search(prob, lo, hi, starts, log=log, rules=rules_nominal)
             starts = [xd, starts[0]]
         x, info = slsqp_search(prob, lo, hi, starts, D, k_out or 0, log, rules=rules)
+        if robust and order_slack(prob, x, D, k_out) < MARGIN:  # short of the yield: the shifted searches
+            x, more = shifted_search(prob, lo, hi, [x, xd], D, k_out, log, rules=rules)
+            info.update(more)
         # room for the resolution grid: each slack's change over one resolution step of every
         # free parameter (its gradient at x), then again from x with that margin
         _, _, _, dg = prob.with_jac(x)
@@ -262,7 +267,10 @@ def live_optimize(settings, targets: Targets, free=None, *, tolerances: dict | N
         snap = np.abs(dg).T @ step if dg.size else np.zeros(0)
         if snap.size:
             room = MARGIN + (float(snap.max()) if robust else snap)
-            x, _ = slsqp_search(prob, lo, hi, [x], D, k_out or 0, log, rules=rules, margin=room)
+            xr, _ = slsqp_search(prob, lo, hi, [x], D, k_out or 0, log, rules=rules, margin=room)
+            if robust and order_slack(prob, xr, D, k_out) < room:  # the kinked statistic again
+                xr, _ = shifted_search(prob, lo, hi, [x, xd], D, k_out, log, rules=rules, margin=room)
+            x = xr
 
         def feasible(xc):
             if not rules.admits(xc):

@@ -13,13 +13,15 @@ from ..core import ClutchfemError, ParameterError
 from ..core import values as V
 from .targets import Targets
 
-__all__ = ["MARGIN", "SOURCE", "STEP", "LiveProblem", "RuleConstraint", "live_answers", "on_grid", "parts_slack",
-           "rebind", "set_texts", "slsqp_search"]
+__all__ = ["MARGIN", "SOURCE", "STEP", "LiveProblem", "RuleConstraint", "live_answers", "on_grid", "order_slack",
+           "parts_slack", "rebind", "set_texts", "shifted_search", "slsqp_search"]
 
 #: the search's constraints hold with this relative margin (SLSQP ends within its tolerance)
 MARGIN = 1e-6
 #: forward-difference step of the gradients, in unit-box coordinates
 STEP = 1e-5
+#: rounds of the shifted deterministic searches that back up the robust search (SORA)
+SHIFT_ROUNDS = 8
 #: the model answer of each constrained answer
 SOURCE = {"engagement_rpm_with_ripple": "engagement_rpm_with_ripple", "slip_rpm": "slip_rpm",
           "safety_factor": "max_von_mises_Pa", "fatigue_safety_factor": "fatigue_safety_factor"}
@@ -134,6 +136,67 @@ def parts_slack(prob: LiveProblem, U: np.ndarray) -> np.ndarray:
     m = prob.slacks(val, rel).min(axis=1) if prob.cons else np.zeros(len(U))
     inside = np.all((U >= -1e-9) & (U <= 1 + 1e-9), axis=1)
     return np.where(inside, m, -1.0)
+
+
+def order_slack(prob: LiveProblem, x, D: np.ndarray, k_out: int) -> float:
+    """The (k_out+1)-th smallest part slack at the free coordinates ``x``: >= 0 when at most
+    ``k_out`` of the parts ``D`` miss a target (the robust search's constraint)."""
+    m = parts_slack(prob, prob.full(x)[0] + D)
+    return float(np.partition(m, k_out)[k_out])
+
+
+def shifted_search(prob: LiveProblem, lo, hi, starts, D: np.ndarray, k_out: int, log=None,
+                   rules: RuleConstraint | None = None, margin=MARGIN) -> tuple[np.ndarray, dict]:
+    """The robust search's back-up when SLSQP on the parts' order statistic (a kinked function
+    of the design: the part that sets it changes) ends short of the yield: sequential
+    deterministic searches with shifted limits (SORA, Du and Chen 2004).  At the last design
+    each target's shift is how far its (k_out+1)-th smallest part slack lies below its nominal
+    slack; the deterministic search runs again with those margins (never smaller than the
+    last round's) from the last design (the first round also from the other ``starts``), until
+    the parts hold the order statistic and the shifts no longer grow; where the shifts stop
+    growing short of it (every target holds on its own but not all at once, or ``margin`` asks
+    for more), they grow by a quarter plus the shortfall.  (the lightest design whose
+    parts hold the order statistic >= ``margin`` and the rules admit, else the one nearest to
+    it; what it did)."""
+    inside = np.all  # (the parts outside the region miss: parts_slack's -1)
+
+    def drop_at(x):
+        U = prob.full(x)[0] + D
+        val, rel = prob.answers(prob.full(x))
+        vp, rp = prob.answers(U)
+        sp = prob.slacks(vp, rp)
+        sp[~inside((U >= -1e-9) & (U <= 1 + 1e-9), axis=1)] = -1.0
+        q = np.partition(sp, k_out, axis=0)[k_out]
+        return np.maximum(prob.slacks(val, rel)[0] - q, 0.0)
+
+    x = np.clip(np.asarray(starts[0], float), lo, hi)
+    shift = drop_at(x)
+    best, nearest, tried = None, None, list(starts)
+    forced, g_last = False, -np.inf
+    for it in range(1, SHIFT_ROUNDS + 1):
+        x, _ = slsqp_search(prob, lo, hi, tried, log=log, rules=rules, margin=margin + shift)
+        tried = [x]
+        g = order_slack(prob, x, D, k_out)
+        f = float(prob.with_jac(x)[0])
+        if log:
+            log(f"live search, shifted round {it}: the parts' order statistic {g:+.3g} (relative slack), "
+                f"shifts {', '.join(f'{k} {v:.3g}' for (_, k, _, _), v in zip(prob.cons, shift))}")
+        if g >= margin and (rules is None or not rules.active or rules.admits(x)) and (best is None or f < best[1]):
+            best = (x.copy(), f)
+        if nearest is None or g > nearest[1]:
+            nearest = (x.copy(), g)
+        d = drop_at(x)
+        grew = bool(np.any(d > shift + 1e-4))
+        if (g >= margin and not grew) or (forced and g <= g_last + 1e-7):  # held; or more shift gains nothing
+            break
+        forced, g_last = not grew, g
+        # the shifts no longer grow and the parts still fall short (each target holds alone, not
+        # all at once; or the margin asked is more than the shifts give): a quarter more, plus
+        # the shortfall
+        shift = np.maximum(shift, d) if grew else 1.25 * shift + (margin - g)
+    x = best[0] if best is not None else nearest[0]
+    return x, {"shifted_rounds": it, "shifted_feasible": best is not None,
+               "shifts_rel": {k: float(v) for (_, k, _, _), v in zip(prob.cons, shift)}}
 
 
 def slsqp_search(prob: LiveProblem, lo, hi, starts, D=None, k_out: int = 0, log=None, rules: RuleConstraint | None = None,
