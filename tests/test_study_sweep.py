@@ -193,7 +193,9 @@ def test_kill_9_loses_no_finished_point_and_the_rerun_computes_only_the_rest(tmp
     spec.write_text(SMALL)
     out = tmp_path / "out"
     store = out / "results.sqlite"
-    proc = _start_sweep(spec, out, "--workers", "2")
+    # a local cluster of one worker (its nanny and worker process: the ones that must go away by
+    # themselves); the Ctrl-C test below runs one of 2
+    proc = _start_sweep(spec, out, "--workers", "1")
     try:
         before = _wait_rows(proc, store, 3)
         os.kill(proc.pid, signal.SIGKILL)  # the sweep's own process only: its workers must follow
@@ -300,9 +302,9 @@ def test_example_spec_runs_as_it_is(tmp_path, monkeypatch):
     spec.write_text(ex.stdout)
     # with --workers 0 (the study in the command's process), and that process this one
     # (support/cli.py): what runs as it is is the spec; a study on a local cluster of 2
-    # workers runs in the kill -9 and Ctrl-C tests above (of 1, whose worker dies and is
-    # restarted, in the dying-worker test), and a --json standard output that holds nothing
-    # else while meshing is checked on a process in test_hostile_environment.py
+    # workers runs in the Ctrl-C test above (of 1 in the kill -9 test, and in the dying-worker
+    # test, whose worker dies and is restarted), and a --json standard output that holds
+    # nothing else while meshing is checked on a process in test_hostile_environment.py
     monkeypatch.chdir(tmp_path)  # the files the summary names are relative to the working directory
     run = cli_in_process("study", spec, "--json", "--workers", "0")
     assert run.returncode == 0, run.stderr[-3000:]
