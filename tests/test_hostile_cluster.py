@@ -204,10 +204,8 @@ def test_no_workers_and_a_dead_worker_stop_the_study_with_the_rows_kept(tmp_path
         run_points(spec.points(), spec.settings, store, scheduler=scheduler, progress=False)
     assert any("has no workers: waiting up to 1 s" in r.message for r in caplog.records)
     log = open(tmp_path / "worker.log", "w")
-    # without a nanny (a process start, ~2.5 s of CPU): the worker is the `dask worker` process,
-    # and killing it is the dead worker (its process group was killed, nanny and all)
-    worker = subprocess.Popen([str(DASK), "worker", scheduler, "--nthreads", "1", "--no-nanny", "--no-dashboard",
-                               "--host", "127.0.0.1"], env=_env(), stdout=log, stderr=log, start_new_session=True)
+    worker = subprocess.Popen([str(DASK), "worker", scheduler, "--nthreads", "1", "--no-dashboard", "--host",
+                               "127.0.0.1"], env=_env(), stdout=log, stderr=log, start_new_session=True)
     killer = None
     try:
         from distributed import Client

@@ -263,11 +263,9 @@ def test_remote_scheduler_and_worker_processes(tmp_path):
             time.sleep(0.1)
         address = json.loads(sched_file.read_text())["address"]
         assert address.startswith("tcp://127.0.0.1:")
-        # without a nanny: the worker is the `dask worker` process itself (a nanny's process
-        # start, ~2.5 s of CPU, is not what is checked: the rows name the worker's process)
         worker = subprocess.Popen([str(DASK), "worker", address, "--nthreads", "1", "--nworkers", "1",
-                                   "--no-nanny", "--no-dashboard", "--host", "127.0.0.1"], env=env, stdout=log_w,
-                                  stderr=log_w, start_new_session=True)
+                                   "--no-dashboard", "--host", "127.0.0.1"], env=env, stdout=log_w, stderr=log_w,
+                                  start_new_session=True)
         spec = parse_spec(SMALL.replace("steps = 3", "steps = 2").replace("[80, 90]", "[90]"))
         summary = run_study(spec, tmp_path / "out", scheduler=address, progress=False).to_json()
         assert (summary["points"], summary["done"], summary["ok"]) == (2, 2, 2)
