@@ -6,9 +6,11 @@ artefact (``test-artifacts/app.png``).  And the session logic without a browser.
 
 from __future__ import annotations
 
+import contextlib
 import re
 import zipfile
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -46,8 +48,16 @@ def test_session_fidelity_control_and_the_drum_it_shows(monkeypatch):
     assert "fidelity" in (s.set_value("fidelity", "medium") or "") and s.op.fidelity == "fast"
 
 
+@pytest.fixture(scope="module")
+def c4_19():
+    """Concept 4 at 1.9 mm on the fast path and ``cf.analyze``'s answers for it, computed
+    once for the module's tests that compare a page with them."""
+    d = cf.Design.from_concept("concept4", flexure_thickness="1.9mm", fidelity="fast")
+    return d, cf.analyze(d)
+
+
 @pytest.mark.slow
-def test_session_ends_on_the_answers_of_analyze(monkeypatch):
+def test_session_ends_on_the_answers_of_analyze(monkeypatch, c4_19):
     """One answer set (issue 37): the first pass is marked on its values, and the page ends on
     exactly the answers ``cf.analyze`` gives for the design (corrected, with bands), every main
     answer to the digits shown; a report downloaded meanwhile is of those answers."""
@@ -59,7 +69,8 @@ def test_session_ends_on_the_answers_of_analyze(monkeypatch):
     assert shown["engagement speed (static)"].endswith("(first pass)")
     done = s.complete(first)
     assert s.last is done and done.analysis.errors
-    want = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="1.9mm", fidelity="fast"))
+    design, want = c4_19
+    assert s.design().hash == design.hash  # the session's design is the one analysed
     from clutchfem.app.session import answer_rows
 
     assert done.rows == answer_rows(want)
@@ -69,11 +80,27 @@ def test_session_ends_on_the_answers_of_analyze(monkeypatch):
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
+    """One app server for the browser tests that need a server as it starts (each opens its
+    own tab: a tab's session is its own); the tests about the server's own state (its pages
+    and memory, its tab limit) start theirs.  Yields the URL and the server's --out folder."""
+    out = tmp_path_factory.mktemp("app")
     try:
-        with app_server(tmp_path_factory.mktemp("app")) as url:
-            yield url
+        with app_server(out) as url:
+            yield SimpleNamespace(url=url, out=out)
     except RuntimeError as e:
         pytest.fail(str(e))
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    """One headless Chromium for the module's browser tests (a launch is ~1 s of CPU); each
+    test opens its pages in a context of its own and closes it."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = launch_chromium(p)
+        yield browser
+        browser.close()
 
 
 def _engagement(page) -> str:
@@ -82,15 +109,14 @@ def _engagement(page) -> str:
 
 
 @pytest.mark.slow
-def test_live_design_in_a_real_browser(server):
-    from playwright.sync_api import expect, sync_playwright
+def test_live_design_in_a_real_browser(server, chromium, c4_19):
+    from playwright.sync_api import expect
 
     assert Path(CHROMIUM).exists(), "Debian's chromium is installed by make setup (APT_PKGS)"
     want = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="2mm"))  # the answers of record
-    with sync_playwright() as p:
-        browser = launch_chromium(p)
-        page = browser.new_page(viewport={"width": 1500, "height": 1300})
-        page.goto(server)
+    with _context(chromium, viewport={"width": 1500, "height": 1300}) as browser:
+        page = browser.new_page()
+        page.goto(server.url)
         status = page.locator("[data-testid=status]")
         expect(status).to_contain_text("first pass in", timeout=90_000)
         before = _engagement(page)
@@ -118,7 +144,8 @@ def test_live_design_in_a_real_browser(server):
         expect(page.locator("[data-testid=answers]")).to_have_class(re.compile("opacity-50"))
         # pin and compare: a pinned column with the difference
         page.locator("[data-testid=pin]").click()
-        other = cf.analyze(cf.Design.from_concept("concept4", flexure_thickness="1.9mm"))
+        d19 = cf.Design.from_concept("concept4", flexure_thickness="1.9mm")  # the session's fidelity
+        other = c4_19[1] if d19.hash == c4_19[0].hash else cf.analyze(d19)
         box.fill("1.9")
         box.press("Enter")
         expect(page.locator("[data-testid=answers] th", has_text="pinned")).to_be_visible(timeout=60_000)
@@ -144,8 +171,18 @@ def test_live_design_in_a_real_browser(server):
         expect(page.locator("input[data-testid=num-drum_wall]")).to_have_value("2")
         ARTIFACTS.mkdir(exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / "app.png"), full_page=True)
-        browser.close()
     assert (ARTIFACTS / "app.png").stat().st_size > 50_000
+
+
+@contextlib.contextmanager
+def _context(chromium, **kw):
+    """A browser context of the shared Chromium (its own pages, cookies and downloads),
+    closed after: its tabs go away as a closed browser's do."""
+    ctx = chromium.new_context(**kw)
+    try:
+        yield ctx
+    finally:
+        ctx.close()
 
 
 def _rss_mb(pid: int) -> float:
@@ -225,19 +262,18 @@ def test_the_app_as_a_server_without_a_browser(tmp_path, monkeypatch):
 
 
 @pytest.mark.slow
-def test_a_tab_is_live_only_while_its_page_is_open_and_tabs_are_bounded(tmp_path):
+def test_a_tab_is_live_only_while_its_page_is_open_and_tabs_are_bounded(tmp_path, chromium):
     """A page in a browser gets its folder and its analysis; over --max-tabs a further tab
     gets the refusal page and no folder; a closed tab's folder is dropped (its session
     reclaimed) and its place taken by the next tab."""
     import time
 
-    from playwright.sync_api import expect, sync_playwright
+    from playwright.sync_api import expect
 
     LIVE = re.compile("computing|first pass|answers of analyze")  # the tab analyses
     out = tmp_path / "app"
     tabs = lambda: sorted(p for p in out.glob("tab-*"))  # noqa: E731
-    with app_server(out, args=("--max-tabs", "1")) as url, sync_playwright() as p:
-        browser = launch_chromium(p)
+    with app_server(out, args=("--max-tabs", "1")) as url, _context(chromium) as browser:
         first = browser.new_page()
         first.goto(url)
         expect(first.locator("[data-testid=status]")).to_have_text(LIVE, timeout=60_000)
@@ -258,7 +294,6 @@ def test_a_tab_is_live_only_while_its_page_is_open_and_tabs_are_bounded(tmp_path
         second.reload()
         expect(second.locator("[data-testid=status]")).to_have_text(LIVE, timeout=60_000)
         assert len(tabs()) == 1
-        browser.close()
     log = (out / "app.log").read_text()
     assert "Traceback" not in log and "deleted but is still being used" not in log, log[-2000:]
 
@@ -337,6 +372,7 @@ def test_upload_limit_refuses_before_the_body_is_read():
     bytes as they arrive -> 413 and the route never reads the body; an unknown upload route
     -> 404; within the limit the route gets every byte."""
     import asyncio
+    import concurrent.futures
 
     import httpx
     from starlette.applications import Starlette
@@ -368,8 +404,9 @@ def test_upload_limit_refuses_before_the_body_is_read():
             unknown = await c.post("/_nicegui/client/abc/upload/8", content=b"x")
         return big, chunked, small, unknown
 
-    try:
-        big, chunked, small, unknown = asyncio.run(go())
+    try:  # in a thread of its own: the module's browser (Playwright's sync API) may hold this thread's loop
+        with concurrent.futures.ThreadPoolExecutor(1) as pool:
+            big, chunked, small, unknown = pool.submit(asyncio.run, go()).result()
     finally:
         upload_limits.pop(url, None)
     assert big.status_code == 413 and "1 kB" in big.text
@@ -401,17 +438,15 @@ def test_a_cancelled_optimisation_stops_at_its_next_step():
 
 
 @pytest.mark.slow
-def test_a_study_in_the_browser_shows_its_time_left_and_cancels(tmp_path, monkeypatch):
+def test_a_study_in_the_browser_shows_its_time_left_and_cancels(server, chromium):
     """The optimisation from the page: a bar with its share done and the time left, a cancel
-    button that stops it (said on the page), no apply button without a result."""
-    from playwright.sync_api import expect, sync_playwright
+    button that stops it (said on the page), no apply button without a result.  On the
+    module's server (its own tab: the fast path, the suite's default, as the server's)."""
+    from playwright.sync_api import expect
 
-    monkeypatch.setenv("CLUTCHFEM_FIDELITY", "fast")
-    out = tmp_path / "app"
-    with app_server(out) as url, sync_playwright() as p:
-        browser = launch_chromium(p)
-        page = browser.new_page(viewport={"width": 1500, "height": 1300})
-        page.goto(url)
+    with _context(chromium, viewport={"width": 1500, "height": 1300}) as browser:
+        page = browser.new_page()
+        page.goto(server.url)
         expect(page.locator("[data-testid=status]")).to_contain_text("first pass in", timeout=90_000)
         page.get_by_text("studies of this design").click()
         page.locator("[data-testid=study-optimize]").click()
@@ -423,8 +458,7 @@ def test_a_study_in_the_browser_shows_its_time_left_and_cancels(tmp_path, monkey
         expect(log).to_contain_text(re.compile(r"cancelled after \d+ s"), timeout=120_000)
         expect(page.locator("[data-testid=study-cancel]")).to_be_hidden()
         expect(page.locator("[data-testid=study-apply]")).to_be_hidden()
-        browser.close()
-    assert "Traceback" not in (out / "app.log").read_text()
+    assert "Traceback" not in (server.out / "app.log").read_text()
 
 
 @pytest.mark.parametrize("bad", ["0", "65"])

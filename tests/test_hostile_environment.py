@@ -22,6 +22,7 @@ from clutchfem.geometry.registry import search_path
 from clutchfem.loadcase import Design
 from clutchfem.mesh import cache_dir, cache_entries, cache_limit, clear_cache, evict
 from clutchfem.report import folder_page
+from support.cli import cli_in_process
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -106,7 +107,10 @@ def test_two_processes_meshing_one_design_at_once_mesh_it_once(tmp_path):
                                   stderr=subprocess.PIPE, text=True) for _ in range(2)]
         for p in procs:
             assert p.stdout.readline().strip() == "started", p.communicate()
-        time.sleep(1.0)  # both are now at the entry's lock (the import is done; a mesh takes longer)
+        # both are now blocked on the entry's lock: seen in the kernel's lock table (it was a
+        # fixed 1 s sleep, assumed long enough)
+        lock = cache_dir_of(tmp_path) / ".locks" / f"{name}.lock"
+        assert _blocked_on(lock, {p.pid for p in procs}), "the two processes never waited at the entry's lock"
         assert not list(cache_dir_of(tmp_path).glob("concept1-*.msh"))
     outs = []
     for p in procs:
@@ -116,6 +120,21 @@ def test_two_processes_meshing_one_design_at_once_mesh_it_once(tmp_path):
     assert sorted(o["cached"] for o in outs) == [False, True]  # meshed once, read once
     assert outs[0]["n"] == outs[1]["n"]
     assert len(cache_entries(cache_dir_of(tmp_path))) == 1
+
+
+def _blocked_on(lock: Path, pids: set[int], timeout: float = 60.0) -> bool:
+    """Wait until every process of ``pids`` is blocked on the ``flock`` of file ``lock``
+    (``/proc/locks``: a waiter is a ``->`` line with its pid and the file's inode)."""
+    t0 = time.time()
+    while time.time() - t0 < timeout:
+        if lock.exists():
+            ino = f":{lock.stat().st_ino} "
+            waiting = {int(f[5]) for f in (line.split() for line in Path("/proc/locks").read_text().splitlines())
+                       if len(f) > 6 and f[1] == "->" and f":{f[6].rsplit(':', 1)[-1]} " == ino}
+            if pids <= waiting:
+                return True
+        time.sleep(0.02)
+    return False
 
 
 def cache_dir_of(root: Path) -> Path:
@@ -131,16 +150,18 @@ def test_cache_command_shows_and_clears_in_json(tmp_path):
     (tmp_path / "meshes").mkdir()
     (tmp_path / "meshes" / "concept1-0123456789abcdef01234567.msh").write_bytes(b"x" * 1000)
     (tmp_path / "meshes" / "concept1-0123456789abcdef01234567.json").write_text("{}")
-    r = _cli("cache", "--json", env=env)
+    # in this process (support/cli.py): what the command says and does to the folder is the
+    # point, not the process (three process starts were ~3 s)
+    r = cli_in_process("cache", "--json", env=env)
     assert r.returncode == 0, r.stderr
     assert '"entries": 1' in r.stdout and str(tmp_path / "meshes") in r.stdout
-    r = _cli("cache", "--clear", "--json", env=env)
+    r = cli_in_process("cache", "--clear", "--json", env=env)
     assert r.returncode == 0 and '"entries": 0' in r.stdout and "deleted 1 cached meshes" in r.stderr
     # only the cache's own marker stays (it says whose folder this is)
     assert [p.name for p in (tmp_path / "meshes").iterdir()] == [".clutchfem-mesh-cache"]
     f = tmp_path / "afile"
     f.write_text("")
-    r = _cli("cache", env={"CLUTCHFEM_CACHE": str(f)})
+    r = cli_in_process("cache", env={"CLUTCHFEM_CACHE": str(f)})
     assert r.returncode != 0 and "Traceback" not in r.stderr and "is a file, not a folder" in r.stderr
 
 
@@ -226,10 +247,12 @@ def test_a_string_speed_is_read_as_rpm(d1):
 # ---- refusals are one line when standard error is a file ------------------------------------
 @pytest.mark.slow
 def test_refusals_and_usage_errors_are_one_line_on_a_pipe():
-    r = _cli("analyze", "concept1", "--mu", "7")
+    # in this process: support/cli.py's standard error is a text buffer, not a terminal, as a
+    # pipe is not (test_cli.py checks that it says what the process says)
+    r = cli_in_process("analyze", "concept1", "--mu", "7")
     lines = r.stderr.strip().splitlines()
     assert r.returncode != 0 and len(lines) == 1 and "a number in [0, 1]" in lines[0], r.stderr
-    r = _cli("analyze", "concept1", "--no-such-option")
+    r = cli_in_process("analyze", "concept1", "--no-such-option")
     lines = r.stderr.strip().splitlines()
     assert r.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: No such option: --no-such-option")
 

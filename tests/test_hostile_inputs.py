@@ -270,7 +270,13 @@ def test_ctrl_c_stops_meshing_cleanly(tmp_path):
     # the finest mesh under the size limit: meshing takes tens of seconds
     proc = subprocess.Popen(CLI + ["geometry", "concept2", "--mesh-size", "0.17mm", "--out", str(tmp_path / "o")],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    time.sleep(4.0)
+    # meshing has started when its cache entry's lock file appears (it was a fixed 4 s sleep,
+    # which on a loaded machine could still fall in the imports)
+    t0 = time.perf_counter()
+    while not list((tmp_path / "meshes" / ".locks").glob("concept2-*.lock")) and time.perf_counter() - t0 < 120:
+        assert proc.poll() is None, proc.communicate()
+        time.sleep(0.05)
+    assert proc.poll() is None, "the meshing ended before the interrupt: make it finer"
     t0 = time.perf_counter()
     proc.send_signal(signal.SIGINT)
     out, err = proc.communicate(timeout=30)

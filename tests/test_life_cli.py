@@ -13,6 +13,10 @@ from support.cli import cli_in_process
 from support.pictures import rule
 
 COARSE = ["--mesh-size", "3mm", "--rebuild-depth", "never"]
+#: the starts of the short life: what is checked is the document, the options reaching the run
+#: and the files, not the wear at the end (400 starts took 57 wear states, 100 take 16: the
+#: run's cost is its wear steps, not the FE model)
+STARTS = 100
 
 
 def strict(text: str):
@@ -67,7 +71,7 @@ def short(tmp_path_factory):
     duty = out / "duty.toml"
     duty.write_text('[duty]\nstarts_per_hour = "30 1/h"\nheld_slips_per_hour = 1\nheld_slip_duration = "0.5 s"\n'
                     'cutting_share = 0.2\n')
-    r = cli_in_process("life", "concept4", *COARSE, "--starts", "400", "--duty", str(duty), "--engine-inertia",
+    r = cli_in_process("life", "concept4", *COARSE, "--starts", str(STARTS), "--duty", str(duty), "--engine-inertia",
                        "1.1e-3kg*m^2", "--driven-inertia", "2.5e-4kg*m^2", "--drag-torque", "0.3N*m",
                        "--cutting-torque", "3N*m", "--throttle-ramp", "0.25s", "--wear-regime", "lubricated",
                        "--wear-coefficient", "2e-5", "--hardness", "4GPa", "--drum-wear-coefficient", "1e-5",
@@ -82,11 +86,11 @@ def test_json_answers_against_starts_and_the_options_reached_the_run(short):
     d, _, _ = short
     arr = d["arrays"]
     n = len(arr["starts"])
-    assert arr["starts"][0] == 0 and arr["starts"][-1] == 400 and n >= 2
+    assert arr["starts"][0] == 0 and arr["starts"][-1] == STARTS and n >= 2
     for k in ("hours", "engagement_rpm", "slip_rpm", "torque_at_max_engine_torque_Nm", "contact_arc_deg",
               "slip_energy_per_start_J", "time_to_lockup_s", "drum_worn_m"):
         assert len(arr[k]) == n, k
-    assert arr["hours"][-1] == pytest.approx(400 / 30)
+    assert arr["hours"][-1] == pytest.approx(STARTS / 30)
     assert d["slip_energy_per_start_J"] == arr["slip_energy_per_start_J"][0] > 0
     assert 0 <= d["energy_balance"] < 1e-6
     a = d["assumptions"]
@@ -127,7 +131,7 @@ def test_out_writes_the_json_and_pictures_that_keep_the_rule(short):
     assert f"wrote {pvd}" in stderr
     sets = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
     steps = [float(e.get("timestep")) for e in sets]
-    assert steps[0] == 0 and steps[-1] == 400 and steps == sorted(steps) and len(steps) >= 2
+    assert steps[0] == 0 and steps[-1] == STARTS and steps == sorted(steps) and len(steps) >= 2
     starts = np.asarray(d["arrays"]["starts"])
     assert all(np.min(np.abs(starts - n)) <= 1e-9 * max(n, 1.0) for n in steps)
     assert all((out / e.get("file")).is_file() for e in sets)

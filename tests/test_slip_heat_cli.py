@@ -230,7 +230,12 @@ def test_ctrl_c_stops_cleanly_and_writes_nothing(tmp_path):
     out = tmp_path / "o"
     proc = subprocess.Popen(CLI + ["slip-heat", "concept1", *MESH, "--cycles", "200", "--pause", "30", "--out",
                                    str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    time.sleep(6.0)
+    # the run is past its meshing when the mesh's cache entry is written (it was a fixed 6 s
+    # sleep): the interrupt comes in the slip speed and heat transient
+    t0 = time.perf_counter()
+    while not list((tmp_path / "cache" / "meshes").glob("concept1-*.json")) and time.perf_counter() - t0 < 120:
+        assert proc.poll() is None, proc.communicate()
+        time.sleep(0.05)
     assert proc.poll() is None, "the run ended before the interrupt: make it longer"
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=30)
