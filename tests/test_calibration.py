@@ -322,9 +322,18 @@ def test_repeated_readings_of_one_part_enter_once_with_the_model_error(design, m
 
 def test_the_command_line_writes_the_corrected_design_and_its_cutting_files(design, model, tmp_path, monkeypatch):
     """The calibration itself on the hand-fitted model (the CLI's own reduced model is the slow
-    test's): ``--correct all --target ... --process ... --out ... --json``."""
-    real = cf.calibrate
-    monkeypatch.setattr(cf, "calibrate", lambda d, meas, unc, **kw: real(design, meas, unc, model=model, steps=1000))
+    test's): ``--correct all --target ... --process ... --out ... --json``.  The two runs
+    calibrate on the same measurements and priors: the second (the table) is given the
+    first's calibration (the same seed: the same posterior), not the same sampling again."""
+    real, done = cf.calibrate, {}
+
+    def calibrate(d, meas, unc, **kw):
+        key = (tuple(meas), tuple(unc))
+        if key not in done:
+            done[key] = real(design, meas, unc, model=model, steps=1000)
+        return done[key]
+
+    monkeypatch.setattr(cf, "calibrate", calibrate)
     meas = measure(2.25e-3, 0.2, np.random.default_rng(6))
     out = cli_in_process("calibrate", "concept1", "--fidelity", "live", "--measured", meas[0], "--measured", meas[1],
                          *[x for p in PRIORS for x in ("--uncertain", p)], "--correct", "all", "--target",
@@ -338,6 +347,7 @@ def test_the_command_line_writes_the_corrected_design_and_its_cutting_files(desi
     text = cli_in_process("calibrate", "concept1", "--fidelity", "live", "--measured", meas[0], "--measured", meas[1],
                           *[x for p in PRIORS for x in ("--uncertain", p)], "--correct", "flexure_thickness", ok=True)
     assert "the corrected design for the next part" in text.stdout and "--set flexure_thickness=" in text.stdout
+    assert len(done) == 1  # both runs asked for the one calibration
 
 
 def test_the_command_line_refuses_bad_correction_options_before_any_work():
