@@ -280,14 +280,23 @@ def test_duty_cycle_from_toml_and_its_refusals(tmp_path):
 
 
 # ---------------------------------------------------------------------------- life (FE)
-@pytest.mark.slow
-def test_life_of_concept4_wears_in_and_engagement_drifts_up():
-    """Concept 4's default wears in from its shoe tip: the contact arc spreads and engagement
-    moves up.  1200 starts with the wear rate's change per step at 0.5 (the default 0.25 takes
-    3x the states): the step control's convergence is tested above on the Winkler foundation
-    and measured on concept 4 over 100,000 starts in BENCHMARKS.md section 26."""
+@pytest.fixture(scope="module")
+def life4():
+    """Concept 4's default on a 3 mm mesh and its life of 1200 starts, with the wear rate's
+    change per step at 0.5 (the default 0.25 takes 3x the states: the step control's
+    convergence is tested above on the Winkler foundation and measured on concept 4 over
+    100,000 starts in BENCHMARKS.md section 26), the fields of 3 worn states kept: one life
+    the wear-in test and the ParaView test read (each ran its own: 1200 starts, then 500)."""
     d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
-    L = cf.life(d, starts=1200, duty=DutyCycle(), rebuild_depth=None, wear=WearParams(rate_change=0.5))
+    return d, cf.life(d, starts=1200, duty=DutyCycle(), rebuild_depth=None, wear=WearParams(rate_change=0.5),
+                      fields=3)
+
+
+@pytest.mark.slow
+def test_life_of_concept4_wears_in_and_engagement_drifts_up(life4):
+    """Concept 4's default wears in from its shoe tip: the contact arc spreads and engagement
+    moves up (:func:`life4`)."""
+    d, L = life4
     assert L.energy_balance < 1e-6
     assert L.contact_arc_deg[0] < 2.0 < 5 * L.contact_arc_deg[0] < L.contact_arc_deg[-1]
     assert L.engagement_rpm[-1] > L.engagement_rpm[0]
@@ -356,15 +365,14 @@ def test_the_optimum_worn_on_its_rule_bound_is_rebuilt():
 
 
 @pytest.mark.slow
-def test_out_writes_a_paraview_collection_of_the_wearing_part(tmp_path):
+def test_out_writes_a_paraview_collection_of_the_wearing_part(life4, tmp_path):
     """``life(fields=k)`` keeps the fields of up to k worn states (the new part, the end and
     log-spaced starts between); ``life_files`` writes them as a .pvd indexed by the starts,
     each .vtu readable with the worn depth growing and the part displaced and stressed."""
     import meshio
     import pyvista as pv
 
-    d = cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size="3mm"))
-    L = cf.life(d, starts=500, rebuild_depth=None, fields=3)
+    d, L = life4
     starts = [f["starts"] for f in L.fields]
     assert starts[0] == 0.0 and starts[-1] == L.starts[-1] and len(starts) == 3
     assert set(starts) <= set(L.starts.tolist())

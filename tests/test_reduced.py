@@ -101,6 +101,19 @@ def test_the_band_holds_every_held_out_design_even_with_no_fe_band(a):
 
 
 # -- the build and the live answers ---------------------------------------------------------
+def fe_design():
+    """The live design of flexure thickness 2.15 mm's best-path twin (what the region is built
+    from, what the app's FE check solves)."""
+    return cf.Design.from_concept("concept1", mesh=MESH, fidelity="best", flexure_thickness="2.15mm")
+
+
+@pytest.fixture(scope="module")
+def fe_215():
+    """The full FE of :func:`fe_design` (best path, error step): one analysis the live
+    answers of 2.15 mm are held against in the analyze test and the app's test."""
+    return cf.analyze(fe_design())
+
+
 @pytest.mark.slow
 def test_reduce_builds_the_region_and_measures_its_error_on_held_out_designs(built):
     assert built["region"]["free"]["flexure_thickness"] == [pytest.approx(2.09e-3), pytest.approx(2.31e-3)]
@@ -116,11 +129,12 @@ def test_reduce_builds_the_region_and_measures_its_error_on_held_out_designs(bui
 
 
 @pytest.mark.slow
-def test_live_analyze_answers_from_the_reduced_model_without_a_mesh_and_its_band_holds_the_fe(built, monkeypatch):
+def test_live_analyze_answers_from_the_reduced_model_without_a_mesh_and_its_band_holds_the_fe(built, fe_215,
+                                                                                               monkeypatch):
     d = live(flexure_thickness="2.15mm")
     a = cf.analyze(d)
     assert a.answered_by == "reduced model" and not d.meshed and a.region_key == built["region"]["key"]
-    fe = cf.analyze(cf.Design.from_concept("concept1", mesh=MESH, fidelity="best", flexure_thickness="2.15mm"))
+    fe = fe_215
     for q, got, want in (("engagement_rpm", a.engagement_rpm, fe.engagement_rpm), ("slip_rpm", a.slip_rpm, fe.slip_rpm),
                          ("torque_at_max_engine_torque_Nm", a.torque_at_max_engine_torque_Nm,
                           fe.torque_at_max_engine_torque_Nm), ("max_von_mises_Pa", a.max_von_mises_Pa, fe.max_von_mises_Pa)):
@@ -189,7 +203,7 @@ def test_outside_every_region_live_falls_back_to_the_fe_and_says_so(built):
 
 
 @pytest.mark.slow
-def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built, tmp_path):
+def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built, fe_215, tmp_path):
     from clutchfem.app.figures import torque_chart
     from clutchfem.app.session import DesignSession
 
@@ -208,7 +222,11 @@ def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built
     chart = torque_chart(out.analysis)  # the engine curve and the live torque point (no FE curve)
     assert [x["name"].split()[0] for x in chart["series"]] == ["engine", "clutch"]
     shown, off = s.verify(out)
-    fe = cf.analyze(out.fe_design)  # the best path with its error step: what the region was built from
+    # the best path with its error step (what the region was built from): the design analysed once
+    # for this module (fe_215), the very design the app's check solved
+    want = fe_design()
+    assert (out.fe_design.params, out.fe_design.op, out.fe_design._mesh_settings) == (want.params, want.op, MESH)
+    fe = fe_215
     band = out.analysis.errors["engagement_rpm"]["total"]
     assert (abs(fe.engagement_rpm - out.analysis.engagement_rpm) > band) == any("engagement" in o for o in off)
     assert (shown is out) == (not off)

@@ -51,6 +51,11 @@ def _ierfc(x):
     return np.exp(-x * x) / math.sqrt(math.pi) - x * erfc(x)
 
 
+#: the argument from which ierfc(x) is exactly 0.0 in double precision (exp(-x^2) and
+#: erfc(x) both underflow to zero from x = 27.3): image terms beyond it add nothing
+_IERFC_ZERO = 27.5
+
+
 def wall_step_response(t, conductivity: float, density: float, specific_heat: float,
                        wall_thickness: float):
     """Surface temperature rise [K per W/m^2] of a wall of thickness w heated on one face by
@@ -71,8 +76,12 @@ def wall_step_response(t, conductivity: float, density: float, specific_heat: fl
     if small.any():
         r = np.sqrt(kappa * t[small])
         s = np.full_like(r, 1.0 / math.sqrt(math.pi))
-        for n in range(1, 8):
-            s += 2.0 * _ierfc(n * w / r)
+        x1 = w / r
+        for n in range(1, 8):  # only the images whose term is not exactly 0.0 (the sum is the same)
+            live = n * x1 < _IERFC_ZERO
+            if not live.any():
+                break
+            s[live] += 2.0 * _ierfc(n * x1[live])
         out[small] = 2.0 * r / k * s
     big = pos & (Fo >= 1.0)
     if big.any():
