@@ -13,6 +13,7 @@ import clutchfem as cf
 from clutchfem.evaluation import EvalSettings
 from clutchfem.reduced import find
 from clutchfem.targets.live import ANSWERED_BY, live_optimize
+from clutchfem.targets.live_search import LiveProblem, order_slack, parts_slack, shifted_search, slsqp_search
 from support.cli import cli_in_process
 from support.reduced import built_region  # noqa: F401 -- the shared region (fixture `built`)
 
@@ -87,6 +88,28 @@ def test_a_robust_live_search_meets_the_yield_on_its_monte_carlo(built):
     assert tk(r) > tk(det)
     lo, hi = r.live["search_box"]["flexure_thickness"]
     assert lo == pytest.approx(model.region.lo[0] + 4 / 3 * 3e-5) and hi == pytest.approx(model.region.hi[0] - 4 / 3 * 3e-5)
+
+
+@pytest.mark.slow
+def test_the_shifted_searches_reach_the_yield_from_the_deterministic_optimum(built):
+    """The robust search's back-up (SORA): from the deterministic optimum, whose parts miss the
+    engagement about half the time, the shifted deterministic searches end where at most k of
+    the parts miss, thicker than the deterministic optimum (engagement needs the margin) and
+    inside the box."""
+    model = find(live())
+    t = targets_inside(model)
+    ys = float(live().op.material.yield_strength)
+    prob = LiveProblem(model, t, [0], np.array([0.5]), ys, float(cf.EngineCurve.default().max_torque))
+    lo, hi = np.array([0.1]), np.array([0.9])
+    xd, _ = slsqp_search(prob, lo, hi, [np.array([0.5])])
+    D = np.random.default_rng(3).normal(0.0, 0.02, (1000, 1))  # a tolerance of +-0.06 of the region's width
+    k = 50  # a yield of 95 %
+    assert order_slack(prob, xd, D, k) < 0  # the deterministic optimum: about half its parts miss
+    x, info = shifted_search(prob, lo, hi, [xd], D, k)
+    assert info["shifted_feasible"] and order_slack(prob, x, D, k) >= 0 and lo[0] <= x[0] <= hi[0]
+    assert x[0] > xd[0] and info["shifts_rel"]["engagement_rpm_with_ripple"] > 0
+    m = parts_slack(prob, prob.full(x)[0] + D)
+    assert int(np.sum(m < 0)) <= k
 
 
 @pytest.mark.slow
