@@ -5,12 +5,12 @@ import math
 import numpy as np
 import pytest
 
-from clutchfem.core import ParameterError
+from clutchfem.core import ParameterError, wilson
 from clutchfem.evaluation import EvalSettings
 from clutchfem.geometry import get_concept
 from clutchfem.report.target_charts import tolerance_histograms, tolerance_ranking
 from clutchfem.tolerances import parse_tolerance, tolerance
-from clutchfem.tolerances.tolerancing import bootstrap_src, src, wilson
+from clutchfem.tolerances.ranking import bootstrap_src, src
 from support.pictures import agrees, rule
 
 

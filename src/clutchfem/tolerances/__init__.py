@@ -2,7 +2,8 @@
 
 * :mod:`.tolerancing` (:func:`tolerance`: Monte Carlo of manufacturing tolerances on the
   study engine, the share of parts out of spec with its interval, the ranking of the
-  dimensions);
+  dimensions; :mod:`.ranking`: the dimensions' standardised regression coefficients with
+  their bootstrap intervals);
 * :mod:`.algebra` (the linearised algebra of joint yields and tolerance scales);
 * :mod:`.allocation` (:func:`allocate_tolerances`: the widest tolerance per dimension for
   a yield; :func:`yield_front`: part mass against yield over a set of designs);
