@@ -144,7 +144,8 @@ def issue_fe(concept: str, tols: list[str], yield_: float, workers: int) -> dict
         rob = doc.get("robust", {})
         out.update(mass_g=(doc["answers"].get("mass_kg") or float("nan")) * 1e3, feasible=doc.get("feasible"),
                    set=doc.get("set"), evaluations=rob.get("evaluations_total", doc.get("evaluations_total")),
-                   predicted_yield=rob.get("predicted_yield"), rounds=rob.get("rounds"), answers=doc["answers"])
+                   predicted_yield=rob.get("predicted_yield"), rounds=rob.get("rounds"), answers=doc["answers"],
+                   message=doc.get("message"), check_share_in_spec=rob.get("check_share_in_spec"))
     else:
         out["stderr"] = r.stderr[-2000:]
     return out

@@ -28,12 +28,13 @@ import os
 import runpy
 import sys
 import time
-import traceback
 from pathlib import Path
 from types import SimpleNamespace
 from unittest import mock
 
 import pytest
+
+from support.cli import exit_code_of
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("*.py"))
@@ -72,19 +73,8 @@ def _run_script(script: Path, args: list[str], env: dict):
     """``python SCRIPT ARGS`` in this process (module docstring): its exit code and what it
     wrote to standard output and error."""
     out, err = io.StringIO(), io.StringIO()
-    code = 0
     with mock.patch.dict(os.environ, env), mock.patch.object(sys, "argv", [str(script), *args]), \
             mock.patch.object(sys, "path", [str(script.parent), *sys.path]), \
             contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            runpy.run_path(str(script), run_name="__main__")
-        except SystemExit as exc:
-            if exc.code is None or isinstance(exc.code, int):
-                code = exc.code or 0
-            else:  # SystemExit("message"): Python prints it and exits with 1
-                print(exc.code, file=sys.stderr)
-                code = 1
-        except Exception:  # what escapes a script: its traceback on standard error, exit code 1
-            traceback.print_exc(file=sys.stderr)
-            code = 1
+        code = exit_code_of(lambda: runpy.run_path(str(script), run_name="__main__"))
     return SimpleNamespace(returncode=code, stdout=out.getvalue(), stderr=err.getvalue())

@@ -50,16 +50,7 @@ def cli_in_process(*args: str, env: dict | None = None, ok: bool = False) -> sub
             contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         sys.argv = ["clutchfem", *map(str, args)]
         try:
-            main()
-        except SystemExit as exc:
-            if exc.code is None or isinstance(exc.code, int):
-                code = exc.code or 0
-            else:  # SystemExit("message"): Python prints it and exits with 1
-                print(exc.code, file=sys.stderr)
-                code = 1
-        except Exception:  # what escapes a process: its traceback on standard error, exit code 1
-            traceback.print_exc(file=sys.stderr)
-            code = 1
+            code = exit_code_of(main)
         finally:
             sys.argv = argv
             signal.signal(signal.SIGINT, sigint)
@@ -71,3 +62,20 @@ def cli_in_process(*args: str, env: dict | None = None, ok: bool = False) -> sub
     if ok:
         assert r.returncode == 0, r.stderr[-3000:] + r.stdout[-3000:]
     return r
+
+
+def exit_code_of(run) -> int:
+    """``run()`` as the end of a process: its exit code (``sys.exit``'s; 0 when it returns), a
+    ``SystemExit("message")`` printed to standard error with 1, an exception that escapes
+    written to standard error as Python writes it, with 1."""
+    try:
+        run()
+    except SystemExit as exc:
+        if exc.code is None or isinstance(exc.code, int):
+            return exc.code or 0
+        print(exc.code, file=sys.stderr)  # SystemExit("message"): Python prints it and exits with 1
+        return 1
+    except Exception:  # what escapes a process: its traceback on standard error, exit code 1
+        traceback.print_exc(file=sys.stderr)
+        return 1
+    return 0
