@@ -266,3 +266,20 @@ def test_the_reduced_models_derivatives_match_the_morphed_finite_differences(bui
         with pytest.raises(cf.ParameterError) as e:
             find(d).sensitivities(d, **kw)
         assert e.value.name == name
+
+
+@pytest.mark.slow
+def test_a_live_answer_writes_its_answers_and_a_live_design_report_is_refused(built, tmp_path):
+    """``analyze --fidelity live --out``: the answers (JSON) and the engine's curve (CSV), no
+    charts (the live answer has no clutch curves against rpm; it raised a KeyError before); the
+    one-page report of a live design is refused, saying what gives it."""
+    r = cli_in_process("analyze", "concept1", "--mesh-size", "3mm", "--set", "flexure_thickness=2.15mm",
+                       "--fidelity", "live", "--out", str(tmp_path / "a"), ok=True)
+    assert "Traceback" not in r.stderr
+    names = sorted(p.suffix for p in (tmp_path / "a").iterdir())
+    assert names == [".csv", ".json"]
+    doc = json.loads(next((tmp_path / "a").glob("*_analysis.json")).read_text())
+    assert doc["answered_by"] == "reduced model" and doc["curves"][0]["rpm"] > 0
+    assert {"rpm", "engine_torque_Nm"} == set(doc["curves"][0])
+    with pytest.raises(cf.ClutchfemError, match="answered by the reduced model.*fidelity 'best'"):
+        cf.write_report(live(flexure_thickness="2.15mm"), tmp_path / "b")

@@ -5,6 +5,7 @@ number in :func:`~.answer_rows.summary_rows` carries its unit."""
 
 from __future__ import annotations
 
+import logging
 import math
 from pathlib import Path
 
@@ -17,6 +18,8 @@ from ..core.figures import RPM_MARGIN, figure, save_figure
 from ..geometry import MeshSettings, concepts
 from ..loadcase import Design, OperatingPoint
 from .answer_rows import corrections_text, summary_rows
+
+log = logging.getLogger("clutchfem")
 
 __all__ = ["torque_plot", "arc_stress_plot", "torque_speed_plot", "write_analysis",
            "markdown_summary", "default_design_report"]
@@ -217,11 +220,18 @@ def torque_speed_plot(analyses: dict, engine, path: Path, title: str | None = No
 
 
 def write_analysis(an, engine, out: Path, name: str) -> list[Path]:
-    """Plots (torque vs rpm; contact arc and stress vs rpm), the curves CSV and the JSON."""
+    """Plots (torque vs rpm; contact arc and stress vs rpm), the curves CSV and the JSON.  A
+    live answer (the reduced model's: no clutch curves against rpm) gets the CSV of the engine
+    curve and the JSON, and a note that the plots need the FE."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    files = [torque_plot(an, engine, out / f"{name}_torque_rpm.png", f"{name}: torque vs engine speed (drum held)"),
-             arc_stress_plot(an, out / f"{name}_arc_stress_rpm.png", f"{name}: contact arc and peak stress vs rpm")]
+    files = []
+    if "fe_torque_Nm" in an.curve_names:
+        files += [torque_plot(an, engine, out / f"{name}_torque_rpm.png", f"{name}: torque vs engine speed (drum held)"),
+                  arc_stress_plot(an, out / f"{name}_arc_stress_rpm.png", f"{name}: contact arc and peak stress vs rpm")]
+    else:
+        log.info(f"{name}: answered by the {an.answered_by}: no torque, arc or stress against rpm to plot "
+                 "(the plots need the FE: --fidelity best)")
     an.curves.to_csv(out / f"{name}_curves.csv", index=False)
     files.append(out / f"{name}_curves.csv")
     write_json(out / f"{name}_analysis.json", an.to_json(), indent=2)

@@ -17,7 +17,7 @@ import pandas as pd
 
 from ..analysis import Analysis, Requirements, SlipHeatRun, analyze
 from ..clutch import EngineCurve
-from ..core import InputError, as_path, write
+from ..core import ClutchfemError, InputError, as_path, write
 from ..durability import render_png, write_series, write_vtu
 from ..loadcase import Design, design_inputs
 from ..targets import Compensation, OptimizationResult
@@ -151,6 +151,11 @@ def _design_report(design: Design, out, *, engine: EngineCurve | None = None,
     engine = EngineCurve.of(engine)
     an = analysis if analysis is not None else analyze(design, engine=engine, requirements=requirements,
                                                        errors=errors)
+    if "fe_torque_Nm" not in an.curve_names:  # a live answer: its page's charts need the FE's curves
+        raise ClutchfemError(f"write_report: {design.name} was answered by the {an.answered_by}, which gives no "
+                             "torque, contact arc or stress against rpm and no fields for the report's page; "
+                             "report the design with fidelity 'best' (Design.from_concept(..., fidelity='best')), "
+                             "or write_report(cf.analyze(design), out) for its answers (JSON and CSV)")
     concept = design.concept if design.params is not None else None
     page = design_page(an, design, engine, out, concept, design.params)
     files = [write(out / "analysis.json", an.to_json(), indent=1)]
