@@ -100,6 +100,39 @@ def test_the_band_holds_every_held_out_design_even_with_no_fe_band(a):
     assert acc["engagement_rpm"]["max_rel"] > 1e-2 and acc["engagement_rpm"]["within"] == 1.0
 
 
+def test_a_design_whose_fe_band_is_wide_is_left_out_of_that_answers_fit_and_still_measured():
+    """A training design whose best-path band says its value is unknown to +-60 % (concept 1's
+    peak where the refined mesh met a degenerate element) does not bend the fit; a held-out
+    design like it is counted apart and the band keeps the largest error of all."""
+    import json
+
+    from clutchfem.reduced import MAX_FE_BAND, ReducedModel
+
+    r = Region.around(live(), free=["flexure_thickness"])
+    lo, hi = r.bounds("flexure_thickness")
+    truth = lambda t: 1e9 * (1.0 + 80.0 * (t - lo))  # noqa: E731  (a smooth peak stress [Pa])
+
+    def row(t, value=None, band=0.02):
+        v = truth(t) if value is None else value
+        return {"status": "ok", "point_json": json.dumps({"flexure_thickness": t}),
+                "max_von_mises_MPa": v / 1e6, "stress_err_MPa": band * v / 1e6}
+
+    ts = np.linspace(lo, hi, 9)
+    bad = row(ts[4], value=0.9 * truth(ts[4]), band=0.6)  # 10 % low, and the FE says +-60 %
+    rows = [row(t) for t in ts[:4]] + [bad] + [row(t) for t in ts[5:]]
+    probe = np.array([[0.5]])
+    kept = ReducedModel.fit(r, rows)
+    assert kept.info["left_out_wide_band"] == {"max_von_mises_Pa": 1}
+    assert abs(kept.predict(probe)["value"]["max_von_mises_Pa"][0] / truth(ts[4]) - 1) < 1e-3
+    # the same row with a narrow band is fitted: the model goes through its 10 % dip
+    fitted = ReducedModel.fit(r, rows[:4] + [row(ts[4], value=0.9 * truth(ts[4]))] + rows[5:])
+    assert abs(fitted.predict(probe)["value"]["max_von_mises_Pa"][0] / truth(ts[4]) - 1) > 0.05
+    held = [row(t) for t in (ts[1] + ts[2]) / 2 + 0 * ts[:2]] + [row(ts[6] + 1e-6, value=0.95 * truth(ts[6]), band=0.3)]
+    acc = kept.measure(held)["max_von_mises_Pa"]
+    assert MAX_FE_BAND < 0.3 and acc["n_wide_fe_band"] == 1
+    assert acc["max_rel_narrow_fe_band"] < 1e-3 < 0.04 < acc["max_rel"] and acc["within"] == 1.0
+
+
 # -- the build and the live answers ---------------------------------------------------------
 def fe_design():
     """The live design of flexure thickness 2.15 mm's best-path twin (what the region is built

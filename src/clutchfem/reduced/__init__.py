@@ -26,6 +26,7 @@ _NAMES: dict[str, str] = {
     "find": "build",
     "live_analysis": "live",
     "load": "build",
+    "MAX_FE_BAND": "model",
     "outside_why": "build",
     "reduce": "build",
     "save": "build",
