@@ -72,6 +72,19 @@ def test_answer_model_converges_on_a_smooth_answer_and_interpolates_its_training
     assert errs[1] < errs[0] / 20 and errs[1] < 1e-3  # 10 -> 40 designs: 2.4 % -> 0.02 % here
 
 
+def test_answer_model_predicts_the_matern_mean_of_its_definition():
+    """The distances by one matrix product equal the differences' own norms: the kernel mean
+    written out point by point, at new points and at the training points themselves."""
+    rng = np.random.default_rng(4)
+    m = AnswerModel(trend=rng.normal(size=4), X=rng.random((30, 3)), alpha=rng.normal(size=30), amplitude=0.02,
+                    lengths=np.array([0.05, 0.7, 40.0]))
+    U = np.vstack([rng.random((50, 3)), m.X])
+    r = np.sqrt((((U[:, None, :] - m.X[None, :, :]) / m.lengths) ** 2).sum(axis=2))
+    s5 = np.sqrt(5.0) * r
+    direct = np.exp(m.trend[0] + U @ m.trend[1:] + (m.amplitude * (1 + s5 + s5**2 / 3) * np.exp(-s5)) @ m.alpha)
+    assert np.allclose(m.predict(U), direct, rtol=1e-12, atol=0)
+
+
 def test_status_model_tells_the_answered_designs_from_the_others():
     U = np.random.default_rng(2).random((120, 3))
     ok = U[:, 0] ** 2 + 0.5 * U[:, 1] < 0.8  # a smooth divergence boundary
