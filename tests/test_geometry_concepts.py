@@ -471,6 +471,44 @@ def test_fillet_line_circle_is_tangent():
         assert abs(K.cross(tl - line.p, line.d)) < 1e-15
 
 
+def test_outline_crossings_equal_every_pair_intersected():
+    """The crossings found through the k-d tree of segment midpoints equal those of every pair
+    of non-adjacent segments intersected (the definition), in the same order, on random
+    polygons of 3-60 vertices (more than half of them crossing themselves)."""
+
+    def every_pair(P):
+        a, d = P[:-1], P[1:] - P[:-1]
+        n, out = len(a), []
+        for i in range(n):
+            for j in range(i + 1, n):
+                if min(j - i, n - (j - i)) <= 1:
+                    continue
+                den = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
+                if abs(den) <= 1e-30:
+                    continue
+                f = a[j] - a[i]
+                s, t = (f[0] * d[j, 1] - f[1] * d[j, 0]) / den, (f[0] * d[i, 1] - f[1] * d[i, 0]) / den
+                if 1e-9 < s < 1 - 1e-9 and 1e-9 < t < 1 - 1e-9:
+                    out.append(a[i] + s * d[i])
+        return out
+
+    rng = np.random.default_rng(5)
+    crossing = 0
+    for k in range(150):
+        m = int(rng.integers(3, 60))
+        ang = rng.random(m) * 2 * np.pi if k % 2 else np.sort(rng.random(m)) * 2 * np.pi
+        P = np.c_[np.cos(ang), np.sin(ang)] * (1 + 0.5 * rng.random(m))[:, None]
+        P = np.vstack([P, P[:1]])
+        o = K.Outline(K.vec(*P[0]))
+        for q in P[1:-1]:
+            o = o.line_to(K.vec(*q))
+        found, expected = o.close().self_intersections(), every_pair(P)
+        crossing += bool(expected)
+        assert len(found) == len(expected)
+        assert all(np.allclose(x, y, rtol=0, atol=1e-15) for x, y in zip(found, expected))
+    assert crossing > 50
+
+
 def test_outline_detects_self_intersection():
     ok = K.Outline(K.vec(0, 0)).line_to(K.vec(1, 0)).line_to(K.vec(1, 1)).line_to(K.vec(0, 1)).close()
     assert not ok.self_intersections() and ok.signed_area() == pytest.approx(1.0)

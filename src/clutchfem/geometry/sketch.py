@@ -207,26 +207,32 @@ class Outline:
         return np.array(out)
 
     def self_intersections(self) -> list[Vec]:
-        """Points where non-adjacent pieces of the sampled outline cross (should be none)."""
+        """Points where non-adjacent pieces of the sampled outline cross (should be none).
+        Only segments whose midpoints lie within the longest segment's length of each other can
+        meet (a k-d tree finds those pairs); each pair is then intersected exactly (an outline
+        of 600 segments: 2 ms instead of 20-45 ms for every pair)."""
+        from scipy.spatial import cKDTree  # (a build's only: the package loads no scipy for a live answer)
+
         P = self.sample()
         a, b = P[:-1], P[1:]
         n = len(a)
         d = b - a
-        # pairwise segment intersection (vectorised)
-        ax, ay = a[:, 0][:, None], a[:, 1][:, None]
-        dx, dy = d[:, 0][:, None], d[:, 1][:, None]
-        ex, ey = d[:, 0][None, :], d[:, 1][None, :]
-        fx, fy = a[:, 0][None, :] - ax, a[:, 1][None, :] - ay
-        den = dx * ey - dy * ex
+        reach = float(np.hypot(d[:, 0], d[:, 1]).max()) * (1 + 1e-9)
+        pairs = cKDTree(0.5 * (a + b)).query_pairs(reach, output_type="ndarray")
+        if not len(pairs):
+            return []
+        pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]  # row-major, i < j: the first crossing first
+        i, j = pairs[:, 0], pairs[:, 1]
+        gap = np.abs(i - j)
+        far = np.minimum(gap, n - gap) > 1
+        i, j = i[far], j[far]
+        den = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
+        fx, fy = a[j, 0] - a[i, 0], a[j, 1] - a[i, 1]
         with np.errstate(divide="ignore", invalid="ignore"):
-            s = (fx * ey - fy * ex) / den
-            t = (fx * dy - fy * dx) / den
-        idx = np.arange(n)
-        near = np.abs(idx[:, None] - idx[None, :])
-        near = np.minimum(near, n - near) <= 1
-        hit = (np.abs(den) > 1e-30) & (s > 1e-9) & (s < 1 - 1e-9) & (t > 1e-9) & (t < 1 - 1e-9) & ~near
-        ii, jj = np.nonzero(np.triu(hit))
-        return [a[i] + s[i, j] * d[i] for i, j in zip(ii, jj)]
+            s = (fx * d[j, 1] - fy * d[j, 0]) / den
+            t = (fx * d[i, 1] - fy * d[i, 0]) / den
+        hit = (np.abs(den) > 1e-30) & (s > 1e-9) & (s < 1 - 1e-9) & (t > 1e-9) & (t < 1 - 1e-9)
+        return [a[k] + s_ * d[k] for k, s_ in zip(i[hit], s[hit])]
 
     def signed_area(self) -> float:
         P = self.sample()
