@@ -35,6 +35,7 @@ HEAVY = {"matplotlib", "pyvista", "vtk", "dask", "distributed", "sksparse", "thr
          "scipy.interpolate",  # 0.35 s: a table profile's spline (a live answer's concept needs none)
          "emcee",  # the calibration's sampler: only when a calibration samples (Laplace does not)
          "PIL",  # matplotlib's image writer: only when a picture is written
+         "scipy.spatial",  # ~0.65 s: the k-d tree of a geometry build's outline check (a live answer builds none)
          "pandas"}  # ~0.4 s: tables of study rows and of curves (a live answer's start-up reads none)
 #: the faces whose commands import the API on use (the command line starts in ~0.3 s instead of ~3 s)
 FACES = ("cli/", "app/")
