@@ -91,6 +91,22 @@ def test_inverted_elements_refused(tmp_path):
         load_user_geometry(q, thickness=0.01)
 
 
+def test_a_boundary_cell_that_is_no_triangle_edge_is_refused_naming_its_group(tmp_path):
+    """A line cell of the 'contact' group joined to a node that shares no triangle edge with
+    it (a broken export) is refused naming the group, not silently dropped."""
+    import meshio
+
+    p = _annulus(tmp_path / "f.msh", order=1)
+    m = meshio.read(p)
+    k = next(i for i, c in enumerate(m.cells) if c.type == "line" and np.hypot(*m.points[c.data[0, 0], :2]) > 0.02)
+    inner = int(np.argmin(np.hypot(m.points[:, 0], m.points[:, 1]) + 1.0 * (np.hypot(m.points[:, 0], m.points[:, 1]) < 0.009)))
+    m.cells[k].data[0, 1] = inner  # the outer circle's first segment now ends on the bore
+    q = tmp_path / "f_bad.msh"
+    meshio.write(q, m, file_format="gmsh22")
+    with pytest.raises(MeshError, match="boundary group 'contact'"):
+        load_user_geometry(q, thickness=0.01)
+
+
 def test_user_mesh_without_triangles_or_unreadable_refused(tmp_path):
     import meshio
 

@@ -76,7 +76,7 @@ import scipy.sparse as sp
 from skfem import Basis, BilinearForm, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet1, MeshTet2, asm
 
 from ..core import Material, MeshError, ParamSet, SolverError, param
-from ..mesh import ClutchMesh, cyclic_pairing, facet_lookup, named_boundary
+from ..mesh import ClutchMesh, cyclic_pairing, facet_numbers, named_boundary
 from .model import ConstrainedOperators
 from .stress import VertexStress3D, von_mises
 
@@ -183,9 +183,9 @@ def extrude(cm: ClutchMesh, thickness: float | None = None,
     la, lb = e[0] // nv, e[1] // nv
     mid = m3.doflocs.copy()
     inplane = va != vb
-    fkey = facet_lookup(m2)
-    f2 = np.array([fkey[(min(p, q), max(p, q))] for p, q in zip(va[inplane], vb[inplane])],
-                  dtype=np.int64)
+    f2 = facet_numbers(m2, va[inplane], vb[inplane])
+    if (f2 < 0).any():  # (every in-plane edge of the extrusion is an edge of the 2-D mesh)
+        raise MeshError(f"extrusion: {int((f2 < 0).sum())} in-plane edges are not edges of the 2-D mesh")
     cols = nv3 + np.nonzero(inplane)[0]
     mid[:2, cols] = x2[:, nv + f2]
     mid[2, cols] = 0.5 * (z[la[inplane]] + z[lb[inplane]])
@@ -204,7 +204,7 @@ def extrude(cm: ClutchMesh, thickness: float | None = None,
     side = ~horiz
     sv = np.sort(vv[:, side], axis=0)
     # a vertical face has two distinct 2-D vertices: the 2-D edge (lowest, highest)
-    e2 = np.array([fkey.get((int(p), int(q)), -1) for p, q in zip(sv[0], sv[2])], dtype=np.int64)
+    e2 = facet_numbers(m2, sv[0], sv[2])
     if np.any(e2 < 0):
         raise MeshError(f"extrusion of {cm.source}: a side face matches no 2-D edge")
     face_of_f2 = {}

@@ -45,8 +45,8 @@ from .topology import (
                        element_components,
                        element_set_area,
                        element_set_perimeter,
-                       facet_lookup,
                        facet_nodes,
+                       facet_numbers,
                        is_quadratic,
                        p2_basis,
                        p2_cells,
@@ -62,6 +62,6 @@ __all__ = ["draw_mesh", "GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_hig
            "loops_to_occ", "orient_loops", "step_length_unit", "step_unit", "cache_dir", "cache_key",
            "check_orientation", "cyclic_pairing",
            "element_components", "element_moments", "element_set_area", "element_set_perimeter",
-           "estimate_elements", "facet_lookup", "facet_nodes", "groups_msh_path", "is_quadratic",
+           "estimate_elements", "facet_numbers", "facet_nodes", "groups_msh_path", "is_quadratic",
            "load_user_geometry", "mesh_area_properties", "mesh_concept", "mesh_mass_properties", "meshio_to_skfem", "named_boundary",
            "p2_basis", "p2_cells", "p2_nodes", "read_msh", "source_hash"]

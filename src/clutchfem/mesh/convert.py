@@ -18,7 +18,7 @@ import numpy as np
 from skfem import Basis, ElementTriP0, MeshTri1, MeshTri2
 
 from ..core import MeshError
-from .topology import facet_lookup
+from .topology import facet_numbers
 
 
 def read_msh(path: Path) -> meshio.Mesh:
@@ -86,8 +86,7 @@ def meshio_to_skfem(m: meshio.Mesh, curve_groups: dict[str, set[int]],
                 raw = np.where(line_map[pos] == raw, pos, -1)
             ends = np.where(raw >= 0, np.searchsorted(uniq, raw), -1)
             lab = np.concatenate([lv for _, lv in line_blocks])
-            lookup = facet_lookup(mesh)
-            facet = np.array([lookup.get((min(a, b), max(a, b)), -1) for a, b in ends], dtype=np.int64)
+            facet = facet_numbers(mesh, ends[:, 0], ends[:, 1])
             for name, labs in curve_groups.items():
                 sel = np.isin(lab, list(labs))
                 if np.any(facet[sel] < 0):

@@ -21,10 +21,31 @@ from skfem import Basis, ElementTriP2, MeshTri2
 _P2_BASES: dict[int, tuple] = {}
 
 
-def facet_lookup(mesh) -> dict[tuple[int, int], int]:
-    """Facet number of every edge, keyed by its two vertex numbers (lower first)."""
-    f = np.sort(mesh.facets, axis=0)
-    return {(int(a), int(b)): k for k, (a, b) in enumerate(f.T)}
+def facet_numbers(mesh, a, b) -> np.ndarray:
+    """The facet number of each edge (``a[i]``, ``b[i]``) given by its two vertex numbers in
+    either order, -1 where ``mesh`` has no such facet (vectorised: one sort of the facets' keys
+    and a binary search; a vertex number of -1 finds none).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from skfem import MeshTri
+    >>> from clutchfem.mesh import facet_numbers
+    >>> m = MeshTri()                                   # the unit square in two triangles
+    >>> f = facet_numbers(m, m.facets[1], m.facets[0])  # every facet, its ends swapped
+    >>> bool((f == np.arange(m.facets.shape[1])).all()), facet_numbers(m, [0], [0]).tolist()
+    (True, [-1])
+    """
+    n = int(mesh.p.shape[1]) + 1
+    fs = np.sort(mesh.facets, axis=0).astype(np.int64)
+    keys = fs[0] * n + fs[1]
+    order = np.argsort(keys)
+    a, b = np.asarray(a, dtype=np.int64), np.asarray(b, dtype=np.int64)
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    want = lo * n + hi
+    pos = np.clip(np.searchsorted(keys[order], want), 0, len(keys) - 1)
+    found = (lo >= 0) & (keys[order][pos] == want)
+    return np.where(found, order[pos], -1).astype(np.int64)
 
 
 def p2_basis(mesh: MeshTri2) -> Basis:
