@@ -23,6 +23,7 @@ import numpy as np
 
 import clutchfem as cf
 from clutchfem.evaluation import COLUMNS, ResultStore, run_points
+from clutchfem.reduced import MAX_FE_BAND
 
 
 def main() -> None:
@@ -83,6 +84,10 @@ def _table(title: str, acc: dict) -> None:
         print(f"  {a_:32s} n={v['n']:3d}  mean {100 * v['mean_rel']:.3f} %  p95 {100 * v['p95_rel']:.3f} %  "
               f"max {100 * v['max_rel']:.3f} %  " + ("not given live (over 10 %)" if v.get("within") is None else
                                                   f"band holds FE {100 * v['within']:.0f} %"))
+        if v.get("n_wide_fe_band"):
+            narrow = v.get("max_rel_narrow_fe_band")
+            print(f"  {'':32s} {v['n_wide_fe_band']} of them with an FE band over {100 * MAX_FE_BAND:g} %; max without "
+                  f"them " + ("-" if narrow is None else f"{100 * narrow:.3f} %"))
 
 
 def cost(m, concept: str) -> dict:

@@ -66,6 +66,17 @@ class Concept1Params(ConceptParams):
         post = self.sector_angle - phi_f - beta - phi_g
         return phi_f, beta, phi_g, post
 
+    @classmethod
+    def rule_dimensions(cls, v: dict) -> dict:
+        """The hub post's width at the slot's bottom radius (its rule: >= 3 mm): the peak
+        stress at the flexure's hub-end fillet falls steeply as the post thins towards it
+        (BENCHMARKS.md section 24: -6.7 to -21.5 MPa per 0.94 deg of shoe arc)."""
+        r_si = v["drum_radius"] - v["clearance"] - v["shoe_thickness"]
+        r_h = r_si - v["slot_width"]
+        r_fc = r_si + v["flexure_offset"] + 0.5 * v["flexure_thickness"]
+        post = 2 * math.pi / v["n_shoes"] - v["flexure_length"] / r_fc - v["shoe_arc"] * (math.pi / 180) - v["tip_gap"] / r_h
+        return {"hub_post_width": post * r_h}
+
     def check(self) -> None:
         r_so, r_si, r_h, r_fi, r_fo = self.radii()
         if r_h < self.bore_radius + 2e-3:

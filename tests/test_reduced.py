@@ -85,6 +85,29 @@ def test_answer_model_predicts_the_matern_mean_of_its_definition():
     assert np.allclose(m.predict(U), direct, rtol=1e-12, atol=0)
 
 
+def test_concept1s_hub_post_is_a_coordinate_of_its_nine_parameter_region_and_not_of_a_line():
+    """The hub post's width the reduced model takes as a coordinate is the one the concept's
+    rule checks (its own angles, to round-off) at every sampled design; it runs across the
+    box's axes, so a 9-parameter region's models get it, and a one-parameter region's do not
+    (there it would repeat the one axis)."""
+    from clutchfem.reduced.model import diagonal
+
+    r = Region.around(live())
+    pts = r.sample(20, seed=3)
+    names, F = r.rule_dimensions(np.array([r.unit_of(p) for p in pts]))
+    assert names == ("hub_post_width",)
+    for p, f in zip(pts, F[:, 0]):
+        q = live(**{k: f"{v}{'deg' if k == 'shoe_arc' else 'm'}" for k, v in p.items()}).params
+        assert f == pytest.approx(q.angles()[3] * q.radii()[2], rel=1e-12)
+        assert f >= 3e-3 - 1e-12  # the rule: a 3 mm post
+    U = np.array([r.unit_of(p) for p in pts])
+    assert diagonal(U, F)
+    line = Region.around(live(), free=["flexure_thickness"])
+    u = np.linspace(0, 1, 6)[:, None]
+    assert not diagonal(u, line.rule_dimensions(u)[1])
+    assert not diagonal(U[:, :1], U[:, :1] * 2.0) and diagonal(U[:, :2], U[:, :1] - 0.5 * U[:, 1:2])
+
+
 def test_status_model_tells_the_answered_designs_from_the_others():
     U = np.random.default_rng(2).random((120, 3))
     ok = U[:, 0] ** 2 + 0.5 * U[:, 1] < 0.8  # a smooth divergence boundary

@@ -115,8 +115,9 @@ class Forward:
         ok = np.all((U >= -1e-9) & (U <= 1 + 1e-9), axis=1)
         ok &= self.model.status.probability(U) >= OK_PROBABILITY
         out = {}
+        X = self.model.coords(U)
         for a in (answers or self.answers):
-            v = self.model.models[a].predict(U)
+            v = self.model.models[a].predict(X)
             if a in SCALED and (self.iE is not None or self.irho is not None):
                 pe, pr = SCALED[a]
                 if self.iE is not None:

@@ -245,6 +245,16 @@ class ConceptParams(ParamSet):
         """Angle of one sector (rad)."""
         return 2 * math.pi / self.n_shoes
 
+    @classmethod
+    def rule_dimensions(cls, v: dict) -> dict:
+        """Derived dimensions that the concept's rules bound and that its answers depend on
+        steeply near the bound (a hub post that becomes thin, a ligament that vanishes):
+        name -> value [m], vectorised (``v``: parameter name -> SI value or numpy array of
+        them, in the parameters' declared units).  The reduced model takes each as one more
+        coordinate (:class:`~clutchfem.reduced.ReducedModel`), so that an answer that turns
+        sharply as the rule's bound nears is smooth in it.  None by default."""
+        return {}
+
 
 #: the mesh of each fidelity (:meth:`MeshSettings.preset`): ``fast`` is today's uniform 2-D mesh;
 #: ``best`` puts the elements where the answers are decided (flexures, fillets, the contact

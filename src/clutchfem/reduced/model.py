@@ -73,6 +73,20 @@ UNUSABLE = 0.10
 MAX_FE_BAND = 0.10
 
 
+def diagonal(U: np.ndarray, F: np.ndarray) -> bool:
+    """Whether the rule dimensions ``F`` (n, k) run across the box's axes: each one's linear fit
+    in the unit-box coordinates ``U`` (n, d) moves with at least two of them by 10 % of its
+    largest slope or more.  Only then is it a direction an axis-aligned kernel does not have
+    (along one axis it would repeat that coordinate: two inputs of one line, whose lengths the
+    likelihood cannot tell apart)."""
+    if U.shape[1] < 2 or len(U) < U.shape[1] + 2:
+        return False
+    A = np.hstack([np.ones((len(U), 1)), U])
+    c, *_ = np.linalg.lstsq(A, F, rcond=None)
+    slopes = np.abs(c[1:])  # (d, k)
+    return bool(np.all((slopes >= 0.1 * slopes.max(axis=0)).sum(axis=0) >= 2))
+
+
 def row_value(row: dict, answer: str) -> float | None:
     """An answer of a study row in SI (None where the row has none)."""
     col, scale, _, _ = ANSWERS[answer]
@@ -131,6 +145,23 @@ class ReducedModel:
     rows: list = field(repr=False)
     accuracy: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
+    #: the concept's rule dimensions' (min, max) over the training designs: each one more
+    #: coordinate of the answer models, scaled to [0, 1] over them (:meth:`coords`); None: none
+    rule_span: tuple | None = None
+
+    def coords(self, u: np.ndarray) -> np.ndarray:
+        """The coordinates the answer models see at the unit-box points ``u`` (m, d): the
+        box's, and the concept's rule dimensions (:meth:`Region.rule_dimensions
+        <clutchfem.reduced.Region.rule_dimensions>`; concept 1's hub post: its peak stress
+        falls steeply as the post thins towards its 3 mm rule, which the box's coordinates
+        saw only as length scales of 0.08 of the box) scaled over the training designs."""
+        u = np.atleast_2d(np.asarray(u, dtype=float))
+        span = getattr(self, "rule_span", None)
+        if span is None:
+            return u
+        lo, hi = span
+        _, F = self.region.rule_dimensions(u)
+        return np.hstack([u, (F - lo) / (hi - lo)])
 
     @classmethod
     def fit(cls, region: Region, rows: list[dict], *, seed: int = 0, like: "ReducedModel | None" = None
@@ -143,6 +174,14 @@ class ReducedModel:
         U = np.array([region.unit_of(json.loads(r["point_json"])) for r in rows])
         ok = np.array([r.get("status") == "ok" for r in rows])
         status = StatusModel.fit(U, ok, seed=seed)
+        dim_names, F = region.rule_dimensions(U)
+        span = None
+        if dim_names and diagonal(U, F):
+            lo, hi = F.min(axis=0), F.max(axis=0)
+            span = (lo, np.where(hi > lo, hi, lo + 1.0))
+        else:
+            dim_names = ()
+        X = np.hstack([U, (F - span[0]) / (span[1] - span[0])]) if span is not None else U
         models, left_out = {}, {}
         for a in ANSWERS:
             y = np.array([row_value(r, a) if r.get("status") == "ok" else None for r in rows], dtype=float)
@@ -151,11 +190,11 @@ class ReducedModel:
             if wide.any():
                 left_out[a] = int((np.isfinite(y) & wide).sum())
             if have.sum() >= region.dim + 2:  # a trend (d + 1 coefficients) and one more
-                models[a] = AnswerModel.fit(U[have], y[have], seed=seed,
+                models[a] = AnswerModel.fit(X[have], y[have], seed=seed,
                                             like=like.models.get(a) if like is not None else None)
-        m = cls(region=region, models=models, status=status, U=U, rows=list(rows))
+        m = cls(region=region, models=models, status=status, U=U, rows=list(rows), rule_span=span)
         m.info = {"fit_s": time.perf_counter() - t0, "n_train": len(rows), "n_ok": int(ok.sum()),
-                  "left_out_wide_band": left_out}
+                  "left_out_wide_band": left_out, "rule_dimensions": list(dim_names)}
         return m
 
     # -- answers --------------------------------------------------------------------------
@@ -184,6 +223,7 @@ class ReducedModel:
         u = np.atleast_2d(np.asarray(u, dtype=float))
         p_ok = self.status.probability(u)
         nb = self.neighbours(u)
+        x = self.coords(u)
         out = {"value": {}, "band": {}, "p_ok": p_ok, "why": {}}
         for a, model in self.models.items():
             if answers is not None and a not in answers:
@@ -192,7 +232,7 @@ class ReducedModel:
             have_rows = np.array([row_value(r, a) is not None for r in self.rows])
             fe_band = band_rows[nb].max(axis=1)
             own = self.own_error(a)
-            v = model.predict(u)
+            v = model.predict(x)
             why = np.where(p_ok < OK_PROBABILITY, "the full FE gives no answer near here", "")
             why = np.where((why == "") & ~have_rows[nb].all(axis=1), "a design next to it has no such answer", why)
             if own > UNUSABLE:

@@ -31,13 +31,14 @@ import hashlib
 import json
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from ..clutch import EngineCurve
 from ..core import ParameterError, dumps, param_bounds, round12
 from ..evaluation import EvalSettings
-from ..geometry import default_free, get_concept
+from ..geometry import ConceptParams, default_free, get_concept
 from ..loadcase import model_version
 
 __all__ = ["OPERATING_AXES", "SPAN", "Region"]
@@ -163,6 +164,29 @@ class Region:
         x = np.array([values.get(n, self.base.get(n)) for n in self.names], dtype=float)
         lo, hi = np.array(self.lo), np.array(self.hi)
         return (x - lo) / (hi - lo)
+
+    def rule_dimensions(self, u) -> tuple[tuple[str, ...], np.ndarray]:
+        """(names, values (m, k) [m]) of the concept's rule dimensions
+        (:meth:`~clutchfem.geometry.ConceptParams.rule_dimensions`) at the unit-box points
+        ``u`` (m, d), the fixed parameters the base design's; ``((), (m, 0))`` for a concept
+        that declares none."""
+        u = np.atleast_2d(np.asarray(u, dtype=float))
+        P = get_concept(self.concept).Params
+        if P.rule_dimensions.__func__ is ConceptParams.rule_dimensions.__func__:  # none declared
+            return (), np.zeros((len(u), 0))
+        x = np.array(self.lo) + u * (np.array(self.hi) - np.array(self.lo))
+        v = dict(self._fixed)
+        v.update({n: x[:, i] for i, n in enumerate(self.names) if n not in OPERATING_AXES})
+        dims = P.rule_dimensions(v)
+        names = tuple(sorted(dims))
+        if not names:
+            return (), np.zeros((len(u), 0))
+        return names, np.column_stack([np.broadcast_to(np.asarray(dims[n], dtype=float), (len(u),)) for n in names])
+
+    @cached_property
+    def _fixed(self) -> dict:
+        """The base design's parameter values (SI)."""
+        return self.settings.params().model_dump()
 
     def contains(self, values: dict, *, tol: float = 1e-9) -> bool:
         """Whether the free parameters of ``values`` lie in the box (the rest is the base's)."""

@@ -90,6 +90,8 @@ class AnswerModel:
         from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
 
         U = np.asarray(U, dtype=float)
+        if like is not None and len(np.atleast_1d(like.lengths)) != U.shape[1]:
+            like = None  # (another set of coordinates: its kernel cannot start this one)
         z = np.log(np.asarray(y, dtype=float))
         A = np.hstack([np.ones((len(U), 1)), U])
         trend, *_ = np.linalg.lstsq(A, z, rcond=None)
