@@ -130,7 +130,10 @@ class Concept1(Concept):
                                p.profile, p.eccentric_centre(phi_f, phi_f + beta, a))
             material.append(shoe)
             shoes.append(G.annular_sector(r_si - 0.5 * p.slot_width, R_ext, t0, t1))
-            flexures.append(G.annular_sector(0.5 * (r_h + r_fi), R_ext, a, a + phi_f))
+            # the zone's start line a quarter of the hub post before the slot's end wall: on the
+            # wall itself it would leave the slot's corner fillet tangentially (a wedge of zero
+            # angle, degenerate elements at the end of the fillet that carries the peak stress)
+            flexures.append(G.annular_sector(0.5 * (r_h + r_fi), R_ext, a - 0.25 * post, a + phi_f))
         part = G.fuse(hub + material)
         return Shapes(material=part, shoe_zones=shoes, flexure_zones=flexures,
                       sector_start=-0.5 * post)
