@@ -66,10 +66,10 @@ UNUSABLE = 0.10
 #: a training design whose best-path band of an answer is wider than this (relative) is left out
 #: of that answer's fit: the FE says its value is not known to better than that.  Found on concept
 #: 1 (BENCHMARKS.md section 24): 6 of 150 designs had a peak-stress band of 24-199 % (the error
-#: step's refined mesh found its peak at a degenerate element where a zone line leaves the slot's
-#: fillet tangentially, so the peak was not extrapolated), and fitting them bent the peak's model
-#: into short length scales: held-out error 2.56 % with them, 1.02 % without.  Such a design
-#: still counts as a neighbour: a live answer next to it carries its wide band.
+#: step's refined mesh found its peak at a degenerate element where a zone line left the slot's
+#: fillet tangentially -- moved since -- so the peak was not extrapolated), and fitting them bent
+#: the peak's model into short length scales: held-out error 2.56 % with them, 1.02 % without.
+#: Such a design still counts as a neighbour: a live answer next to it carries its wide band.
 MAX_FE_BAND = 0.10
 
 
