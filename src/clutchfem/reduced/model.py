@@ -36,7 +36,7 @@ import numpy as np
 from ..core import ParameterError
 from ..geometry import get_concept
 from .region import OPERATING_AXES, Region
-from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel
+from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel, sq_distances
 
 __all__ = ["ANSWERS", "MAX_FE_BAND", "NEIGHBOURS", "ReducedModel"]
 
@@ -85,6 +85,18 @@ def diagonal(U: np.ndarray, F: np.ndarray) -> bool:
     c, *_ = np.linalg.lstsq(A, F, rcond=None)
     slopes = np.abs(c[1:])  # (d, k)
     return bool(np.all((slopes >= 0.1 * slopes.max(axis=0)).sum(axis=0) >= 2))
+
+
+def wide_band(row: dict, answer: str) -> bool:
+    """Whether a study row's best-path band of ``answer`` is wider than :data:`MAX_FE_BAND`."""
+    return (row_band(row, answer) or 0.0) > MAX_FE_BAND
+
+
+def rule_coords(u: np.ndarray, F: np.ndarray, span) -> np.ndarray:
+    """The unit-box points ``u`` (m, d) with their rule dimensions ``F`` (m, k) scaled over
+    ``span`` = (min, max) of the training designs' (:meth:`ReducedModel.coords`)."""
+    lo, hi = span
+    return np.hstack([u, (F - lo) / (hi - lo)])
 
 
 def row_value(row: dict, answer: str) -> float | None:
@@ -156,12 +168,9 @@ class ReducedModel:
         falls steeply as the post thins towards its 3 mm rule, which the box's coordinates
         saw only as length scales of 0.08 of the box) scaled over the training designs."""
         u = np.atleast_2d(np.asarray(u, dtype=float))
-        span = getattr(self, "rule_span", None)
-        if span is None:
+        if self.rule_span is None:  # (also a model pickled before rule dimensions: the class default)
             return u
-        lo, hi = span
-        _, F = self.region.rule_dimensions(u)
-        return np.hstack([u, (F - lo) / (hi - lo)])
+        return rule_coords(u, self.region.rule_dimensions(u)[1], self.rule_span)
 
     @classmethod
     def fit(cls, region: Region, rows: list[dict], *, seed: int = 0, like: "ReducedModel | None" = None
@@ -181,11 +190,11 @@ class ReducedModel:
             span = (lo, np.where(hi > lo, hi, lo + 1.0))
         else:
             dim_names = ()
-        X = np.hstack([U, (F - span[0]) / (span[1] - span[0])]) if span is not None else U
+        X = rule_coords(U, F, span) if span is not None else U
         models, left_out = {}, {}
         for a in ANSWERS:
             y = np.array([row_value(r, a) if r.get("status") == "ok" else None for r in rows], dtype=float)
-            wide = np.array([(row_band(r, a) or 0.0) > MAX_FE_BAND for r in rows])
+            wide = np.array([wide_band(r, a) for r in rows])
             have = np.isfinite(y) & ~wide
             if wide.any():
                 left_out[a] = int((np.isfinite(y) & wide).sum())
@@ -203,10 +212,18 @@ class ReducedModel:
         (m, d) that the FE answered."""
         ok = np.array([r.get("status") == "ok" for r in self.rows])
         idx = np.flatnonzero(ok)
-        X = self.U[idx]
-        d2 = (u * u).sum(axis=1)[:, None] - 2.0 * u @ X.T + (X * X).sum(axis=1)[None, :]
+        d2 = sq_distances(u, self.U[idx])
         k = min(NEIGHBOURS, len(idx))
         return idx[np.argpartition(d2, k - 1, axis=1)[:, :k]]
+
+    def _row_arrays(self, answer: str) -> tuple[np.ndarray, np.ndarray]:
+        """(relative band, has a value) of ``answer`` at every training design, read from the
+        rows once per model (a live optimiser asks for thousands of predictions)."""
+        cache = self.__dict__.setdefault("_row_cache", {})
+        if answer not in cache:
+            cache[answer] = (np.array([row_band(r, answer) or 0.0 for r in self.rows]),
+                             np.array([row_value(r, answer) is not None for r in self.rows]))
+        return cache[answer]
 
     def own_error(self, answer: str) -> float:
         """The reduced model's own relative error of ``answer``: the largest it made on the
@@ -228,8 +245,7 @@ class ReducedModel:
         for a, model in self.models.items():
             if answers is not None and a not in answers:
                 continue
-            band_rows = np.array([row_band(r, a) or 0.0 for r in self.rows])
-            have_rows = np.array([row_value(r, a) is not None for r in self.rows])
+            band_rows, have_rows = self._row_arrays(a)
             fe_band = band_rows[nb].max(axis=1)
             own = self.own_error(a)
             v = model.predict(x)
@@ -330,7 +346,7 @@ class ReducedModel:
                       "unit": ANSWERS[a][2]}
             # the designs whose own FE band is wider than MAX_FE_BAND: counted, and the largest error
             # without them beside the largest of all (which the band takes: conservative)
-            wide = np.array([(row_band(r, a) or 0.0) > MAX_FE_BAND for r in ok_rows])[sel]
+            wide = np.array([wide_band(r, a) for r in ok_rows])[sel]
             if wide.any():
                 acc[a]["n_wide_fe_band"] = int(wide.sum())
                 acc[a]["max_rel_narrow_fe_band"] = float(e[~wide].max()) if (~wide).any() else None
