@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import clutchfem as cf
-from clutchfem.reduced import AnswerModel, Region, StatusModel, live_analysis
+from clutchfem.reduced import AnswerModel, ReducedModel, Region, StatusModel, live_analysis
 from support.cli import cli_in_process
 from support.reduced import built_region  # noqa: F401 -- the shared region (fixture `built`)
 
@@ -48,6 +48,13 @@ def test_a_bad_region_is_refused_naming_the_input(kw, name):
     with pytest.raises(cf.ParameterError) as e:
         Region.around(live(), **kw)
     assert e.value.name == name
+
+
+@pytest.mark.parametrize("kw", [{"adaptive": 0.7}, {"adaptive": -0.1}, {"adaptive": True}, {"n": 2}, {"held_out": 1.5}])
+def test_a_bad_build_is_refused_before_any_work_naming_the_input(kw):
+    with pytest.raises(cf.ParameterError) as e:
+        cf.reduce(live(), **kw)
+    assert e.value.name == next(iter(kw)) and str(list(kw.values())[0]) in str(e.value)
 
 
 def test_a_user_mesh_has_no_region(tmp_path):
@@ -167,6 +174,43 @@ def test_a_design_whose_fe_band_is_wide_is_left_out_of_that_answers_fit_and_stil
     acc = kept.measure(held)["max_von_mises_Pa"]
     assert MAX_FE_BAND < 0.3 and acc["n_wide_fe_band"] == 1
     assert acc["max_rel_narrow_fe_band"] < 1e-3 < 0.04 < acc["max_rel"] and acc["within"] == 1.0
+
+
+def test_the_adaptive_designs_go_where_the_fit_knows_least_and_a_resumed_build_solves_the_same(tmp_path):
+    from clutchfem.reduced.build import POOL, _adaptive
+
+    r = Region.around(live(), free=["flexure_thickness", "clearance"])
+    (t0, t1), (c0, c1) = r.bounds("flexure_thickness"), r.bounds("clearance")
+
+    def row(u):  # an engagement of the kind the FE gives, known only on the box's lower-left quarter
+        t, c = t0 + u[0] * (t1 - t0), c0 + u[1] * (c1 - c0)
+        return {"status": "ok", "point_json": json.dumps({"flexure_thickness": t, "clearance": c}),
+                "engagement_rpm": 3e3 * (t / t0) ** 1.5 * (c / c0) ** 0.5}
+
+    grid = [(a, b) for a in np.linspace(0, 0.5, 4) for b in np.linspace(0, 0.5, 4)]
+    first = ReducedModel.fit(r, [row(u) for u in grid])
+    pool = np.random.default_rng(1).random((500, 2))
+    picks = first.most_uncertain(pool, 6)
+    assert len(set(picks)) == 6 and all(pool[i].max() > 0.6 for i in picks)  # none in the known quarter
+    # the model is of log(y): its variance is a relative error squared, weighted by the answer's aim
+    assert first.most_uncertain(pool, 6, aims={"engagement_rpm": 1.0}) == picks
+    assert first.most_uncertain(pool, 6, aims={"torque_at_max_engine_torque_Nm": 0.005}) == []  # no such model
+    # a pick that makes no part is passed over, the next best taken
+    got = first.most_uncertain(pool, 2, admissible=lambda i: i != picks[0])
+    assert len(got) == 2 and picks[0] not in got
+    # the build's picks are written before they are solved; a resumed build reads them back even
+    # where a refit would pick others
+    points = _adaptive(first, tmp_path, 5, seed=0)
+    assert len(points) == 5 and all(r.contains(p) for p in points)
+    saved = json.loads((tmp_path / "adaptive.json").read_text())
+    assert saved["key"] == {"n_fill": 16, "k": 5, "seed": 0, "pool": POOL} and saved["points"] == points
+    (tmp_path / "fresh").mkdir()
+    assert _adaptive(first, tmp_path / "fresh", 5, seed=0) == points  # the same fit picks the same
+    other = ReducedModel.fit(r, [row((a, b)) for a in np.linspace(0, 0.3, 4) for b in np.linspace(0.2, 1, 4)])
+    assert _adaptive(other, tmp_path / "fresh", 5, seed=0) == points  # resumed: read back, not re-picked
+    (tmp_path / "other").mkdir()
+    assert _adaptive(other, tmp_path / "other", 5, seed=0) != points  # (a refit there picks others)
+    assert len(_adaptive(other, tmp_path, 4, seed=0)) == 4  # another build's file is not read
 
 
 # -- the build and the live answers ---------------------------------------------------------

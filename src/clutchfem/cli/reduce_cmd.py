@@ -35,7 +35,9 @@ def reduce(
                              "within its declared range", rich_help_panel="Region"),
     free: Optional[str] = typer.Option(None, "--free", help="comma-separated free parameters (default: the "
                                        "concept's shape parameters)", rich_help_panel="Region"),
-    n: int = typer.Option(120, "--n", help="training designs (full best path each)", rich_help_panel="Build"),
+    n: Optional[int] = typer.Option(None, "--n", help="training designs (full best path each; default 240, a "
+                                    "third of them where the first two thirds' fit knows least)",
+                                    rich_help_panel="Build"),
     held_out: int = typer.Option(30, "--held-out", help="designs the model's own error is measured on (never "
                                  "fitted to)", rich_help_panel="Build"),
 ):
@@ -54,7 +56,8 @@ def reduce(
                              mesh_size=o.mesh_size, mesh_allowed=False)
         ranges = ranges_from(type(design.params), range_)
         names = names_from(free)
-        m = run(design, span=s, ranges=ranges or None, free=names, n=n, held_out=held_out, engine=eng,
+        m = run(design, span=s, ranges=ranges or None, free=names, held_out=held_out, engine=eng,
+                **({} if n is None else {"n": n}),
                 requirements=req, workers=o.workers, scheduler=o.scheduler, progress=True)
         if o.json_:
             print(dumps(m.to_json()))
@@ -68,7 +71,8 @@ def _print(m) -> None:
     console.print(escape(f"reduced model of {m.region.concept} over {m.region.describe()}"), soft_wrap=True)
     info = m.info
     console.print(f"{info.get('fe_designs')} best-path designs ({info.get('fe_ok')} answered by the FE; "
-                  f"{info.get('n_train')} fitted, {info.get('n_held_out')} held out), built in "
+                  f"{info.get('n_train')} fitted, {info.get('n_adaptive', 0)} of them where the others' fit knew "
+                  f"least; {info.get('n_held_out')} held out), built in "
                   f"{info.get('build_s', 0):.0f} s; cached (key {m.region.key()})")
     t = Table(title="its own error, measured on the held-out designs (relative)")
     for c in ("answer", "designs", "95th percentile", "largest", "band holds the FE"):

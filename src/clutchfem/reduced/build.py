@@ -1,14 +1,20 @@
 """Building a region's reduced model on the study engine, and keeping it on disk.
 
-**The build** (:func:`reduce`): ``n`` training designs (a scrambled Sobol sample of the
-region, the concept's rules applied) and ``held_out`` more drawn apart from them, every one
-through the full best path (``analyze`` with its error step: the corrected answers and their
+**The build** (:func:`reduce`): ``n`` training designs and ``held_out`` more drawn apart from
+them (a scrambled Sobol sample of the region, another seed), every one through the full best
+path (``analyze`` with its error step: the corrected answers and their
 bands) on the study engine (:func:`clutchfem.evaluation.run_points`: Dask workers or this
 process, each finished design committed to the region's store as it arrives, so a build
 that is interrupted or killed resumes where it stopped).  The model is fitted to the
 training designs, its error measured on the held-out ones
 (:meth:`~.model.ReducedModel.measure`), then fitted again to all of them (the error stated is
-the one measured with fewer designs: conservative).
+the one measured with fewer designs: conservative).  The training designs come in two stages:
+two thirds (:data:`ADAPTIVE`) a scrambled Sobol sample of the region (the concept's rules
+applied), then a first fit to them picks the rest where it knows least
+(:meth:`~.model.ReducedModel.most_uncertain`: the box's corners and faces, which a
+space-filling sample of nine dimensions leaves far from every design; measured on concept 4,
+BENCHMARKS.md section 24).  The picks are written to the region's folder before they are
+solved, so a resumed build solves the same designs.
 
 **The cache**: ``$CLUTCHFEM_CACHE/reduced/<concept>-<key>/`` (else the platform's user cache
 folder), one folder per region (:meth:`~.region.Region.key`: concept, bounds, fixed
@@ -38,12 +44,17 @@ from ..evaluation import STORE_NAME, ResultStore
 from .model import ReducedModel
 from .region import SPAN, Region
 
-__all__ = ["DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "outside_why", "reduce", "save"]
+__all__ = ["ADAPTIVE", "DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "outside_why", "reduce", "save"]
 
 log = logging.getLogger("clutchfem")
 
 #: training designs of a default build (BENCHMARKS.md section 24: accuracy against designs)
-DEFAULT_N = 120
+DEFAULT_N = 240
+#: the share of the training designs a build places where its first fit knows least (the rest
+#: space-filling; BENCHMARKS.md section 24)
+ADAPTIVE = 1 / 3
+#: the candidate points (a scrambled Sobol sample of the box) the adaptive designs are picked from
+POOL = 4096
 #: held-out designs the model's error is measured on
 DEFAULT_HELD_OUT = 30
 #: a file in every folder the cache made (only such folders are ever deleted)
@@ -157,9 +168,26 @@ def outside_why(design, *, engine=None, requirements=None) -> str:
     return ("outside the cached region(s): " + " | ".join(found)) if found else "no cached region of these fixed inputs"
 
 
+def split(n: int, dim: int, adaptive: float = ADAPTIVE) -> tuple[int, int]:
+    """(space-filling, adaptive) training designs of a build of ``n`` over ``dim`` free
+    parameters: the ``adaptive`` share of ``n`` picked where the first fit knows least, when
+    the space-filling ones are enough for that fit (at least ``2 (dim + 2)``); else all
+    space-filling.
+
+    Examples
+    --------
+    >>> from clutchfem.reduced.build import split
+    >>> split(240, 9), split(3, 1), split(12, 1, adaptive=0.0)
+    ((160, 80), (3, 0), (12, 0))
+    """
+    k = int(adaptive * n + 1e-9)
+    return (n - k, k) if k and n - k >= 2 * (dim + 2) else (n, 0)
+
+
 def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None, n: int = DEFAULT_N,
-           held_out: int = DEFAULT_HELD_OUT, engine=None, requirements=None, workers: int | None = None,
-           scheduler: str | None = None, progress: bool = True, seed: int = 0) -> ReducedModel:
+           held_out: int = DEFAULT_HELD_OUT, adaptive: float = ADAPTIVE, engine=None, requirements=None,
+           workers: int | None = None, scheduler: str | None = None, progress: bool = True,
+           seed: int = 0) -> ReducedModel:
     """Build (or load) the reduced model of the region around ``design``.
 
     Parameters
@@ -176,6 +204,9 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
         The free parameters (default: the concept's shape parameters).
     n, held_out : int
         Training designs, and designs the model's error is measured on.
+    adaptive : float
+        The share of the training designs picked where a first fit to the others knows least
+        (in [0, 0.5]; 0: all space-filling; :func:`split`).
     engine, requirements : optional
         The engine curve and requirement factors the answers are computed against.
     workers, scheduler, progress
@@ -205,40 +236,85 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     for name, v, lo in (("n", n, 3), ("held_out", held_out, 2)):
         if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= 5000:
             raise ParameterError(name, v, f"an integer in [{lo}, 5000]", "reduced model")
+    if isinstance(adaptive, bool) or not isinstance(adaptive, (int, float)) or not 0.0 <= adaptive <= 0.5:
+        raise ParameterError("adaptive", adaptive, "a share in [0, 0.5] of the training designs", "reduced model")
     region = Region.around(design, span=span, ranges=ranges, free=free, engine=engine, requirements=requirements)
     cached = load(region)
     if cached is not None and cached.info.get("n_train", 0) >= n and cached.info.get("n_held_out", 0) >= held_out:
         return cached
-    from ..evaluation.point import COLUMNS  # (the FE evaluation of the training designs: a build's only)
-    from ..evaluation.runner import run_points
-
     folder = _claim(region)
     t0 = time.perf_counter()
-    train = region.sample(n, seed=seed)
+    n_fill, n_adapt = split(n, region.dim, adaptive)
+    train = region.sample(n_fill, seed=seed)
     test = region.sample(held_out, seed=seed + 1)
-    points = train + test
-    log.info(f"reduce {region.concept}: {len(points)} designs through the best path ({n} to fit, {held_out} to "
-             f"measure its error) in {region.describe()}")
-    st = region.settings.study()
-    store = folder / STORE_NAME
-    res = run_points(points, st, store, workers=workers, scheduler=scheduler, progress=progress,
-                     source=f"reduce {region.concept}", desc="reduce", error_points=list(range(len(points))))
-    with ResultStore(store, COLUMNS, context=res.context_hash) as rs:
-        df = rs.frame(res.model_version, list(res.keys))
-    by_key = {r["design_hash"]: r for r in json.loads(df.to_json(orient="records"))}
-    keys = list(res.keys)  # in point order (repeats counted once)
-    rows = [by_key[k] for k in keys if k in by_key]
-    rows_train, rows_test = rows[:n], rows[n:]
+    log.info(f"reduce {region.concept}: {n_fill + held_out} designs through the best path ({n_fill} to fit, "
+             f"{held_out} to measure its error{f', then {n_adapt} more where that fit knows least' if n_adapt else ''}) "
+             f"in {region.describe()}")
+    run = _runner(region, folder, workers, scheduler, progress)
+    rows = run(train + test, "reduce")
+    rows_train, rows_test = rows[:n_fill], rows[n_fill:]
+    if n_adapt:
+        extra = _adaptive(ReducedModel.fit(region, rows_train, seed=seed), folder, n_adapt, seed)
+        rows_train = rows_train + run(extra, "reduce, adaptive")
     model = ReducedModel.fit(region, rows_train, seed=seed)
     model.measure(rows_test)
     accuracy = model.accuracy
     final = ReducedModel.fit(region, rows, seed=seed, like=model)  # every design, its kernels the start
     final.accuracy = accuracy
-    final.info.update(n_train=n, n_held_out=held_out, build_s=time.perf_counter() - t0,
+    rows = rows_train + rows_test
+    final.info.update(n_train=n, n_held_out=held_out, n_adaptive=n_adapt, build_s=time.perf_counter() - t0,
                       fe_designs=len(rows), fe_ok=sum(r.get("status") == "ok" for r in rows),
-                      compute_s=res.compute_s, workers=res.workers)
+                      compute_s=run.compute_s, workers=run.workers)
     save(final)
     return final
+
+
+class _runner:
+    """Runs a build's designs through the best path on the study engine into the region's
+    store (each with its error step) and gives their rows in point order; sums the compute time."""
+
+    def __init__(self, region: Region, folder: Path, workers, scheduler, progress: bool):
+        self.region, self.store, self.kw = region, folder / STORE_NAME, dict(workers=workers, scheduler=scheduler,
+                                                                             progress=progress)
+        self.compute_s, self.workers = 0.0, None
+
+    def __call__(self, points: list[dict], desc: str) -> list[dict]:
+        from ..evaluation.point import COLUMNS  # (the FE evaluation of the training designs: a build's only)
+        from ..evaluation.runner import run_points
+
+        res = run_points(points, self.region.settings.study(), self.store, source=f"reduce {self.region.concept}",
+                         desc=desc, error_points=list(range(len(points))), **self.kw)
+        self.compute_s += res.compute_s
+        self.workers = res.workers
+        with ResultStore(self.store, COLUMNS, context=res.context_hash) as rs:
+            df = rs.frame(res.model_version, list(res.keys))
+        by_key = {r["design_hash"]: r for r in json.loads(df.to_json(orient="records"))}
+        return [by_key[k] for k in res.keys if k in by_key]  # in point order (repeats counted once)
+
+
+def _adaptive(first: ReducedModel, folder: Path, k: int, seed: int) -> list[dict]:
+    """The ``k`` designs ``first`` knows least about (:meth:`ReducedModel.most_uncertain` over
+    :data:`POOL` Sobol points of another seed), written to ``adaptive.json`` in the region's
+    folder before they are solved, and read from it when a build resumes (a refit on another
+    machine's arithmetic could pick others, and the finished ones would be lost)."""
+    region = first.region
+    path = folder / "adaptive.json"
+    key = {"n_fill": len(first.rows), "k": k, "seed": seed, "pool": POOL}
+    try:
+        doc = json.loads(path.read_text())
+        if doc.get("key") == key and len(doc.get("points", ())) == k:
+            return doc["points"]
+    except (OSError, ValueError):
+        pass
+    from scipy.stats import qmc  # (a build's only)
+
+    pool = qmc.Sobol(region.dim, scramble=True, seed=seed + 2).random(POOL)
+    picks = first.most_uncertain(pool, k, admissible=lambda i: region.admissible(region.values_at(pool[i])))
+    points = [region.values_at(pool[i]) for i in picks]
+    tmp = folder / "adaptive.json.tmp"
+    tmp.write_text(dumps({"key": key, "points": points}, indent=1))
+    tmp.replace(path)
+    return points
 
 
 def save(model: ReducedModel) -> Path:

@@ -38,7 +38,7 @@ from ..geometry import get_concept
 from .region import OPERATING_AXES, Region
 from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel, sq_distances
 
-__all__ = ["ANSWERS", "MAX_FE_BAND", "NEIGHBOURS", "ReducedModel"]
+__all__ = ["AIMS", "ANSWERS", "MAX_FE_BAND", "NEIGHBOURS", "ReducedModel"]
 
 #: the modelled answers: name -> (study row column, factor to SI, unit, the row's band column or None)
 ANSWERS: dict[str, tuple[str, float, str, str | None]] = {
@@ -63,6 +63,10 @@ QUANTILE = 0.95
 #: an answer whose measured error is above this is not given live (the FE is asked): the
 #: contact arc jumps between a tip contact and a spread one (BENCHMARKS.md section 24)
 UNUSABLE = 0.10
+#: the relative error each answer's model is aimed at (issue 36's targets): the weights of the
+#: adaptive training designs (:meth:`ReducedModel.most_uncertain`)
+AIMS: dict[str, float] = {"engagement_rpm": 0.003, "slip_rpm": 0.003, "torque_at_max_engine_torque_Nm": 0.005,
+                          "max_von_mises_Pa": 0.015}
 #: a training design whose best-path band of an answer is wider than this (relative) is left out
 #: of that answer's fit: the FE says its value is not known to better than that.  Found on concept
 #: 1 (BENCHMARKS.md section 24): 6 of 150 designs had a peak-stress band of 24-199 % (the error
@@ -320,6 +324,69 @@ class ReducedModel:
             out.derivatives[n] = der
             out.methods[n] = ("central" if 0 < rows[im][i] and rows[ip][i] < 1 else "one-sided") + ", reduced model"
         return out
+
+    # -- where it knows least ---------------------------------------------------------------
+    def most_uncertain(self, pool: np.ndarray, k: int, *, aims: dict | None = None, admissible=None) -> list[int]:
+        """The ``k`` points of ``pool`` (m, d unit-box points) where FE answers would teach the
+        model most: a greedy batch of the largest posterior variance of the answers' processes
+        (their fitted kernels), each variance weighted by ``1 / aim**2`` (``aims``: answer ->
+        the relative error it is aimed at, default :data:`AIMS`; the models are of ``log y``,
+        so a variance is a relative error squared), and after each pick the variances updated
+        as if its answer were known (the variance does not depend on the answer: the batch
+        needs no FE).  ``admissible(i)``: whether pool point ``i`` makes a part (asked only of
+        the points picked; one that does not is passed over).
+
+        Why (BENCHMARKS.md section 24): a space-filling sample of nine dimensions leaves the
+        box's corners far from every training design (0.65 of the box's width at concept 4's
+        worst held-out design), where the trend is extrapolated; the process's variance is
+        largest there, so these picks go to the corners and faces.
+
+        Examples
+        --------
+        A one-parameter region trained on its lower half: the first pick is its far end, the
+        next ones fill the gap.
+
+        >>> import json, numpy as np, clutchfem as cf
+        >>> from clutchfem.reduced import ReducedModel, Region
+        >>> r = Region.around(cf.Design.from_concept("concept1", fidelity="live"), free=["flexure_thickness"])
+        >>> lo, hi = r.bounds("flexure_thickness")
+        >>> row = lambda t: {"status": "ok", "point_json": json.dumps({"flexure_thickness": t}),
+        ...                  "engagement_rpm": 3e3 * (t / lo) ** 1.5}
+        >>> m = ReducedModel.fit(r, [row(lo + f * (hi - lo)) for f in (0.0, 0.1, 0.2, 0.3, 0.4, 0.5)])
+        >>> pool = np.linspace(0.0, 1.0, 101)[:, None]
+        >>> first, second = (float(pool[i, 0]) for i in m.most_uncertain(pool, 2))
+        >>> first, 0.6 < second < 0.9
+        (1.0, True)
+        """
+        from scipy.linalg import cho_factor, solve_triangular  # (a build's only)
+
+        P = self.coords(pool)
+        parts = []
+        for a, aim in (AIMS if aims is None else aims).items():
+            am = self.models.get(a)
+            if am is None:
+                continue
+            K = am.kernel(am.X, am.X) + (am.noise + 1e-10 * am.amplitude) * np.eye(len(am.X))
+            L, _ = cho_factor(K, lower=True)
+            V = solve_triangular(L, am.kernel(am.X, P), lower=True, check_finite=False)
+            var = np.maximum(am.amplitude - (V * V).sum(axis=0), 0.0)
+            parts.append({"m": am, "V": V, "var": var, "C": np.zeros((0, len(P))), "w": 1.0 / aim**2})
+        passed = np.zeros(len(P), dtype=bool)
+        picked: list[int] = []
+        while parts and len(picked) < k and not passed.all():
+            score = sum(p["w"] * p["var"] for p in parts)
+            j = int(np.argmax(np.where(passed, -np.inf, score)))
+            passed[j] = True
+            if admissible is not None and not admissible(j):
+                continue
+            picked.append(j)
+            for p in parts:  # the posterior covariance with point j, then the rank-one update
+                am = p["m"]
+                c = am.kernel(P, P[j:j + 1])[:, 0] - p["V"].T @ p["V"][:, j] - p["C"].T @ p["C"][:, j]
+                c = c / math.sqrt(max(float(p["var"][j]), 1e-300) + am.noise)
+                p["C"] = np.vstack([p["C"], c])
+                p["var"] = np.maximum(p["var"] - c * c, 0.0)
+        return picked
 
     # -- its own error ----------------------------------------------------------------------
     def measure(self, rows: list[dict]) -> dict:

@@ -121,10 +121,14 @@ class AnswerModel:
         product, |u|^2 + |x|^2 - 2 u.x in the scaled coordinates (not an (m, n, d) array of
         differences): 10,000 points 22x faster, the same answers to 1e-15."""
         U = np.atleast_2d(np.asarray(U, dtype=float))
-        s5 = math.sqrt(5.0) * np.sqrt(sq_distances(U / self.lengths, self.X / self.lengths))
-        K = self.amplitude * (1.0 + s5 + s5 * s5 / 3.0) * np.exp(-s5)
-        z = self.trend[0] + U @ self.trend[1:] + K @ self.alpha
+        z = self.trend[0] + U @ self.trend[1:] + self.kernel(U, self.X) @ self.alpha
         return np.exp(z)
+
+    def kernel(self, A: np.ndarray, B: np.ndarray) -> np.ndarray:
+        """The fitted covariance (m, n) of the process between the points ``A`` (m, d) and
+        ``B`` (n, d): ``amplitude * Matern52(|A - B| / lengths)`` (without the noise term)."""
+        s5 = math.sqrt(5.0) * np.sqrt(sq_distances(A / self.lengths, B / self.lengths))
+        return self.amplitude * (1.0 + s5 + s5 * s5 / 3.0) * np.exp(-s5)
 
 
 def sq_distances(A: np.ndarray, B: np.ndarray) -> np.ndarray:
