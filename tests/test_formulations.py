@@ -31,13 +31,26 @@ MESH_6MM = cf.MeshSettings(size="6mm", flexure_factor=1.0, contact_factor=0.5, f
 RPM = "0:14000:3500"
 
 
+@pytest.fixture(scope="module")
+def analysed():
+    """(formulation, softening) -> (design, its analysis) on COARSE: a design two tests of this
+    module analyse alike (the 3-D one with the default softening) is analysed once."""
+    done = {}
+
+    def get(formulation, softening):
+        if (formulation, softening) not in done:
+            d = cf.Design.from_concept("concept4", formulation=formulation, softening=softening, layers=1,
+                                       mesh=COARSE, rpm=RPM)
+            done[formulation, softening] = (d, cf.analyze(d, errors=False))
+        return done[formulation, softening]
+    return get
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("formulation", ["auto", "plane-stress", "plane-strain", "thick", "3d"])
 @pytest.mark.parametrize("softening", ["prestress", "ritz", "exact", "off", "prestress-exact"])
-def test_every_formulation_and_softening_through_analyze(formulation, softening):
-    d = cf.Design.from_concept("concept4", formulation=formulation, softening=softening, layers=1, mesh=COARSE,
-                               rpm=RPM)
-    a = cf.analyze(d, errors=False)
+def test_every_formulation_and_softening_through_analyze(formulation, softening, analysed):
+    _, a = analysed(formulation, softening)
     assert a.engagement_rpm is not None and 3000 < a.engagement_rpm < 6000
     assert a.slip_rpm is not None and a.max_von_mises_Pa > 0
     assert a.fatigue_safety_factor is not None and a.fatigue_safety_factor > 0 and a.fatigue_location
@@ -45,9 +58,8 @@ def test_every_formulation_and_softening_through_analyze(formulation, softening)
 
 
 @pytest.mark.slow
-def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components():
-    d = cf.Design.from_concept("concept4", formulation="3d", layers=1, mesh=COARSE, rpm=RPM)
-    a = cf.analyze(d, errors=False)
+def test_3d_peak_stress_names_its_level_and_fatigue_runs_on_six_components(analysed):
+    d, a = analysed("3d", cf.OperatingPoint().softening)  # the default softening: [prestress-3d]'s analysis
     assert d.model.stress.points.shape[0] == 3 and len(d.model.stress.element) == d.model.stress.points.shape[1]
     assert a.fatigue["worst_xy_m"] is not None and len(a.fatigue["worst_xy_m"]) == 2
 

@@ -82,7 +82,11 @@ class Forward:
             raise ParameterError(missing[0], None, f"an axis of the reduced model's region ({reg.describe()})",
                                  "calibration")
         self.lo, self.hi = np.array(reg.lo), np.array(reg.hi)
+        self.span = self.hi - self.lo
         self.base = np.array([reg.base[n] for n in reg.names])
+        # the region's columns theta sets, and theta's column for each (built once, not per call)
+        self.cols = np.array([j for j, i in enumerate(self.axis) if i is not None], dtype=int)
+        self.of_theta = np.array([i for i in self.axis if i is not None], dtype=int)
         self.iE = names.index("E") if "E" in names else None
         self.irho = names.index("density") if "density" in names else None
         self.E0, self.rho0 = float(design.op.material.E), float(design.op.material.rho)
@@ -100,25 +104,27 @@ class Forward:
         return list(self.rel_band)
 
     def unit_points(self, theta: np.ndarray) -> np.ndarray:
+        """The region's unit-box points (m, d) of the rows of ``theta`` (m, k): the region's
+        base values where theta has no column."""
         theta = np.atleast_2d(theta)
-        X = np.tile(self.base, (len(theta), 1))
-        for j, i in enumerate(self.axis):
-            if i is not None:
-                X[:, j] = theta[:, i]
-        return (X - self.lo) / (self.hi - self.lo)
+        X = np.empty((len(theta), len(self.base)))
+        X[:] = self.base
+        X[:, self.cols] = theta[:, self.of_theta]
+        return (X - self.lo) / self.span
 
     def __call__(self, theta: np.ndarray, answers=None) -> tuple[dict, np.ndarray]:
         """(answer -> values (m,), ok (m,)): ``ok`` where the point lies in the region and
         the full FE answers there."""
         theta = np.atleast_2d(np.asarray(theta, dtype=float))
         U = self.unit_points(theta)
-        ok = np.all((U >= -1e-9) & (U <= 1 + 1e-9), axis=1)
+        ok = ((U >= -1e-9) & (U <= 1 + 1e-9)).all(axis=1)
         ok &= self.model.status.probability(U) >= OK_PROBABILITY
         out = {}
         X = self.model.coords(U)
+        scaled = self.iE is not None or self.irho is not None
         for a in (answers or self.answers):
             v = self.model.models[a].predict(X)
-            if a in SCALED and (self.iE is not None or self.irho is not None):
+            if scaled and a in SCALED:
                 pe, pr = SCALED[a]
                 if self.iE is not None:
                     v = v * (theta[:, self.iE] / self.E0) ** pe
@@ -144,32 +150,56 @@ class Posterior:
         self.answers = sorted({m.answer for m in self.measured if not m.is_dimension})
         self.dim_index = [int(self.view_of[m.part][[u.name for u in forward.uncertain].index(m.name)])
                           if m.is_dimension else None for m in self.measured]
+        # built once for the sampler's many calls (each a batch of walkers): the priors as arrays,
+        # the parts whose answers are measured, each measurement's value, variance and model band
+        self._lo = np.array([u.lo for u in self.uncertain], dtype=float)
+        self._hi = np.array([u.hi for u in self.uncertain], dtype=float)
+        self._mean = np.array([u.mean for u in self.uncertain], dtype=float)
+        self._sd = np.array([u.sd for u in self.uncertain], dtype=float)
+        self._normal = np.array([u.kind != "uniform" for u in self.uncertain])
+        self._forward_views = [(p, np.asarray(idx)) for p, idx in self.views
+                               if self.answers and any(m.part == p and not m.is_dimension for m in self.measured)]
+        self._value = np.array([m.value for m in self.measured], dtype=float)
+        self._var = np.array([m.sd ** 2 for m in self.measured], dtype=float)
+        self._band = [None if i is not None else self.f.rel_band[m.answer]
+                      for m, i in zip(self.measured, self.dim_index)]
+        self._model_cols = np.array([k for k, i in enumerate(self.dim_index) if i is None], dtype=int)
 
     def prior(self, theta: np.ndarray) -> np.ndarray:
-        theta = np.atleast_2d(theta)
-        return sum(u.logpdf(theta[:, i]) for i, u in enumerate(self.uncertain))
+        """The log prior density (up to a constant) of each row of ``theta`` (m, k): the sum of
+        each input's (:meth:`Uncertain.logpdf <clutchfem.calibration.inputs.Uncertain.logpdf>`),
+        -inf outside the support."""
+        theta = np.atleast_2d(np.asarray(theta, dtype=float))
+        v = np.where(self._normal, -0.5 * ((theta - self._mean) / self._sd) ** 2, 0.0)
+        v = np.where((theta >= self._lo) & (theta <= self._hi), v, -np.inf)
+        out = v[:, 0].copy()
+        for i in range(1, v.shape[1]):  # column by column, in the inputs' order (as a sum of theirs)
+            out += v[:, i]
+        return out
 
     def residuals(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict, np.ndarray]:
         """(z (m, n) standardised residuals, sigma (m, n), answers (by measurement key), ok (m,))."""
         theta = np.atleast_2d(np.asarray(theta, dtype=float))
         ok = np.ones(len(theta), bool)
         per_part = {}
-        for p, idx in self.views:
-            if self.answers and any(m.part == p and not m.is_dimension for m in self.measured):
-                a, o = self.f(theta[:, idx], self.answers)
-                per_part[p] = a
-                ok &= o
-        z = np.empty((len(theta), len(self.measured)))
-        s = np.empty_like(z)
+        for p, idx in self._forward_views:
+            a, o = self.f(theta[:, idx], self.answers)
+            per_part[p] = a
+            ok &= o
+        pred = np.empty((len(theta), len(self.measured)))
+        s = np.empty_like(pred)
         ans = {}
-        for k, (m, i) in enumerate(zip(self.measured, self.dim_index)):
+        for k, (m, i, band) in enumerate(zip(self.measured, self.dim_index, self._band)):
             if i is not None:
-                pred, sig = theta[:, i], np.full(len(theta), m.sd)
+                pred[:, k] = theta[:, i]
+                s[:, k] = m.sd
             else:
-                pred = per_part[m.part][m.answer]
-                ans[m.key] = pred
-                sig = np.sqrt(m.sd ** 2 + self.f.sigma_model(m.answer, pred) ** 2)
-            z[:, k], s[:, k] = (m.value - pred) / sig, sig
+                v = pred[:, k] = ans[m.key] = per_part[m.part][m.answer]
+                s[:, k] = band * np.abs(v) / BAND_SIGMAS  # the model's sigma (:meth:`Forward.sigma_model`)
+        mc = self._model_cols
+        if len(mc):
+            s[:, mc] = np.sqrt(self._var[mc] + s[:, mc] ** 2)
+        z = (self._value - pred) / s
         return z, s, ans, ok
 
     def __call__(self, theta: np.ndarray) -> np.ndarray:
@@ -177,6 +207,10 @@ class Posterior:
         lp = self.prior(theta)
         out = np.full(len(theta), -np.inf)
         fin = np.isfinite(lp)
+        if fin.all():  # (the usual batch: no copy of the rows)
+            z, s, _, ok = self.residuals(theta)
+            ll = -0.5 * (z ** 2).sum(axis=1) - np.log(s).sum(axis=1)
+            return np.where(ok, lp + ll, -np.inf)
         if fin.any():
             z, s, _, ok = self.residuals(theta[fin])
             ll = -0.5 * (z ** 2).sum(axis=1) - np.log(s).sum(axis=1)
