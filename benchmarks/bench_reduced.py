@@ -32,18 +32,22 @@ def main() -> None:
     ap.add_argument("--span", type=float, default=0.2)
     ap.add_argument("--n", type=int, default=120)
     ap.add_argument("--held-out", type=int, default=30)
+    ap.add_argument("--adaptive", type=float, default=None, help="share of the training designs picked adaptively "
+                    "(default: the build's)")
     ap.add_argument("--check", type=int, default=0, help="more designs, FE against live (another seed)")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--json", default=None)
     a = ap.parse_args()
     base = cf.Design.from_concept(a.concept, fidelity="live")
     t0 = time.perf_counter()
-    m = cf.reduce(base, span=a.span, n=a.n, held_out=a.held_out, workers=a.workers, progress=True)
+    kw = {} if a.adaptive is None else {"adaptive": a.adaptive}
+    m = cf.reduce(base, span=a.span, n=a.n, held_out=a.held_out, workers=a.workers, progress=True, **kw)
     build_s = time.perf_counter() - t0
     out = {"concept": a.concept, "span": a.span, "region": m.region.describe(), "info": m.info,
            "accuracy_held_out": m.accuracy, "load_or_build_s": build_s}
     print(f"{a.concept} +-{100 * a.span:g} %: {m.region.describe()}")
-    print(f"build: {m.info.get('fe_designs')} designs ({m.info.get('fe_ok')} answered), {m.info.get('build_s', 0):.0f} s "
+    print(f"build: {m.info.get('fe_designs')} designs ({m.info.get('fe_ok')} answered; {m.info.get('n_train')} fitted, "
+          f"{m.info.get('n_adaptive', 0)} of them adaptive), {m.info.get('build_s', 0):.0f} s "
           f"({m.info.get('workers')} workers); this call {build_s:.1f} s")
     _table("held-out designs of the build", m.accuracy)
     if a.check:

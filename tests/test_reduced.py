@@ -176,6 +176,31 @@ def test_a_design_whose_fe_band_is_wide_is_left_out_of_that_answers_fit_and_stil
     assert acc["max_rel_narrow_fe_band"] < 1e-3 < 0.04 < acc["max_rel"] and acc["within"] == 1.0
 
 
+def test_the_engagement_with_ripple_is_derived_from_the_static_one_as_the_fe_derives_it():
+    from clutchfem.clutch.ripple import effective_engagement_rpm
+    from clutchfem.reduced.surrogate import RippleAnswer
+
+    r = Region.around(live(), free=["flexure_thickness"])
+    lo, hi = r.bounds("flexure_thickness")
+
+    def row(t, ripple):
+        s = 3e3 * (t / lo) ** 1.5
+        return {"status": "ok", "point_json": json.dumps({"flexure_thickness": t}), "engagement_rpm": s,
+                "engagement_ripple_rpm": ripple(s)}
+
+    ts = np.linspace(lo, hi, 7)
+    m = ReducedModel.fit(r, [row(t, lambda s: effective_engagement_rpm(s, k_sigma=3.0)) for t in ts])
+    assert isinstance(m.models["engagement_rpm_with_ripple"], RippleAnswer)
+    v = m.predict(np.array([[0.37]]))["value"]
+    assert v["engagement_rpm_with_ripple"][0] == pytest.approx(
+        effective_engagement_rpm(v["engagement_rpm"][0], k_sigma=3.0), rel=1e-12)
+    # rows whose ripple answer is something else (another ripple model): a model of its own
+    other = ReducedModel.fit(r, [row(t, lambda s: 0.9 * s) for t in ts])
+    assert isinstance(other.models["engagement_rpm_with_ripple"], AnswerModel)
+    assert other.predict(np.array([[0.37]]))["value"]["engagement_rpm_with_ripple"][0] == pytest.approx(
+        0.9 * other.predict(np.array([[0.37]]))["value"]["engagement_rpm"][0], rel=1e-6)
+
+
 def test_the_adaptive_designs_go_where_the_fit_knows_least_and_a_resumed_build_solves_the_same(tmp_path):
     from clutchfem.reduced.build import POOL, _adaptive
 

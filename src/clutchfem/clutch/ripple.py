@@ -40,6 +40,7 @@ __all__ = [
     "delta_from_extremes",
     "cycle_time",
     "effective_engagement_rpm",
+    "effective_engagement_rpms",
     "effective_engagement_speed",
 ]
 
@@ -151,6 +152,32 @@ def effective_engagement_rpm(
     if g(s) <= 0.0:  # delta == 0 at this speed
         return s
     return float(brentq(g, 0.0, s, xtol=1e-9, rtol=1e-12))
+
+
+def effective_engagement_rpms(static_rpm, model: RippleModel | None = None, k_sigma: float = 0.0) -> np.ndarray:
+    """:func:`effective_engagement_rpm` of an array of static speeds [rpm] at once (a reduced
+    model's thousands of designs): the same root by bisection on ``[0, static]`` to the last
+    bit (``x (1 + delta(x))`` rises with x); NaN where the static speed is NaN or not > 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from clutchfem.clutch.ripple import effective_engagement_rpm, effective_engagement_rpms
+    >>> w = effective_engagement_rpms(np.array([3000.0, 4200.0, np.nan]), k_sigma=3.0)
+    >>> bool(abs(w[0] / effective_engagement_rpm(3000.0, k_sigma=3.0) - 1) < 1e-12), bool(np.isnan(w[2]))
+    (True, True)
+    """
+    model = RippleModel() if model is None else model
+    if not (math.isfinite(k_sigma) and k_sigma >= 0.0):
+        raise ParameterError("k_sigma", k_sigma, "number of standard deviations >= 0")
+    s = np.asarray(static_rpm, dtype=float)
+    good = np.isfinite(s) & (s > 0.0)
+    lo, hi = np.zeros_like(s), np.where(good, s, 1.0)
+    for _ in range(80):  # 2^-80 of the bracket: below one ulp
+        mid = 0.5 * (lo + hi)
+        up = mid * (1.0 + model.delta(mid, k_sigma)) > np.where(good, s, 1.0)
+        lo, hi = np.where(up, lo, mid), np.where(up, mid, hi)
+    return np.where(good, hi, np.nan)
 
 
 def effective_engagement_speed(

@@ -36,7 +36,7 @@ import numpy as np
 from ..core import ParameterError
 from ..geometry import get_concept
 from .region import OPERATING_AXES, Region
-from .surrogate import OK_PROBABILITY, AnswerModel, StatusModel, sq_distances
+from .surrogate import OK_PROBABILITY, AnswerModel, RippleAnswer, StatusModel, sq_distances
 
 __all__ = ["AIMS", "ANSWERS", "MAX_FE_BAND", "NEIGHBOURS", "ReducedModel"]
 
@@ -67,6 +67,10 @@ UNUSABLE = 0.10
 #: adaptive training designs (:meth:`ReducedModel.most_uncertain`)
 AIMS: dict[str, float] = {"engagement_rpm": 0.003, "slip_rpm": 0.003, "torque_at_max_engine_torque_Nm": 0.005,
                           "max_von_mises_Pa": 0.015}
+#: the engagement with ripple is derived from the static one where the training rows agree with that
+#: derivation to this (relative; they agree to 1e-13 where the error step did not refine the
+#: engagement, and within ~1e-4 where it did: it scales the ripple's answer by the static one's ratio)
+RIPPLE_MATCH = 1e-4
 #: a training design whose best-path band of an answer is wider than this (relative) is left out
 #: of that answer's fit: the FE says its value is not known to better than that.  Found on concept
 #: 1 (BENCHMARKS.md section 24): 6 of 150 designs had a peak-stress band of 24-199 % (the error
@@ -75,6 +79,21 @@ AIMS: dict[str, float] = {"engagement_rpm": 0.003, "slip_rpm": 0.003, "torque_at
 #: the peak's model into short length scales: held-out error 2.56 % with them, 1.02 % without.
 #: Such a design still counts as a neighbour: a live answer next to it carries its wide band.
 MAX_FE_BAND = 0.10
+
+
+def ripple_derived(rows: list[dict]) -> bool:
+    """Whether the training rows' engagement with ripple is the FE's derivation from their static
+    engagement (the default ripple model, 3 sigma) to within :data:`RIPPLE_MATCH` on every row
+    that has both: then the live one is derived the same way (:class:`~.surrogate.RippleAnswer`),
+    else it gets a model of its own."""
+    from ..clutch.ripple import effective_engagement_rpms
+
+    pairs = np.array([(row_value(r, "engagement_rpm"), row_value(r, "engagement_rpm_with_ripple")) for r in rows
+                      if r.get("status") == "ok"], dtype=float).reshape(-1, 2)
+    pairs = pairs[np.isfinite(pairs).all(axis=1)]
+    if not len(pairs):
+        return False
+    return bool(np.max(np.abs(effective_engagement_rpms(pairs[:, 0], k_sigma=3.0) / pairs[:, 1] - 1.0)) <= RIPPLE_MATCH)
 
 
 def diagonal(U: np.ndarray, F: np.ndarray) -> bool:
@@ -196,15 +215,20 @@ class ReducedModel:
             dim_names = ()
         X = rule_coords(U, F, span) if span is not None else U
         models, left_out = {}, {}
+        derived = ripple_derived(rows)
         for a in ANSWERS:
+            if a == "engagement_rpm_with_ripple" and derived and "engagement_rpm" in models:
+                models[a] = RippleAnswer(models["engagement_rpm"])
+                continue
             y = np.array([row_value(r, a) if r.get("status") == "ok" else None for r in rows], dtype=float)
             wide = np.array([wide_band(r, a) for r in rows])
             have = np.isfinite(y) & ~wide
             if wide.any():
                 left_out[a] = int((np.isfinite(y) & wide).sum())
             if have.sum() >= region.dim + 2:  # a trend (d + 1 coefficients) and one more
+                prior = like.models.get(a) if like is not None else None
                 models[a] = AnswerModel.fit(X[have], y[have], seed=seed,
-                                            like=like.models.get(a) if like is not None else None)
+                                            like=prior if isinstance(prior, AnswerModel) else None)
         m = cls(region=region, models=models, status=status, U=U, rows=list(rows), rule_span=span)
         m.info = {"fit_s": time.perf_counter() - t0, "n_train": len(rows), "n_ok": int(ok.sum()),
                   "left_out_wide_band": left_out, "rule_dimensions": list(dim_names)}
@@ -260,8 +284,10 @@ class ReducedModel:
             v = np.where(why == "", v, np.nan)
             out["value"][a] = v
             # the own error is relative to the FE's value: |live - FE| <= own |FE| <= own/(1 - own) |live|
-            # (1 + 1e-12: the design of the largest error sits on the band's edge, up to round-off)
-            rel = own / (1.0 - own) * (1.0 + 1e-12) if math.isfinite(own) and own < 1.0 else np.inf
+            # (1 + 1e-12 and 1e-13: the design of the largest error sits on the band's edge, up to
+            # round-off, which is 1e-16 of the value: against an own error of 1e-8, the shoe mass's,
+            # a relative margin alone was too small)
+            rel = own / (1.0 - own) * (1.0 + 1e-12) + 1e-13 if math.isfinite(own) and own < 1.0 else np.inf
             out["band"][a] = np.abs(v) * (fe_band + rel)
             out["why"][a] = why
         return out
