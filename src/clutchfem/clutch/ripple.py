@@ -29,7 +29,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..core import ParameterError, rad_s_to_rpm, rpm_to_rad_s
 
@@ -146,26 +145,25 @@ def effective_engagement_rpm(
     if not (math.isfinite(k_sigma) and k_sigma >= 0.0):
         raise ParameterError("k_sigma", k_sigma, "number of standard deviations >= 0")
 
-    def g(x: float) -> float:
-        return x * (1.0 + float(model.delta(x, k_sigma))) - s
-
-    if g(s) <= 0.0:  # delta == 0 at this speed
-        return s
-    return float(brentq(g, 0.0, s, xtol=1e-9, rtol=1e-12))
+    return float(effective_engagement_rpms(np.array([s]), model, k_sigma)[0])
 
 
 def effective_engagement_rpms(static_rpm, model: RippleModel | None = None, k_sigma: float = 0.0) -> np.ndarray:
     """:func:`effective_engagement_rpm` of an array of static speeds [rpm] at once (a reduced
-    model's thousands of designs): the same root by bisection on ``[0, static]`` to the last
-    bit (``x (1 + delta(x))`` rises with x); NaN where the static speed is NaN or not > 0.
+    model's thousands of designs): the root by bisection on ``[0, static]`` to the last bit
+    (``x (1 + delta(x))`` rises with x; the static speed itself where delta is 0 there); NaN
+    where the static speed is NaN or not > 0.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from clutchfem.clutch.ripple import effective_engagement_rpm, effective_engagement_rpms
+    >>> from clutchfem.clutch.ripple import RippleModel, effective_engagement_rpm, effective_engagement_rpms
     >>> w = effective_engagement_rpms(np.array([3000.0, 4200.0, np.nan]), k_sigma=3.0)
-    >>> bool(abs(w[0] / effective_engagement_rpm(3000.0, k_sigma=3.0) - 1) < 1e-12), bool(np.isnan(w[2]))
+    >>> bool(w[0] == effective_engagement_rpm(3000.0, k_sigma=3.0)), bool(np.isnan(w[2]))
     (True, True)
+    >>> x = w[1]                                   # the 3-sigma cycle's peak reaches the static speed
+    >>> bool(abs(x * (1 + RippleModel().delta(x, 3.0)) / 4200.0 - 1) < 1e-15)
+    True
     """
     model = RippleModel() if model is None else model
     if not (math.isfinite(k_sigma) and k_sigma >= 0.0):

@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..clutch.ripple import effective_engagement_rpms
 from ..core import ParameterError
 from ..geometry import get_concept
 from .region import OPERATING_AXES, Region
@@ -86,8 +87,6 @@ def ripple_derived(rows: list[dict]) -> bool:
     engagement (the default ripple model, 3 sigma) to within :data:`RIPPLE_MATCH` on every row
     that has both: then the live one is derived the same way (:class:`~.surrogate.RippleAnswer`),
     else it gets a model of its own."""
-    from ..clutch.ripple import effective_engagement_rpms
-
     pairs = np.array([(row_value(r, "engagement_rpm"), row_value(r, "engagement_rpm_with_ripple")) for r in rows
                       if r.get("status") == "ok"], dtype=float).reshape(-1, 2)
     pairs = pairs[np.isfinite(pairs).all(axis=1)]
@@ -384,8 +383,6 @@ class ReducedModel:
         >>> first, 0.6 < second < 0.9
         (1.0, True)
         """
-        from scipy.linalg import cho_factor, solve_triangular  # (a build's only)
-
         P = self.coords(pool)
         parts = []
         for a, aim in (AIMS if aims is None else aims).items():
@@ -393,8 +390,7 @@ class ReducedModel:
             if am is None:
                 continue
             K = am.kernel(am.X, am.X) + (am.noise + 1e-10 * am.amplitude) * np.eye(len(am.X))
-            L, _ = cho_factor(K, lower=True)
-            V = solve_triangular(L, am.kernel(am.X, P), lower=True, check_finite=False)
+            V = np.linalg.solve(np.linalg.cholesky(K), am.kernel(am.X, P))  # L^-1 K(X, P)
             var = np.maximum(am.amplitude - (V * V).sum(axis=0), 0.0)
             parts.append({"m": am, "V": V, "var": var, "C": np.zeros((0, len(P))), "w": 1.0 / aim**2})
         passed = np.zeros(len(P), dtype=bool)

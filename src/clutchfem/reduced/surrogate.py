@@ -41,6 +41,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..clutch.ripple import effective_engagement_rpms
+
 __all__ = ["OK_PROBABILITY", "AnswerModel", "RippleAnswer", "StatusModel", "quadratic_features", "sq_distances"]
 
 #: below this probability that the full FE answers at a design, the reduced model gives none
@@ -173,8 +175,6 @@ class RippleAnswer:
     k_sigma: float = 3.0
 
     def predict(self, U: np.ndarray) -> np.ndarray:
-        from ..clutch.ripple import effective_engagement_rpms
-
         return effective_engagement_rpms(self.static.predict(U), k_sigma=self.k_sigma)
 
 
