@@ -74,8 +74,10 @@ def test_a_long_word_is_folded_not_cut(terminal80, capsys):
 
 COMMANDS = {
     "analyze": ("analyze", "concept4", "--mesh-size", "3mm", "--fidelity", "fast", "--rpm", "0:14000:2000"),
+    # one operating input (its row of the table is laid out as the idle speed's would be: the
+    # idle speed's four more designs were a quarter of the command's time)
     "guidelines": ("guidelines", "concept4", "--params", "flexure_thickness", "--mesh-size", "3mm", "--workers", "0",
-                   "--points", "3", "--fidelity", "fast"),
+                   "--points", "3", "--fidelity", "fast", "--inputs", "mu"),
     "tolerance": ("tolerance", "concept4", "--mesh-size", "3mm", "--fidelity", "fast", "--tol", "clearance=+-0.02mm",
                   "--n", "8", "--workers", "0", "--no-shifts"),
     "optimize": ("optimize", "concept4", "--mesh-size", "3mm", "--workers", "0", "--fidelity", "fast", "--free",

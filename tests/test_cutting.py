@@ -23,6 +23,13 @@ from clutchfem.mesh.dxf import read_dxf
 COARSE = cf.MeshSettings(size="3mm")
 
 
+@pytest.fixture(scope="module")
+def concept1():
+    """Concept 1's defaults on the coarse mesh: the design several tests export (never changed
+    by them), meshed and assembled once."""
+    return cf.Design.from_concept("concept1", mesh=COARSE)
+
+
 def _entities(path, layers):
     doc = ezdxf.readfile(str(path))
     out = []
@@ -41,7 +48,8 @@ def _entities(path, layers):
 def test_dxf_and_step_hold_the_exact_part(tmp_path, name, values):
     d = cf.Design.from_concept(name, mesh=COARSE, **values)
     p = d.params
-    r = cf.export(d, tmp_path, analyze_design=False)
+    # the two cutting files (and the run's records) only: the drawing sheet is test_drawing's
+    r = cf.export(d, dxf=tmp_path / "part.dxf", step=tmp_path / "part.step", analyze_design=False)
     dxf = next(f for f in r.files if f.suffix == ".dxf")
     ents, doc = _entities(dxf, {"OUTER", "INNER", "BORE"})
     assert doc.header["$INSUNITS"] == 4 and ents
@@ -75,20 +83,22 @@ def test_dxf_and_step_hold_the_exact_part(tmp_path, name, values):
 
 
 @pytest.mark.slow
-def test_process_and_kerf_change_the_tool_path_not_the_part(tmp_path):
-    d = cf.Design.from_concept("concept1", mesh=COARSE)
+def test_process_and_kerf_change_the_tool_path_not_the_part(tmp_path, concept1):
+    from scipy.spatial import cKDTree
+
+    d = concept1
     parts, paths = [], []
+    part = None  # the part's outline finely sampled, and its k-d tree (one part: made once)
     for k, kw in enumerate([{}, {"process": "wire-edm"}, {"process": "waterjet"},
                             {"process": "wire-edm", "kerf": "0.25mm"}]):
         r = cf.export(d, dxf=tmp_path / f"p{k}.dxf", analyze_design=False, **kw)
         parts.append(_entities(tmp_path / f"p{k}.dxf", {"OUTER", "INNER", "BORE"})[0])
         paths.append(_entities(tmp_path / f"p{k}.dxf", {"TOOLPATH"})[0])
         if r.toolpath:  # every point of the tool path is half the kerf from the part
-            ref = np.vstack([lp.points(spacing=2e-6) for lp in r.outline.loops])
-            from scipy.spatial import cKDTree
-
+            if part is None:
+                part = cKDTree(np.vstack([lp.points(spacing=2e-6) for lp in r.outline.loops]))
             pts = np.vstack([lp.points(spacing=0.1e-3) for lp in r.toolpath])
-            dist, _ = cKDTree(ref).query(pts)
+            dist, _ = part.query(pts)
             assert np.all(np.abs(dist - 0.5 * r.rules.kerf) < 1e-7)
     assert parts[1] == parts[0] and parts[2] == parts[0] and parts[3] == parts[0]
     assert not paths[0] and paths[1] and paths[1] != paths[2] and paths[1] != paths[3]
@@ -147,16 +157,17 @@ def test_step_and_dxf_round_trip_within_the_discretisation_band(tmp_path, name):
 
 
 @pytest.mark.slow
-def test_as_cut_kerf_error_moves_engagement_and_slip(tmp_path):
-    d = cf.Design.from_concept("concept1", mesh=COARSE)
-    out = as_cut(part_outline(d.concept, d.params), d, kerf_error=0.05e-3, mesh_size=2e-3, band=False)
+def test_as_cut_kerf_error_moves_engagement_and_slip(tmp_path, concept1):
+    d = concept1
+    outline = part_outline(d.concept, d.params)
+    out = as_cut(outline, d, kerf_error=0.05e-3, mesh_size=2e-3, band=False)
     rows = {r["variant"]: r for r in out["rows"]}
     nom, wide, narrow = rows["nominal"], rows["kerf +0.05 mm"], rows["kerf -0.05 mm"]
     # a wider kerf removes material: lighter part, engagement moves; the two signs move it opposite ways
     assert wide["mass_kg"] < nom["mass_kg"] < narrow["mass_kg"]
     assert (wide["engagement_rpm"] - nom["engagement_rpm"]) * (narrow["engagement_rpm"] - nom["engagement_rpm"]) < 0
-    area = part_outline(d.concept, d.params).area
-    perim = sum(s.length for lp in part_outline(d.concept, d.params).loops for s in lp.segments)
+    area = outline.area
+    perim = sum(s.length for lp in outline.loops for s in lp.segments)
     dm = (nom["mass_kg"] - wide["mass_kg"]) / (d.thickness * d.model.material.rho)
     assert dm == pytest.approx(perim * 0.025e-3, rel=0.02) and dm < area
 
@@ -164,7 +175,9 @@ def test_as_cut_kerf_error_moves_engagement_and_slip(tmp_path):
 @pytest.mark.slow
 def test_from_run_folder_reads_back_the_same_design(tmp_path):
     d = cf.Design.from_concept("concept3", shoe_arc="70deg", mesh=COARSE)
-    r = cf.export(d, tmp_path / "a", analyze_design=False)
+    # a run folder: its inputs.json is what is read back (its cutting file written with it; the
+    # drawing sheet is test_drawing's)
+    r = cf.export(d, dxf=tmp_path / "a" / "part.dxf", analyze_design=False)
     back = design_from_run(tmp_path / "a", COARSE)
     assert back.params == d.params and back.name == d.name
     r2 = cf.export(back, dxf=tmp_path / "b.dxf", analyze_design=False)  # (its part: no drawing sheet needed)
@@ -230,8 +243,8 @@ def test_design_of_a_compensate_folder_and_of_a_study_row(tmp_path):
 
 
 @pytest.mark.slow
-def test_report_links_the_cutting_files(tmp_path):
-    d = cf.Design.from_concept("concept1", mesh=COARSE)
+def test_report_links_the_cutting_files(tmp_path, concept1):
+    d = concept1
     a = cf.analyze(d, errors=False)
     r = cf.export(d, tmp_path, process="wire-edm", analysis=a)
     cf.write_report(d, tmp_path, analysis=a)

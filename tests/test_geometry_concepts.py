@@ -526,12 +526,12 @@ def test_drawings_are_written(tmp_path):
     c = get_concept("concept4")
     p = c.params(arrangement="plus", profile="linear", clearance_tip=1.0e-3)
     cm = mesh_concept(c, p, MeshSettings(size=COARSE, model="sector"))
-    files = draw_concept(c, p, tmp_path / "c4", cm)
+    files = draw_concept(c, p, tmp_path / "c4", cm, dpi=60)  # (the PNG's resolution is not what is tested)
     assert [f.suffix for f in files] == [".png", ".svg"]
     assert all(f.stat().st_size > 10_000 for f in files)
-    png = draw_mesh(cm, tmp_path / "mesh.png")
+    png = draw_mesh(cm, tmp_path / "mesh.png", dpi=60)
     assert png.stat().st_size > 10_000
     # a dotted concept name is a stem, not a suffix
     c31 = get_concept("concept3.1")
-    files = draw_concept(c31, c31.params(), tmp_path / "concept3.1")
+    files = draw_concept(c31, c31.params(), tmp_path / "concept3.1", dpi=40)
     assert [f.name for f in files] == ["concept3.1.png", "concept3.1.svg"]

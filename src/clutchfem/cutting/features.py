@@ -187,7 +187,7 @@ def widths(outline) -> tuple[list[Feature], list[Feature]]:
     segs = [s for lp in outline.loops for s in lp.segments]
     P, N, S, T = boundary_samples(segs, into="waste")
     zones = sorted({zone_of(s.tag) for s in segs})
-    zid = np.array([zones.index(zone_of(segs[k].tag)) for k in S])
+    zid = np.array([zones.index(zone_of(s.tag)) for s in segs], dtype=int)[S]  # each sample's segment's zone
     pairs = cKDTree(P).query_pairs(MAX_WIDTH, output_type="ndarray")
     i, j = pairs[:, 0], pairs[:, 1]
     v = P[j] - P[i]

@@ -147,9 +147,10 @@ def thinnest_ligament(outline, zones: tuple[str, ...] = ("flexure",)) -> Ligamen
         return None
     P, N, S, T = boundary_samples(segs, into="material", spacing=SPACING)
     zone = [zone_of(s.tag) for s in segs]
-    fams = {family_of(z) for z in zone}
+    fam = [family_of(z) for z in zone]  # per segment (a sample's is its segment's)
+    fams = set(fam)
     want = {f for f in zones if f in fams} or fams
-    on = np.array([family_of(zone[k]) in want for k in S])
+    on = np.array([f in want for f in fam], dtype=bool)[S]
     tree = cKDTree(P)
     pairs = tree.query_pairs(MAX_WIDTH, output_type="ndarray")
     if len(pairs) == 0:
@@ -191,12 +192,13 @@ def thinnest_ligament(outline, zones: tuple[str, ...] = ("flexure",)) -> Ligamen
     # copies on the other shoes: chords of the same width between zones of the same families
     fa, fb = family_of(za), family_of(zb)
     same = np.nonzero(np.abs(dist - w) <= 2 * SPACING + 1e-6 * w)[0]
-    shoes = {z.split()[-1] for m in same for z in (zone[S[i[m]]], zone[S[j[m]]])
-             if {family_of(zone[S[i[m]]]), family_of(zone[S[j[m]]])} == {fa, fb} and z.split()[-1].isdigit()}
+    seg_pairs = set(zip(S[i[same]].tolist(), S[j[same]].tolist()))  # their segment pairs, each once
+    shoes = {z.split()[-1] for a, b in seg_pairs for z in (zone[a], zone[b])
+             if {fam[a], fam[b]} == {fa, fb} and z.split()[-1].isdigit()}
     # reported on shoe 0's copy when it has one (the drawing dimensions shoe 0)
     for m in same:
         zs = (zone[S[i[m]]], zone[S[j[m]]])
-        if {family_of(z) for z in zs} == {fa, fb} and any(z.endswith(" 0") for z in zs) and not (
+        if {fam[S[i[m]]], fam[S[j[m]]]} == {fa, fb} and any(z.endswith(" 0") for z in zs) and not (
                 za.endswith(" 0") or zb.endswith(" 0")):
             w0, qa, qb = _refine(segs[S[i[m]]], T[i[m]], segs[S[j[m]]], T[j[m]], float(dist[m]), P[i[m]], P[j[m]])
             if abs(w0 - w) <= 1e-6 * w:

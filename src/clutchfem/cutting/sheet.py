@@ -58,6 +58,9 @@ MM = 1 / 25.4
 #: standard scales (ISO 5455), largest first
 SCALES = (10.0, 5.0, 2.0, 1.0, 0.5, 0.2)
 MAIN_BOX = (20.0, 10.0, 236.0, 287.0)
+#: a drawn line is tested against a label's place when a run of LINE_RUN of its segments comes
+#: within REACH [sheet mm] of it (far above rounding: the same answers as testing every line)
+LINE_RUN, REACH = 16, 1e-6
 
 
 class _Sheet:
@@ -78,6 +81,8 @@ class _Sheet:
         self.blocks: list[Bbox] = []  # areas no label may enter
         self.material: list[tuple[MPath, Bbox | None]] = []  # filled part regions (clip box)
         self.lines: list[MPath] = []  # drawn part outlines and dimension lines
+        self._pieces, self._piece_line = np.zeros((0, 4)), np.zeros(0, dtype=int)  # runs of lines: extents, line
+        self._ext: dict[int, tuple[MPath, Bbox]] = {}  # material regions' extents (with the path: its id)
         self.queue: list = []  # label placements, made once every line is drawn
 
     def line(self, xs, ys, gid=None, **kw):
@@ -122,13 +127,30 @@ class _Sheet:
             return False
         if any(m.overlaps(b) for b in self.taken) or any(box.overlaps(b) for b in self.blocks):
             return False
-        if any(p.intersects_bbox(m, filled=False) for p in self.lines):
+        if any(self.lines[k].intersects_bbox(m, filled=False) for k in self._lines_near(m)):
             return False
         for path, clip in self.material:
             b = m if clip is None else Bbox.intersection(m, clip)
-            if b is not None and path.intersects_bbox(b, filled=True):
+            ext = self._ext.get(id(path)) or self._ext.setdefault(id(path), (path, path.get_extents()))
+            if b is not None and _near(ext[1], b) and path.intersects_bbox(b, filled=True):
                 return False
         return True
+
+    def _lines_near(self, m: Bbox) -> list[int]:
+        """The lines (indices, in order) with a run of LINE_RUN segments whose extents reach
+        ``m`` (widened by REACH): the others cannot cross it, and testing the whole outline
+        (thousands of segments) at every candidate place was most of the drawing's time."""
+        for k in range(len(self._piece_line) and int(self._piece_line[-1]) + 1, len(self.lines)):
+            v = np.asarray(self.lines[k].vertices, dtype=float)
+            if self.lines[k].codes is not None or len(v) < 2 or not np.all(np.isfinite(v)):
+                e = np.array([[-np.inf, -np.inf, np.inf, np.inf]])  # (curves, gaps: always tested)
+            else:
+                cut = [(a, min(a + LINE_RUN, len(v) - 1) + 1) for a in range(0, len(v) - 1, LINE_RUN)]
+                e = np.array([[*v[a:b].min(axis=0), *v[a:b].max(axis=0)] for a, b in cut])
+            self._pieces, self._piece_line = np.vstack([self._pieces, e]), np.r_[self._piece_line, [k] * len(e)]
+        e, (x0, y0, x1, y1) = self._pieces, _widened(m)
+        hit = (e[:, 0] <= x1) & (e[:, 2] >= x0) & (e[:, 1] <= y1) & (e[:, 3] >= y0)
+        return np.unique(self._piece_line[hit]).tolist()
 
     def place(self, s: str, anchor, direction: float, region: Bbox, *, gid: str, start: float = 4.0,
               color="black", arrow_from_text=True, arrow=True, leader=True, size=FS_DIM):
@@ -168,6 +190,16 @@ class _Sheet:
         end = _box_point(box, anchor)
         seg = MPath([anchor, end])
         return not any(seg.intersects_bbox(b.padded(0.3), filled=True) for b in self.taken)
+
+
+def _widened(b: Bbox) -> tuple[float, float, float, float]:
+    return (min(b.x0, b.x1) - REACH, min(b.y0, b.y1) - REACH, max(b.x0, b.x1) + REACH, max(b.y0, b.y1) + REACH)
+
+
+def _near(ext: Bbox, b: Bbox) -> bool:
+    """Do the extents ``ext`` reach ``b``?  A path whose extents do not cannot cross or enclose it."""
+    x0, y0, x1, y1 = _widened(b)
+    return ext.x0 <= x1 and ext.x1 >= x0 and ext.y0 <= y1 and ext.y1 >= y0
 
 
 def _box_point(box: Bbox, p) -> tuple[float, float]:

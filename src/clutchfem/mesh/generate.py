@@ -51,7 +51,7 @@ from ..geometry import (
 )
 from .cache import TMP_PREFIX, cache_dir, entry_lock, evict, touch
 from .clutch_mesh import ClutchMesh, groups_msh_path
-from .convert import meshio_to_skfem, read_msh
+from .convert import meshio_to_skfem, read_cached_msh
 from .highorder import guard_high_order, optimise_high_order
 
 #: meshes estimated above this many elements are refused (a one-sector default mesh has ~2-3
@@ -232,7 +232,7 @@ def _atomic_write_text(path: Path, text: str) -> None:
 
 
 def _load_generated(msh: Path, meta: dict, source: str) -> ClutchMesh:
-    m = read_msh(msh)
+    m = read_cached_msh(msh)
     groups, dims = meta["entity_groups"], meta["group_dims"]
     curves = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 1}
     surfaces = {k: set(map(int, v)) for k, v in groups.items() if dims[k] == 2}

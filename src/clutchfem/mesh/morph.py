@@ -56,7 +56,7 @@ from skfem.helpers import dot, grad
 from ..core import MeshError
 from ..geometry import Concept, ConceptParams, MeshSettings, curve_frame, get_concept
 from .clutch_mesh import ClutchMesh
-from .convert import meshio_to_skfem, read_msh
+from .convert import meshio_to_skfem, read_cached_msh
 from .cyclic import cyclic_pairing
 from .generate import mesh_concept
 from .quality import MorphQuality, assess, scaled_jacobian
@@ -139,7 +139,7 @@ def _curve_nodes(cm: ClutchMesh) -> dict:
     the curve with the lower tag), from the line elements of the cached ``.msh``."""
     if cm.msh_path is None:
         raise MeshError(f"{cm.source}: a morph reference needs a mesh generated from its concept (the mesh cache)")
-    m = read_msh(cm.msh_path)
+    m = read_cached_msh(cm.msh_path)
     tags = sorted({int(lab[0]) for cb, lab in zip(m.cells, m.cell_data["gmsh:geometrical"])
                    if cb.type in ("line", "line3") and len(lab)})
     per = meshio_to_skfem(m, {str(t): {t} for t in tags}, {}, "gmsh:geometrical", cm.source)

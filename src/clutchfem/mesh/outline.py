@@ -58,8 +58,19 @@ class Segment:
         cx, cy = self.centre
         return math.atan2(self.start[1] - cy, self.start[0] - cx)
 
-    def _spline(self) -> BSpline:
-        return BSpline(np.asarray(self.knots), np.asarray(self.control), self.degree)
+    def _spline(self, nu: int = 0) -> BSpline:
+        """The spline (``nu`` = 0) or its ``nu``-th derivative, made once per segment: a
+        segment never changes, and making the BSpline from the control tuples cost more than
+        evaluating it (the features' and the drawing's samples ask for it thousands of times)."""
+        cache = self.__dict__.setdefault("_bsplines", {})  # (not a field: equality, hash, repr ignore it)
+        if nu not in cache:
+            cache[nu] = (BSpline(np.asarray(self.knots), np.asarray(self.control), self.degree) if nu == 0
+                         else self._spline(0).derivative(nu))
+        return cache[nu]
+
+    def __getstate__(self) -> dict:
+        """Pickled without the splines made (they are made again on first use)."""
+        return {k: v for k, v in self.__dict__.items() if k != "_bsplines"}
 
     def point(self, t) -> np.ndarray:
         """Points at the normalised parameter(s) t in [0, 1] (arc: angle, spline: knot)."""
@@ -79,7 +90,7 @@ class Segment:
         if self.kind == "arc":
             ang = self.start_angle + t * self.sweep
             return self.radius * self.sweep * np.column_stack([-np.sin(ang), np.cos(ang)])
-        return self._spline().derivative()(t)
+        return self._spline(1)(t)
 
     def tangent(self, t: float) -> np.ndarray:
         d = self.derivative([t])[0]
@@ -137,7 +148,7 @@ class Segment:
         if self.kind == "arc":
             return np.full(len(t), math.copysign(1.0 / self.radius, self.sweep))
         d1 = self.derivative(t)
-        d2 = self._spline().derivative(2)(t)
+        d2 = self._spline(2)(t)
         return (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / np.linalg.norm(d1, axis=1) ** 3
 
     def sub(self, t0: float, t1: float) -> "Segment":
