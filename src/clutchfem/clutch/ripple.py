@@ -150,9 +150,9 @@ def effective_engagement_rpm(
 
 def effective_engagement_rpms(static_rpm, model: RippleModel | None = None, k_sigma: float = 0.0) -> np.ndarray:
     """:func:`effective_engagement_rpm` of an array of static speeds [rpm] at once (a reduced
-    model's thousands of designs): the root by bisection on ``[0, static]`` to the last bit
-    (``x (1 + delta(x))`` rises with x; the static speed itself where delta is 0 there); NaN
-    where the static speed is NaN or not > 0.
+    model's thousands of designs): the root by Newton's method from the static speed, to the
+    last bit (``x (1 + delta(x))`` rises with x and is convex: the iterates fall onto it; the
+    static speed itself where delta is 0); NaN where the static speed is NaN or not > 0.
 
     Examples
     --------
@@ -170,12 +170,17 @@ def effective_engagement_rpms(static_rpm, model: RippleModel | None = None, k_si
         raise ParameterError("k_sigma", k_sigma, "number of standard deviations >= 0")
     s = np.asarray(static_rpm, dtype=float)
     good = np.isfinite(s) & (s > 0.0)
-    lo, hi = np.zeros_like(s), np.where(good, s, 1.0)
-    for _ in range(80):  # 2^-80 of the bracket: below one ulp
-        mid = 0.5 * (lo + hi)
-        up = mid * (1.0 + model.delta(mid, k_sigma)) > np.where(good, s, 1.0)
-        lo, hi = np.where(up, lo, mid), np.where(up, mid, hi)
-    return np.where(good, hi, np.nan)
+    s1 = np.where(good, s, 1.0)
+    # Newton from x = s: g(x) = x (1 + delta(x)) - s is increasing and convex for x > 0 (delta ~ x^p,
+    # p >= 0), so the iterates fall monotonically onto the root; g' = 1 + (1 + p) delta(x)
+    x = s1.copy()
+    for _ in range(60):
+        d = model.delta(x, k_sigma)
+        step = (x * (1.0 + d) - s1) / (1.0 + (1.0 + model.exponent) * d)
+        x = x - step
+        if np.all(np.abs(step) <= 4e-16 * x):
+            break
+    return np.where(good, x, np.nan)
 
 
 def effective_engagement_speed(

@@ -28,6 +28,7 @@ it did not make is never touched.
 
 from __future__ import annotations
 
+import functools
 import importlib.metadata
 import json
 import logging
@@ -96,6 +97,7 @@ def _read(path: Path, mtime: float) -> dict | None:
         return None
 
 
+@functools.cache
 def _sklearn_version() -> str:
     """The installed scikit-learn's version (from its metadata: no import)."""
     return importlib.metadata.version("scikit-learn")
