@@ -229,9 +229,9 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
 
     >>> import clutchfem as cf
     >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"), fidelity="fast")
-    >>> m = cf.reduce(d, free=["flexure_thickness"], n=3, held_out=2, workers=0, progress=False)
-    >>> m.region.names, m.info["fe_designs"], m.accuracy["engagement_rpm"]["n"]
-    (('flexure_thickness',), 5, 2)
+    >>> m = cf.reduce(d, free=["flexure_thickness"], n=9, held_out=2, workers=0, progress=False)
+    >>> m.region.names, m.info["n_adaptive"], m.info["fe_designs"], len(m.rows), m.accuracy["engagement_rpm"]["n"]
+    (('flexure_thickness',), 3, 11, 11, 2)
     >>> bool(m.accuracy["engagement_rpm"]["max_rel"] < 0.01)      # measured on the 2 held out
     True
     """
@@ -261,9 +261,9 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     model = ReducedModel.fit(region, rows_train, seed=seed)
     model.measure(rows_test)
     accuracy = model.accuracy
+    rows = rows_train + rows_test
     final = ReducedModel.fit(region, rows, seed=seed, like=model)  # every design, its kernels the start
     final.accuracy = accuracy
-    rows = rows_train + rows_test
     final.info.update(n_train=n, n_held_out=held_out, n_adaptive=n_adapt, build_s=time.perf_counter() - t0,
                       fe_designs=len(rows), fe_ok=sum(r.get("status") == "ok" for r in rows),
                       compute_s=run.compute_s, workers=run.workers)
