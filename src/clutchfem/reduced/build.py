@@ -45,7 +45,8 @@ from ..evaluation import STORE_NAME, ResultStore
 from .model import ReducedModel
 from .region import SPAN, Region
 
-__all__ = ["ADAPTIVE", "DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "outside_why", "reduce", "save"]
+__all__ = ["ADAPTIVE", "DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "load", "outside_why", "reduce", "save",
+           "split"]
 
 log = logging.getLogger("clutchfem")
 
@@ -252,7 +253,7 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     log.info(f"reduce {region.concept}: {n_fill + held_out} designs through the best path ({n_fill} to fit, "
              f"{held_out} to measure its error{f', then {n_adapt} more where that fit knows least' if n_adapt else ''}) "
              f"in {region.describe()}")
-    run = _runner(region, folder, workers, scheduler, progress)
+    run = _Runner(region, folder, workers, scheduler, progress)
     rows = run(train + test, "reduce")
     rows_train, rows_test = rows[:n_fill], rows[n_fill:]
     if n_adapt:
@@ -271,7 +272,7 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
     return final
 
 
-class _runner:
+class _Runner:
     """Runs a build's designs through the best path on the study engine into the region's
     store (each with its error step) and gives their rows in point order; sums the compute time."""
 
