@@ -35,8 +35,8 @@ def reduce(
                              "within its declared range", rich_help_panel="Region"),
     free: Optional[str] = typer.Option(None, "--free", help="comma-separated free parameters (default: the "
                                        "concept's shape parameters)", rich_help_panel="Region"),
-    n: Optional[int] = typer.Option(None, "--n", help="training designs (full best path each; default 240, a "
-                                    "third of them where the first two thirds' fit knows least)",
+    n: Optional[int] = typer.Option(None, "--n", help="training designs (full best path each; default 330, half "
+                                    "of them where the first half's fit knows least)",
                                     rich_help_panel="Build"),
     held_out: int = typer.Option(30, "--held-out", help="designs the model's own error is measured on (never "
                                  "fitted to)", rich_help_panel="Build"),

@@ -9,8 +9,8 @@ that is interrupted or killed resumes where it stopped).  The model is fitted to
 training designs, its error measured on the held-out ones
 (:meth:`~.model.ReducedModel.measure`), then fitted again to all of them (the error stated is
 the one measured with fewer designs: conservative).  The training designs come in two stages:
-two thirds (:data:`ADAPTIVE`) a scrambled Sobol sample of the region (the concept's rules
-applied), then a first fit to them picks the rest where it knows least
+half of them (:data:`ADAPTIVE`) a scrambled Sobol sample of the region (the concept's rules
+applied), then a first fit to them picks the other half where it knows least
 (:meth:`~.model.ReducedModel.most_uncertain`: the box's corners and faces, which a
 space-filling sample of nine dimensions leaves far from every design; measured on concept 4,
 BENCHMARKS.md section 24).  The picks are written to the region's folder before they are
@@ -51,10 +51,10 @@ __all__ = ["ADAPTIVE", "DEFAULT_HELD_OUT", "DEFAULT_N", "cache_root", "find", "l
 log = logging.getLogger("clutchfem")
 
 #: training designs of a default build (BENCHMARKS.md section 24: accuracy against designs)
-DEFAULT_N = 240
+DEFAULT_N = 330
 #: the share of the training designs a build places where its first fit knows least (the rest
 #: space-filling; BENCHMARKS.md section 24)
-ADAPTIVE = 1 / 3
+ADAPTIVE = 0.5
 #: the candidate points (a scrambled Sobol sample of the box) the adaptive designs are picked from
 POOL = 4096
 #: held-out designs the model's error is measured on
@@ -180,8 +180,8 @@ def split(n: int, dim: int, adaptive: float = ADAPTIVE) -> tuple[int, int]:
     Examples
     --------
     >>> from clutchfem.reduced.build import split
-    >>> split(240, 9), split(3, 1), split(12, 1, adaptive=0.0)
-    ((160, 80), (3, 0), (12, 0))
+    >>> split(330, 9), split(240, 9, adaptive=1 / 3), split(3, 1), split(12, 1, adaptive=0.0)
+    ((165, 165), (160, 80), (3, 0), (12, 0))
     """
     k = int(adaptive * n + 1e-9)
     return (n - k, k) if k and n - k >= 2 * (dim + 2) else (n, 0)
@@ -230,7 +230,7 @@ def reduce(design, *, span: float = SPAN, ranges: dict | None = None, free=None,
 
     >>> import clutchfem as cf
     >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"), fidelity="fast")
-    >>> m = cf.reduce(d, free=["flexure_thickness"], n=9, held_out=2, workers=0, progress=False)
+    >>> m = cf.reduce(d, free=["flexure_thickness"], n=9, held_out=2, adaptive=1 / 3, workers=0, progress=False)
     >>> m.region.names, m.info["n_adaptive"], m.info["fe_designs"], len(m.rows), m.accuracy["engagement_rpm"]["n"]
     (('flexure_thickness',), 3, 11, 11, 2)
     >>> bool(m.accuracy["engagement_rpm"]["max_rel"] < 0.01)      # measured on the 2 held out
