@@ -269,13 +269,18 @@ class ReducedModel:
         nb = self.neighbours(u)
         x = self.coords(u)
         out = {"value": {}, "band": {}, "p_ok": p_ok, "why": {}}
+        raw = {}
         for a, model in self.models.items():
             if answers is not None and a not in answers:
                 continue
             band_rows, have_rows = self._row_arrays(a)
             fe_band = band_rows[nb].max(axis=1)
             own = self.own_error(a)
-            v = model.predict(x)
+            if isinstance(model, RippleAnswer) and "engagement_rpm" in raw:  # (its static value, not again)
+                v = model.from_static(raw["engagement_rpm"])
+            else:
+                v = model.predict(x)
+            raw[a] = v
             why = np.where(p_ok < OK_PROBABILITY, "the full FE gives no answer near here", "")
             why = np.where((why == "") & ~have_rows[nb].all(axis=1), "a design next to it has no such answer", why)
             if own > UNUSABLE:

@@ -175,7 +175,11 @@ class RippleAnswer:
     k_sigma: float = 3.0
 
     def predict(self, U: np.ndarray) -> np.ndarray:
-        return effective_engagement_rpms(self.static.predict(U), k_sigma=self.k_sigma)
+        return self.from_static(self.static.predict(U))
+
+    def from_static(self, static_rpm: np.ndarray) -> np.ndarray:
+        """The engagement with ripple of static engagements already predicted [rpm]."""
+        return effective_engagement_rpms(static_rpm, k_sigma=self.k_sigma)
 
 
 def sq_distances(A: np.ndarray, B: np.ndarray, bb: np.ndarray | None = None) -> np.ndarray:
