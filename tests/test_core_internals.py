@@ -135,6 +135,38 @@ def test_solver_backends_agree(concept1_coarse, backend, monkeypatch):
         assert np.allclose(r.curve["max_von_mises_Pa"], ref.curve["max_von_mises_Pa"], rtol=1e-7)
 
 
+def test_cholmod_reuses_the_analysis_of_a_pattern_and_factors_bit_for_bit():
+    """Matrices of one sparsity pattern (K - w^2 M at each speed) share one symbolic analysis:
+    the factor is the one a fresh analysis gives, to the bit; a matrix of another pattern with
+    the same size and entry count gets its own analysis, never the cached one."""
+    import scipy.sparse as sp
+
+    from clutchfem.fe import available, linsolve
+
+    if "cholmod" not in available():
+        pytest.skip("cholmod not installed here")
+    from sksparse.cholmod import cholesky
+
+    n = 400
+    lap = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(n, n)).tocsc()
+    lap2 = sp.kron(sp.eye(20), sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(20, 20))).tocsc()
+    mass = sp.diags(np.linspace(1.0, 2.0, n)).tocsc()
+    linsolve._SYMBOLIC.clear()
+    b = np.random.default_rng(3).normal(size=n)
+    for w2 in (0.0, 0.3, 0.7):
+        A = (lap + lap2 + 1e-3 * sp.eye(n) - w2 * 1e-4 * mass).tocsc()
+        f = linsolve._Cholmod(A)
+        ref = cholesky(A, mode="simplicial")
+        assert np.array_equal(f.solve(b), ref(b)) and np.array_equal(f._f.D(), ref.D())
+    assert len(linsolve._SYMBOLIC) == 1  # one pattern, one analysis
+    # same size and entry count, other pattern (a permuted band): its own analysis, its own answer
+    perm = np.random.default_rng(5).permutation(n)
+    B = ((lap + lap2 + 1e-3 * sp.eye(n)).tocsr()[perm][:, perm]).tocsc()
+    assert B.nnz == A.nnz
+    g = linsolve._Cholmod(B)
+    assert np.allclose(B @ g.solve(b), b, atol=1e-9) and len(linsolve._SYMBOLIC) == 2
+
+
 @pytest.mark.slow
 def test_injected_solver_factory_is_used(concept1_coarse):
     """A user's own factory (here scipy's splu wrapped) is what factorises K."""
