@@ -34,15 +34,11 @@ from clutchfem.analysis import (  # noqa: E402
 )
 from clutchfem.clutch import EngineCurve  # noqa: E402
 from clutchfem.core import rpm_to_rad_s  # noqa: E402
-from clutchfem.durability import (  # noqa: E402  # noqa: E402
+from clutchfem.durability import (  # noqa: E402
     FatigueLoads,
     FatigueParams,
-    SlipScenario,
-    ThermalEnvironment,
-    ThermalMaterial,
     endurance_limit,
     fatigue_check,
-    render_png,
 )
 from clutchfem.durability.cycles import revolution_torque  # noqa: E402
 from clutchfem.geometry import MeshSettings, get_concept  # noqa: E402
@@ -51,6 +47,7 @@ from clutchfem.loadcase import (
     OperatingPoint,  # noqa: E402
 )
 from clutchfem.mesh import mesh_concept  # noqa: E402
+from clutchfem.thermal import SlipScenario, ThermalEnvironment, ThermalMaterial, render_png  # noqa: E402
 
 # the figures this records (BENCHMARKS.md, docs/) are the fast 2-D path's unless a model asks for
 # "best": the shipped default is the best estimate since issue 20
@@ -268,7 +265,7 @@ def page(runs, fat, engine, size, seconds) -> str:
     A("")
     A("* `clutchfem slip-heat CONCEPT [--set ...] [--seconds T] [--cycles N --pause P] [--thermal name=value] "
       "[--json] [--out DIR]`: the thesis's slip test (drum held, full throttle) as a transient heat conduction in "
-      "the part (module `clutchfem.durability.heat`);")
+      "the part (module `clutchfem.thermal`);")
     A("* `clutchfem analyze` step 10: the fatigue safety factor at the worst point, named, under start-stop and "
       "running cycles built from solved FE states (modules `clutchfem.durability.cycles`, "
       "`clutchfem.durability.fatigue`); `--fatigue name=value` changes any ASSUMED load or strength value.")

@@ -46,7 +46,7 @@ FACES = ("cli/", "app/")
 #: ``analyze``; docs/reduced.md).  The layer contract still checks these imports.
 FE_WORK = ("clutchfem.mesh", "clutchfem.fe", "clutchfem.contact", "clutchfem.softening", "clutchfem.loadcase.case",
            "clutchfem.analysis.pipeline", "clutchfem.evaluation.point", "clutchfem.evaluation.runner",
-           "clutchfem.evaluation.sensitivity", "clutchfem.reduced.build", "clutchfem.durability.location")
+           "clutchfem.evaluation.sensitivity", "clutchfem.reduced.build")
 
 
 def _modules():

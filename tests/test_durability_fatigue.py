@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from clutchfem.core import InputError, ParameterError
-from clutchfem.durability import FatigueParams, LoadCycle, endurance_limit, fatigue_check, name_location
+from clutchfem.durability import FatigueParams, LoadCycle, endurance_limit, fatigue_check
 from clutchfem.durability.fatigue import (
     amplitude_mean,
     cycles_to_failure,
@@ -29,6 +29,7 @@ from clutchfem.durability.fatigue import (
     marin_factors,
     reversed_equivalent,
 )
+from clutchfem.mesh import name_location
 
 MPa = 1e6
 MACHINED = FatigueParams(edge_finish="machined")

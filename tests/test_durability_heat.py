@@ -1,4 +1,4 @@
-"""Verification of the slip-heat solver (:mod:`clutchfem.durability.heat`).
+"""Verification of the slip-heat solver (:mod:`clutchfem.thermal`).
 
 Closed forms used
 -----------------
@@ -26,20 +26,21 @@ from scipy.spatial import cKDTree
 from skfem import Basis, ElementTriP2, FacetBasis, Functional, LinearForm, MeshTri2, asm
 
 from clutchfem.core import InputError, ParameterError
-from clutchfem.durability import (
+from clutchfem.mesh import ClutchMesh
+from clutchfem.thermal import (
     DrumThermal,
     SlipHeatLoad,
     SlipScenario,
     ThermalEnvironment,
     ThermalMaterial,
+    drum_patch_response,
     heat_partition,
     heat_transient,
     render_png,
     slip_heat_load,
+    wall_step_response,
     write_vtu,
 )
-from clutchfem.durability.heat import drum_patch_response, wall_step_response
-from clutchfem.mesh import ClutchMesh
 from support.shapes import load_annulus, load_cantilever
 
 STEEL = ThermalMaterial()

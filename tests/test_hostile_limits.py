@@ -8,8 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from clutchfem.durability import slip_heat_validity
-from clutchfem.durability.heat import EXPANSION_PER_K, MELTING_C, PHASE_CHANGE_C
+from clutchfem.thermal import EXPANSION_PER_K, MELTING_C, PHASE_CHANGE_C, slip_heat_validity
 
 
 def _doc(part_max, part_mean=None, flexure=None, seconds=10.0, pause=0.0, cycles=None, time_to_limit=None):
@@ -69,7 +68,7 @@ def test_a_clearance_closed_by_thermal_growth_is_flagged():
 
 def test_another_materials_phase_change_and_melting_are_its_own():
     """An aluminium part melts near 600 C: the steel defaults would have let 700 C pass."""
-    from clutchfem.durability import ThermalMaterial
+    from clutchfem.thermal import ThermalMaterial
 
     al = ThermalMaterial(limit_temperature=150.0, phase_change_temperature=580.0, melting_temperature=600.0)
     v = slip_heat_validity(_doc([25.0, 500.0, 700.0], seconds=2.0), limit_C=al.limit_temperature,

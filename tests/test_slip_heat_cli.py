@@ -252,7 +252,7 @@ def test_part_mean_temperature_is_the_heat_content():
     from skfem import Basis, ElementTriP2, Functional
 
     import clutchfem as cf
-    from clutchfem.durability import ThermalMaterial
+    from clutchfem.thermal import ThermalMaterial
 
     run = cf.slip_heat(cf.Design.from_concept("concept4", mesh=cf.MeshSettings(size=2.5e-3)),
                        scenario=cf.SlipScenario(seconds=2.0, cycles=2, pause=2.0, steps_per_event=20))

@@ -58,10 +58,10 @@ _GROUPS: dict[str, dict[str, str]] = {
         "FatigueParams": "clutchfem.durability",
     },
     "Durability": {
-        "SlipScenario": "clutchfem.durability",
-        "ThermalEnvironment": "clutchfem.durability",
-        "ThermalMaterial": "clutchfem.durability",
-        "DrumThermal": "clutchfem.durability",
+        "SlipScenario": "clutchfem.thermal",
+        "ThermalEnvironment": "clutchfem.thermal",
+        "ThermalMaterial": "clutchfem.thermal",
+        "DrumThermal": "clutchfem.thermal",
         "slip_heat": "clutchfem.analysis",
         "SlipHeatRun": "clutchfem.analysis",
         "DriveLine": "clutchfem.durability",
@@ -260,14 +260,10 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
     )
     from .durability import (
         DriveLine,
-        DrumThermal,
         Engagement,
         FatigueLoads,
         FatigueParams,
-        SlipScenario,
         StartHeating,
-        ThermalEnvironment,
-        ThermalMaterial,
         WearParams,
         WearRun,
         engagement_transient,
@@ -314,6 +310,12 @@ if TYPE_CHECKING:  # the same names for type checkers and IDEs (a test holds the
         optimize,
         optimize_for_life,
         wear_allowance,
+    )
+    from .thermal import (
+        DrumThermal,
+        SlipScenario,
+        ThermalEnvironment,
+        ThermalMaterial,
     )
     from .tolerances import (
         Allocation,

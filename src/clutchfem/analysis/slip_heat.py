@@ -4,12 +4,12 @@ mechanical answer to the temperatures.
 The engine settles at the slip speed, where the clutch's FE friction torque meets the
 engine curve (:func:`~clutchfem.analysis.slip_step`, the step ``analyze`` uses); the FE
 contact forces at that speed (full-slip Coulomb friction, ``design.case().solve``) give the
-friction heat node by node; :func:`clutchfem.durability.heat_transient` conducts the part's
+friction heat node by node; :func:`clutchfem.thermal.heat_transient` conducts the part's
 share through the plate.  Designs that never slip or never touch the drum get an answer
 saying so, and what happens instead.  Where the answer leaves the range its model holds
 (tempering, phase change, melting, the clearance closed by thermal growth) it carries
 ``validity`` flags, and it is cut at a phase change or melting
-(:func:`clutchfem.durability.heat.slip_heat_validity`).
+(:func:`clutchfem.thermal.slip_heat_validity`).
 """
 
 from __future__ import annotations
@@ -18,7 +18,8 @@ from dataclasses import dataclass
 
 from ..clutch import EngineCurve
 from ..core import rpm_to_rad_s
-from ..durability import (
+from ..loadcase import Design, design_inputs, design_label
+from ..thermal import (
     DrumThermal,
     SlipHeatLoad,
     SlipHeatResult,
@@ -28,7 +29,6 @@ from ..durability import (
     heat_transient,
     slip_heat_validity,
 )
-from ..loadcase import Design, design_inputs, design_label
 from .torque import slip_step
 
 __all__ = ["SlipHeatRun", "slip_heat"]

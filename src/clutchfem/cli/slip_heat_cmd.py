@@ -164,7 +164,7 @@ def print_table(doc: dict) -> None:
             if doc["cycles"] > 1 and "end_of_slip_flexure_C" in c:
                 rows.append((f"event {c['cycle']}: flexure at end of slip / of pause",
                              f"{c['end_of_slip_flexure_C']:.0f} C / {c.get('end_of_pause_flexure_C', math.nan):.0f} C"))
-    for f in doc.get("validity") or []:  # where the model stops holding (durability.heat.validity)
+    for f in doc.get("validity") or []:  # where the model stops holding (thermal.validity)
         rows.append((f"MODEL LIMIT: {f['flag']} ({f['level_C']:.0f} C)", f"reached at {f['time_s']:.2f} s"))
     if doc.get("stopped_at_s") is not None:
         rows.append(("TRANSIENT STOPPED", f"at {doc['stopped_at_s']:.2f} s (answers above: up to there)"))

@@ -1,9 +1,9 @@
 """The shoe-face temperature rise of one start (:func:`start_heating`), through the slip-heat
-model's heat partition and step response (:mod:`clutchfem.durability.heat`).
+model's heat partition and step response (:mod:`clutchfem.thermal`).
 
 The friction power of the start P(t) = M_c (w_e - w_d) (:func:`~.engagement.engagement_transient`)
 is split between shoe and drum by Blok's equal patch temperatures
-(:func:`~clutchfem.durability.heat.heat_partition`: the part's share gamma, at the start's
+(:func:`~clutchfem.thermal.heat_partition`: the part's share gamma, at the start's
 mean sliding speed and its slip duration as the reference time, the shoe a half-space); the
 shoe's share enters the n contact patches of length L (the FE contact arc per shoe) over
 the axial thickness h as the mean patch flux
@@ -12,7 +12,7 @@ the axial thickness h as the mean patch flux
 
 and the mean patch temperature of the shoe face follows by Duhamel's superposition of the
 half-space's step response S(t) = 2 sqrt(t / pi) / e (e = sqrt(k rho c),
-:func:`~clutchfem.durability.heat.wall_step_response`):
+:func:`~clutchfem.thermal.wall_step_response`):
 
     dT(t) = sum_j (q_j - q_{j-1}) S(t - t_j)      (q piecewise constant on a uniform grid).
 
@@ -31,8 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core import ParameterError, clean
+from ..thermal import DrumThermal, ThermalMaterial, heat_partition, wall_step_response
 from .engagement import Engagement
-from .heat import DrumThermal, ThermalMaterial, heat_partition, wall_step_response
 
 __all__ = ["StartHeating", "start_heating"]
 

@@ -17,7 +17,9 @@ cache, user ``.msh``/STEP import, and the mesh topology the later stages share.
 * :mod:`.quality` -- element quality, and of a moved mesh against its reference;
 * :mod:`.highorder` -- the guard against nearly degenerate curved elements after meshing;
 * :mod:`.properties` -- area, first moments and mass properties of the mesh (per zone);
-* :mod:`.picture` -- a quick picture of a mesh with its named boundary groups.
+* :mod:`.picture` -- a quick picture of a mesh with its named boundary groups;
+* :mod:`.location` -- the name of a place in the part (zone, flexure end, boundary): the worst
+  fatigue point, the hottest slip-heat points.
 """
 
 from .cache import CacheEntry, cache_dir, cache_entries, cache_foreign_files, cache_limit, clear_cache, evict
@@ -27,6 +29,7 @@ from .convert import check_orientation, meshio_to_skfem, read_msh
 from .cyclic import cyclic_pairing
 from .generate import MAX_ELEMENTS, cache_key, estimate_elements, groups_msh_path, mesh_concept, source_hash
 from .highorder import GUARD_MIN_SJ, MAX_SAGITTA, GuardReport, guard_high_order, p2_scaled_jacobian
+from .location import Location, describe_node, name_location, zone_of_node
 from .morph import (
                        CACHE_SIZE,
                        MorphReference,
@@ -55,7 +58,7 @@ from .topology import (
 from .user import load_user_geometry
 from .user_checks import AXIS_TOLERANCE, PLAUSIBLE_RADIUS, bore_centre, step_length_unit
 
-__all__ = ["draw_mesh", "GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
+__all__ = ["Location", "describe_node", "name_location", "zone_of_node", "draw_mesh", "GUARD_MIN_SJ", "MAX_SAGITTA", "GuardReport", "guard_high_order", "p2_scaled_jacobian", "CACHE_SIZE", "MAX_DISTORTION", "MIN_SCALED_JACOBIAN", "MorphQuality", "MorphReference", "MorphRefused",
            "assess", "distortion", "morph_or_mesh", "morph_reference", "morph_to", "quality_of", "reference_key",
            "scaled_jacobian", "AXIS_TOLERANCE", "MAX_ELEMENTS", "PLAUSIBLE_RADIUS", "CacheEntry", "ClutchMesh", "Loop", "Segment",
            "bore_centre", "cache_entries", "cache_foreign_files", "chain_loops", "cache_limit", "clear_cache", "evict", "fit_spline", "import_planar",

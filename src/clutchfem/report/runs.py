@@ -18,9 +18,9 @@ import pandas as pd
 from ..analysis import Analysis, Requirements, SlipHeatRun, analyze
 from ..clutch import EngineCurve
 from ..core import ClutchfemError, InputError, as_path, write
-from ..durability import render_png, write_series, write_vtu
 from ..loadcase import Design, design_inputs
 from ..targets import Compensation, OptimizationResult
+from ..thermal import render_png, write_series, write_vtu
 from ..tolerances import ToleranceResult
 from .design import write_analysis
 from .html import folder_page, write_page
@@ -243,7 +243,7 @@ def slip_heat_files(run, out) -> list[Path]:
     if result is not None:
         title = (f"{doc['design']}: {result.slip_power_W:.0f} W slip at {result.slip_rpm:.0f} rpm, "
                  f"{result.partition.fraction_part:.0%} into the part; {result.seconds:g} s x {doc['cycles']}")
-        if doc.get("validity"):  # where the model stops holding (durability.heat.validity)
+        if doc.get("validity"):  # where the model stops holding (thermal.validity)
             title += "\nMODEL LIMITS: " + ", ".join(f"{f['flag']} at {f['time_s']:.1f} s" for f in doc["validity"])
             if doc.get("stopped_at_s") is not None:
                 title += f"; answers cut at {doc['stopped_at_s']:.1f} s (curves beyond: not valid)"

@@ -10,7 +10,7 @@ Miner's sum over the cycle types reaches 1, at the worst point, named.  By job:
   S-N curve with its knee, allowed amplitude, the one-cycle-type load factor;
 * :mod:`.check` -- :class:`LoadCycle`, Miner's damage, the load factor per point,
   :func:`fatigue_check` and :class:`FatigueResult`;
-* the worst point's name comes from :mod:`clutchfem.durability.location`
+* the worst point's name comes from :mod:`clutchfem.mesh.location`
   (:class:`~clutchfem.durability.Location`, :func:`~clutchfem.durability.name_location`).
 
 The names load on first use: a fatigue check of given stresses needs neither the mesh nor the

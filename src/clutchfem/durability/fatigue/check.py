@@ -41,8 +41,7 @@ from .strength import ASSUMED, FatigueParams
 from .stresses import amplitude_mean, equivalent_stresses, stress_array
 
 if TYPE_CHECKING:  # (the mesh and the FE model: a fatigue check of given stresses needs neither)
-    from ...mesh import ClutchMesh
-    from ..location import Location
+    from ...mesh import ClutchMesh, Location
 
 __all__ = ["FatigueResult", "LoadCycle", "candidate_points", "fatigue_check"]
 
@@ -252,7 +251,7 @@ def fatigue_check(cycles: Sequence[LoadCycle], params: FatigueParams | None = No
             if element.shape != (npts,):
                 raise InputError(f"fatigue_check: element must have shape ({npts},) (got {element.shape})")
             el = int(element[worst])
-        from ..location import name_location  # (names a point on the mesh)
+        from ...mesh import name_location  # (names a point on the mesh)
 
         loc = name_location(cm, xy[:, worst], element=el)
     return FatigueResult(safety_factor=float(X[worst]), worst_index=worst, governing_cycle=names[gov],

@@ -37,9 +37,8 @@ from typing import Literal
 import numpy as np
 from skfem import Basis, ElementTriP2, FacetBasis, LinearForm, asm
 
-from ...core import InputError, ParameterError
-from ...mesh import ClutchMesh, p2_basis
-from ..location import describe_node, zone_of_node
+from ..core import InputError, ParameterError
+from ..mesh import ClutchMesh, describe_node, p2_basis, zone_of_node
 from .assembly import HeatModel, build_heat_model
 from .load import SlipHeatLoad
 from .params import (

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ...core import InputError, ParameterError
-from ...mesh import ClutchMesh, p2_basis
+from ..core import InputError, ParameterError
+from ..mesh import ClutchMesh, p2_basis
 from .params import finite_positive
 
 __all__ = ["SlipHeatLoad", "slip_heat_load"]

@@ -39,8 +39,8 @@ import scipy.sparse as sp
 from skfem import Basis, BilinearForm, ElementTriP2, FacetBasis, LinearForm, asm
 from skfem.helpers import dot, grad
 
-from ...core import InputError, MeshError, ParameterError
-from ...mesh import ClutchMesh, cyclic_pairing
+from ..core import InputError, MeshError, ParameterError
+from ..mesh import ClutchMesh, cyclic_pairing
 from .params import ThermalEnvironment, ThermalMaterial, finite_positive
 
 __all__ = ["HeatModel", "build_heat_model", "cyclic_map", "heat_basis"]

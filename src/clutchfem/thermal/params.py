@@ -36,7 +36,7 @@ from typing import ClassVar, Literal
 import numpy as np
 from pydantic import Field
 
-from ...core import ParameterError, ParamSet, choice, param
+from ..core import ParameterError, ParamSet, choice, param
 
 __all__ = ["ASSUMED", "HOT_YIELD_TABLE", "MAX_TIME_STEPS", "DrumThermal", "SlipScenario", "ThermalEnvironment",
            "ThermalMaterial", "finite_positive", "hot_yield_ratio"]
@@ -122,7 +122,7 @@ class ThermalMaterial(_Conducting):
     yield_strength: float = param(1250e6, "Pa", 1e5, 1e11, "room-temperature yield strength Rp0.2 (thesis)", "R_p0.2")
     phase_change_temperature: float = param(727.0, "C", 100.0, 2000.0,
                                             "phase change (steel: A1, austenite starts; ASSUMED): the slip-heat "
-                                            "transient is stopped there (durability.heat.validity)", "T_A1")
+                                            "transient is stopped there (thermal.validity)", "T_A1")
     melting_temperature: float = param(1420.0, "C", 100.0, 3500.0,
                                        "melting (solidus; low-alloy steel ~1420 C, ASSUMED)", "T_m")
     hot_yield_basis: Literal["proportional", "effective"] = choice(

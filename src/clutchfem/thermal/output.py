@@ -19,9 +19,9 @@ from pathlib import Path
 import meshio
 import numpy as np
 
-from ...core import InputError, figure, save_figure
-from ...fe import RingMesh, pvd_text, zone_ids
-from ...mesh import ClutchMesh, p2_cells
+from ..core import InputError, figure, save_figure
+from ..fe import RingMesh, pvd_text, zone_ids
+from ..mesh import ClutchMesh, p2_cells
 from .result import SlipHeatResult
 
 __all__ = ["render_png", "write_series", "write_vtu"]

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...fe import factorize, one_blas_thread
+from ..fe import factorize, one_blas_thread
 from .assembly import HeatModel
 
 __all__ = ["Probe", "Run", "Segment", "integrate", "steady_state"]

@@ -1,4 +1,5 @@
-"""Slip heat: transient heat conduction in a one-piece clutch while it slips in a held drum.
+"""Slip heat (a pipeline stage below durability): transient heat conduction in a one-piece
+clutch while it slips in a held drum.
 
 The shoes rub the held drum at v = omega R_d; the friction power mu v lam_i of every contact
 node is split between the shoe and the drum (Blok's equal patch temperatures); the shoe's

@@ -22,7 +22,8 @@ from scipy.spatial import cKDTree
 from skfem import Basis
 
 from ..core import InputError, ParameterError
-from ..mesh import ClutchMesh, element_components, element_set_area, element_set_perimeter, facet_nodes, p2_nodes
+from .clutch_mesh import ClutchMesh
+from .topology import element_components, element_set_area, element_set_perimeter, facet_nodes, p2_nodes
 
 __all__ = ["Location", "describe_node", "name_location", "zone_of_node"]
 

@@ -37,7 +37,7 @@ from typing import Literal
 import numpy as np
 from scipy.special import erfc
 
-from ...core import ParameterError
+from ..core import ParameterError
 from .params import DrumThermal, ThermalMaterial, finite_positive
 
 __all__ = ["PERIODIC_PASSES", "HeatPartition", "drum_patch_response", "heat_partition", "wall_step_response"]
