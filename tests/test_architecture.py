@@ -3,6 +3,8 @@
 * layers only point down: the import-linter contract in pyproject.toml (``lint-imports``);
 * one job per module, stated in the first line of its docstring;
 * no source file over ~500 lines, except the ones listed in :data:`LONG_FILES` with a reason;
+* no stage package over ~3,000 lines (:data:`MAX_PACKAGE_LINES` lines of code: blank and
+  comment-only lines not counted; docstrings are);
 * no import inside a function, except of a measured heavy third-party dependency
   (:data:`HEAVY`) or, in the command-line and app faces, of the API itself (so that
   ``clutchfem --help`` does not load the FE stack);
@@ -22,6 +24,8 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "clutchfem"
 MAX_LINES = 500
+#: lines of code (not blank, not a comment alone) a stage package may hold
+MAX_PACKAGE_LINES = 3000
 #: files allowed above MAX_LINES, with the reason
 LONG_FILES: dict[str, str] = {}
 #: third-party packages that may be imported inside a function: each costs >= 0.3 s to import
@@ -73,6 +77,19 @@ def test_no_file_over_the_line_limit():
     long = {rel: n for rel, f in _modules() if (n := len(f.read_text().splitlines())) > MAX_LINES
             and rel not in LONG_FILES}
     assert not long, f"files over {MAX_LINES} lines (split them, or give the reason in LONG_FILES): {long}"
+
+
+def test_no_package_over_the_line_limit():
+    """A stage package that outgrows ~3,000 lines of code is split by job (``thermal`` left
+    ``durability`` this way)."""
+    sizes: dict[str, int] = {}
+    for rel, f in _modules():
+        if "/" in rel:
+            code = [ln for ln in f.read_text().splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+            sizes[rel.split("/")[0]] = sizes.get(rel.split("/")[0], 0) + len(code)
+    assert len(sizes) >= 17  # every stage package was counted
+    big = {k: n for k, n in sizes.items() if n > MAX_PACKAGE_LINES}
+    assert not big, f"packages over {MAX_PACKAGE_LINES} lines of code (split them by job): {big}"
 
 
 def _function_imports(tree):
