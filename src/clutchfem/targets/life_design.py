@@ -79,13 +79,13 @@ class WearAllowance:
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from types import SimpleNamespace
+    A life over which the engagement rose by up to 100 rpm and the slip speed by up to 200 rpm
+    (:func:`wear_allowance` gives it from a :class:`~clutchfem.Life`): the slip limit is
+    tightened by the drift and its 25 % reserve; a rising engagement leaves its lower limit.
+
     >>> import clutchfem as cf
-    >>> L = SimpleNamespace(starts=np.array([0., 1e5]), engagement_rpm=np.array([3600., 3700.]),
-    ...                     slip_rpm=np.array([7000., 7200.]),
-    ...                     torque_at_max_engine_torque_Nm=np.array([5.0, 4.8]), band={})
-    >>> a = cf.wear_allowance(L)
+    >>> a = cf.WearAllowance(starts=1e5, drift={"engagement_rpm_with_ripple": (0.0, 100.0),
+    ...                                         "slip_rpm": (0.0, 200.0)}, torque_drift_Nm=-0.2)
     >>> t = a.tighten(cf.Targets(3510, None, 8000, 1.5))
     >>> t.engage_rpm_lo, t.slip_rpm_max
     (3510.0, 7750.0)
