@@ -52,11 +52,8 @@ def test_parse_tolerance():
 def test_small_monte_carlo_run(tmp_path):
     """In this process (workers=0): the 21 designs' statistics are the point here, and a local
     cluster's start cost more CPU than the designs (the study engine's cluster path of a batch
-    under shared_cluster runs in test_targets_optimize's infeasible-targets test).  On the 3 mm
-    mesh (was 2.4 mm; the statistics' machinery is the point, not the mesh): measured on both,
-    R^2 0.999997 / 0.999995, SRC 0.776 / 0.776 and 0.321 / 0.321, sd 38.73 / 38.70 rpm, the
-    same statuses and shifts' signs; ~30 % less CPU (each part is meshed anew)."""
-    s = EvalSettings("concept4", mesh_size=3e-3)
+    under shared_cluster runs in test_targets_optimize's infeasible-targets test)."""
+    s = EvalSettings("concept4", mesh_size=2.4e-3)
     res = tolerance(s, {"flexure_thickness": 0.05e-3, "hub_radius": 0.05e-3}, n=12, seed=2, shifts=True, workers=0)
     assert res.statuses.get("ok", 0) >= 10
     o = res.out_of_spec["any"]
