@@ -229,6 +229,20 @@ class _Torques:
             return self._outside(n)
         return max(self.clutch(n), 0.0)
 
+    def clutch_torques(self, n: np.ndarray) -> np.ndarray:
+        """:meth:`clutch_torque` of every speed of ``n`` at once: the same values bit for bit
+        (the same Horner sums on the same pieces; a speed off the table refused as the first
+        such speed of ``n`` would be)."""
+        n = np.asarray(n, dtype=float)
+        lo, hi = self.table
+        off = (n > hi) | ((n < lo) & (self.clutch(lo) != 0.0))
+        if off.any():
+            self._outside(float(n[int(np.argmax(off))]))
+        m = self.clutch.many(n)
+        out = np.where(0.0 > m, 0.0, m)  # max(m, 0.0) as Python's max takes it
+        out[n < lo] = 0.0
+        return out
+
     def _outside(self, n: float) -> float:
         raise InputError(f"clutch torque table covers {self.table[0]:.0f}..{self.table[1]:.0f} rpm but the engine "
                          f"reached {n:.0f} rpm: give the table from a speed where the clutch transmits nothing "
@@ -251,6 +265,15 @@ class _Cubic:
         a, b, c, d = self.c[k]
         u = v - self.x[k]
         return ((a * u + b) * u + c) * u + d
+
+    def many(self, v: np.ndarray) -> np.ndarray:
+        """The interpolant at every value of ``v``: :meth:`__call__`'s pieces and Horner sums
+        elementwise (float64 products and sums, no fused multiply-add: the same bits)."""
+        x = np.asarray(self.x)
+        k = np.clip(np.searchsorted(x, v, side="right") - 1, 0, len(x) - 2)
+        c = np.asarray(self.c)[k]
+        u = v - x[k]
+        return ((c[:, 0] * u + c[:, 1]) * u + c[:, 2]) * u + c[:, 3]
 
 
 def _positive(name: str, v, what: str) -> float:
@@ -415,7 +438,7 @@ def _answer(t, Y, y, locked, tq, n0, Je, Jd, ML, R, held, by_rpm, nfev, rtol) ->
     """The answers of a run (module docstring)."""
     we, wd = Y[0], np.maximum(Y[1], 0.0)
     n_e = rad_s_to_rpm(we)
-    Mc = np.array([tq.clutch_torque(x) for x in n_e])
+    Mc = tq.clutch_torques(n_e)
     P = Mc * np.maximum(we - wd, 0.0)
     E_in, E_slip, E_load = (float(v) for v in y[2:5])
     w0 = rpm_to_rad_s(n0)
