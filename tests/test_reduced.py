@@ -341,7 +341,11 @@ def test_outside_every_region_live_falls_back_to_the_fe_and_says_so(built):
 
 
 @pytest.mark.slow
-def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built, fe_215, tmp_path):
+def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built, fe_215, tmp_path, monkeypatch):
+    import copy
+
+    from clutchfem.analysis import Requirements
+    from clutchfem.app import session as app_session
     from clutchfem.app.figures import torque_chart
     from clutchfem.app.session import DesignSession
 
@@ -359,10 +363,22 @@ def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built
                        else ("-", "not given live (the FE gives it)"))
     chart = torque_chart(out.analysis)  # the engine curve and the live torque point (no FE curve)
     assert [x["name"].split()[0] for x in chart["series"]] == ["engine", "clutch"]
-    shown, off = s.verify(out)
-    # the best path with its error step (what the region was built from): the design analysed once
-    # for this module (fe_215), the very design the app's check solved
+    # the app's FE check: the best path with its error step (what the region was built from) of
+    # the 2.15 mm design, with the session's engine and requirements -- the very analysis of the
+    # module's fe_215 (the same design, the same defaults): that one, not a second solve of it
     want = fe_design()
+    real, checked = app_session.analyze, []
+
+    def analyze(design, **kw):
+        same = ((design.params, design.op, design._mesh_settings) == (want.params, want.op, MESH)
+                and kw == {"engine": cf.EngineCurve.default(), "requirements": Requirements()})
+        checked.append(same)
+        return copy.deepcopy(fe_215) if same else real(design, **kw)
+
+    monkeypatch.setattr(app_session, "analyze", analyze)
+    shown, off = s.verify(out)
+    monkeypatch.setattr(app_session, "analyze", real)
+    assert checked == [True]  # one FE analysis, of that design with the defaults
     assert (out.fe_design.params, out.fe_design.op, out.fe_design._mesh_settings) == (want.params, want.op, MESH)
     fe = fe_215
     band = out.analysis.errors["engagement_rpm"]["total"]
