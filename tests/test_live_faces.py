@@ -31,17 +31,28 @@ def _row(t: float) -> dict:
             "fatigue_safety_factor": 2.0 * x, "part_mass_g": 20.0 + 2.0 * x, "shoe_mass_g": 5.0}
 
 
+@pytest.fixture(scope="module")
+def fitted(tmp_path_factory):
+    """(a private cache, concept 1's reduced model over its flexure thickness fitted to 7
+    hand-made rows, measured on 4 others and saved there): fitted once for the module."""
+    cache = tmp_path_factory.mktemp("cache")
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("CLUTCHFEM_CACHE", str(cache))
+        r = Region.around(cf.Design.from_concept("concept1", fidelity="live"), free=["flexure_thickness"])
+        assert r.bounds("flexure_thickness") == (pytest.approx(LO), pytest.approx(HI))
+        m = ReducedModel.fit(r, [_row(t) for t in np.linspace(LO, HI, 7)])
+        m.measure([_row(t) for t in np.linspace(LO, HI, 9)[1:-1:2]])
+        m.info.update(n_train=7, n_held_out=4)
+        save(m)
+    return cache, m
+
+
 @pytest.fixture
-def model(tmp_path, monkeypatch):
-    """Concept 1's reduced model over its flexure thickness, fitted to 7 hand-made rows,
-    measured on 4 others, saved to a private cache."""
-    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path / "cache"))
-    r = Region.around(cf.Design.from_concept("concept1", fidelity="live"), free=["flexure_thickness"])
-    assert r.bounds("flexure_thickness") == (pytest.approx(LO), pytest.approx(HI))
-    m = ReducedModel.fit(r, [_row(t) for t in np.linspace(LO, HI, 7)])
-    m.measure([_row(t) for t in np.linspace(LO, HI, 9)[1:-1:2]])
-    m.info.update(n_train=7, n_held_out=4)
-    save(m)
+def model(fitted, monkeypatch):
+    """The module's hand-made reduced model, its private cache the test's (where the faces
+    find it as a built one)."""
+    cache, m = fitted
+    monkeypatch.setenv("CLUTCHFEM_CACHE", str(cache))
     return m
 
 
