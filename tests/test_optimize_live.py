@@ -43,11 +43,18 @@ def edges(model, texts):
             "safety_factor": ys / (v["max_von_mises_Pa"][0] + b["max_von_mises_Pa"][0]), "mass_kg": v["mass_kg"][0]}
 
 
-@pytest.mark.slow
-def test_the_live_optimum_meets_every_target_at_the_band_edge_and_binds(built):
+@pytest.fixture(scope="module")
+def deterministic(built):
+    """(the region's model, the targets inside it, the deterministic live optimum): one search,
+    which the robust search's test compares its nominal with."""
     model = find(live())
     t = targets_inside(model)
-    r = live_optimize(EvalSettings.from_design(live()), t, check=False)
+    return model, t, live_optimize(EvalSettings.from_design(live()), t, check=False)
+
+
+@pytest.mark.slow
+def test_the_live_optimum_meets_every_target_at_the_band_edge_and_binds(built, deterministic):
+    model, t, r = deterministic
     assert r.feasible and r.answered_by == "reduced model" and r.live["region_key"] == built["region"]["key"]
     e = edges(model, r.best["params"])
     assert e["engagement_rpm_with_ripple"] >= t.engage_rpm_lo and e["slip_rpm"] <= 8000 and e["safety_factor"] >= 1
@@ -75,15 +82,13 @@ def test_outside_the_cached_region_the_refusal_names_its_bounds(built):
 
 
 @pytest.mark.slow
-def test_a_robust_live_search_meets_the_yield_on_its_monte_carlo(built):
-    model = find(live())
-    t = targets_inside(model)
+def test_a_robust_live_search_meets_the_yield_on_its_monte_carlo(built, deterministic):
+    model, t, det = deterministic
     r = live_optimize(EvalSettings.from_design(live()), t, tolerances={"flexure_thickness": 3e-5}, yield_target=0.95,
                       parts=1000, check=False)
     y = r.live["yield"]
     assert r.feasible and y["yield_search_sample"] >= 0.95 and y["ci95"][1] >= 0.95
     # the nominal sits inside the region by the tolerance box (+-4 sigma) and above the deterministic optimum
-    det = live_optimize(EvalSettings.from_design(live()), t, check=False)
     tk = lambda res: float(res.best["params"]["flexure_thickness"][:-2])  # noqa: E731
     assert tk(r) > tk(det)
     lo, hi = r.live["search_box"]["flexure_thickness"]

@@ -238,6 +238,45 @@ def test_the_adaptive_designs_go_where_the_fit_knows_least_and_a_resumed_build_s
     assert len(_adaptive(other, tmp_path, 4, seed=0)) == 4  # another build's file is not read
 
 
+def test_a_build_solves_its_adaptive_designs_after_the_first_fit_and_fits_them_all(tmp_path, monkeypatch):
+    """The build's order, its designs' FE replaced by hand-made rows (no FE; the doctest of
+    :func:`clutchfem.reduce` builds a region of the FE itself): the space-filling and held-out
+    designs first, then the designs the first fit knows least (written before they are solved),
+    the error measured on the held-out ones, the final model fitted to every design, cached."""
+    from clutchfem.reduced import build
+    from clutchfem.reduced.build import _adaptive
+
+    monkeypatch.setenv("CLUTCHFEM_CACHE", str(tmp_path / "cache"))  # the fitted model is not the FE's: kept apart
+    d = live()
+    r = Region.around(d, free=["flexure_thickness"])
+    t0 = r.bounds("flexure_thickness")[0]
+    row = lambda p: {"status": "ok", "point_json": json.dumps(p),  # noqa: E731
+                     "engagement_rpm": 3e3 * (p["flexure_thickness"] / t0) ** 1.5}
+    calls = []
+
+    class Rows:  # the build's runner of designs, with rows of a known answer
+        def __init__(self, region, folder, *a):
+            self.compute_s, self.workers = 0.0, 0
+
+        def __call__(self, points, desc):
+            calls.append((desc, points))
+            return [row(p) for p in points]
+
+    monkeypatch.setattr(build, "_Runner", Rows)
+    m = cf.reduce(d, free=["flexure_thickness"], n=9, held_out=2, adaptive=1 / 3, workers=0, progress=False)
+    assert [(desc, len(p)) for desc, p in calls] == [("reduce", 8), ("reduce, adaptive", 3)]
+    fill, held = calls[0][1][:6], calls[0][1][6:]
+    assert fill == r.sample(6, seed=0) and held == r.sample(2, seed=1)
+    first = ReducedModel.fit(r, [row(p) for p in fill])
+    (tmp_path / "again").mkdir()
+    assert calls[1][1] == _adaptive(first, tmp_path / "again", 3, seed=0)  # where the first fit knows least
+    assert m.info["n_adaptive"] == 3 and m.info["n_train"] == 9 and m.info["fe_designs"] == len(m.rows) == 11
+    assert [json.loads(x["point_json"]) for x in m.rows] == fill + calls[1][1] + held  # the final fit: every design
+    assert m.accuracy["engagement_rpm"]["n"] == 2 and m.accuracy["engagement_rpm"]["max_rel"] < 1e-3
+    assert cf.reduce(d, free=["flexure_thickness"], n=9, held_out=2, adaptive=1 / 3, workers=0,
+                     progress=False).info == m.info and len(calls) == 2  # cached: loaded, no design solved
+
+
 # -- the build and the live answers ---------------------------------------------------------
 def fe_design():
     """The live design of flexure thickness 2.15 mm's best-path twin (what the region is built
@@ -341,7 +380,11 @@ def test_outside_every_region_live_falls_back_to_the_fe_and_says_so(built):
 
 
 @pytest.mark.slow
-def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built, fe_215, tmp_path):
+def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built, fe_215, tmp_path, monkeypatch):
+    import copy
+
+    from clutchfem.analysis import Requirements
+    from clutchfem.app import session as app_session
     from clutchfem.app.figures import torque_chart
     from clutchfem.app.session import DesignSession
 
@@ -359,10 +402,22 @@ def test_the_app_answers_live_then_checks_with_the_fe_and_refuses_to_build(built
                        else ("-", "not given live (the FE gives it)"))
     chart = torque_chart(out.analysis)  # the engine curve and the live torque point (no FE curve)
     assert [x["name"].split()[0] for x in chart["series"]] == ["engine", "clutch"]
-    shown, off = s.verify(out)
-    # the best path with its error step (what the region was built from): the design analysed once
-    # for this module (fe_215), the very design the app's check solved
+    # the app's FE check: the best path with its error step (what the region was built from) of
+    # the 2.15 mm design, with the session's engine and requirements -- the very analysis of the
+    # module's fe_215 (the same design, the same defaults): that one, not a second solve of it
     want = fe_design()
+    real, checked = app_session.analyze, []
+
+    def analyze(design, **kw):
+        same = ((design.params, design.op, design._mesh_settings) == (want.params, want.op, MESH)
+                and kw == {"engine": cf.EngineCurve.default(), "requirements": Requirements()})
+        checked.append(same)
+        return copy.deepcopy(fe_215) if same else real(design, **kw)
+
+    monkeypatch.setattr(app_session, "analyze", analyze)
+    shown, off = s.verify(out)
+    monkeypatch.setattr(app_session, "analyze", real)
+    assert checked == [True]  # one FE analysis, of that design with the defaults
     assert (out.fe_design.params, out.fe_design.op, out.fe_design._mesh_settings) == (want.params, want.op, MESH)
     fe = fe_215
     band = out.analysis.errors["engagement_rpm"]["total"]
