@@ -310,10 +310,13 @@ def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:
     m = 0 if case.contact is None else case.contact.nodes.m
     lam = np.zeros((len(rpm), m))
     active = None
+    keep = getattr(case.response, "keep", None)  # a per-speed factorisation: the fields while it is at hand
     for k, w in enumerate(omegas):
         lam[k], act = case.solve(float(w), active)
         if act is not None:
             active = act
+        if keep is not None:
+            keep(float(w), lam[k])
     t2 = time.perf_counter()
     basis, coef, U = case.response.fields(omegas, lam)
     model = case.model
