@@ -95,7 +95,7 @@ def run_guidelines(gs, out: str | Path, *, params=None, engine=None, requirement
     Examples
     --------
     >>> import clutchfem as cf, tempfile
-    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="3mm"))
+    >>> d = cf.Design.from_concept("concept1", mesh=cf.MeshSettings(size="6mm"))   # coarse: a first look
     >>> g = cf.run_guidelines(d, tempfile.mkdtemp(), params=["flexure_thickness"], workers=0, progress=False,
     ...                       inputs=[])
     >>> e = next(r for r in g.table if r["answer"] == "engagement_rpm")

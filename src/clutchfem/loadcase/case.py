@@ -68,9 +68,23 @@ class LoadCase:
 
     @cached_property
     def engagement(self) -> tuple[float | None, int | None]:
-        """(engagement speed [rad/s], index of the first contact node), or (None, None)."""
+        """(engagement speed [rad/s], index of the first contact node), or (None, None).  Found
+        once per model, contact nodes, drum, strategy and hint: the load cases of a design that
+        differ in friction alone (mu x 0.7 / x 1.3, mu = 0, ...) engage at the same speed, which
+        a per-speed strategy's search pays with a factorisation per trial speed."""
         if self.contact is None:
             return None, None
+        if self.response.linear:
+            return self._engagement()
+        c = self.contact
+        cache = self.model.__dict__.setdefault("_engagement_cache", {})
+        key = (self.softening, id(c.nodes), id(c.drum), self.engagement_hint, self.response.omega_limit)
+        if key not in cache:  # (the nodes and the drum kept alive with their answer: ids are not reused)
+            cache[key] = (c.nodes, c.drum, self._engagement())
+        return cache[key][2]
+
+    def _engagement(self) -> tuple[float | None, int | None]:
+        """:attr:`engagement`'s search."""
         g0 = self.contact.nodes.gap0
         # a spinning elastic drum expands with w^2 too: it adds to the closing speed's gap
         out = self.contact.nodes.normal_displacement(self.model.u1) - self.contact.drum_gap(1.0)
@@ -310,10 +324,13 @@ def sweep(case: LoadCase, rpm, *, stresses: bool = True) -> SweepResult:
     m = 0 if case.contact is None else case.contact.nodes.m
     lam = np.zeros((len(rpm), m))
     active = None
+    keep = getattr(case.response, "keep", None)  # a per-speed factorisation: the fields while it is at hand
     for k, w in enumerate(omegas):
         lam[k], act = case.solve(float(w), active)
         if act is not None:
             active = act
+        if keep is not None:
+            keep(float(w), lam[k])
     t2 = time.perf_counter()
     basis, coef, U = case.response.fields(omegas, lam)
     model = case.model

@@ -118,6 +118,11 @@ class ModalResponse:
         return np.hstack(parts), coef[used], None
 
 
+#: displacements :meth:`ExactResponse.keep` holds for a sweep's fields at most (a sweep's
+#: speeds; more, e.g. left by a sweep stopped by a refusal, are dropped)
+KEPT_STATES = 512
+
+
 class ExactResponse:
     """K - w^2 M factorised per speed (the reference); fields kept explicitly per state.
     A speed at which K - w^2 M is no longer positive definite (a negative pivot of its
@@ -131,6 +136,7 @@ class ExactResponse:
         self._omega = None
         self._f = None
         self._cols: dict[int, np.ndarray] = {}
+        self._kept: dict[tuple, np.ndarray] = {}
         self.omega_limit = divergence_omega(model, contact)
 
     def coefficients(self, omega: float) -> np.ndarray:
@@ -193,10 +199,53 @@ class ExactResponse:
         A = np.nonzero(lam)[0] if lam.size else np.zeros(0, dtype=np.int64)
         return u + (self._column(omega, A) @ lam[A] if len(A) else 0.0)
 
+    def keep(self, omega: float, lam: np.ndarray) -> None:
+        """The displacement of the state ``lam`` just solved at ``omega``, computed while the
+        speed's factorisation is the current one, for :meth:`fields` (a sweep asks for every
+        speed's fields after its last solve: each engaged speed was factorised twice).  Computed
+        as :meth:`fields` computes it after a new factorisation (its contact columns afresh, all
+        at once: the same numbers); the solves' own state is left as it was.  Nothing without
+        the speed's factorisation at hand (then :meth:`fields` makes it, as before)."""
+        if omega == 0 or omega != self._omega:
+            return
+        if len(self._kept) >= KEPT_STATES:
+            self._kept.clear()
+        cols, self._cols = self._cols, {}
+        try:
+            self._kept[(float(omega), np.asarray(lam, dtype=float).tobytes())] = self.displacement(omega, lam)
+        finally:
+            self._cols = cols
+
+    def _fresh(self, omega: float, lam: np.ndarray) -> np.ndarray:
+        """The displacement as computed after a new factorisation at ``omega`` (contact columns
+        afresh), without one if the current factorisation is that speed's."""
+        if omega == self._omega:
+            self._cols = {}
+        return self.displacement(omega, lam)
+
     def fields(self, omegas: np.ndarray, lams: np.ndarray):
-        U = np.column_stack([self.displacement(w, lam) for w, lam in zip(omegas, lams)]) if len(omegas) \
-            else np.zeros((self.model.ndofs, 0))
-        return None, None, U
+        ws = [float(w) for w in omegas]
+        if not self._kept or len(set(ws)) < len(ws):
+            U = np.column_stack([self.displacement(w, lam) for w, lam in zip(omegas, lams)]) if len(omegas) \
+                else np.zeros((self.model.ndofs, 0))
+            return None, None, U
+        # the speeds a sweep kept (:meth:`keep`), all distinct: every speed as the loop above would
+        # compute it (the first speed on the factorisation the solves left, with their columns, if
+        # it is that speed's; every other one afresh), and the state it would leave (the last)
+        nz = [i for i, w in enumerate(ws) if w != 0]
+        cols = []
+        for i, (w, lam) in enumerate(zip(ws, lams)):
+            kept = self._kept.pop((w, np.asarray(lam, dtype=float).tobytes()), None)
+            if w == 0:
+                cols.append(self.displacement(w, lam))
+            elif i == nz[0] and w == self._omega:
+                cols.append(self.displacement(w, lam))
+            elif kept is not None and i != nz[-1]:
+                cols.append(kept)
+            else:
+                cols.append(self._fresh(w, lam))
+        self._kept.clear()
+        return None, None, np.column_stack(cols)
 
 
 def model_compliance(model, nodes):
