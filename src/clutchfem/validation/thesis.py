@@ -38,7 +38,8 @@ from ..clutch import (
     slip_rpm,
     torque_factor,
 )
-from ..core import ParameterError, figure, rad_s_to_rpm, rpm_to_rad_s
+from ..core import ParameterError, rad_s_to_rpm, rpm_to_rad_s
+from .paper_figures import finish, paper_figure
 from .records import ValidationRecord, printed_value
 
 MODULE = "thesis"
@@ -213,14 +214,6 @@ def records() -> list[ValidationRecord]:
     return out
 
 
-#: resolution of the figures [dots per inch]
-DPI = 120
-
-
-def _figure(size=(7.0, 4.5)):
-    return figure(figsize=size)  # Agg canvas, no global pyplot state
-
-
 def figures(out_dir: Path) -> list[Path]:
     """Torque-vs-rpm chart of the appendix script (thesis fig. 24 style) and plus/minus vs mu
     (thesis fig. 5 style) as PNGs in ``out_dir``."""
@@ -231,7 +224,7 @@ def figures(out_dir: Path) -> list[Path]:
     eng = EngineCurve.default()
     res = matlab_appendix(shoe, eng)
 
-    fig, ax = _figure()
+    fig, ax = paper_figure()
     ax.plot(res.rpm, eng.torque_at(res.rpm), "b-", label="engine (ASSUMED shape)")
     ax.plot(res.rpm, np.maximum(res.torque, 0.0), "k-", label="illustrative minus-shoe clutch, eq 7-8")
     plus = CentrifugalShoe(shoe.geometry, shoe.m, shoe.R_Tp, shoe.F_f, shoe.mu, shoe.n, "plus")
@@ -246,22 +239,18 @@ def figures(out_dir: Path) -> list[Path]:
     eff = effective_engagement_rpm(rad_s_to_rpm(shoe.engagement_speed), RippleModel(), 3.0)
     ax.axvline(eff, color="m", ls=":", lw=0.8)
     ax.annotate("3-sigma ripple engagement", (eff - 250.0, 5.0), fontsize=7, color="m", rotation=90)
-    ax.set(xlabel="crank speed [rpm]", ylabel="torque [N m]", ylim=(0, 12),
+    finish(fig, ax, out_dir / "thesis_appendix_torque_rpm.png", paths, legend=dict(fontsize=8),
+           xlabel="crank speed [rpm]", ylabel="torque [N m]", ylim=(0, 12),
            title="Thesis appendix 1 script, ILLUSTRATIVE shoe data")
-    ax.legend(fontsize=8)
-    paths.append(out_dir / "thesis_appendix_torque_rpm.png")
-    fig.savefig(paths[-1], dpi=DPI)
 
-    fig, ax = _figure()
+    fig, ax = paper_figure()
     mus = np.linspace(0.0, 0.6, 301)
     F = 300.0
     for kind, style in (("minus", "b-"), ("plus", "r-")):
         tq = np.array([torque_factor(shoe.geometry, mu, kind).k * F for mu in mus])
         ax.plot(mus, np.where(np.isfinite(tq), tq, np.nan), style, label=f"{kind} shoe")
     ax.axvline(0.165, color="0.5", ls=":", lw=0.8)
-    ax.set(xlabel="friction coefficient mu", ylabel="torque per shoe [N m] (F = 300 N)", ylim=(0, 10),
+    finish(fig, ax, out_dir / "thesis_plus_minus_mu.png", paths, legend=dict(fontsize=8),
+           xlabel="friction coefficient mu", ylabel="torque per shoe [N m] (F = 300 N)", ylim=(0, 10),
            title="Plus vs minus shoe sensitivity to mu (thesis fig. 5 style)")
-    ax.legend(fontsize=8)
-    paths.append(out_dir / "thesis_plus_minus_mu.png")
-    fig.savefig(paths[-1], dpi=DPI)
     return paths

@@ -47,7 +47,8 @@ from pathlib import Path
 import numpy as np
 
 from ..clutch import BaselineClutch, EngineCurve, RippleModel, cycle_time, speed
-from ..core import figure, rpm_to_rad_s
+from ..core import rpm_to_rad_s
+from .paper_figures import finish, paper_figure
 from .records import ValidationRecord, printed_value
 from .wiesik_model import (
     DriveData,
@@ -232,14 +233,6 @@ def records() -> list[ValidationRecord]:
 # --------------------------------------------------------------------------------------
 
 
-#: resolution of the figures [dots per inch]
-DPI = 120
-
-
-def _figure(size=(7.0, 4.5)):
-    return figure(figsize=size)  # Agg canvas, no global pyplot state
-
-
 def figures(out_dir: Path) -> list[Path]:
     """Write the paper's figures 2, 3, 5 (and a bar-length chart) as PNGs into ``out_dir``."""
     out_dir = Path(out_dir)
@@ -250,7 +243,7 @@ def figures(out_dir: Path) -> list[Path]:
     paths: list[Path] = []
 
     # Fig. 2: engine torque (line 1) and clutch characteristic new (2) / worn (3).
-    fig, ax = _figure()
+    fig, ax = paper_figure()
     rpm = np.linspace(*eng.rpm_range, 400)
     wgrid = rpm_to_rad_s(rpm)
     ax.plot(wgrid, eng.torque_at(rpm), "k-", label="1: engine (ASSUMED shape, 3.40 N m @ 838 rad/s)")
@@ -259,28 +252,24 @@ def figures(out_dir: Path) -> list[Path]:
     for x in (838.0, 950.0):
         ax.axvline(x, color="0.6", lw=0.8, ls=":")
     ax.plot([950, 950], [new.torque(950.0), worn.torque(950.0)], "ko", ms=4)
-    ax.set(xlabel="angular speed w [rad/s]", ylabel="torque [N m]", ylim=(0, 20),
+    finish(fig, ax, out_dir / "wiesik_fig2_characteristic.png", paths, legend=dict(fontsize=8),
+           xlabel="angular speed w [rad/s]", ylabel="torque [N m]", ylim=(0, 20),
            title="Seed 000 fig. 2: engine torque and clutch characteristic")
-    ax.legend(fontsize=8)
-    paths.append(out_dir / "wiesik_fig2_characteristic.png")
-    fig.savefig(paths[-1], dpi=DPI)
 
     # Fig. 3: delta vs angular speed (mean and mean + 3 s), ASSUMED proportional growth.
-    fig, ax = _figure()
+    fig, ax = paper_figure()
     rip = RippleModel()
     r = np.linspace(2500.0, 14000.0, 200)
     ax.plot(rpm_to_rad_s(r), rip.delta(r), "b-", label="1: delta_sr (mean)")
     ax.plot(rpm_to_rad_s(r), rip.delta(r, 3.0), "r--", label="2: delta_sr + 3 s (limit)")
     ax.errorbar([rpm_to_rad_s(8000.0)], [0.032], yerr=[[0.0], [3 * 0.013]], fmt="ko", capsize=3,
                 label="measured at 8000 rpm (Gendek)")
-    ax.set(xlabel="angular speed w_sr [rad/s]", ylabel="delta [-]",
+    finish(fig, ax, out_dir / "wiesik_fig3_delta.png", paths, legend=dict(fontsize=8),
+           xlabel="angular speed w_sr [rad/s]", ylabel="delta [-]",
            title="Seed 000 fig. 3: speed irregularity (growth law ASSUMED: proportional)")
-    ax.legend(fontsize=8)
-    paths.append(out_dir / "wiesik_fig3_delta.png")
-    fig.savefig(paths[-1], dpi=DPI)
 
     # Fig. 5: loads over one engine cycle at 950 rad/s.
-    fig, ax = _figure((7.5, 5.0))
+    fig, ax = paper_figure((7.5, 5.0))
     w, J, Mo = d15.omega_sr, d15.J, d15.M_o
     t = np.linspace(0.0, float(cycle_time(w)), 400)
     dm, dl = d15.delta_mean, d15.delta_mean + 3 * d15.delta_std
@@ -293,14 +282,12 @@ def figures(out_dir: Path) -> list[Path]:
     ax.plot(tm, active_load(t, Mo + 3 * d15.s_p, w), "m-", label="M_p(2), M_o + 3 s_p")
     ax.plot(tm, total_load(t, J, dm, w, Mo), "k-", lw=1.5, label="M = M_b(1) + M_p(1)")
     ax.axhline(0.0, color="0.5", lw=0.5)
-    ax.set(xlabel="time in cycle t [ms] (t_c = %.2f ms)" % (1e3 * t[-1]), ylabel="torque [N m]",
+    finish(fig, ax, out_dir / "wiesik_fig5_cycle_load.png", paths, legend=dict(fontsize=7, ncol=2),
+           xlabel="time in cycle t [ms] (t_c = %.2f ms)" % (1e3 * t[-1]), ylabel="torque [N m]",
            title="Seed 000 fig. 5: clutch loads over one cycle, w_sr = 950 rad/s, 15\" bar")
-    ax.legend(fontsize=7, ncol=2)
-    paths.append(out_dir / "wiesik_fig5_cycle_load.png")
-    fig.savefig(paths[-1], dpi=DPI)
 
     # Extra: bar length effect (probability and torque-deficit loss).
-    fig, ax = _figure()
+    fig, ax = paper_figure()
     bars = np.arange(13.0, 20.5, 0.5)
     for clutch, style in ((new, "b"), (worn, "r")):
         ms = float(clutch.torque(w))
@@ -311,10 +298,8 @@ def figures(out_dir: Path) -> list[Path]:
     paper = [(15, 3.8), (15, 14.1), (13, 2.36)]
     ax.plot(*zip(*paper), "ks", label="paper: P(slip)")
     ax.plot([15, 15, 13, 20, 20], [1.32, 5.15, 0.75, 4.14, 11.0], "k^", label="paper: loss")
-    ax.set(xlabel="guide bar [in]", ylabel="[%]", title="Bar length effect, 950 rad/s (chain mass model ASSUMED)")
-    ax.legend(fontsize=7)
-    paths.append(out_dir / "wiesik_bar_length.png")
-    fig.savefig(paths[-1], dpi=DPI)
+    finish(fig, ax, out_dir / "wiesik_bar_length.png", paths, legend=dict(fontsize=7),
+           xlabel="guide bar [in]", ylabel="[%]", title="Bar length effect, 950 rad/s (chain mass model ASSUMED)")
     return paths
 
 
