@@ -64,10 +64,12 @@ def mesh_json(c4_msh, c4):
 
 @pytest.fixture(scope="module")
 def concept_full(c4):
-    """The concept path (analytical coupling and all) on the full model, through the API."""
+    """The concept path (analytical coupling and all) on the full model, through the API.
+    Without the error estimate: no test compares its bands, and the answers compared are the
+    same with it (its refined mesh's solve was 1.5 of the 2.1 s CPU)."""
     c, p = c4
     cm = mesh_concept(c, p, MeshSettings(size=float(SIZE), model="full"))
-    return analyze(Design(cm, OperatingPoint(material="51CrV4", rpm=RPM), params=p, name="concept4"))
+    return analyze(Design(cm, OperatingPoint(material="51CrV4", rpm=RPM), params=p, name="concept4"), errors=False)
 
 
 @pytest.mark.slow

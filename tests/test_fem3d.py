@@ -175,8 +175,9 @@ def test_thin_limit_plane_stress_and_bounds(sectors):
 @pytest.mark.slow
 def test_half_model_exact_and_cheaper(sectors):
     """Mid-plane symmetry is exact: half and full models give the same field (to solver
-    round-off) at half the unknowns."""
-    cm = sectors[2e-3]
+    round-off) at half the unknowns.  An identity, not an approximation: it holds on any mesh,
+    so the coarsest sector (2 mm: 2.0 s CPU, 4 mm: 0.25 s)."""
+    cm = sectors[4e-3]
     half = build_fe_model_3d(cm, STEEL, settings=ExtrusionSettings(layers=2, half=True))
     full = build_fe_model_3d(cm, STEEL, settings=ExtrusionSettings(layers=4, half=False))
     uh, uf = half.solve(half.f1), full.solve(full.f1)

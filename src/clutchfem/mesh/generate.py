@@ -96,8 +96,12 @@ def mesh_concept(concept: Concept, p: ConceptParams, ms: MeshSettings | None = N
                         "n_shoes_total": built.n_shoes_total, "n_shoes_model": built.n_shoes_model,
                         "sector_angle": built.sector_angle, "mirrored": built.mirrored,
                         "mesh_time_s": time.perf_counter() - t0}
-                _atomic_write_text(side, json.dumps(meta))
-                cm = _load_generated(msh, meta, concept.name)
+                text = json.dumps(meta)
+                _atomic_write_text(side, text)
+                # read back as a cache hit reads it (the same function, file and side-car
+                # text): the design asked for again in this process is then not read twice
+                st = msh.stat()
+                cm = dataclasses.replace(_loaded(str(msh), (st.st_mtime_ns, st.st_size), text, concept.name))
                 cm.cached, cm.mesh_time_s = False, meta["mesh_time_s"]
                 n, freed = evict(d=d)
                 if n:
