@@ -9,7 +9,6 @@ cores, without a word)."""
 from __future__ import annotations
 
 import http.server
-import json
 import os
 import re
 import signal
@@ -38,6 +37,7 @@ from clutchfem.evaluation import (
 from clutchfem.evaluation import cluster as cluster_mod
 from clutchfem.evaluation import store as store_mod
 from clutchfem.studies import parse_spec
+from support.scheduler import scheduler_address
 
 ROOT = Path(__file__).resolve().parents[1]
 DASK = Path(sys.executable).with_name("dask")
@@ -188,10 +188,7 @@ def scheduler(tmp_path):
     p = subprocess.Popen([str(DASK), "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
                           "--scheduler-file", str(f)], env=_env(), stdout=log, stderr=log, start_new_session=True)
     try:
-        t0 = time.time()
-        while not f.exists() and time.time() - t0 < 60:
-            time.sleep(0.1)
-        yield json.loads(f.read_text())["address"]
+        yield scheduler_address(f, p)
     finally:
         _kill(p)
         log.close()

@@ -31,6 +31,7 @@ import pytest
 from clutchfem.evaluation import COLUMNS, ResultStore, run_points
 from clutchfem.studies import parse_spec, run_study
 from support.cli import cli_in_process
+from support.scheduler import scheduler_address
 
 ROOT = Path(__file__).resolve().parents[1]
 CRASHY = ROOT / "tests" / "data" / "study_geometries"
@@ -260,10 +261,7 @@ def test_remote_scheduler_and_worker_processes(tmp_path):
                              start_new_session=True)
     worker = None
     try:
-        t0 = time.time()
-        while not sched_file.exists() and time.time() - t0 < 60:
-            time.sleep(0.1)
-        address = json.loads(sched_file.read_text())["address"]
+        address = scheduler_address(sched_file, sched)
         assert address.startswith("tcp://127.0.0.1:")
         worker = subprocess.Popen([str(DASK), "worker", address, "--nthreads", "1", "--nworkers", "1",
                                    "--no-dashboard", "--host", "127.0.0.1"], env=env, stdout=log_w, stderr=log_w,
